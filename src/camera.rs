@@ -1,0 +1,93 @@
+//! The pinhole camera and its primary rays (MODEL §2).
+
+use glam::DVec3;
+use serde::Serialize;
+
+use crate::math::Ray;
+
+/// Where the eye is and where it looks. `fov` is the vertical field of view in
+/// degrees, edge to edge of the image.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Camera {
+    pub eye: DVec3,
+    pub look_at: DVec3,
+    pub up: DVec3,
+    pub fov: f64,
+}
+
+/// The camera's orthonormal frame for one image size, computed once per render.
+#[derive(Clone, Copy, Debug)]
+pub struct Viewport {
+    eye: DVec3,
+    forward: DVec3,
+    right: DVec3,
+    true_up: DVec3,
+    half_height: f64,
+    width: u32,
+    height: u32,
+}
+
+impl Camera {
+    pub fn viewport(&self, width: u32, height: u32) -> Viewport {
+        let forward = (self.look_at - self.eye).normalize();
+        let right = forward.cross(self.up).normalize();
+        let true_up = right.cross(forward);
+        Viewport {
+            eye: self.eye,
+            forward,
+            right,
+            true_up,
+            half_height: (self.fov.to_radians() / 2.0).tan(),
+            width,
+            height,
+        }
+    }
+}
+
+impl Viewport {
+    /// The primary ray through the centre of pixel (x, y); x to the right and
+    /// y downward, both from 0.
+    pub fn primary_ray(&self, x: u32, y: u32) -> Ray {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let s = self.half_height;
+        let px = (2.0 * (x as f64 + 0.5) / w - 1.0) * s * (w / h);
+        let py = (1.0 - 2.0 * (y as f64 + 0.5) / h) * s;
+        let direction = (self.forward + px * self.right + py * self.true_up).normalize();
+        Ray::new(self.eye, direction)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centre_pixel_of_an_odd_image_looks_straight_ahead() {
+        let camera = Camera {
+            eye: DVec3::ZERO,
+            look_at: DVec3::new(0.0, 0.0, -1.0),
+            up: DVec3::Y,
+            fov: 90.0,
+        };
+        let ray = camera.viewport(3, 3).primary_ray(1, 1);
+        // px = (2 * 1.5 / 3 - 1) s = 0, py = 0: direction = forward.
+        assert!((ray.direction - DVec3::new(0.0, 0.0, -1.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn corner_pixel_follows_the_model_formula() {
+        let camera = Camera {
+            eye: DVec3::ZERO,
+            look_at: DVec3::new(0.0, 0.0, -1.0),
+            up: DVec3::Y,
+            fov: 90.0,
+        };
+        // 4 x 2 image, fov 90: s = tan 45 = 1, aspect 2.
+        // Pixel (0, 0): px = (2 * 0.5 / 4 - 1) * 1 * 2 = -1.5, py = (1 - 2 * 0.5 / 2) = 0.5.
+        // forward (0,0,-1), right = f x up = (1,0,0), true up (0,1,0):
+        // direction = normalize(-1.5, 0.5, -1) = (-1.5, 0.5, -1) / sqrt(3.5).
+        let ray = camera.viewport(4, 2).primary_ray(0, 0);
+        let expected = DVec3::new(-1.5, 0.5, -1.0) / 3.5f64.sqrt();
+        assert!((ray.direction - expected).length() < 1e-15);
+    }
+}

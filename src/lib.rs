@@ -1,0 +1,8 @@
+//! raystep: a teaching-oriented, step-through Whitted ray tracer and debugger.
+//!
+//! One engine renders whole images and records, for any pixel, the tree of
+//! rays and illumination terms that produced its colour (see MODEL.md).
+
+pub mod camera;
+pub mod math;
+pub mod shapes;

@@ -1,0 +1,97 @@
+//! Small value types shared by every part of the tracer: rays, colours and
+//! the open interval of accepted hit distances.
+
+use glam::DVec3;
+
+/// An RGB colour with linear channels; 1.0 is full intensity before clamping.
+pub type Color = DVec3;
+
+/// Hits closer than this (in scene units) are ignored, for every kind of ray,
+/// so that secondary rays starting on a surface do not hit it again (MODEL §3).
+pub const EPS: f64 = 1e-4;
+
+/// A half-line `origin + t * direction`. The direction of a primary or shadow
+/// ray is unit length; secondary directions are used as computed (MODEL §5).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    pub origin: DVec3,
+    pub direction: DVec3,
+}
+
+impl Ray {
+    pub fn new(origin: DVec3, direction: DVec3) -> Self {
+        Self { origin, direction }
+    }
+
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.origin + t * self.direction
+    }
+}
+
+/// The open interval `(min, max)` of ray distances a query accepts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interval {
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Interval {
+    pub const fn new(min: f64, max: f64) -> Self {
+        Self { min, max }
+    }
+
+    /// Every hit in front of a ray's origin: `(EPS, inf)`.
+    pub const fn in_front() -> Self {
+        Self::new(EPS, f64::INFINITY)
+    }
+
+    /// True when `min < t < max`.
+    pub fn surrounds(&self, t: f64) -> bool {
+        self.min < t && t < self.max
+    }
+}
+
+/// Attenuation `min(1, 1 / (c1 + c2 d + c3 d^2))`, used for lights and for
+/// secondary rays (MODEL §4, §5). A non-positive denominator means no attenuation.
+pub fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
+    let denominator = c1 + c2 * distance + c3 * distance * distance;
+    if denominator <= 0.0 {
+        1.0
+    } else {
+        (1.0 / denominator).min(1.0)
+    }
+}
+
+/// An 8-bit channel value: clamp to [0, 1], then floor(255 c + 0.5) (MODEL §6).
+pub fn to_byte(channel: f64) -> u8 {
+    let clamped = if channel.is_nan() { 0.0 } else { channel.clamp(0.0, 1.0) };
+    (255.0 * clamped + 0.5).floor() as u8
+}
+
+/// A colour as stored in the PNG.
+pub fn to_rgb8(color: Color) -> [u8; 3] {
+    [to_byte(color.x), to_byte(color.y), to_byte(color.z)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn attenuation_is_capped_at_one() {
+        // 1 / (0.5 + 0 + 0) = 2, capped to 1.
+        assert_eq!(attenuation([0.5, 0.0, 0.0], 3.0), 1.0);
+        // 1 / (1 + 0.5 * 2 + 0.25 * 4) = 1 / 3.
+        assert!((attenuation([1.0, 0.5, 0.25], 2.0) - 1.0 / 3.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bytes_round_half_up_and_clamp() {
+        assert_eq!(to_byte(-0.2), 0);
+        assert_eq!(to_byte(1.7), 255);
+        // 255 * 0.5 = 127.5, + 0.5 = 128.0 -> 128.
+        assert_eq!(to_byte(0.5), 128);
+        // 255 * 0.2 = 51.0 -> 51.
+        assert_eq!(to_byte(0.2), 51);
+    }
+}

@@ -1,0 +1,195 @@
+//! The closed set of primitives, dispatched with one `match` (no virtual calls).
+//! Every primitive answers three questions: where a ray first hits it, every
+//! place a shadow segment crosses it, and the lecture's working for one ray.
+
+mod cone;
+mod patch;
+mod plane;
+mod polygon;
+mod sphere;
+
+use glam::DVec3;
+use serde::Serialize;
+
+pub use cone::{Cone, ConeWorking};
+pub use patch::{Patch, PatchWorking};
+pub use plane::{Plane, PlaneWorking};
+pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking};
+pub use sphere::{RootChoice, Sphere, SphereWorking};
+
+use crate::math::{Interval, Ray};
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    Sphere(Sphere),
+    Plane(Plane),
+    Polygon(Polygon),
+    Patch(Patch),
+    Cone(Cone),
+}
+
+/// Geometry that cannot be intersected: the message says what is wrong.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct GeometryError(pub String);
+
+/// The lecture's working for one ray and one primitive, kept for the ray tree.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "shape", rename_all = "snake_case")]
+pub enum Working {
+    Sphere(SphereWorking),
+    Plane(PlaneWorking),
+    Polygon(PolygonWorking),
+    Patch(PatchWorking),
+    Cone(ConeWorking),
+}
+
+/// Up to two ray distances where a segment crosses a surface, in increasing order.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Roots {
+    ts: [f64; 2],
+    count: usize,
+}
+
+impl Roots {
+    pub const NONE: Roots = Roots { ts: [0.0; 2], count: 0 };
+
+    fn of_one(t: Option<f64>) -> Roots {
+        let mut roots = Roots::NONE;
+        if let Some(t) = t {
+            roots.push(t);
+        }
+        roots
+    }
+
+    /// The roots t0 <= t1 that lie in the range; a double root counts once.
+    fn of_pair(t0: f64, t1: f64, range: Interval) -> Roots {
+        let mut roots = Roots::NONE;
+        if range.surrounds(t0) {
+            roots.push(t0);
+        }
+        if range.surrounds(t1) && t1 != t0 {
+            roots.push(t1);
+        }
+        roots
+    }
+
+    fn push(&mut self, t: f64) {
+        self.ts[self.count] = t;
+        self.count += 1;
+    }
+
+    pub fn as_slice(&self) -> &[f64] {
+        &self.ts[..self.count]
+    }
+}
+
+impl Shape {
+    /// The nearest distance in `range` where the ray hits the surface.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, range: Interval) -> Option<f64> {
+        match self {
+            Shape::Sphere(s) => s.solve(ray, range).t(),
+            Shape::Plane(p) => p.solve(ray, range).hit_t(),
+            Shape::Polygon(p) => p.solve(ray, range).hit_t(),
+            Shape::Patch(p) => p.polygon.solve(ray, range).hit_t(),
+            Shape::Cone(c) => c.solve(ray, range).t(),
+        }
+    }
+
+    /// Every crossing of the segment `range` of the ray, for shadow rays.
+    #[inline]
+    pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {
+        match self {
+            Shape::Sphere(s) => s.roots(ray, range),
+            Shape::Plane(p) => p.roots(ray, range),
+            Shape::Polygon(p) => p.roots(ray, range),
+            Shape::Patch(p) => p.polygon.roots(ray, range),
+            Shape::Cone(c) => c.roots(ray, range),
+        }
+    }
+
+    /// The same computation as `intersect`, with every intermediate value kept.
+    pub fn working(&self, ray: &Ray, range: Interval) -> Working {
+        match self {
+            Shape::Sphere(s) => Working::Sphere(s.solve(ray, range)),
+            Shape::Plane(p) => Working::Plane(p.solve(ray, range)),
+            Shape::Polygon(p) => Working::Polygon(p.solve(ray, range)),
+            Shape::Patch(p) => {
+                let polygon = p.polygon.solve(ray, range);
+                let located = polygon.hit_t().map(|t| p.locate(ray.at(t)));
+                Working::Patch(PatchWorking {
+                    polygon,
+                    fan_triangle: located.map(|(i, _)| i),
+                    barycentric: located.map(|(_, w)| w),
+                })
+            }
+            Shape::Cone(c) => Working::Cone(c.solve(ray, range)),
+        }
+    }
+
+    /// N_g at a point of the surface, unit length, before facing the ray (MODEL §3).
+    pub fn geometric_normal(&self, point: DVec3) -> DVec3 {
+        match self {
+            Shape::Sphere(s) => s.normal_at(point),
+            Shape::Plane(p) => p.normal,
+            Shape::Polygon(p) => p.plane.normal,
+            Shape::Patch(p) => p.normal_at(point),
+            Shape::Cone(c) => c.normal_at(point),
+        }
+    }
+
+    /// The bounding box, or `None` for an unbounded plane.
+    pub fn bounds(&self) -> Option<Aabb> {
+        match self {
+            Shape::Sphere(s) => Some(s.bounds()),
+            Shape::Plane(_) => None,
+            Shape::Polygon(p) => Some(p.bounds()),
+            Shape::Patch(p) => Some(p.polygon.bounds()),
+            Shape::Cone(c) => Some(c.bounds()),
+        }
+    }
+
+    /// The kind's name as shown to users ("sphere", "cylinder", ...).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Shape::Sphere(_) => "sphere",
+            Shape::Plane(_) => "plane",
+            Shape::Polygon(_) => "polygon",
+            Shape::Patch(_) => "patch",
+            Shape::Cone(c) if c.is_cylinder() => "cylinder",
+            Shape::Cone(_) => "cone",
+        }
+    }
+}
+
+/// An axis-aligned bounding box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    pub const EMPTY: Aabb = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
+
+    pub fn new(min: DVec3, max: DVec3) -> Self {
+        Self { min, max }
+    }
+
+    pub fn around(points: &[DVec3]) -> Self {
+        points.iter().fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(*p, *p)))
+    }
+
+    pub fn union(&self, other: &Aabb) -> Aabb {
+        Aabb::new(self.min.min(other.min), self.max.max(other.max))
+    }
+
+    pub fn diagonal(&self) -> f64 {
+        (self.max - self.min).length()
+    }
+
+    pub fn centroid(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+}

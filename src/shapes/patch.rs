@@ -1,0 +1,120 @@
+//! Polygonal patch: a polygon with a normal at every vertex. It is intersected
+//! exactly like a polygon; its normal is interpolated (MODEL §3).
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::polygon::{Polygon, PolygonWorking};
+use super::GeometryError;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    pub polygon: Polygon,
+    /// One unit normal per vertex.
+    pub normals: Vec<DVec3>,
+}
+
+/// Where in the fan a hit landed and how its normal was blended.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PatchWorking {
+    pub polygon: PolygonWorking,
+    /// The fan triangle (v0, v_i, v_i+1) that holds the hit: i.
+    pub fan_triangle: Option<usize>,
+    /// Barycentric weights of v0, v_i, v_i+1.
+    pub barycentric: Option<[f64; 3]>,
+}
+
+impl Patch {
+    pub fn new(vertices: Vec<DVec3>, normals: Vec<DVec3>) -> Result<Self, GeometryError> {
+        if normals.len() != vertices.len() {
+            return Err(GeometryError(format!(
+                "a patch needs one normal per vertex: {} vertices, {} normals",
+                vertices.len(),
+                normals.len()
+            )));
+        }
+        let polygon = Polygon::new(vertices)?;
+        let mut unit = Vec::with_capacity(normals.len());
+        for (i, n) in normals.iter().enumerate() {
+            let length = n.length();
+            if !(length > 0.0) || !length.is_finite() {
+                return Err(GeometryError(format!("vertex normal {i} is zero")));
+            }
+            unit.push(*n / length);
+        }
+        Ok(Self { polygon, normals: unit })
+    }
+
+    /// The fan triangle holding `point` and the point's barycentric weights in it,
+    /// computed in the polygon's projected 2-D plane. A point on no triangle (it
+    /// can only be off by rounding) takes the triangle it is least outside of.
+    pub fn locate(&self, point: glam::DVec3) -> (usize, [f64; 3]) {
+        let projected = self.polygon.projected();
+        let p = self.polygon.dropped.project(point);
+        let mut best = (1, [1.0, 0.0, 0.0], f64::NEG_INFINITY);
+        for i in 1..projected.len() - 1 {
+            let (a, b, c) = (projected[0], projected[i], projected[i + 1]);
+            let area = (b - a).perp_dot(c - a);
+            if area == 0.0 {
+                continue;
+            }
+            let wb = (p - a).perp_dot(c - a) / area;
+            let wc = (b - a).perp_dot(p - a) / area;
+            let weights = [1.0 - wb - wc, wb, wc];
+            let worst = weights[0].min(wb).min(wc);
+            if worst >= 0.0 {
+                return (i, weights);
+            }
+            if worst > best.2 {
+                best = (i, weights, worst);
+            }
+        }
+        (best.0, best.1)
+    }
+
+    /// The interpolated unit normal at a point of the patch.
+    pub fn normal_at(&self, point: DVec3) -> DVec3 {
+        let (i, [w0, wi, wj]) = self.locate(point);
+        let blended = w0 * self.normals[0] + wi * self.normals[i] + wj * self.normals[i + 1];
+        let length = blended.length();
+        if length > 0.0 { blended / length } else { self.polygon.plane.normal }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normal_is_interpolated_barycentrically() {
+        // Triangle (0,0,0) (1,0,0) (0,1,0) with normals z, x, y.
+        let patch = Patch::new(
+            vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            vec![DVec3::Z, DVec3::X, DVec3::Y],
+        )
+        .unwrap();
+        // At (0.25, 0.25): weights v0 = 0.5, v1 = 0.25, v2 = 0.25;
+        // blend (0.25, 0.25, 0.5), length sqrt(0.375).
+        let (i, w) = patch.locate(DVec3::new(0.25, 0.25, 0.0));
+        assert_eq!(i, 1);
+        assert!((w[0] - 0.5).abs() < 1e-12 && (w[1] - 0.25).abs() < 1e-12);
+        let n = patch.normal_at(DVec3::new(0.25, 0.25, 0.0));
+        let expected = DVec3::new(0.25, 0.25, 0.5) / 0.375f64.sqrt();
+        assert!((n - expected).length() < 1e-12);
+    }
+
+    #[test]
+    fn quad_patch_picks_the_second_fan_triangle() {
+        // Square fan: triangles (v0,v1,v2) and (v0,v2,v3). (0.2, 0.8) lies in the second.
+        let v = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+        let patch = Patch::new(v, vec![DVec3::Z; 4]).unwrap();
+        assert_eq!(patch.locate(DVec3::new(0.2, 0.8, 0.0)).0, 2);
+        assert_eq!(patch.locate(DVec3::new(0.8, 0.2, 0.0)).0, 1);
+    }
+
+    #[test]
+    fn zero_vertex_normal_is_rejected() {
+        let v = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
+        assert!(Patch::new(v, vec![DVec3::Z, DVec3::ZERO, DVec3::Z]).is_err());
+    }
+}
