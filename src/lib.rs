@@ -6,3 +6,6 @@
 pub mod camera;
 pub mod math;
 pub mod shapes;
+pub mod accel;
+pub mod scene;
+pub mod trace;

@@ -1,0 +1,227 @@
+//! The scene as the tracer sees it: camera, settings, materials, lights and
+//! named objects, whatever file format it was read from.
+
+mod error;
+pub mod nff;
+pub mod toml_format;
+
+use std::path::Path;
+
+use glam::DVec3;
+use serde::Serialize;
+
+pub use error::{SceneError, SourceLocation};
+
+use crate::accel::Accel;
+use crate::camera::Camera;
+use crate::math::Color;
+use crate::shapes::Shape;
+
+/// The largest image side accepted; beyond it a render would take minutes and
+/// gigabytes, which is never what a teaching scene wants.
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+/// The largest number of pixels accepted (a 8192 x 8192 image).
+pub const MAX_IMAGE_PIXELS: u64 = 8192 * 8192;
+
+/// Blinn's N·H (the default) or Phong's R·V for the specular term (MODEL §1, §4).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SpecularModel {
+    #[default]
+    Blinn,
+    Phong,
+}
+
+/// Terms a teacher can switch off to show what each one contributes. They are
+/// not part of the model; all are on unless the debugger turns them off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Switches {
+    pub shadows: bool,
+    pub reflection: bool,
+    pub transmission: bool,
+    pub ambient: bool,
+}
+
+impl Default for Switches {
+    fn default() -> Self {
+        Self { shadows: true, reflection: true, transmission: true, ambient: true }
+    }
+}
+
+/// Scene-wide constants of the illumination model.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Settings {
+    pub background: Color,
+    /// I_a.
+    pub ambient: Color,
+    /// (c1, c2, c3) of f_att for lights.
+    pub light_attenuation: [f64; 3],
+    /// (a1, a2, a3) of the distance attenuation of secondary rays.
+    pub ray_attenuation: [f64; 3],
+    /// The primary ray has depth 1; hits at depth < max_depth spawn secondary rays.
+    pub max_depth: u32,
+    pub specular: SpecularModel,
+    pub switches: Switches,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            background: Color::ZERO,
+            ambient: Color::ZERO,
+            light_attenuation: [1.0, 0.0, 0.0],
+            ray_attenuation: [1.0, 0.0, 0.0],
+            max_depth: 5,
+            specular: SpecularModel::Blinn,
+            switches: Switches::default(),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Material {
+    pub name: String,
+    /// O_d, the object's diffuse colour.
+    pub color: Color,
+    pub kd: f64,
+    pub ks: f64,
+    /// The specular exponent n.
+    pub shininess: f64,
+    pub kt: f64,
+    pub ior: f64,
+    pub ka: f64,
+}
+
+impl Material {
+    /// NFF's material before the first `f` line: white, k_d = 1, all else 0 (MODEL §4).
+    pub fn default_white() -> Self {
+        Self { name: "default".into(), color: Color::ONE, kd: 1.0, ks: 0.0, shininess: 0.0, kt: 0.0, ior: 1.0, ka: 1.0 }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Light {
+    pub name: String,
+    pub position: DVec3,
+    /// I_p.
+    pub color: Color,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    pub name: String,
+    pub shape: Shape,
+    /// Index into `Scene::materials`.
+    pub material: usize,
+}
+
+/// A scene ready to trace: validated, with its acceleration structure built.
+#[derive(Debug)]
+pub struct Scene {
+    pub camera: Camera,
+    pub width: u32,
+    pub height: u32,
+    pub settings: Settings,
+    pub materials: Vec<Material>,
+    pub lights: Vec<Light>,
+    pub objects: Vec<Object>,
+    pub accel: Accel,
+}
+
+/// The parts of a scene a file describes, before the acceleration structure.
+#[derive(Clone, Debug)]
+pub struct SceneDescription {
+    pub camera: Camera,
+    pub width: u32,
+    pub height: u32,
+    pub settings: Settings,
+    pub materials: Vec<Material>,
+    pub lights: Vec<Light>,
+    pub objects: Vec<Object>,
+}
+
+impl SceneDescription {
+    pub fn prepare(self) -> Scene {
+        let accel = Accel::build(&self.objects);
+        Scene {
+            camera: self.camera,
+            width: self.width,
+            height: self.height,
+            settings: self.settings,
+            materials: self.materials,
+            lights: self.lights,
+            objects: self.objects,
+            accel,
+        }
+    }
+}
+
+impl Scene {
+    /// The same scene rendered at another size (the field of view is kept).
+    pub fn with_size(mut self, width: u32, height: u32) -> Result<Scene, SceneError> {
+        check_image_size(width, height).map_err(SceneError::plain)?;
+        self.width = width;
+        self.height = height;
+        Ok(self)
+    }
+
+    pub fn material_of(&self, object: usize) -> &Material {
+        &self.materials[self.objects[object].material]
+    }
+}
+
+/// Reads a scene file, choosing the format by extension (`.nff`, else TOML).
+pub fn load(path: &Path) -> Result<SceneDescription, SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
+    parse(path, &text)
+}
+
+/// Parses scene text; `path` names it in messages and picks the format.
+pub fn parse(path: &Path, text: &str) -> Result<SceneDescription, SceneError> {
+    let is_nff = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nff"));
+    if is_nff { nff::parse(path, text) } else { toml_format::parse(path, text) }
+}
+
+/// Refuses empty or absurd image sizes, saying why.
+pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
+    if width == 0 || height == 0 {
+        return Err(format!("image size {width}x{height} is empty: both sides must be at least 1"));
+    }
+    if width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
+        return Err(format!(
+            "image size {width}x{height} is too large: each side may be at most {MAX_IMAGE_SIDE} pixels"
+        ));
+    }
+    if width as u64 * height as u64 > MAX_IMAGE_PIXELS {
+        return Err(format!(
+            "image size {width}x{height} is too large: at most {MAX_IMAGE_PIXELS} pixels (8192 x 8192) are rendered"
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a field of view outside (0, 180) degrees.
+pub fn check_fov(fov: f64) -> Result<(), String> {
+    if fov > 0.0 && fov < 180.0 {
+        Ok(())
+    } else {
+        Err(format!("fov must be between 0 and 180 degrees (exclusive), got {fov}"))
+    }
+}
+
+/// Refuses a camera whose frame is undefined.
+pub fn check_camera(camera: &Camera) -> Result<(), String> {
+    check_fov(camera.fov)?;
+    let forward = camera.look_at - camera.eye;
+    if !(forward.length() > 0.0) {
+        return Err(format!("camera eye and look_at are the same point {}", camera.eye));
+    }
+    if !(forward.cross(camera.up).length() > 1e-12 * forward.length() * camera.up.length()) {
+        return Err(format!(
+            "camera up {} is zero or parallel to the viewing direction {}",
+            camera.up, forward
+        ));
+    }
+    Ok(())
+}

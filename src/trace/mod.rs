@@ -1,0 +1,10 @@
+//! The Whitted tracer and the recorder interface through which it reports
+//! everything it does.
+
+mod recorder;
+mod stats;
+mod tracer;
+
+pub use recorder::{Blocker, ChildTerm, LightTerm, NoRecorder, RayKind, Recorder, Refraction, ShadowOutcome, SurfaceHit};
+pub use stats::RayStats;
+pub use tracer::{Traced, trace, trace_pixel};

@@ -1,0 +1,133 @@
+//! The recorder: the tracer drives and calls back, like ripgrep's `Sink`.
+//! Every method has an empty `#[inline]` default, so the render's
+//! `NoRecorder` compiles away; the debugger's recorder builds the ray tree and
+//! the event list from the same calls, in the order they happen.
+
+use glam::DVec3;
+use serde::Serialize;
+
+use crate::accel::Cost;
+use crate::math::{Color, Ray};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RayKind {
+    Primary,
+    Reflected,
+    Transmitted,
+}
+
+/// The surface a ray hit, expanded from the winning candidate only.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceHit {
+    pub object: usize,
+    pub t: f64,
+    pub point: DVec3,
+    /// N_g, unit length (for a patch, the interpolated normal).
+    pub geometric_normal: DVec3,
+    /// N: N_g turned to face the incoming ray (N·d <= 0), unit length.
+    pub normal: DVec3,
+    /// N_g·d < 0: the ray arrives on the front side.
+    pub entering: bool,
+}
+
+/// One crossing of a shadow ray's segment.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Blocker {
+    pub object: usize,
+    pub t: f64,
+    pub kt: f64,
+}
+
+/// The result of one shadow ray.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ShadowOutcome {
+    /// S_i: the product of k_t over the crossings.
+    pub s: f64,
+    /// How many crossings were found (the render stops at the first opaque one).
+    pub crossings: u32,
+    pub cost: Cost,
+}
+
+/// Everything one light contributes at a hit (MODEL §4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightTerm {
+    pub light: usize,
+    /// L, unit length.
+    pub to_light: DVec3,
+    pub distance: f64,
+    pub n_dot_l: f64,
+    /// N·L <= 0: no shadow ray, no contribution.
+    pub faces_away: bool,
+    /// The shadow ray's result; `None` when none was cast (faces away, or shadows off).
+    pub shadow: Option<ShadowOutcome>,
+    pub f_att: f64,
+    /// N·H (Blinn) or R·V (Phong), before clamping to 0.
+    pub specular_cosine: f64,
+    pub diffuse: Color,
+    pub specular: Color,
+}
+
+/// Snell's law at a transparent surface (MODEL §5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Refraction {
+    pub cos_i: f64,
+    pub eta: f64,
+    /// 1 - eta^2 (1 - cos_i^2); negative means total internal reflection.
+    pub k: f64,
+    pub tir: bool,
+    /// The transmitted direction, unless TIR.
+    pub direction: Option<DVec3>,
+}
+
+/// A secondary ray's returned colour and what it adds to its parent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChildTerm {
+    pub kind: RayKind,
+    pub weight: f64,
+    /// Distance attenuation; 1 for a miss.
+    pub attenuation: f64,
+    /// The child's hit distance, `None` for a miss.
+    pub distance: Option<f64>,
+    /// The colour the child ray returned.
+    pub color: Color,
+    /// weight * attenuation * color: the term added to the parent.
+    pub contribution: Color,
+}
+
+/// Callbacks in execution order. For one ray: `ray_cast`, then `hit` or `miss`;
+/// after a hit `ambient`, per light `shadow_cast` and its `blocker`s then
+/// `light`, then `refraction`, each child's whole subtree followed by `child`;
+/// last `ray_done`.
+pub trait Recorder {
+    /// When true, shadow queries report every blocker instead of stopping at
+    /// the first opaque one. S is the same either way.
+    const RECORDS_ALL_BLOCKERS: bool = false;
+
+    #[inline]
+    fn ray_cast(&mut self, _kind: RayKind, _depth: u32, _ray: &Ray, _weight: f64) {}
+    #[inline]
+    fn hit(&mut self, _hit: &SurfaceHit, _cost: Cost) {}
+    #[inline]
+    fn miss(&mut self, _background: Color, _cost: Cost) {}
+    #[inline]
+    fn ambient(&mut self, _term: Color) {}
+    #[inline]
+    fn shadow_cast(&mut self, _light: usize, _ray: &Ray, _distance: f64) {}
+    #[inline]
+    fn blocker(&mut self, _blocker: &Blocker) {}
+    #[inline]
+    fn light(&mut self, _term: &LightTerm) {}
+    #[inline]
+    fn refraction(&mut self, _refraction: &Refraction) {}
+    #[inline]
+    fn child(&mut self, _term: &ChildTerm) {}
+    #[inline]
+    fn ray_done(&mut self, _color: Color) {}
+}
+
+/// Records nothing: what a full render passes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoRecorder;
+
+impl Recorder for NoRecorder {}

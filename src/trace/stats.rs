@@ -1,0 +1,64 @@
+//! The ray counts of MODEL §7, gathered by a recorder.
+
+use serde::Serialize;
+
+use super::recorder::{LightTerm, RayKind, Recorder, SurfaceHit};
+use crate::accel::Cost;
+use crate::math::Ray;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct RayStats {
+    pub primary: u64,
+    pub primary_hit: u64,
+    /// Reflected rays, TIR included.
+    pub reflected: u64,
+    pub transmitted: u64,
+    /// Shadow rays cast (lights facing away cast none).
+    pub shadow: u64,
+    /// Shadow rays with at least one crossing, transparent or not.
+    pub shadow_blocked: u64,
+    /// Shadow rays fully blocked (S = 0).
+    pub shadow_opaque: u64,
+    #[serde(skip)]
+    depth: u32,
+}
+
+impl RayStats {
+    pub fn add(&mut self, other: &RayStats) {
+        self.primary += other.primary;
+        self.primary_hit += other.primary_hit;
+        self.reflected += other.reflected;
+        self.transmitted += other.transmitted;
+        self.shadow += other.shadow;
+        self.shadow_blocked += other.shadow_blocked;
+        self.shadow_opaque += other.shadow_opaque;
+    }
+}
+
+impl Recorder for RayStats {
+    #[inline]
+    fn ray_cast(&mut self, kind: RayKind, depth: u32, _ray: &Ray, _weight: f64) {
+        self.depth = depth;
+        match kind {
+            RayKind::Primary => self.primary += 1,
+            RayKind::Reflected => self.reflected += 1,
+            RayKind::Transmitted => self.transmitted += 1,
+        }
+    }
+
+    #[inline]
+    fn hit(&mut self, _hit: &SurfaceHit, _cost: Cost) {
+        if self.depth == 1 {
+            self.primary_hit += 1;
+        }
+    }
+
+    #[inline]
+    fn light(&mut self, term: &LightTerm) {
+        if let Some(shadow) = term.shadow {
+            self.shadow += 1;
+            self.shadow_blocked += u64::from(shadow.crossings > 0);
+            self.shadow_opaque += u64::from(shadow.s == 0.0);
+        }
+    }
+}

@@ -1,0 +1,203 @@
+//! The Whitted tracer, written once for rendering and recording (MODEL §3-§6):
+//! nearest hit or background; ambient; each light with its shadow ray; then
+//! reflection and transmission while the depth allows.
+
+use std::ops::ControlFlow;
+
+use glam::DVec3;
+
+use super::recorder::{
+    Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, ShadowOutcome, SurfaceHit,
+};
+use crate::accel::{Candidate, Cost};
+use crate::camera::Viewport;
+use crate::math::{Color, EPS, Interval, Ray, attenuation};
+use crate::scene::{Light, Material, Scene, SpecularModel};
+
+/// What a ray brings back: its colour and, if it hit, how far it went.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Traced {
+    pub color: Color,
+    pub distance: Option<f64>,
+}
+
+/// The colour of pixel (x, y), unclamped: the colour of its primary ray.
+pub fn trace_pixel<R: Recorder>(scene: &Scene, viewport: &Viewport, x: u32, y: u32, rec: &mut R) -> Color {
+    let ray = viewport.primary_ray(x, y);
+    trace(scene, &ray, RayKind::Primary, 1, 1.0, rec).color
+}
+
+/// Traces one ray of depth `depth` (the primary ray has depth 1). `weight` is
+/// the factor its colour will be scaled by in its parent, passed on for the record.
+pub fn trace<R: Recorder>(scene: &Scene, ray: &Ray, kind: RayKind, depth: u32, weight: f64, rec: &mut R) -> Traced {
+    rec.ray_cast(kind, depth, ray, weight);
+    let mut cost = Cost::default();
+    let Some(candidate) = scene.accel.closest(&scene.objects, ray, Interval::in_front(), &mut cost) else {
+        let background = scene.settings.background;
+        rec.miss(background, cost);
+        rec.ray_done(background);
+        return Traced { color: background, distance: None };
+    };
+    let hit = surface_hit(scene, ray, candidate);
+    rec.hit(&hit, cost);
+    let color = shade(scene, ray, &hit, depth, rec);
+    rec.ray_done(color);
+    Traced { color, distance: Some(hit.t) }
+}
+
+fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
+    let point = ray.at(candidate.t);
+    let geometric_normal = scene.objects[candidate.object].shape.geometric_normal(point);
+    let entering = geometric_normal.dot(ray.direction) < 0.0;
+    SurfaceHit {
+        object: candidate.object,
+        t: candidate.t,
+        point,
+        geometric_normal,
+        normal: if entering { geometric_normal } else { -geometric_normal },
+        entering,
+    }
+}
+
+/// I = ambient + sum_i (diffuse_i + specular_i) + reflected + transmitted.
+fn shade<R: Recorder>(scene: &Scene, ray: &Ray, hit: &SurfaceHit, depth: u32, rec: &mut R) -> Color {
+    let settings = &scene.settings;
+    let material = scene.material_of(hit.object);
+    let ambient = if settings.switches.ambient {
+        settings.ambient * material.color * material.ka
+    } else {
+        Color::ZERO
+    };
+    rec.ambient(ambient);
+    let mut color = ambient;
+    let to_viewer = -ray.direction;
+    for (index, light) in scene.lights.iter().enumerate() {
+        let term = light_term(scene, hit, material, to_viewer, index, light, rec);
+        rec.light(&term);
+        color += term.diffuse + term.specular;
+    }
+    if depth < settings.max_depth {
+        color += secondary_rays(scene, ray, hit, material, depth, rec);
+    }
+    color
+}
+
+fn light_term<R: Recorder>(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    material: &Material,
+    to_viewer: DVec3,
+    index: usize,
+    light: &Light,
+    rec: &mut R,
+) -> LightTerm {
+    let settings = &scene.settings;
+    let offset = light.position - hit.point;
+    let distance = offset.length();
+    let to_light = offset / distance;
+    let n_dot_l = hit.normal.dot(to_light);
+    let f_att = attenuation(settings.light_attenuation, distance);
+    let mut term = LightTerm {
+        light: index,
+        to_light,
+        distance,
+        n_dot_l,
+        faces_away: n_dot_l <= 0.0,
+        shadow: None,
+        f_att,
+        specular_cosine: 0.0,
+        diffuse: Color::ZERO,
+        specular: Color::ZERO,
+    };
+    if term.faces_away {
+        return term;
+    }
+    if settings.switches.shadows {
+        term.shadow = Some(shadow_ray(scene, hit.point, to_light, distance, index, rec));
+    }
+    let s = term.shadow.map_or(1.0, |shadow| shadow.s);
+    term.specular_cosine = match settings.specular {
+        SpecularModel::Blinn => hit.normal.dot((to_light + to_viewer).normalize()),
+        SpecularModel::Phong => (2.0 * n_dot_l * hit.normal - to_light).dot(to_viewer),
+    };
+    let strength = s * f_att;
+    term.diffuse = light.color * material.color * (strength * material.kd * n_dot_l);
+    term.specular = light.color * (strength * material.ks * term.specular_cosine.max(0.0).powf(material.shininess));
+    term
+}
+
+/// S_i: the product of k_t over every crossing of the segment to the light.
+fn shadow_ray<R: Recorder>(scene: &Scene, point: DVec3, to_light: DVec3, distance: f64, light: usize, rec: &mut R) -> ShadowOutcome {
+    let ray = Ray::new(point, to_light);
+    rec.shadow_cast(light, &ray, distance);
+    let mut outcome = ShadowOutcome { s: 1.0, crossings: 0, cost: Cost::default() };
+    let segment = Interval::new(EPS, distance);
+    scene.accel.crossings(&scene.objects, &ray, segment, &mut outcome.cost, |object, t| {
+        let kt = scene.material_of(object).kt;
+        outcome.s *= kt;
+        outcome.crossings += 1;
+        rec.blocker(&Blocker { object, t, kt });
+        if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    });
+    outcome
+}
+
+/// The reflected and transmitted rays, each through `trace_child`.
+fn secondary_rays<R: Recorder>(
+    scene: &Scene,
+    ray: &Ray,
+    hit: &SurfaceHit,
+    material: &Material,
+    depth: u32,
+    rec: &mut R,
+) -> Color {
+    let switches = scene.settings.switches;
+    let refraction = (material.kt > 0.0 && switches.transmission).then(|| refract(ray.direction, hit, material.ior));
+    if let Some(refraction) = &refraction {
+        rec.refraction(refraction);
+    }
+    let tir = refraction.is_some_and(|r| r.tir);
+    let reflected_weight = if switches.reflection { material.ks } else { 0.0 } + if tir { material.kt } else { 0.0 };
+    let mut color = Color::ZERO;
+    if reflected_weight > 0.0 {
+        let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
+        color += trace_child(scene, hit, RayKind::Reflected, direction, reflected_weight, depth, rec);
+    }
+    if let Some(direction) = refraction.and_then(|r| r.direction) {
+        color += trace_child(scene, hit, RayKind::Transmitted, direction, material.kt, depth, rec);
+    }
+    color
+}
+
+/// Snell's law with N facing the incoming ray; eta = 1 / ior entering, ior leaving.
+fn refract(direction: DVec3, hit: &SurfaceHit, ior: f64) -> Refraction {
+    let cos_i = -direction.dot(hit.normal);
+    let eta = if hit.entering { 1.0 / ior } else { ior };
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    let tir = k < 0.0;
+    let direction = (!tir).then(|| eta * direction + (eta * cos_i - k.sqrt()) * hit.normal);
+    Refraction { cos_i, eta, k, tir, direction }
+}
+
+/// Traces a secondary ray from the hit and scales what it returns by its
+/// weight and its distance attenuation.
+fn trace_child<R: Recorder>(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    kind: RayKind,
+    direction: DVec3,
+    weight: f64,
+    depth: u32,
+    rec: &mut R,
+) -> Color {
+    let ray = Ray::new(hit.point, direction);
+    let traced = trace(scene, &ray, kind, depth + 1, weight, rec);
+    let attenuation = traced.distance.map_or(1.0, |t| attenuation(scene.settings.ray_attenuation, t));
+    let contribution = traced.color * (weight * attenuation);
+    rec.child(&ChildTerm { kind, weight, attenuation, distance: traced.distance, color: traced.color, contribution });
+    contribution
+}
