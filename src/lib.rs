@@ -9,3 +9,5 @@ pub mod shapes;
 pub mod accel;
 pub mod scene;
 pub mod trace;
+pub mod cli;
+pub mod render;

@@ -90,12 +90,14 @@ pub struct Material {
     pub kt: f64,
     pub ior: f64,
     pub ka: f64,
+    /// Overrides the scene's specular model for this material (to show both side by side).
+    pub specular: Option<SpecularModel>,
 }
 
 impl Material {
     /// NFF's material before the first `f` line: white, k_d = 1, all else 0 (MODEL §4).
     pub fn default_white() -> Self {
-        Self { name: "default".into(), color: Color::ONE, kd: 1.0, ks: 0.0, shininess: 0.0, kt: 0.0, ior: 1.0, ka: 1.0 }
+        Self { name: "default".into(), color: Color::ONE, kd: 1.0, ks: 0.0, shininess: 0.0, kt: 0.0, ior: 1.0, ka: 1.0, specular: None }
     }
 }
 

@@ -116,7 +116,7 @@ fn light_term<R: Recorder>(
         term.shadow = Some(shadow_ray(scene, hit.point, to_light, distance, index, rec));
     }
     let s = term.shadow.map_or(1.0, |shadow| shadow.s);
-    term.specular_cosine = match settings.specular {
+    term.specular_cosine = match material.specular.unwrap_or(settings.specular) {
         SpecularModel::Blinn => hit.normal.dot((to_light + to_viewer).normalize()),
         SpecularModel::Phong => (2.0 * n_dot_l * hit.normal - to_light).dot(to_viewer),
     };

@@ -1,0 +1,147 @@
+//! The command line: what each subcommand takes, and how it runs.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use clap::{Args, Parser, Subcommand};
+
+use crate::render::{render, with_threads, write_png};
+use crate::scene::{self, Scene};
+use crate::trace::{NoRecorder, RayStats};
+
+/// raystep: a step-through debugger for Whitted ray tracing.
+///
+/// Without a subcommand it opens the debugger on SCENE, or on a built-in
+/// scene when none is given.
+#[derive(Parser, Debug)]
+#[command(version, about, args_conflicts_with_subcommands = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Scene file for the debugger (.toml or .nff).
+    pub scene: Option<PathBuf>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Open the interactive debugger.
+    Debug {
+        /// Scene file (.toml or .nff); the built-in scene when absent.
+        scene: Option<PathBuf>,
+    },
+    /// Render a whole image to PNG.
+    Render(RenderArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (.toml or .nff).
+    pub scene: PathBuf,
+    /// Output PNG file.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub size: SizeArg,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Option<u16>,
+    /// Print ray counts and timings as one JSON object on stdout.
+    #[arg(long)]
+    pub stats: bool,
+}
+
+#[derive(Args, Debug, Clone, Copy)]
+pub struct SizeArg {
+    /// Image size WIDTHxHEIGHT, overriding the scene's (the field of view is kept).
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+}
+
+/// Parses `WxH`, e.g. `320x240`.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{text}` is not a size: expected WIDTHxHEIGHT, e.g. 320x240");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h) = (w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?);
+    scene::check_image_size(w, h)?;
+    Ok((w, h))
+}
+
+/// Parses `X,Y`, e.g. `160,120`.
+pub fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 160,120");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    Ok((x.trim().parse().map_err(|_| bad())?, y.trim().parse().map_err(|_| bad())?))
+}
+
+/// The scene shown when none is named: the seven-rays scene.
+pub const DEFAULT_SCENE_NAME: &str = "seven-rays.toml (built in)";
+pub const DEFAULT_SCENE: &str = include_str!("../scenes/seven-rays.toml");
+
+/// Loads a scene (or the built-in one), applies `--size`, and builds its
+/// acceleration structure.
+pub fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
+    let description = match path {
+        Some(path) => scene::load(path)?,
+        None => scene::parse(Path::new(DEFAULT_SCENE_NAME), DEFAULT_SCENE)?,
+    };
+    let scene = description.prepare();
+    Ok(match size.size {
+        Some((w, h)) => scene.with_size(w, h)?,
+        None => scene,
+    })
+}
+
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Debug { scene }) => debug_command(scene.as_deref()),
+        None => debug_command(cli.scene.as_deref()),
+    }
+}
+
+fn debug_command(_scene: Option<&Path>) -> Result<ExitCode> {
+    bail!("the interactive debugger is not built yet; use `raystep render`")
+}
+
+fn render_command(args: &RenderArgs) -> Result<ExitCode> {
+    let started = Instant::now();
+    let scene = load_scene(Some(&args.scene), args.size)?;
+    let prepared = started.elapsed().as_secs_f64();
+    let progress = progress_bar(scene.height);
+    let tick = || progress.inc(1);
+    let threads = args.threads.map(usize::from);
+    let traced = Instant::now();
+    let (image, stats) = with_threads(threads, || {
+        if args.stats { render::<RayStats>(&scene, &tick) } else { (render::<NoRecorder>(&scene, &tick).0, RayStats::default()) }
+    })?;
+    let tracing = traced.elapsed().as_secs_f64();
+    progress.finish_and_clear();
+    write_png(&args.output, &image)?;
+    if args.stats {
+        let mut json = serde_json::to_value(stats).context("cannot write stats")?;
+        json["width"] = scene.width.into();
+        json["height"] = scene.height.into();
+        json["objects"] = scene.objects.len().into();
+        json["lights"] = scene.lights.len().into();
+        json["threads"] = threads.unwrap_or_else(rayon::current_num_threads).into();
+        json["prepare_seconds"] = prepared.into();
+        json["trace_seconds"] = tracing.into();
+        println!("{json}");
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A progress bar on stderr when it is a terminal; hidden otherwise.
+fn progress_bar(rows: u32) -> indicatif::ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(rows.into());
+    if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} rendering {bar:40} {pos}/{len} rows {elapsed}") {
+        bar.set_style(style);
+    }
+    bar
+}

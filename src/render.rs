@@ -1,0 +1,84 @@
+//! Whole images: every pixel traced with the same `trace` the debugger
+//! records, rows shared among threads. Each pixel depends only on the scene,
+//! so the bytes are the same whatever the thread count.
+
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use image::RgbImage;
+use rayon::prelude::*;
+
+use crate::math::to_rgb8;
+use crate::scene::Scene;
+use crate::trace::{NoRecorder, RayStats, Recorder, trace_pixel};
+
+/// A recorder that can follow a whole render: one per row, summed at the end.
+pub trait RowRecorder: Recorder + Default + Send {
+    fn merge(&mut self, other: Self);
+}
+
+impl RowRecorder for NoRecorder {
+    fn merge(&mut self, _other: Self) {}
+}
+
+impl RowRecorder for RayStats {
+    fn merge(&mut self, other: Self) {
+        self.add(&other);
+    }
+}
+
+/// Renders the scene at its size. `row_done` is called once per finished row
+/// (from any thread), for progress display.
+pub fn render<R: RowRecorder>(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> (RgbImage, R) {
+    let (width, height) = (scene.width, scene.height);
+    let viewport = scene.camera.viewport(width, height);
+    let mut image = RgbImage::new(width, height);
+    let recorder = image
+        .par_chunks_mut(3 * width as usize)
+        .enumerate()
+        .map(|(y, row)| {
+            let mut rec = R::default();
+            for (x, pixel) in row.chunks_exact_mut(3).enumerate() {
+                let color = trace_pixel(scene, &viewport, x as u32, y as u32, &mut rec);
+                pixel.copy_from_slice(&to_rgb8(color));
+            }
+            row_done();
+            rec
+        })
+        .reduce(R::default, |mut a, b| {
+            a.merge(b);
+            a
+        });
+    (image, recorder)
+}
+
+/// Runs `work` on a pool of `threads` threads, or on all cores when `None`.
+pub fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send) -> Result<T> {
+    match threads {
+        None => Ok(work()),
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().context("cannot start threads")?;
+            Ok(pool.install(work))
+        }
+    }
+}
+
+/// Writes a PNG atomically: into a temporary file beside `path`, renamed into
+/// place only when complete, so a failure leaves any existing file intact.
+pub fn write_png(path: &Path, image: &RgbImage) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let fail = || format!("cannot write {}", path.display());
+    let temp = tempfile::Builder::new().prefix(".raystep-").suffix(".png.tmp").tempfile_in(dir).with_context(fail)?;
+    {
+        let mut out = BufWriter::new(temp.as_file());
+        let encoder = image::codecs::png::PngEncoder::new(&mut out);
+        image.write_with_encoder(encoder).with_context(fail)?;
+        out.flush().with_context(fail)?;
+    }
+    temp.persist(path).map_err(|e| e.error).with_context(fail)?;
+    Ok(())
+}
