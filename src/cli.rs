@@ -6,8 +6,9 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::record::{RayTree, dot, explain, record_pixel, text};
 use crate::render::{render, with_threads, write_png};
 use crate::scene::{self, Scene};
 use crate::trace::{NoRecorder, RayStats};
@@ -34,6 +35,37 @@ pub enum Command {
     },
     /// Render a whole image to PNG.
     Render(RenderArgs),
+    /// Print one pixel's ray tree with every term.
+    Inspect(InspectArgs),
+    /// Explain in plain words why one pixel has its colour.
+    Explain(PixelArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct PixelArgs {
+    /// Scene file (.toml or .nff).
+    pub scene: PathBuf,
+    /// The pixel X,Y (x to the right, y downward, from 0).
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    pub pixel: (u32, u32),
+    #[command(flatten)]
+    pub size: SizeArg,
+}
+
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    #[command(flatten)]
+    pub pixel: PixelArgs,
+    /// Output form: an indented tree, the complete recording as JSON, or Graphviz.
+    #[arg(long, value_enum, default_value_t = InspectFormat::Text)]
+    pub format: InspectFormat,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InspectFormat {
+    Text,
+    Json,
+    Dot,
 }
 
 #[derive(Args, Debug)]
@@ -97,6 +129,8 @@ pub fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
 pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Inspect(args)) => inspect_command(&args),
+        Some(Command::Explain(args)) => explain_command(&args),
         Some(Command::Debug { scene }) => debug_command(scene.as_deref()),
         None => debug_command(cli.scene.as_deref()),
     }
@@ -104,6 +138,40 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 
 fn debug_command(_scene: Option<&Path>) -> Result<ExitCode> {
     bail!("the interactive debugger is not built yet; use `raystep render`")
+}
+
+/// Loads the scene and records the pixel, refusing one outside the image.
+fn record(args: &PixelArgs) -> Result<(Scene, RayTree)> {
+    let scene = load_scene(Some(&args.scene), args.size)?;
+    let (x, y) = args.pixel;
+    if x >= scene.width || y >= scene.height {
+        bail!(
+            "pixel ({x}, {y}) is outside the {}x{} image: x must be below {} and y below {}",
+            scene.width,
+            scene.height,
+            scene.width,
+            scene.height
+        );
+    }
+    let tree = record_pixel(&scene, x, y);
+    Ok((scene, tree))
+}
+
+fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
+    let (scene, tree) = record(&args.pixel)?;
+    let phong = scene.settings.specular == crate::scene::SpecularModel::Phong;
+    match args.format {
+        InspectFormat::Text => print!("{}", text(&tree, phong)),
+        InspectFormat::Json => println!("{}", serde_json::to_string_pretty(&tree.to_json())?),
+        InspectFormat::Dot => print!("{}", dot(&tree)),
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
+    let (_, tree) = record(args)?;
+    print!("{}", explain(&tree));
+    Ok(ExitCode::SUCCESS)
 }
 
 fn render_command(args: &RenderArgs) -> Result<ExitCode> {

@@ -11,3 +11,4 @@ pub mod scene;
 pub mod trace;
 pub mod cli;
 pub mod render;
+pub mod record;

@@ -1,0 +1,225 @@
+//! Building the hierarchy: top-down, splitting each node where the surface
+//! area heuristic (SAH) estimates the cheapest traversal, with the candidate
+//! planes taken between 16 bins of the primitives' centroids along the axis
+//! where the centroids spread most.
+//!
+//! The SAH estimates the cost of a split as one node visit plus, for each
+//! child, the chance a ray through the parent also crosses the child (the
+//! ratio of their surface areas) times the primitives it holds. A node stays a
+//! leaf when that is no cheaper than testing all its primitives.
+
+use glam::DVec3;
+
+use super::node::Node;
+use crate::shapes::Aabb;
+
+/// Centroid bins per split.
+const BINS: usize = 16;
+/// The cost of visiting one node, relative to testing one primitive.
+const TRAVERSAL_COST: f64 = 1.0;
+/// A leaf never holds more, whatever the SAH says (unless the primitives'
+/// centroids coincide and cannot be told apart: then the list is halved).
+pub(super) const MAX_LEAF: usize = 8;
+/// Below this depth the SAH chooses the split; deeper, the primitives are
+/// halved at their median, so the depth stays below `MAX_DEPTH`.
+const SAH_DEPTH: usize = 32;
+/// No path from the root is longer: the traversal stack holds this many nodes.
+pub(super) const MAX_DEPTH: usize = SAH_DEPTH + 33;
+
+/// Each box is widened by this fraction of its largest coordinate (plus a
+/// scene-wide floor), so that a hit point a primitive computes with rounding
+/// error just outside its exact box is still inside the node's box.
+const RELATIVE_PADDING: f64 = 1.0 / (1u64 << 22) as f64;
+const SCENE_PADDING: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// A bounded object as the build sees it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PrimitiveRef {
+    pub bounds: Aabb,
+    pub centroid: DVec3,
+    pub object: u32,
+}
+
+impl PrimitiveRef {
+    pub fn new(object: u32, bounds: Aabb) -> PrimitiveRef {
+        PrimitiveRef {
+            bounds,
+            centroid: bounds.centroid(),
+            object,
+        }
+    }
+}
+
+/// The hierarchy: nodes in depth-first order (the root first) and the
+/// objects of the leaves, each leaf's run in file order.
+pub(super) struct Bvh {
+    pub nodes: Vec<Node>,
+    pub objects: Vec<u32>,
+}
+
+pub(super) fn build(mut primitives: Vec<PrimitiveRef>) -> Bvh {
+    let mut builder = Builder {
+        nodes: Vec::with_capacity(primitives.len() / 2 + 1),
+        floor_padding: SCENE_PADDING * largest_coordinate(&bounds_of(&primitives)),
+    };
+    if !primitives.is_empty() {
+        builder.subdivide(&mut primitives, 0, 0);
+    }
+    Bvh {
+        nodes: builder.nodes,
+        objects: primitives.iter().map(|p| p.object).collect(),
+    }
+}
+
+struct Builder {
+    nodes: Vec<Node>,
+    floor_padding: f64,
+}
+
+impl Builder {
+    /// Appends the subtree over `primitives`, which start at `first` in the
+    /// final primitive order, and reorders them so each leaf's run is contiguous.
+    fn subdivide(&mut self, primitives: &mut [PrimitiveRef], first: usize, depth: usize) {
+        let bounds = self.padded(bounds_of(primitives));
+        let Some((axis, middle)) = split(primitives, &bounds, depth) else {
+            primitives.sort_unstable_by_key(|p| p.object);
+            self.nodes
+                .push(Node::leaf(&bounds, first as u32, primitives.len() as u16));
+            return;
+        };
+        let index = self.nodes.len();
+        self.nodes.push(Node::interior(&bounds, axis));
+        let (left, right) = primitives.split_at_mut(middle);
+        self.subdivide(left, first, depth + 1);
+        self.nodes[index].offset = self.nodes.len() as u32;
+        self.subdivide(right, first + middle, depth + 1);
+    }
+
+    fn padded(&self, bounds: Aabb) -> Aabb {
+        let padding =
+            DVec3::splat(RELATIVE_PADDING * largest_coordinate(&bounds) + self.floor_padding);
+        Aabb::new(bounds.min - padding, bounds.max + padding)
+    }
+}
+
+fn bounds_of(primitives: &[PrimitiveRef]) -> Aabb {
+    primitives
+        .iter()
+        .fold(Aabb::EMPTY, |b, p| b.union(&p.bounds))
+}
+
+fn largest_coordinate(bounds: &Aabb) -> f64 {
+    if bounds.min.x > bounds.max.x {
+        0.0
+    } else {
+        bounds.min.abs().max(bounds.max.abs()).max_element()
+    }
+}
+
+fn surface_area(bounds: &Aabb) -> f64 {
+    let e = bounds.max - bounds.min;
+    2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+}
+
+/// Where to split: the axis, and how many primitives (now reordered) go to
+/// the first child. `None` makes a leaf.
+fn split(primitives: &mut [PrimitiveRef], bounds: &Aabb, depth: usize) -> Option<(usize, usize)> {
+    let n = primitives.len();
+    if n == 1 {
+        return None;
+    }
+    let centroids = primitives.iter().fold(Aabb::EMPTY, |b, p| {
+        b.union(&Aabb::new(p.centroid, p.centroid))
+    });
+    let extent = centroids.max - centroids.min;
+    let axis = extent.max_position();
+    if !(extent[axis] > 0.0) {
+        // Every centroid is the same point: nothing tells the primitives apart.
+        return (n > MAX_LEAF).then_some((axis, n / 2));
+    }
+    if depth >= SAH_DEPTH {
+        return Some((axis, median_split(primitives, axis)));
+    }
+    let (cost, plane) = best_plane(primitives, bounds, &centroids, axis)?;
+    if n <= MAX_LEAF && cost >= n as f64 {
+        return None;
+    }
+    let scale = BINS as f64 / extent[axis];
+    let middle = partition(primitives, |p| {
+        bin(p.centroid[axis], centroids.min[axis], scale) < plane
+    });
+    Some((axis, middle))
+}
+
+fn bin(centroid: f64, min: f64, scale: f64) -> usize {
+    (((centroid - min) * scale) as usize).min(BINS - 1)
+}
+
+/// The cheapest plane between bins along `axis`: its SAH cost, in units of
+/// one primitive test, and the first bin on its far side.
+fn best_plane(
+    primitives: &[PrimitiveRef],
+    bounds: &Aabb,
+    centroids: &Aabb,
+    axis: usize,
+) -> Option<(f64, usize)> {
+    let mut counts = [0usize; BINS];
+    let mut boxes = [Aabb::EMPTY; BINS];
+    let scale = BINS as f64 / (centroids.max[axis] - centroids.min[axis]);
+    for p in primitives {
+        let b = bin(p.centroid[axis], centroids.min[axis], scale);
+        counts[b] += 1;
+        boxes[b] = boxes[b].union(&p.bounds);
+    }
+    // below[i]: area times count of bins 0..i, swept from the left.
+    let mut below = [0.0; BINS];
+    let (mut count, mut b) = (0, Aabb::EMPTY);
+    for i in 1..BINS {
+        count += counts[i - 1];
+        b = b.union(&boxes[i - 1]);
+        below[i] = if count > 0 {
+            surface_area(&b) * count as f64
+        } else {
+            0.0
+        };
+    }
+    let (mut count, mut b) = (0, Aabb::EMPTY);
+    let mut best: Option<(f64, usize)> = None;
+    let parent_area = surface_area(bounds);
+    for i in (1..BINS).rev() {
+        count += counts[i];
+        b = b.union(&boxes[i]);
+        if count == 0 || count == primitives.len() {
+            continue;
+        }
+        let cost = TRAVERSAL_COST + (below[i] + surface_area(&b) * count as f64) / parent_area;
+        if best.is_none_or(|(c, _)| cost < c) {
+            best = Some((cost, i));
+        }
+    }
+    best
+}
+
+/// Puts the primitives of smaller centroids first, ties by object index, and
+/// returns the half's size.
+fn median_split(primitives: &mut [PrimitiveRef], axis: usize) -> usize {
+    let middle = primitives.len() / 2;
+    primitives.select_nth_unstable_by(middle, |a, b| {
+        a.centroid[axis]
+            .total_cmp(&b.centroid[axis])
+            .then(a.object.cmp(&b.object))
+    });
+    middle
+}
+
+/// Moves the primitives that satisfy `first` to the front; returns how many.
+fn partition(primitives: &mut [PrimitiveRef], first: impl Fn(&PrimitiveRef) -> bool) -> usize {
+    let mut middle = 0;
+    for i in 0..primitives.len() {
+        if first(&primitives[i]) {
+            primitives.swap(i, middle);
+            middle += 1;
+        }
+    }
+    middle
+}

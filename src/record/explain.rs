@@ -1,0 +1,156 @@
+//! "Why is this pixel this colour?", answered in plain words for a student,
+//! from the recording alone.
+
+use std::fmt::Write;
+
+use super::text::{color, kind_name, num};
+use super::tree::{LightRecord, NodeId, RayTree};
+use crate::math::{Color, to_rgb8};
+use crate::trace::RayKind;
+
+/// The brightness used to compare terms: the sum of the three channels.
+fn weight(c: Color) -> f64 {
+    c.x + c.y + c.z
+}
+
+pub fn explain(tree: &RayTree) -> String {
+    let mut out = String::new();
+    let root = tree.root();
+    let c = tree.color();
+    let [r, g, b] = to_rgb8(c);
+    let _ = writeln!(out, "Pixel ({}, {}) has colour {} (stored as {r}, {g}, {b}).", tree.pixel.0, tree.pixel.1, color(c));
+    let Some(hit) = &root.hit else {
+        let _ = writeln!(out, "Its primary ray hits nothing, so it shows the background colour.");
+        return out;
+    };
+    let _ = writeln!(
+        out,
+        "Its primary ray hits {} ({}, material {}) at distance {}, on its {} side.",
+        hit.object,
+        hit.kind,
+        hit.material,
+        num(hit.t),
+        if hit.entering { "front" } else { "back" }
+    );
+    write_shares(&mut out, tree, 0);
+    let _ = writeln!(out, "Lights:");
+    for light in &root.lights {
+        let _ = writeln!(out, "  {}", light_fate(light));
+    }
+    if root.lights.is_empty() {
+        let _ = writeln!(out, "  the scene has no lights: only ambient light and secondary rays add colour.");
+    }
+    if root.tir {
+        let _ = writeln!(
+            out,
+            "Total internal reflection: the ray is inside a denser medium at too shallow an angle, \
+             so no light is transmitted and k_t is added to the reflected ray's weight."
+        );
+    }
+    for child in tree.children(0) {
+        write_child(&mut out, tree, child);
+    }
+    if tree.max_depth.is_some_and(|max| root.depth >= max) {
+        let _ = writeln!(out, "No secondary rays: max_depth is 1, so the primary ray spawns none.");
+    }
+    write_clamping(&mut out, c);
+    out
+}
+
+/// Each term of the primary ray with its share of the total brightness.
+fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
+    let node = &tree.nodes[id];
+    let mut terms: Vec<(String, Color)> = vec![("ambient".into(), node.ambient)];
+    for light in &node.lights {
+        terms.push((format!("diffuse from {}", light.light), light.diffuse));
+        terms.push((format!("specular from {}", light.light), light.specular));
+    }
+    for child in tree.children(id) {
+        let child = &tree.nodes[child];
+        terms.push((format!("{} ray", kind_name(child.kind)), child.contribution));
+    }
+    let total: f64 = terms.iter().map(|(_, c)| weight(*c)).sum();
+    terms.sort_by(|a, b| weight(b.1).total_cmp(&weight(a.1)));
+    let _ = writeln!(out, "Its colour is the sum of these terms (largest first, share of the brightness):");
+    for (name, term) in terms.iter().filter(|(_, c)| weight(*c) > 0.0) {
+        let share = if total > 0.0 { 100.0 * weight(*term) / total } else { 0.0 };
+        let _ = writeln!(out, "  {name:<28} {}  {share:>5.1}%", color(*term));
+    }
+    if total <= 0.0 {
+        let _ = writeln!(out, "  every term is zero: nothing lights this point.");
+    }
+}
+
+fn light_fate(light: &LightRecord) -> String {
+    if light.faces_away {
+        return format!(
+            "{}: behind the surface (N·L = {}), so it cannot light this point; no shadow ray is cast.",
+            light.light,
+            num(light.n_dot_l)
+        );
+    }
+    let Some(shadow) = &light.shadow else {
+        return format!("{}: lit (shadows are switched off), N·L = {}.", light.light, num(light.n_dot_l));
+    };
+    if shadow.blockers.is_empty() {
+        return format!("{}: lit, nothing in the way (N·L = {}).", light.light, num(light.n_dot_l));
+    }
+    if let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0) {
+        return format!(
+            "{}: in shadow, blocked by {} (opaque) at distance {} of {}.",
+            light.light,
+            opaque.object,
+            num(opaque.t),
+            num(shadow.distance)
+        );
+    }
+    let mut through: Vec<String> = Vec::new();
+    for b in &shadow.blockers {
+        let crossings = shadow.blockers.iter().filter(|o| o.object_index == b.object_index).count();
+        let entry = if crossings > 1 {
+            format!("{} (k_t {}, crossed {crossings} times)", b.object, num(b.kt))
+        } else {
+            format!("{} (k_t {})", b.object, num(b.kt))
+        };
+        if !through.contains(&entry) {
+            through.push(entry);
+        }
+    }
+    format!(
+        "{}: partly blocked through {}: S = {}, so it gives {}% of its light.",
+        light.light,
+        through.join(", "),
+        num(shadow.s),
+        num(100.0 * shadow.s)
+    )
+}
+
+fn write_child(out: &mut String, tree: &RayTree, id: NodeId) {
+    let child = &tree.nodes[id];
+    let kind = match child.kind {
+        RayKind::Reflected => "Reflected",
+        _ => "Transmitted",
+    };
+    let target = match &child.hit {
+        Some(hit) => format!("hits {} at distance {}", hit.object, num(hit.t)),
+        None => "hits nothing (background)".into(),
+    };
+    let _ = writeln!(
+        out,
+        "{kind} ray (weight {}): {target} and brings back {}; after attenuation {} it adds {}.",
+        num(child.weight),
+        color(child.color),
+        num(child.attenuation),
+        color(child.contribution)
+    );
+}
+
+fn write_clamping(out: &mut String, c: Color) {
+    for (name, value) in [("red", c.x), ("green", c.y), ("blue", c.z)] {
+        if value > 1.0 {
+            let _ = writeln!(out, "The {name} channel is {} before clamping: it is stored as 255 (clamped).", num(value));
+        } else if value < 0.0 {
+            let _ = writeln!(out, "The {name} channel is {} before clamping: it is stored as 0.", num(value));
+        }
+    }
+}

@@ -1,0 +1,13 @@
+//! Recording one pixel: the ray tree with every term, the execution-ordered
+//! event list, and their text, JSON and Graphviz forms.
+
+mod explain;
+mod text;
+mod tree;
+
+pub use explain::explain;
+pub use text::{dot, text};
+pub use tree::{
+    BlockerRecord, Event, EventKind, HitRecord, LightRecord, Node, NodeId, RayTree, ShadowRecord, TreeRecorder,
+    record_pixel,
+};

@@ -1,0 +1,310 @@
+//! Text forms of a recording: an indented tree for terminals (80 columns) and
+//! Graphviz for lecture slides. The debugger shows the same lines.
+
+use std::fmt::Write;
+
+use glam::DVec3;
+
+use super::tree::{LightRecord, Node, NodeId, RayTree};
+use crate::math::to_rgb8;
+use crate::shapes::{ConeWorking, PolygonWorking, RootChoice, Working};
+use crate::trace::RayKind;
+
+/// A number with at most four decimals and no trailing zeros.
+pub fn num(x: f64) -> String {
+    if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-4) {
+        return format!("{x:.3e}");
+    }
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+pub fn vector(v: DVec3) -> String {
+    format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
+}
+
+/// A colour with three decimals per channel.
+pub fn color(c: DVec3) -> String {
+    format!("({:.3}, {:.3}, {:.3})", c.x, c.y, c.z)
+}
+
+pub fn kind_name(kind: RayKind) -> &'static str {
+    match kind {
+        RayKind::Primary => "primary",
+        RayKind::Reflected => "reflected",
+        RayKind::Transmitted => "transmitted",
+    }
+}
+
+/// The intersection worked as in the course notes, a line per step.
+pub fn working_lines(working: &Working) -> Vec<String> {
+    match working {
+        Working::Sphere(w) => {
+            let mut lines = vec![format!(
+                "sphere: A = {}, B = {}, C = {}, discriminant B^2 - 4AC = {}",
+                num(w.a),
+                num(w.b),
+                num(w.c),
+                num(w.discriminant)
+            )];
+            if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
+                let why = match w.choice {
+                    RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
+                    RootChoice::FartherRoot => "took t1: t0 is behind, the ray starts inside".to_string(),
+                    RootChoice::BothBehind => "both roots are behind the ray".to_string(),
+                    RootChoice::NoRealRoots => String::new(),
+                };
+                lines.push(format!("roots t0 = {}, t1 = {}: {why}", num(t0), num(t1)));
+            } else {
+                lines.push("negative discriminant: no real roots, no hit".into());
+            }
+            lines
+        }
+        Working::Plane(w) => vec![plane_line(w)],
+        Working::Polygon(w) => polygon_lines(w),
+        Working::Patch(w) => {
+            let mut lines = polygon_lines(&w.polygon);
+            if let (Some(i), Some(b)) = (w.fan_triangle, w.barycentric) {
+                lines.push(format!(
+                    "normal interpolated on fan triangle (v0, v{i}, v{}) with weights ({}, {}, {})",
+                    i + 1,
+                    num(b[0]),
+                    num(b[1]),
+                    num(b[2])
+                ));
+            }
+            lines
+        }
+        Working::Cone(w) => cone_lines(w),
+    }
+}
+
+fn plane_line(w: &crate::shapes::PlaneWorking) -> String {
+    if w.parallel {
+        return format!("plane: v_d = P_n·d = {}: parallel, no hit", num(w.v_d));
+    }
+    let facing = if w.faces_away { "faces away, hit from behind" } else { "faces the ray" };
+    let t = w.t.map(num).unwrap_or_default();
+    let behind = if w.behind { ", behind the ray: no hit" } else { "" };
+    format!("plane: v_d = P_n·d = {} ({facing}), v_0 = {}, t = v_0 / v_d = {t}{behind}", num(w.v_d), num(w.v_0))
+}
+
+fn polygon_lines(w: &PolygonWorking) -> Vec<String> {
+    let mut lines = vec![format!("1. the polygon's {}", plane_line(&w.plane))];
+    if let Some(test) = &w.crossing {
+        let [u, v] = test.projected_point;
+        lines.push(format!(
+            "2. drop {:?}: hit point at (U, V) = ({}, {}); {} edge crossings of +U: {}",
+            test.dropped_axis,
+            num(u),
+            num(v),
+            test.crossings,
+            if test.inside { "odd, inside" } else { "even, outside" }
+        ));
+    }
+    lines
+}
+
+fn cone_lines(w: &ConeWorking) -> Vec<String> {
+    let mut lines = vec![format!(
+        "quadratic: A = {}, B = {}, C = {}, discriminant = {}",
+        num(w.a),
+        num(w.b),
+        num(w.c),
+        num(w.discriminant)
+    )];
+    let root = |name: &str, t: Option<f64>, s: Option<f64>, ok: bool| match (t, s) {
+        (Some(t), Some(s)) => format!(
+            "{name} = {} at height {} of {}: {}",
+            num(t),
+            num(s),
+            num(w.height),
+            if ok { "on the surface" } else { "rejected (behind, or beyond an end)" }
+        ),
+        _ => format!("{name}: none"),
+    };
+    if w.t0.is_some() {
+        lines.push(root("t0", w.t0, w.s0, w.on_surface[0]));
+        lines.push(root("t1", w.t1, w.s1, w.on_surface[1]));
+    } else {
+        lines.push("no real roots: no hit".into());
+    }
+    lines
+}
+
+/// What one light did at a hit, in one or two lines.
+pub fn light_lines(light: &LightRecord, phong: bool) -> Vec<String> {
+    if light.faces_away {
+        return vec![format!(
+            "light {}: faces away (N·L = {}), no shadow ray, adds nothing",
+            light.light,
+            num(light.n_dot_l)
+        )];
+    }
+    let shadow = match &light.shadow {
+        None => "shadows off".to_string(),
+        Some(s) if s.blockers.is_empty() => "S = 1 (nothing in the way)".to_string(),
+        Some(s) => {
+            let names: Vec<String> =
+                s.blockers.iter().map(|b| format!("{} t={} kt={}", b.object, num(b.t), num(b.kt))).collect();
+            format!("S = {}, blocked by {}", num(s.s), names.join("; "))
+        }
+    };
+    let cosine = if phong { "R·V" } else { "N·H" };
+    vec![
+        format!("light {}: N·L = {}, {shadow}", light.light, num(light.n_dot_l)),
+        format!("  f_att = {}, {cosine} = {}", num(light.f_att), num(light.specular_cosine)),
+        format!("  diffuse {} specular {}", color(light.diffuse), color(light.specular)),
+    ]
+}
+
+/// The lines describing one node (not its children).
+pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
+    let node = &tree.nodes[id];
+    let mut lines = vec![format!("from {} along {}", vector(node.origin), vector(node.direction))];
+    let Some(hit) = &node.hit else {
+        lines.push(format!(
+            "missed everything ({} primitives tested): background {}",
+            node.cost.primitives,
+            color(node.color)
+        ));
+        return lines;
+    };
+    lines.push(format!(
+        "hit {} ({} #{}, material {}) at t = {}, {}",
+        hit.object,
+        hit.kind,
+        hit.object_index,
+        hit.material,
+        num(hit.t),
+        if hit.entering { "front side" } else { "back side (normal flipped)" }
+    ));
+    lines.push(format!("  point {}", vector(hit.point)));
+    lines.push(format!("  N_g {} N {}", vector(hit.normal), vector(hit.shading_normal)));
+    lines.extend(working_lines(&hit.working).into_iter().map(|l| format!("  {l}")));
+    lines.push(format!("  tested {} nodes, {} primitives", node.cost.nodes, node.cost.primitives));
+    lines.push(format!("ambient {}", color(node.ambient)));
+    for light in &node.lights {
+        lines.extend(light_lines(light, phong));
+    }
+    if let Some(r) = &node.refraction {
+        let outcome = if r.tir { "total internal reflection: kt goes to the reflected ray" } else { "transmitted" };
+        lines.push(format!(
+            "refraction: cos_i = {}, eta = {}, k = {}: {outcome}",
+            num(r.cos_i),
+            num(r.eta),
+            num(r.k)
+        ));
+    }
+    lines.push(format!("colour {} = sum of the terms above and below", color(node.color)));
+    if node.kind != RayKind::Primary {
+        lines.push(format!(
+            "adds {} x {} (attenuation) x {} = {}",
+            num(node.weight),
+            num(node.attenuation),
+            color(node.color),
+            color(node.contribution)
+        ));
+    }
+    lines
+}
+
+fn header(node: &Node) -> String {
+    let mut text = format!("{} ray, depth {}", kind_name(node.kind), node.depth);
+    if node.kind != RayKind::Primary {
+        let _ = write!(text, ", weight {}", num(node.weight));
+    }
+    text
+}
+
+/// The whole recording as an indented tree, like `cargo tree`.
+pub fn text(tree: &RayTree, phong: bool) -> String {
+    let c = tree.color();
+    let [r, g, b] = to_rgb8(c);
+    let mut out = format!(
+        "pixel ({}, {}): colour {} -> rgb8 ({r}, {g}, {b})\n",
+        tree.pixel.0,
+        tree.pixel.1,
+        color(c)
+    );
+    write_node(&mut out, tree, 0, "", phong);
+    out
+}
+
+fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str, phong: bool) {
+    let _ = writeln!(out, "{}", header(&tree.nodes[id]));
+    let children: Vec<NodeId> = tree.children(id).collect();
+    let body = if children.is_empty() { "  " } else { "│ " };
+    for line in node_lines(tree, id, phong) {
+        let _ = writeln!(out, "{prefix}{body}{line}");
+    }
+    for (i, child) in children.iter().enumerate() {
+        let last = i + 1 == children.len();
+        let _ = write!(out, "{prefix}{}", if last { "└─ " } else { "├─ " });
+        let next = format!("{prefix}{}", if last { "   " } else { "│  " });
+        write_node(out, tree, *child, &next, phong);
+    }
+}
+
+/// Graphviz: one box per ray, one ellipse per light at each hit.
+pub fn dot(tree: &RayTree) -> String {
+    let mut out = String::from("digraph raytree {\n  rankdir=TB;\n  node [fontname=\"Helvetica\", fontsize=10];\n");
+    let _ = writeln!(out, "  eye [shape=point, label=\"\"];");
+    for (id, node) in tree.nodes.iter().enumerate() {
+        let what = match &node.hit {
+            Some(hit) => format!("hit {} at t={}", escape(&hit.object), num(hit.t)),
+            None => "miss".into(),
+        };
+        let _ = writeln!(
+            out,
+            "  n{id} [shape=box, label=\"{} ray (depth {})\\n{what}\\ncolour {}\"];",
+            kind_name(node.kind),
+            node.depth,
+            color(node.color)
+        );
+        match node.parent {
+            None => {
+                let _ = writeln!(out, "  eye -> n{id} [label=\"primary\"];");
+            }
+            Some(parent) => {
+                let _ = writeln!(
+                    out,
+                    "  n{parent} -> n{id} [label=\"{} x{}\"];",
+                    kind_name(node.kind),
+                    num(node.weight)
+                );
+            }
+        }
+        for (i, light) in node.lights.iter().enumerate() {
+            let fate = match &light.shadow {
+                _ if light.faces_away => "faces away".to_string(),
+                None => "unshadowed".to_string(),
+                Some(s) => format!("S = {}", num(s.s)),
+            };
+            let _ = writeln!(out, "  n{id}l{i} [shape=ellipse, label=\"{}\\n{fate}\"];", escape(&light.light));
+            let style = if light.faces_away { "dotted" } else { "dashed" };
+            let _ = writeln!(out, "  n{id} -> n{id}l{i} [style={style}, label=\"shadow\"];");
+        }
+    }
+    out.push_str("}\n");
+    out
+}
+
+fn escape(text: &str) -> String {
+    text.replace('\\', "\\\\").replace('"', "\\\"")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    #[test]
+    fn numbers_are_short() {
+        assert_eq!(num(1.0), "1");
+        assert_eq!(num(0.25), "0.25");
+        assert_eq!(num(-0.00001), "-1.000e-5");
+        assert_eq!(num(-0.0), "0");
+        assert_eq!(num(2.0 / 3.0), "0.6667");
+    }
+}

@@ -1,0 +1,533 @@
+//! The hierarchy answers exactly as testing every object in file order does
+//! (`accel::brute`): the same nearest object and the same t to the bit, the
+//! same crossings, and the first object in the file on a tie (MODEL §3).
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use glam::DVec3;
+use raystep::accel::{Accel, Candidate, Cost, brute};
+use raystep::math::{EPS, Interval, Ray};
+use raystep::scene::Object;
+use raystep::shapes::{Cone, Patch, Plane, Polygon, Shape, Sphere};
+
+const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/spd");
+
+/// xorshift64*: a few lines, seeded, the same sequence everywhere.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+
+    fn point(&mut self, half: f64) -> DVec3 {
+        DVec3::new(
+            self.range(-half, half),
+            self.range(-half, half),
+            self.range(-half, half),
+        )
+    }
+
+    fn direction(&mut self) -> DVec3 {
+        loop {
+            let d = self.point(1.0);
+            if d.length_squared() > 1e-6 && d.length_squared() <= 1.0 {
+                return d.normalize();
+            }
+        }
+    }
+}
+
+fn object(shape: Shape) -> Object {
+    Object {
+        name: String::new(),
+        shape,
+        material: 0,
+    }
+}
+
+fn triangle(rng: &mut Rng, center: DVec3, size: f64) -> Option<Polygon> {
+    Polygon::new((0..3).map(|_| center + rng.point(size)).collect()).ok()
+}
+
+/// Spheres, triangles, patches, cones and cylinders scattered in a cube of
+/// side 20 (some overlapping, some tiny, a few exact copies), and two planes.
+fn random_scene(rng: &mut Rng, count: usize) -> Vec<Object> {
+    let mut objects = Vec::with_capacity(count + 2);
+    objects.push(object(Shape::Plane(
+        Plane::new(DVec3::Y, DVec3::new(0.0, -11.0, 0.0)).unwrap(),
+    )));
+    while objects.len() < count {
+        let center = rng.point(10.0);
+        let size = if rng.below(10) == 0 {
+            4.0
+        } else {
+            rng.range(0.01, 1.0)
+        };
+        let shape = match rng.below(5) {
+            0 => Shape::Sphere(Sphere::new(center, size).unwrap()),
+            1 | 2 => match triangle(rng, center, size) {
+                Some(p) => Shape::Polygon(p),
+                None => continue,
+            },
+            3 => {
+                let vertices: Vec<DVec3> = (0..3).map(|_| center + rng.point(size)).collect();
+                let normals = (0..3).map(|_| rng.direction()).collect();
+                match Patch::new(vertices, normals) {
+                    Ok(p) => Shape::Patch(p),
+                    Err(_) => continue,
+                }
+            }
+            _ => {
+                let apex = center + rng.direction() * rng.range(0.1, 3.0);
+                let apex_radius = if rng.below(2) == 0 {
+                    size
+                } else {
+                    rng.range(0.0, size)
+                };
+                Shape::Cone(Cone::new(center, size, apex, apex_radius).unwrap())
+            }
+        };
+        objects.push(object(shape));
+        // Now and then an exact copy of something earlier: a tie at equal t.
+        if rng.below(20) == 0 {
+            let earlier = rng.below(objects.len());
+            objects.push(object(objects[earlier].shape.clone()));
+        }
+    }
+    objects.push(object(Shape::Plane(
+        Plane::new(DVec3::new(1.0, 1.0, 0.5), DVec3::splat(13.0)).unwrap(),
+    )));
+    objects
+}
+
+/// Axis-aligned unit squares on an integer grid, many coplanar and some
+/// repeated: rays with integer origins along the axes run exactly along box
+/// faces, and hits on coplanar squares tie bit for bit.
+fn grid_scene(rng: &mut Rng, count: usize) -> Vec<Object> {
+    let mut objects = Vec::with_capacity(count);
+    while objects.len() < count {
+        let corner = DVec3::new(
+            rng.below(8) as f64,
+            rng.below(8) as f64,
+            rng.below(8) as f64,
+        );
+        let (u, v) = match rng.below(3) {
+            0 => (DVec3::X, DVec3::Y),
+            1 => (DVec3::Y, DVec3::Z),
+            _ => (DVec3::Z, DVec3::X),
+        };
+        let scale = 1.0 + rng.below(3) as f64;
+        let square = vec![
+            corner,
+            corner + u * scale,
+            corner + (u + v) * scale,
+            corner + v * scale,
+        ];
+        objects.push(object(Shape::Polygon(Polygon::new(square).unwrap())));
+    }
+    objects
+}
+
+/// Rays of every kind: from outside and inside the scene, towards objects,
+/// along the axes (with +0 and -0 components), unnormalized, and starting
+/// on a surface as secondary rays do.
+fn random_ray(rng: &mut Rng, objects: &[Object], half: f64) -> Ray {
+    let origin = match rng.below(3) {
+        0 => rng.point(half * 1.5),
+        _ => rng.point(half),
+    };
+    let integer = |rng: &mut Rng| {
+        DVec3::new(
+            rng.below(10) as f64,
+            rng.below(10) as f64,
+            rng.below(10) as f64,
+        )
+    };
+    match rng.below(6) {
+        0 => Ray::new(origin, rng.direction()),
+        1 => {
+            let target = objects[rng.below(objects.len())]
+                .shape
+                .bounds()
+                .map_or(DVec3::ZERO, |b| b.centroid());
+            Ray::new(origin, target - origin)
+        }
+        2 => {
+            let mut direction = DVec3::ZERO;
+            let axis = rng.below(3);
+            direction[axis] = if rng.below(2) == 0 { 1.0 } else { -1.0 };
+            if rng.below(2) == 0 {
+                direction[(axis + 1) % 3] = -0.0;
+            }
+            let origin = if rng.below(2) == 0 {
+                integer(rng) - DVec3::splat(1.0)
+            } else {
+                origin
+            };
+            Ray::new(origin, direction)
+        }
+        3 => Ray::new(
+            integer(rng) + DVec3::splat(0.5),
+            rng.direction() * rng.range(0.1, 3.0),
+        ),
+        _ => {
+            // A secondary ray from the nearest hit of another ray.
+            let first = Ray::new(origin, rng.direction());
+            let hit = brute::closest(objects, &first, Interval::in_front(), &mut Cost::default());
+            match hit {
+                Some(hit) => Ray::new(first.at(hit.t), rng.direction()),
+                None => first,
+            }
+        }
+    }
+}
+
+fn same(a: Option<Candidate>, b: Option<Candidate>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => a.object == b.object && a.t.to_bits() == b.t.to_bits(),
+        (None, None) => true,
+        _ => false,
+    }
+}
+
+fn all_crossings(
+    query: impl FnOnce(&mut dyn FnMut(usize, f64) -> ControlFlow<()>),
+) -> Vec<(usize, u64)> {
+    let mut found = Vec::new();
+    query(&mut |object, t| {
+        found.push((object, t.to_bits()));
+        ControlFlow::Continue(())
+    });
+    found
+}
+
+/// The scenes every property is checked on.
+fn scenes() -> Vec<(&'static str, Vec<Object>, f64)> {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    vec![
+        ("random 2000", random_scene(&mut rng, 2000), 10.0),
+        ("random 60", random_scene(&mut rng, 60), 10.0),
+        ("grid 400", grid_scene(&mut rng, 400), 5.0),
+        (
+            "single sphere",
+            vec![object(Shape::Sphere(
+                Sphere::new(DVec3::ZERO, 1.0).unwrap(),
+            ))],
+            2.0,
+        ),
+        (
+            "plane only",
+            vec![object(Shape::Plane(
+                Plane::new(DVec3::Z, DVec3::ZERO).unwrap(),
+            ))],
+            2.0,
+        ),
+    ]
+}
+
+#[test]
+fn closest_equals_brute_force_bit_for_bit() {
+    let mut rng = Rng(12345);
+    for (name, objects, half) in scenes() {
+        let accel = Accel::build(&objects);
+        let (mut bvh_cost, mut brute_cost, mut hits) = (Cost::default(), Cost::default(), 0);
+        for i in 0..6000 {
+            let ray = random_ray(&mut rng, &objects, half);
+            let range = if i % 4 == 0 {
+                Interval::new(EPS, rng.range(0.0, 3.0 * half))
+            } else {
+                Interval::in_front()
+            };
+            let expected = brute::closest(&objects, &ray, range, &mut brute_cost);
+            let got = accel.closest(&objects, &ray, range, &mut bvh_cost);
+            assert!(
+                same(got, expected),
+                "{name}: ray {ray:?} {range:?}: {got:?} != {expected:?}"
+            );
+            hits += usize::from(expected.is_some());
+        }
+        assert!(
+            hits > 300,
+            "{name}: only {hits} rays hit: the test shows little"
+        );
+        if objects.len() > 1000 {
+            assert!(
+                bvh_cost.primitives * 10 < brute_cost.primitives,
+                "{name}: {bvh_cost:?} vs {brute_cost:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn crossings_equal_brute_force_as_a_multiset() {
+    let mut rng = Rng(777);
+    for (name, objects, half) in scenes() {
+        let accel = Accel::build(&objects);
+        for _ in 0..4000 {
+            let ray = random_ray(&mut rng, &objects, half);
+            let segment = Interval::new(EPS, rng.range(0.0, 4.0 * half));
+            let mut expected = all_crossings(|v| {
+                brute::crossings(&objects, &ray, segment, &mut Cost::default(), v)
+            });
+            let got = all_crossings(|v| {
+                accel.crossings(&objects, &ray, segment, &mut Cost::default(), v)
+            });
+            // The order is the tree's, but the same on every call.
+            let again = all_crossings(|v| {
+                accel.crossings(&objects, &ray, segment, &mut Cost::default(), v)
+            });
+            assert_eq!(got, again, "{name}: order changed between calls");
+            let mut got = got;
+            got.sort_unstable();
+            expected.sort_unstable();
+            assert_eq!(got, expected, "{name}: ray {ray:?} {segment:?}");
+        }
+    }
+}
+
+#[test]
+fn any_crossing_agrees_with_the_closest_hit() {
+    let mut rng = Rng(4242);
+    for (name, objects, half) in scenes() {
+        let accel = Accel::build(&objects);
+        for _ in 0..4000 {
+            let ray = random_ray(&mut rng, &objects, half);
+            let end = rng.range(0.0, 3.0 * half);
+            let mut calls = 0;
+            accel.crossings(
+                &objects,
+                &ray,
+                Interval::new(EPS, end),
+                &mut Cost::default(),
+                |_, t| {
+                    assert!(EPS < t && t < end);
+                    calls += 1;
+                    ControlFlow::Break(())
+                },
+            );
+            assert!(calls <= 1, "{name}: visit was called after it broke");
+            let nearest = accel.closest(&objects, &ray, Interval::in_front(), &mut Cost::default());
+            let blocked = nearest.is_some_and(|c| c.t < end);
+            assert_eq!(
+                calls == 1,
+                blocked,
+                "{name}: ray {ray:?} to {end}: nearest {nearest:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn tie_goes_to_the_first_object_in_the_file() {
+    let square = |z: f64| {
+        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        Polygon::new(corners.iter().map(|[x, y]| DVec3::new(*x, *y, z)).collect()).unwrap()
+    };
+    let down = Ray::new(DVec3::new(0.5, 0.5, 5.0), DVec3::NEG_Z);
+    // Two identical coincident polygons.
+    let pair = vec![
+        object(Shape::Polygon(square(0.0))),
+        object(Shape::Polygon(square(0.0))),
+    ];
+    let hit = Accel::build(&pair).closest(&pair, &down, Interval::in_front(), &mut Cost::default());
+    assert_eq!(hit, Some(Candidate { object: 0, t: 5.0 }));
+
+    // Forty copies among other objects: they cannot be told apart, so they
+    // land in several leaves, visited in tree order; still the first wins.
+    let mut rng = Rng(99);
+    let mut objects = random_scene(&mut rng, 300);
+    objects.retain(|o| {
+        o.shape
+            .bounds()
+            .is_none_or(|b| b.max.z < -3.5 || b.min.z > 5.5)
+    });
+    let first_copy = objects.len();
+    for i in 0..40 {
+        objects.push(object(Shape::Polygon(square(0.0))));
+        objects.push(object(Shape::Sphere(
+            Sphere::new(DVec3::new(i as f64, 20.0, 0.0), 0.5).unwrap(),
+        )));
+    }
+    let accel = Accel::build(&objects);
+    // Rays running either way along each axis visit the leaves in both orders.
+    let rays = [
+        down,
+        Ray::new(DVec3::new(0.5, 0.5, 5.0), DVec3::new(-0.0, -0.0, -1.0)),
+        Ray::new(DVec3::new(0.6, 0.4, 5.0), DVec3::new(-0.01, 0.02, -1.0)),
+        Ray::new(DVec3::new(0.25, 0.75, -3.0), DVec3::new(0.0, 0.0, 2.0)),
+        Ray::new(DVec3::new(0.25, 0.75, -3.0), DVec3::new(0.03, -0.02, 2.0)),
+    ];
+    for ray in rays {
+        let hit = accel
+            .closest(&objects, &ray, Interval::in_front(), &mut Cost::default())
+            .unwrap();
+        assert_eq!(hit.object, first_copy, "{ray:?}");
+        assert!(same(
+            Some(hit),
+            brute::closest(&objects, &ray, Interval::in_front(), &mut Cost::default())
+        ));
+    }
+    // Every copy is a crossing of a shadow segment through them.
+    let crossings = all_crossings(|v| {
+        accel.crossings(
+            &objects,
+            &down,
+            Interval::new(EPS, 10.0),
+            &mut Cost::default(),
+            v,
+        )
+    });
+    assert_eq!(
+        crossings
+            .iter()
+            .filter(|(_, t)| f64::from_bits(*t) == 5.0)
+            .count(),
+        40
+    );
+}
+
+#[test]
+fn cost_counts_nodes_and_primitives() {
+    let mut rng = Rng(5);
+    let objects = random_scene(&mut rng, 2000);
+    let accel = Accel::build(&objects);
+    // A ray far away from everything: the two planes and the root's box are tested.
+    let away = Ray::new(DVec3::new(100.0, 100.0, 100.0), DVec3::X);
+    let mut cost = Cost::default();
+    accel.closest(&objects, &away, Interval::in_front(), &mut cost);
+    assert_eq!(
+        cost,
+        Cost {
+            nodes: 1,
+            primitives: 2
+        }
+    );
+    let mut cost = Cost::default();
+    brute::closest(&objects, &away, Interval::in_front(), &mut cost);
+    assert_eq!(
+        cost,
+        Cost {
+            nodes: 0,
+            primitives: objects.len() as u32
+        }
+    );
+    // A ray through the scene visits nodes and tests some, not all, primitives.
+    let mut cost = Cost::default();
+    accel.closest(
+        &objects,
+        &Ray::new(DVec3::new(-30.0, 0.1, 0.2), DVec3::X),
+        Interval::in_front(),
+        &mut cost,
+    );
+    assert!(
+        cost.nodes > 1 && cost.primitives > 2 && (cost.primitives as usize) < objects.len() / 4,
+        "{cost:?}"
+    );
+}
+
+#[test]
+fn empty_scene_has_no_hits() {
+    let accel = Accel::build(&[]);
+    let ray = Ray::new(DVec3::ZERO, DVec3::X);
+    let mut cost = Cost::default();
+    assert_eq!(
+        accel.closest(&[], &ray, Interval::in_front(), &mut cost),
+        None
+    );
+    accel.crossings(&[], &ray, Interval::in_front(), &mut cost, |_, _| {
+        panic!("no crossings")
+    });
+    assert_eq!(cost, Cost::default());
+}
+
+/// Timings, not a pass/fail test: `cargo test --release --test accel -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn timings() {
+    let mut rng = Rng(2024);
+    let mut triangles = Vec::new();
+    while triangles.len() < 10_000 {
+        let center = rng.point(10.0);
+        if let Some(p) = triangle(&mut rng, center, 0.3) {
+            triangles.push(object(Shape::Polygon(p)));
+        }
+    }
+    let mut scenes = vec![("10k random triangles".to_string(), triangles)];
+    for name in [
+        "balls", "gears", "mount", "rings", "teapot", "tetra", "tree",
+    ] {
+        let path = std::path::Path::new(SPD).join(format!("{name}.nff"));
+        match raystep::scene::load(&path) {
+            Ok(description) => scenes.push((name.to_string(), description.objects)),
+            Err(e) => println!("{name}: skipped ({e})"),
+        }
+    }
+    for (name, objects) in &scenes {
+        let runs = 10;
+        let start = Instant::now();
+        for _ in 0..runs {
+            std::hint::black_box(Accel::build(objects));
+        }
+        let build = start.elapsed() / runs;
+        let accel = Accel::build(objects);
+        // Rays from outside towards random objects, as primary rays go.
+        let rays: Vec<Ray> = (0..20_000)
+            .map(|_| {
+                let target = objects[rng.below(objects.len())]
+                    .shape
+                    .bounds()
+                    .map_or(DVec3::ZERO, |b| b.centroid());
+                let origin = target + rng.direction() * 50.0;
+                Ray::new(origin, (target - origin).normalize())
+            })
+            .collect();
+        let mut cost = Cost::default();
+        let start = Instant::now();
+        let mut hits = 0;
+        for ray in &rays {
+            hits += usize::from(
+                accel
+                    .closest(objects, ray, Interval::in_front(), &mut cost)
+                    .is_some(),
+            );
+        }
+        let per_ray = start.elapsed() / rays.len() as u32;
+        let brute_rays = &rays[..rays.len().min(2000)];
+        let start = Instant::now();
+        for ray in brute_rays {
+            std::hint::black_box(brute::closest(
+                objects,
+                ray,
+                Interval::in_front(),
+                &mut Cost::default(),
+            ));
+        }
+        let brute_per_ray = start.elapsed() / brute_rays.len() as u32;
+        println!(
+            "{name:>22}: {} objects, {accel:?}, build {build:.2?}, closest {per_ray:.2?}/ray \
+             (brute {brute_per_ray:.2?}), {:.1} nodes + {:.1} primitives/ray, {hits} hits",
+            objects.len(),
+            cost.nodes as f64 / rays.len() as f64,
+            cost.primitives as f64 / rays.len() as f64,
+        );
+    }
+}
