@@ -83,6 +83,10 @@ pub struct RenderArgs {
     /// Print ray counts and timings as one JSON object on stdout.
     #[arg(long)]
     pub stats: bool,
+    /// Also write one PNG per term (ambient, diffuse, specular, reflected,
+    /// transmitted, shadow, rays, cost) into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub terms: Option<PathBuf>,
 }
 
 #[derive(Args, Debug, Clone, Copy)]
@@ -188,6 +192,10 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     let tracing = traced.elapsed().as_secs_f64();
     progress.finish_and_clear();
     write_png(&args.output, &image)?;
+    if let Some(dir) = &args.terms {
+        let terms = with_threads(threads, || crate::terms::render_terms(&scene, &|| {}))?;
+        terms.write_all(dir)?;
+    }
     if args.stats {
         let mut json = serde_json::to_value(stats).context("cannot write stats")?;
         json["width"] = scene.width.into();

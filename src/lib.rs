@@ -12,3 +12,4 @@ pub mod trace;
 pub mod cli;
 pub mod render;
 pub mod record;
+pub mod terms;

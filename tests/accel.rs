@@ -67,20 +67,42 @@ fn triangle(rng: &mut Rng, center: DVec3, size: f64) -> Option<Polygon> {
     Polygon::new((0..3).map(|_| center + rng.point(size)).collect()).ok()
 }
 
-/// Spheres, triangles, patches, cones and cylinders scattered in a cube of
-/// side 20 (some overlapping, some tiny, a few exact copies), and two planes.
-fn random_scene(rng: &mut Rng, count: usize) -> Vec<Object> {
+/// Where a scene lies: the cube `center +- half`.
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    center: DVec3,
+    half: f64,
+}
+
+const UNIT: Frame = Frame {
+    center: DVec3::ZERO,
+    half: 10.0,
+};
+
+impl Frame {
+    fn point(&self, rng: &mut Rng) -> DVec3 {
+        self.center + rng.point(self.half)
+    }
+
+    /// A length that is `length` in a frame of half side 10.
+    fn scaled(&self, length: f64) -> f64 {
+        length * self.half / 10.0
+    }
+}
+
+/// Spheres, triangles, patches, cones and cylinders scattered in the frame
+/// (some overlapping, some tiny, a few exact copies), and two planes.
+fn random_scene(rng: &mut Rng, count: usize, frame: Frame) -> Vec<Object> {
     let mut objects = Vec::with_capacity(count + 2);
-    objects.push(object(Shape::Plane(
-        Plane::new(DVec3::Y, DVec3::new(0.0, -11.0, 0.0)).unwrap(),
-    )));
+    let floor = frame.center - DVec3::Y * frame.scaled(11.0);
+    objects.push(object(Shape::Plane(Plane::new(DVec3::Y, floor).unwrap())));
     while objects.len() < count {
-        let center = rng.point(10.0);
-        let size = if rng.below(10) == 0 {
+        let center = frame.point(rng);
+        let size = frame.scaled(if rng.below(10) == 0 {
             4.0
         } else {
             rng.range(0.01, 1.0)
-        };
+        });
         let shape = match rng.below(5) {
             0 => Shape::Sphere(Sphere::new(center, size).unwrap()),
             1 | 2 => match triangle(rng, center, size) {
@@ -96,7 +118,7 @@ fn random_scene(rng: &mut Rng, count: usize) -> Vec<Object> {
                 }
             }
             _ => {
-                let apex = center + rng.direction() * rng.range(0.1, 3.0);
+                let apex = center + rng.direction() * frame.scaled(rng.range(0.1, 3.0));
                 let apex_radius = if rng.below(2) == 0 {
                     size
                 } else {
@@ -112,8 +134,9 @@ fn random_scene(rng: &mut Rng, count: usize) -> Vec<Object> {
             objects.push(object(objects[earlier].shape.clone()));
         }
     }
+    let far = frame.center + DVec3::splat(frame.scaled(13.0));
     objects.push(object(Shape::Plane(
-        Plane::new(DVec3::new(1.0, 1.0, 0.5), DVec3::splat(13.0)).unwrap(),
+        Plane::new(DVec3::new(1.0, 1.0, 0.5), far).unwrap(),
     )));
     objects
 }
@@ -149,17 +172,19 @@ fn grid_scene(rng: &mut Rng, count: usize) -> Vec<Object> {
 /// Rays of every kind: from outside and inside the scene, towards objects,
 /// along the axes (with +0 and -0 components), unnormalized, and starting
 /// on a surface as secondary rays do.
-fn random_ray(rng: &mut Rng, objects: &[Object], half: f64) -> Ray {
+fn random_ray(rng: &mut Rng, objects: &[Object], frame: Frame) -> Ray {
     let origin = match rng.below(3) {
-        0 => rng.point(half * 1.5),
-        _ => rng.point(half),
+        0 => frame.center + rng.point(frame.half * 1.5),
+        _ => frame.point(rng),
     };
+    // On a grid of 10 steps across the frame: integers in the grid scene.
     let integer = |rng: &mut Rng| {
-        DVec3::new(
+        let step = DVec3::new(
             rng.below(10) as f64,
             rng.below(10) as f64,
             rng.below(10) as f64,
-        )
+        );
+        frame.center + (step - DVec3::splat(5.0)) * frame.scaled(2.0)
     };
     match rng.below(6) {
         0 => Ray::new(origin, rng.direction()),
@@ -178,14 +203,14 @@ fn random_ray(rng: &mut Rng, objects: &[Object], half: f64) -> Ray {
                 direction[(axis + 1) % 3] = -0.0;
             }
             let origin = if rng.below(2) == 0 {
-                integer(rng) - DVec3::splat(1.0)
+                integer(rng)
             } else {
                 origin
             };
             Ray::new(origin, direction)
         }
         3 => Ray::new(
-            integer(rng) + DVec3::splat(0.5),
+            integer(rng) + DVec3::splat(frame.scaled(1.0)),
             rng.direction() * rng.range(0.1, 3.0),
         ),
         _ => {
@@ -219,40 +244,53 @@ fn all_crossings(
     found
 }
 
-/// The scenes every property is checked on.
-fn scenes() -> Vec<(&'static str, Vec<Object>, f64)> {
+/// The scenes every property is checked on, with the frame rays are cast in.
+fn scenes() -> Vec<(&'static str, Vec<Object>, Frame)> {
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let far = Frame {
+        center: DVec3::new(1000.0, -2000.0, 500.0),
+        half: 10.0,
+    };
+    let tiny = Frame {
+        center: DVec3::new(0.3, 0.0, -0.1),
+        half: 0.05,
+    };
+    let huge = Frame {
+        center: DVec3::ZERO,
+        half: 1e4,
+    };
+    let grid = Frame {
+        center: DVec3::splat(5.0),
+        half: 5.0,
+    };
+    let small = Frame {
+        center: DVec3::ZERO,
+        half: 2.0,
+    };
+    let sphere = Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap());
+    let plane = Shape::Plane(Plane::new(DVec3::Z, DVec3::ZERO).unwrap());
     vec![
-        ("random 2000", random_scene(&mut rng, 2000), 10.0),
-        ("random 60", random_scene(&mut rng, 60), 10.0),
-        ("grid 400", grid_scene(&mut rng, 400), 5.0),
-        (
-            "single sphere",
-            vec![object(Shape::Sphere(
-                Sphere::new(DVec3::ZERO, 1.0).unwrap(),
-            ))],
-            2.0,
-        ),
-        (
-            "plane only",
-            vec![object(Shape::Plane(
-                Plane::new(DVec3::Z, DVec3::ZERO).unwrap(),
-            ))],
-            2.0,
-        ),
+        ("random 2000", random_scene(&mut rng, 2000, UNIT), UNIT),
+        ("random 60", random_scene(&mut rng, 60, UNIT), UNIT),
+        ("far from the origin", random_scene(&mut rng, 500, far), far),
+        ("tiny", random_scene(&mut rng, 500, tiny), tiny),
+        ("huge", random_scene(&mut rng, 500, huge), huge),
+        ("grid 400", grid_scene(&mut rng, 400), grid),
+        ("single sphere", vec![object(sphere)], small),
+        ("plane only", vec![object(plane)], small),
     ]
 }
 
 #[test]
 fn closest_equals_brute_force_bit_for_bit() {
     let mut rng = Rng(12345);
-    for (name, objects, half) in scenes() {
+    for (name, objects, frame) in scenes() {
         let accel = Accel::build(&objects);
         let (mut bvh_cost, mut brute_cost, mut hits) = (Cost::default(), Cost::default(), 0);
         for i in 0..6000 {
-            let ray = random_ray(&mut rng, &objects, half);
+            let ray = random_ray(&mut rng, &objects, frame);
             let range = if i % 4 == 0 {
-                Interval::new(EPS, rng.range(0.0, 3.0 * half))
+                Interval::new(EPS, rng.range(0.0, 3.0 * frame.half))
             } else {
                 Interval::in_front()
             };
@@ -280,11 +318,11 @@ fn closest_equals_brute_force_bit_for_bit() {
 #[test]
 fn crossings_equal_brute_force_as_a_multiset() {
     let mut rng = Rng(777);
-    for (name, objects, half) in scenes() {
+    for (name, objects, frame) in scenes() {
         let accel = Accel::build(&objects);
         for _ in 0..4000 {
-            let ray = random_ray(&mut rng, &objects, half);
-            let segment = Interval::new(EPS, rng.range(0.0, 4.0 * half));
+            let ray = random_ray(&mut rng, &objects, frame);
+            let segment = Interval::new(EPS, rng.range(0.0, 4.0 * frame.half));
             let mut expected = all_crossings(|v| {
                 brute::crossings(&objects, &ray, segment, &mut Cost::default(), v)
             });
@@ -307,11 +345,11 @@ fn crossings_equal_brute_force_as_a_multiset() {
 #[test]
 fn any_crossing_agrees_with_the_closest_hit() {
     let mut rng = Rng(4242);
-    for (name, objects, half) in scenes() {
+    for (name, objects, frame) in scenes() {
         let accel = Accel::build(&objects);
         for _ in 0..4000 {
-            let ray = random_ray(&mut rng, &objects, half);
-            let end = rng.range(0.0, 3.0 * half);
+            let ray = random_ray(&mut rng, &objects, frame);
+            let end = rng.range(0.0, 3.0 * frame.half);
             let mut calls = 0;
             accel.crossings(
                 &objects,
@@ -354,7 +392,7 @@ fn tie_goes_to_the_first_object_in_the_file() {
     // Forty copies among other objects: they cannot be told apart, so they
     // land in several leaves, visited in tree order; still the first wins.
     let mut rng = Rng(99);
-    let mut objects = random_scene(&mut rng, 300);
+    let mut objects = random_scene(&mut rng, 300, UNIT);
     objects.retain(|o| {
         o.shape
             .bounds()
@@ -408,7 +446,7 @@ fn tie_goes_to_the_first_object_in_the_file() {
 #[test]
 fn cost_counts_nodes_and_primitives() {
     let mut rng = Rng(5);
-    let objects = random_scene(&mut rng, 2000);
+    let objects = random_scene(&mut rng, 2000, UNIT);
     let accel = Accel::build(&objects);
     // A ray far away from everything: the two planes and the root's box are tested.
     let away = Ray::new(DVec3::new(100.0, 100.0, 100.0), DVec3::X);

@@ -1,0 +1,220 @@
+//! Term images: the primary ray's illumination terms for every pixel, so a
+//! whole image can be read term by term, plus the shadow factor, the number
+//! of rays and the cost of the queries per pixel.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use image::RgbImage;
+use rayon::prelude::*;
+
+use crate::accel::Cost;
+use crate::math::{Color, Ray, to_rgb8};
+use crate::render::write_png;
+use crate::scene::Scene;
+use crate::trace::{ChildTerm, LightTerm, RayKind, Recorder, SurfaceHit, trace_pixel};
+
+/// One view of the per-pixel terms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Term {
+    Ambient,
+    Diffuse,
+    Specular,
+    Reflected,
+    Transmitted,
+    Shadow,
+    Rays,
+    Cost,
+}
+
+impl Term {
+    pub const ALL: [Term; 8] = [
+        Term::Ambient,
+        Term::Diffuse,
+        Term::Specular,
+        Term::Reflected,
+        Term::Transmitted,
+        Term::Shadow,
+        Term::Rays,
+        Term::Cost,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Term::Ambient => "ambient",
+            Term::Diffuse => "diffuse",
+            Term::Specular => "specular",
+            Term::Reflected => "reflected",
+            Term::Transmitted => "transmitted",
+            Term::Shadow => "shadow",
+            Term::Rays => "rays",
+            Term::Cost => "cost",
+        }
+    }
+
+    /// What the view shows, for legends.
+    pub fn legend(self) -> &'static str {
+        match self {
+            Term::Ambient => "ambient term k_a I_a O_d of the primary hit",
+            Term::Diffuse => "sum over lights of the diffuse terms",
+            Term::Specular => "sum over lights of the specular terms",
+            Term::Reflected => "k_s I_r: what the reflected ray adds",
+            Term::Transmitted => "k_t I_t: what the transmitted ray adds",
+            Term::Shadow => "mean S over the lights facing the hit: white lit, black shadowed",
+            Term::Rays => "rays per pixel (all kinds, shadow rays too): dark few, bright many",
+            Term::Cost => "nodes + primitives tested per pixel: dark cheap, bright expensive",
+        }
+    }
+}
+
+/// The terms of one pixel's primary ray.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelTerms {
+    pub color: Color,
+    pub ambient: Color,
+    pub diffuse: Color,
+    pub specular: Color,
+    pub reflected: Color,
+    pub transmitted: Color,
+    /// Mean S over lights facing the hit; `None` on a miss or when none faces it.
+    pub shadow: Option<f64>,
+    pub rays: u32,
+    pub cost: u32,
+}
+
+/// Gathers `PixelTerms` from the tracer's callbacks for one pixel.
+#[derive(Default)]
+struct TermsRecorder {
+    terms: PixelTerms,
+    depth: u32,
+    shadow_sum: f64,
+    shadow_count: u32,
+}
+
+impl Recorder for TermsRecorder {
+    fn ray_cast(&mut self, _kind: RayKind, _depth: u32, _ray: &Ray, _weight: f64) {
+        self.depth += 1;
+        self.terms.rays += 1;
+    }
+
+    fn hit(&mut self, _hit: &SurfaceHit, cost: Cost) {
+        self.terms.cost += cost.nodes + cost.primitives;
+    }
+
+    fn miss(&mut self, _background: Color, cost: Cost) {
+        self.terms.cost += cost.nodes + cost.primitives;
+    }
+
+    fn ambient(&mut self, term: Color) {
+        if self.depth == 1 {
+            self.terms.ambient = term;
+        }
+    }
+
+    fn shadow_cast(&mut self, _light: usize, _ray: &Ray, _distance: f64) {
+        self.terms.rays += 1;
+    }
+
+    fn light(&mut self, term: &LightTerm) {
+        if let Some(shadow) = term.shadow {
+            self.terms.cost += shadow.cost.nodes + shadow.cost.primitives;
+        }
+        if self.depth != 1 {
+            return;
+        }
+        self.terms.diffuse += term.diffuse;
+        self.terms.specular += term.specular;
+        if !term.faces_away {
+            self.shadow_sum += term.shadow.map_or(1.0, |s| s.s);
+            self.shadow_count += 1;
+        }
+    }
+
+    fn child(&mut self, term: &ChildTerm) {
+        if self.depth != 1 {
+            return;
+        }
+        match term.kind {
+            RayKind::Reflected => self.terms.reflected += term.contribution,
+            RayKind::Transmitted => self.terms.transmitted += term.contribution,
+            RayKind::Primary => {}
+        }
+    }
+
+    fn ray_done(&mut self, _color: Color) {
+        self.depth -= 1;
+    }
+}
+
+/// Every pixel's terms, row by row.
+pub struct TermImages {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<PixelTerms>,
+}
+
+/// Traces every pixel with the terms recorder (the same `trace` as the render).
+pub fn render_terms(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> TermImages {
+    let viewport = scene.camera.viewport(scene.width, scene.height);
+    let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
+    pixels.par_chunks_mut(scene.width as usize).enumerate().for_each(|(y, row)| {
+        for (x, pixel) in row.iter_mut().enumerate() {
+            let mut rec = TermsRecorder::default();
+            let color = trace_pixel(scene, &viewport, x as u32, y as u32, &mut rec);
+            rec.terms.color = color;
+            rec.terms.shadow = (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);
+            *pixel = rec.terms;
+        }
+        row_done();
+    });
+    TermImages { width: scene.width, height: scene.height, pixels }
+}
+
+impl TermImages {
+    /// The largest count in a count view (rays or cost), for its legend.
+    pub fn max_count(&self, term: Term) -> u32 {
+        self.pixels.iter().map(|p| if term == Term::Rays { p.rays } else { p.cost }).max().unwrap_or(0)
+    }
+
+    /// One pixel of a view as 8-bit RGB; counts are scaled by `max_count`.
+    pub fn rgb(&self, term: Term, index: usize, max_count: u32) -> [u8; 3] {
+        let p = &self.pixels[index];
+        match term {
+            Term::Ambient => to_rgb8(p.ambient),
+            Term::Diffuse => to_rgb8(p.diffuse),
+            Term::Specular => to_rgb8(p.specular),
+            Term::Reflected => to_rgb8(p.reflected),
+            Term::Transmitted => to_rgb8(p.transmitted),
+            Term::Shadow => to_rgb8(Color::splat(p.shadow.unwrap_or(0.0))),
+            Term::Rays => false_color(p.rays as f64 / max_count.max(1) as f64),
+            Term::Cost => false_color(p.cost as f64 / max_count.max(1) as f64),
+        }
+    }
+
+    pub fn image(&self, term: Term) -> RgbImage {
+        let max = self.max_count(term);
+        RgbImage::from_fn(self.width, self.height, |x, y| {
+            image::Rgb(self.rgb(term, (y * self.width + x) as usize, max))
+        })
+    }
+
+    /// Writes `DIR/<term>.png` for every term.
+    pub fn write_all(&self, dir: &Path) -> Result<()> {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        for term in Term::ALL {
+            write_png(&dir.join(format!("{}.png", term.name())), &self.image(term))?;
+        }
+        Ok(())
+    }
+}
+
+/// A dark-blue to yellow ramp for counts in [0, 1].
+pub fn false_color(v: f64) -> [u8; 3] {
+    const STOPS: [[f64; 3]; 5] =
+        [[0.05, 0.03, 0.25], [0.25, 0.2, 0.6], [0.1, 0.55, 0.55], [0.5, 0.8, 0.25], [1.0, 0.95, 0.2]];
+    let v = v.clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
+    let i = (v.floor() as usize).min(STOPS.len() - 2);
+    let f = v - i as f64;
+    let [a, b] = [STOPS[i], STOPS[i + 1]];
+    to_rgb8(Color::new(a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2])))
+}
