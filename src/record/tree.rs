@@ -147,12 +147,17 @@ pub fn record_pixel(scene: &Scene, x: u32, y: u32) -> RayTree {
     let viewport = scene.camera.viewport(scene.width, scene.height);
     let mut recorder = TreeRecorder::new(scene);
     trace_pixel(scene, &viewport, x, y, &mut recorder);
-    RayTree { pixel: (x, y), max_depth: Some(scene.settings.max_depth), nodes: recorder.nodes, events: recorder.events }
+    recorder.into_tree((x, y))
 }
 
 impl<'a> TreeRecorder<'a> {
     pub fn new(scene: &'a Scene) -> Self {
         Self { scene, nodes: Vec::new(), events: Vec::new(), stack: Vec::new(), blockers: Vec::new(), shadow_ray: None }
+    }
+
+    /// The finished recording, labelled with the pixel it belongs to.
+    pub fn into_tree(self, pixel: (u32, u32)) -> RayTree {
+        RayTree { pixel, max_depth: Some(self.scene.settings.max_depth), nodes: self.nodes, events: self.events }
     }
 
     fn current(&self) -> NodeId {

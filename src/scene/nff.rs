@@ -458,7 +458,7 @@ impl<'a> Parser<'a> {
                 "up" => view.up = Some(self.vec3(XYZ, |c| format!("the viewpoint's `up` ({c})"))?),
                 "angle" => {
                     let (angle, token) = self.number_token(|| "the viewpoint's `angle`".into())?;
-                    if !(angle > 0.0 && angle < 180.0) {
+                    if angle <= 0.0 || angle >= 180.0 {
                         return Err(self.error(
                             token.span(),
                             format!("the viewpoint's `angle` must be between 0 and 180 degrees (exclusive), got {angle}"),
@@ -502,7 +502,7 @@ impl<'a> Parser<'a> {
         }
         let (ior, ior_token) = self.number_token(|| "the material's index of refraction".into())?;
         let ior = if kt > 0.0 {
-            if !(ior > 0.0) {
+            if ior <= 0.0 {
                 return Err(self.error(
                     ior_token.span(),
                     format!(
@@ -714,7 +714,7 @@ pp 3
         // n = 3: I_a = sqrt 3 / 6 = 0.28867513459481287.
         let scene = parse_str(&format!("{VIEW}l 1 0 0\nl 0 1 0\nl 0 0 1 1 1 1\n")).unwrap();
         let grey = 3f64.sqrt() / 6.0;
-        assert!(close(grey, 0.288675134594812866));
+        assert!(close(grey, 0.28867513459481287));
         assert_eq!(scene.settings.ambient, Color::splat(grey));
         assert_eq!(scene.lights[0].color, Color::splat(grey));
         assert_eq!(scene.lights[1].color, Color::splat(grey));
