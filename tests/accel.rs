@@ -10,6 +10,7 @@ use raystep::accel::{Accel, Candidate, Cost, brute};
 use raystep::math::{EPS, Interval, Ray};
 use raystep::scene::Object;
 use raystep::shapes::{Cone, Patch, Plane, Polygon, Shape, Sphere};
+use raystep::trace::NoRecorder;
 
 const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/spd");
 
@@ -225,6 +226,12 @@ fn random_ray(rng: &mut Rng, objects: &[Object], frame: Frame) -> Ray {
     }
 }
 
+/// `n`, times `ACCEL_STRESS` when set: `ACCEL_STRESS=100 cargo test --release --test accel`.
+fn rays(n: usize) -> usize {
+    let stress = std::env::var("ACCEL_STRESS").ok();
+    n * stress.and_then(|s| s.parse().ok()).unwrap_or(1)
+}
+
 fn same(a: Option<Candidate>, b: Option<Candidate>) -> bool {
     match (a, b) {
         (Some(a), Some(b)) => a.object == b.object && a.t.to_bits() == b.t.to_bits(),
@@ -287,7 +294,7 @@ fn closest_equals_brute_force_bit_for_bit() {
     for (name, objects, frame) in scenes() {
         let accel = Accel::build(&objects);
         let (mut bvh_cost, mut brute_cost, mut hits) = (Cost::default(), Cost::default(), 0);
-        for i in 0..6000 {
+        for i in 0..rays(6000) {
             let ray = random_ray(&mut rng, &objects, frame);
             let range = if i % 4 == 0 {
                 Interval::new(EPS, rng.range(0.0, 3.0 * frame.half))
@@ -320,7 +327,7 @@ fn crossings_equal_brute_force_as_a_multiset() {
     let mut rng = Rng(777);
     for (name, objects, frame) in scenes() {
         let accel = Accel::build(&objects);
-        for _ in 0..4000 {
+        for _ in 0..rays(4000) {
             let ray = random_ray(&mut rng, &objects, frame);
             let segment = Interval::new(EPS, rng.range(0.0, 4.0 * frame.half));
             let mut expected = all_crossings(|v| {
@@ -347,7 +354,7 @@ fn any_crossing_agrees_with_the_closest_hit() {
     let mut rng = Rng(4242);
     for (name, objects, frame) in scenes() {
         let accel = Accel::build(&objects);
-        for _ in 0..4000 {
+        for _ in 0..rays(4000) {
             let ray = random_ray(&mut rng, &objects, frame);
             let end = rng.range(0.0, 3.0 * frame.half);
             let mut calls = 0;
@@ -498,6 +505,8 @@ fn empty_scene_has_no_hits() {
 }
 
 /// Timings, not a pass/fail test: `cargo test --release --test accel -- --ignored --nocapture`.
+/// Per scene: the build, closest-hit queries towards random objects (and the
+/// brute force on a tenth of them), and a 256 x 256 render of the SPD scenes.
 #[test]
 #[ignore]
 fn timings() {
@@ -509,63 +518,75 @@ fn timings() {
             triangles.push(object(Shape::Polygon(p)));
         }
     }
-    let mut scenes = vec![("10k random triangles".to_string(), triangles)];
+    let mut rng = Rng(7);
+    let (_, accel) = time_build(&triangles);
+    time_queries("10k random triangles", &triangles, &accel, &mut rng);
     for name in [
         "balls", "gears", "mount", "rings", "teapot", "tetra", "tree",
     ] {
         let path = std::path::Path::new(SPD).join(format!("{name}.nff"));
-        match raystep::scene::load(&path) {
-            Ok(description) => scenes.push((name.to_string(), description.objects)),
-            Err(e) => println!("{name}: skipped ({e})"),
+        let description = match raystep::scene::load(&path) {
+            Ok(description) => description,
+            Err(e) => {
+                println!("{name}: skipped ({e})");
+                continue;
+            }
+        };
+        let (_, accel) = time_build(&description.objects);
+        time_queries(name, &description.objects, &accel, &mut rng);
+        let scene = description.prepare();
+        let viewport = scene.camera.viewport(256, 256);
+        let start = Instant::now();
+        for y in 0..256 {
+            for x in 0..256 {
+                let color = raystep::trace::trace_pixel(&scene, &viewport, x, y, &mut NoRecorder);
+                std::hint::black_box(color);
+            }
         }
+        println!("{:>22}  render 256 x 256 in {:.1?}", "", start.elapsed());
     }
-    for (name, objects) in &scenes {
-        let runs = 10;
-        let start = Instant::now();
-        for _ in 0..runs {
-            std::hint::black_box(Accel::build(objects));
-        }
-        let build = start.elapsed() / runs;
-        let accel = Accel::build(objects);
-        // Rays from outside towards random objects, as primary rays go.
-        let rays: Vec<Ray> = (0..20_000)
-            .map(|_| {
-                let target = objects[rng.below(objects.len())]
-                    .shape
-                    .bounds()
-                    .map_or(DVec3::ZERO, |b| b.centroid());
-                let origin = target + rng.direction() * 50.0;
-                Ray::new(origin, (target - origin).normalize())
-            })
-            .collect();
-        let mut cost = Cost::default();
-        let start = Instant::now();
-        let mut hits = 0;
-        for ray in &rays {
-            hits += usize::from(
-                accel
-                    .closest(objects, ray, Interval::in_front(), &mut cost)
-                    .is_some(),
-            );
-        }
-        let per_ray = start.elapsed() / rays.len() as u32;
-        let brute_rays = &rays[..rays.len().min(2000)];
-        let start = Instant::now();
-        for ray in brute_rays {
-            std::hint::black_box(brute::closest(
-                objects,
-                ray,
-                Interval::in_front(),
-                &mut Cost::default(),
-            ));
-        }
-        let brute_per_ray = start.elapsed() / brute_rays.len() as u32;
-        println!(
-            "{name:>22}: {} objects, {accel:?}, build {build:.2?}, closest {per_ray:.2?}/ray \
-             (brute {brute_per_ray:.2?}), {:.1} nodes + {:.1} primitives/ray, {hits} hits",
-            objects.len(),
-            cost.nodes as f64 / rays.len() as f64,
-            cost.primitives as f64 / rays.len() as f64,
-        );
+}
+
+fn time_build(objects: &[Object]) -> (std::time::Duration, Accel) {
+    let runs = 10;
+    let start = Instant::now();
+    for _ in 0..runs {
+        std::hint::black_box(Accel::build(objects));
     }
+    (start.elapsed() / runs, Accel::build(objects))
+}
+
+fn time_queries(name: &str, objects: &[Object], accel: &Accel, rng: &mut Rng) {
+    let (build, _) = time_build(objects);
+    // From 50 units away towards random objects, as primary rays go.
+    let rays: Vec<Ray> = (0..20_000)
+        .map(|_| {
+            let target = objects[rng.below(objects.len())]
+                .shape
+                .bounds()
+                .map_or(DVec3::ZERO, |b| b.centroid());
+            let origin = target + rng.direction() * 50.0;
+            Ray::new(origin, (target - origin).normalize())
+        })
+        .collect();
+    let mut cost = Cost::default();
+    let start = Instant::now();
+    for ray in &rays {
+        std::hint::black_box(accel.closest(objects, ray, Interval::in_front(), &mut cost));
+    }
+    let per_ray = start.elapsed() / rays.len() as u32;
+    let some = &rays[..rays.len() / 10];
+    let start = Instant::now();
+    for ray in some {
+        let hit = brute::closest(objects, ray, Interval::in_front(), &mut Cost::default());
+        std::hint::black_box(hit);
+    }
+    let brute_per_ray = start.elapsed() / some.len() as u32;
+    println!(
+        "{name:>22}: {} objects, {accel:?}, build {build:.2?}, closest {per_ray:.2?}/ray \
+         (brute {brute_per_ray:.2?}), {:.1} nodes + {:.1} primitives/ray",
+        objects.len(),
+        cost.nodes as f64 / rays.len() as f64,
+        cost.primitives as f64 / rays.len() as f64,
+    );
 }

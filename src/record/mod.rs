@@ -6,7 +6,7 @@ mod text;
 mod tree;
 
 pub use explain::explain;
-pub use text::{dot, text};
+pub use text::{color, dot, kind_name, light_lines, node_lines, num, text, vector, working_lines};
 pub use tree::{
     BlockerRecord, Event, EventKind, HitRecord, LightRecord, Node, NodeId, RayTree, ShadowRecord, TreeRecorder,
     record_pixel,

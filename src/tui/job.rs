@@ -1,0 +1,147 @@
+//! Whole-image renders off the UI thread. One render runs at a time; a newer
+//! request waits as `pending` and replaces any older waiting one, so pressing
+//! a toggle five times costs at most two renders. Results come back over a
+//! channel tagged with their generation, and the app drops stale ones.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::Arc;
+use std::thread;
+use std::time::{Duration, Instant};
+
+use image::RgbImage;
+
+use crate::render::render;
+use crate::scene::Scene;
+use crate::terms::{TermImages, render_terms};
+use crate::trace::NoRecorder;
+
+/// What to render: the image alone, or every term (which includes the image).
+#[derive(Clone)]
+pub struct Request {
+    pub generation: u64,
+    pub scene: Arc<Scene>,
+    pub terms: bool,
+}
+
+/// A finished render.
+pub enum Output {
+    Image(RgbImage),
+    Terms(TermImages),
+}
+
+pub struct Finished {
+    pub generation: u64,
+    pub output: Result<Output, String>,
+    pub elapsed: Duration,
+}
+
+/// How far the running render is, for the progress indicator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    pub rows_done: u32,
+    pub rows: u32,
+}
+
+struct Running {
+    rows_done: Arc<AtomicU32>,
+    rows: u32,
+}
+
+/// Starts renders and collects their results.
+pub struct Renderer {
+    /// Render on the caller's thread (tests): results are ready at once.
+    sync: bool,
+    sender: Sender<Finished>,
+    receiver: Receiver<Finished>,
+    running: Option<Running>,
+    pending: Option<Request>,
+}
+
+impl Renderer {
+    pub fn new(sync: bool) -> Self {
+        let (sender, receiver) = channel();
+        Self { sync, sender, receiver, running: None, pending: None }
+    }
+
+    /// Renders `request` now, or after the running render ends.
+    pub fn request(&mut self, request: Request) {
+        if self.running.is_some() {
+            self.pending = Some(request);
+        } else {
+            self.start(request);
+        }
+    }
+
+    pub fn progress(&self) -> Option<Progress> {
+        self.running.as_ref().map(|r| Progress { rows_done: r.rows_done.load(Ordering::Relaxed), rows: r.rows })
+    }
+
+    pub fn busy(&self) -> bool {
+        self.running.is_some() || self.pending.is_some()
+    }
+
+    /// A finished render, if any; starts the pending one when the last ends.
+    pub fn poll(&mut self) -> Option<Finished> {
+        let finished = self.receiver.try_recv().ok()?;
+        self.running = None;
+        if let Some(next) = self.pending.take() {
+            self.start(next);
+        }
+        Some(finished)
+    }
+
+    /// Blocks until a render finishes (tests and benchmarks).
+    pub fn wait(&mut self) -> Option<Finished> {
+        self.running.as_ref()?;
+        let finished = self.receiver.recv().ok()?;
+        self.running = None;
+        if let Some(next) = self.pending.take() {
+            self.start(next);
+        }
+        Some(finished)
+    }
+
+    fn start(&mut self, request: Request) {
+        let rows_done = Arc::new(AtomicU32::new(0));
+        self.running = Some(Running { rows_done: rows_done.clone(), rows: request.scene.height });
+        let sender = self.sender.clone();
+        let job = move || {
+            let started = Instant::now();
+            let output = catch_unwind(AssertUnwindSafe(|| run(&request, &rows_done)))
+                .map_err(|payload| panic_message(payload.as_ref()));
+            let elapsed = started.elapsed();
+            let _ = sender.send(Finished { generation: request.generation, output, elapsed });
+        };
+        if self.sync {
+            job();
+        } else {
+            thread::Builder::new()
+                .name("raystep-render".into())
+                .spawn(job)
+                .expect("cannot start the render thread");
+        }
+    }
+}
+
+fn run(request: &Request, rows_done: &AtomicU32) -> Output {
+    let tick = || {
+        rows_done.fetch_add(1, Ordering::Relaxed);
+    };
+    if request.terms {
+        Output::Terms(render_terms(&request.scene, &tick))
+    } else {
+        Output::Image(render::<NoRecorder>(&request.scene, &tick).0)
+    }
+}
+
+/// A render thread's panic as a message for the status line.
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    let text = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".into());
+    format!("the render failed: {text}")
+}

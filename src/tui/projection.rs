@@ -1,0 +1,212 @@
+//! The plane a pixel's rays are drawn on, and the 2-D shapes of the ray
+//! diagram: object outlines, the eye, the lights and every ray, each already
+//! projected, so the drawing code only paints.
+
+use glam::{DVec2, DVec3};
+
+use crate::record::{EventKind, NodeId, RayTree};
+use crate::scene::Scene;
+use crate::shapes::Shape;
+
+/// Which plane the diagram shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewPlane {
+    /// Seen from above: x to the right, -z up.
+    Top,
+    /// Seen from the +x side: -z to the right, y up.
+    Side,
+    /// The plane of incidence of the primary ray: its direction to the right,
+    /// the hit's normal (or the camera's up) upward.
+    Primary,
+}
+
+impl ViewPlane {
+    pub fn next(self) -> ViewPlane {
+        match self {
+            ViewPlane::Top => ViewPlane::Side,
+            ViewPlane::Side => ViewPlane::Primary,
+            ViewPlane::Primary => ViewPlane::Top,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ViewPlane::Top => "top view (x, -z)",
+            ViewPlane::Side => "side view (-z, y)",
+            ViewPlane::Primary => "plane of the primary ray",
+        }
+    }
+}
+
+/// An orthographic projection onto a plane through `origin`.
+#[derive(Clone, Copy, Debug)]
+pub struct Projection {
+    pub origin: DVec3,
+    pub right: DVec3,
+    pub up: DVec3,
+}
+
+impl Projection {
+    pub fn new(plane: ViewPlane, scene: &Scene, tree: &RayTree) -> Self {
+        let root = tree.root();
+        let origin = root.hit.as_ref().map_or(root.origin, |h| h.point);
+        let (right, up) = match plane {
+            ViewPlane::Top => (DVec3::X, -DVec3::Z),
+            ViewPlane::Side => (-DVec3::Z, DVec3::Y),
+            ViewPlane::Primary => {
+                let d = root.direction.normalize();
+                let camera_up = scene.camera.up;
+                let candidates = [root.hit.as_ref().map(|h| h.shading_normal), Some(camera_up), Some(DVec3::Y), Some(DVec3::X)];
+                let up = candidates
+                    .into_iter()
+                    .flatten()
+                    .map(|n| n - n.dot(d) * d)
+                    .find(|n| n.length() > 1e-6)
+                    .map_or(DVec3::Y, |n| n.normalize());
+                (d, if up.dot(camera_up) < 0.0 { -up } else { up })
+            }
+        };
+        Self { origin, right, up }
+    }
+
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        let v = p - self.origin;
+        DVec2::new(v.dot(self.right), v.dot(self.up))
+    }
+}
+
+/// What a drawn ray is, for its colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stroke {
+    Primary,
+    Reflected,
+    Transmitted,
+    ShadowLit,
+    ShadowBlocked,
+    Normal,
+    /// Not yet reached by the step-through.
+    Later,
+    Current,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Segment {
+    pub from: DVec2,
+    pub to: DVec2,
+    pub stroke: Stroke,
+}
+
+/// The rays of a pixel as projected segments, plus blocker points.
+pub fn ray_segments(tree: &RayTree, scene: &Scene, projection: &Projection, current: usize) -> (Vec<Segment>, Vec<DVec2>) {
+    let current_event = tree.events.get(current);
+    let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
+        tree.events.iter().take(current + 1).any(|e| test(&e.kind, e.node))
+    };
+    let miss_length = miss_length(tree, scene);
+    let mut segments = Vec::new();
+    let mut blockers = Vec::new();
+    for (id, node) in tree.nodes.iter().enumerate() {
+        let end = node.hit.as_ref().map_or(node.origin + node.direction.normalize() * miss_length, |h| h.point);
+        let is_current = current_event.is_some_and(|e| e.node == id && super::stepper::event_light(&e.kind).is_none());
+        let stroke = if is_current {
+            Stroke::Current
+        } else if !reached(&|k, n| n == id && matches!(k, EventKind::RayCast { .. })) {
+            Stroke::Later
+        } else {
+            match node.kind {
+                crate::trace::RayKind::Primary => Stroke::Primary,
+                crate::trace::RayKind::Reflected => Stroke::Reflected,
+                crate::trace::RayKind::Transmitted => Stroke::Transmitted,
+            }
+        };
+        segments.push(Segment { from: projection.project(node.origin), to: projection.project(end), stroke });
+        let Some(hit) = &node.hit else { continue };
+        let normal_end = hit.point + hit.shading_normal * miss_length * 0.08;
+        segments.push(Segment { from: projection.project(hit.point), to: projection.project(normal_end), stroke: Stroke::Normal });
+        for light in &node.lights {
+            let Some(shadow) = &light.shadow else { continue };
+            let target = scene.lights.get(light.light_index).map_or(hit.point, |l| l.position);
+            let is_current = current_event.is_some_and(|e| e.node == id && super::stepper::event_light(&e.kind) == Some(light.light_index));
+            let cast = |k: &EventKind, n| n == id && matches!(k, EventKind::ShadowCast { light: l } if *l == light.light_index);
+            let stroke = match () {
+                _ if is_current => Stroke::Current,
+                _ if !reached(&cast) => Stroke::Later,
+                _ if shadow.blockers.is_empty() => Stroke::ShadowLit,
+                _ => Stroke::ShadowBlocked,
+            };
+            segments.push(Segment { from: projection.project(hit.point), to: projection.project(target), stroke });
+            blockers.extend(shadow.blockers.iter().map(|b| projection.project(shadow.origin + shadow.direction * b.t)));
+        }
+    }
+    (segments, blockers)
+}
+
+/// How far a missed ray is drawn: half the size of the pixel's scene.
+fn miss_length(tree: &RayTree, scene: &Scene) -> f64 {
+    let mut points: Vec<DVec3> = tree.nodes.iter().filter_map(|n| n.hit.as_ref().map(|h| h.point)).collect();
+    points.push(tree.root().origin);
+    points.extend(scene.lights.iter().map(|l| l.position));
+    let min = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
+    let max = points.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
+    ((max - min).length() * 0.5).max(1.0)
+}
+
+/// An object's outline in the plane.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outline {
+    Circle { center: DVec2, radius: f64 },
+    /// An infinite line a·(x, y) + c = 0 (a plane cut by the view plane).
+    Line { normal: DVec2, c: f64 },
+    Polyline(Vec<DVec2>),
+}
+
+/// The outline of one shape: spheres as circles, polygons as their edges,
+/// cones as their two side lines and end caps, planes as the line where they
+/// cut the view plane (none when parallel to it).
+pub fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
+    let p = |v: DVec3| projection.project(v);
+    match shape {
+        Shape::Sphere(s) => vec![Outline::Circle { center: p(s.center), radius: s.radius }],
+        Shape::Plane(plane) => {
+            let normal = DVec2::new(plane.normal.dot(projection.right), plane.normal.dot(projection.up));
+            let c = plane.normal.dot(projection.origin) + plane.d;
+            if normal.length() < 1e-9 { vec![] } else { vec![Outline::Line { normal, c }] }
+        }
+        Shape::Polygon(polygon) => vec![closed(polygon.vertices.iter().map(|&v| p(v)).collect())],
+        Shape::Patch(patch) => vec![closed(patch.polygon.vertices.iter().map(|&v| p(v)).collect())],
+        Shape::Cone(cone) => {
+            let (base, apex) = (p(cone.base), p(cone.apex));
+            let axis = apex - base;
+            if axis.length() < 1e-9 {
+                let r = cone.base_radius.max(cone.apex_radius);
+                return vec![Outline::Circle { center: base, radius: r }];
+            }
+            let side = axis.perp().normalize();
+            let (b0, b1) = (base + side * cone.base_radius, base - side * cone.base_radius);
+            let (a0, a1) = (apex + side * cone.apex_radius, apex - side * cone.apex_radius);
+            vec![Outline::Polyline(vec![b0, a0, a1, b1, b0])]
+        }
+    }
+}
+
+fn closed(mut points: Vec<DVec2>) -> Outline {
+    if let Some(&first) = points.first() {
+        points.push(first);
+    }
+    Outline::Polyline(points)
+}
+
+/// The objects this pixel's rays meet: hit by a ray or blocking a shadow ray.
+pub fn involved_objects(tree: &RayTree) -> Vec<usize> {
+    let mut objects: Vec<usize> = tree
+        .events
+        .iter()
+        .filter_map(|e| match e.kind {
+            EventKind::Hit { object, .. } | EventKind::Blocker { object, .. } => Some(object),
+            _ => None,
+        })
+        .collect();
+    objects.sort_unstable();
+    objects.dedup();
+    objects
+}

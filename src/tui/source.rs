@@ -1,0 +1,84 @@
+//! Where the scene comes from: a file (watched for changes) or the built-in
+//! seven-rays scene, and the teaching settings that survive a reload.
+
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, channel};
+
+use notify::{EventKind, RecursiveMode, Watcher as _};
+
+use crate::cli::{DEFAULT_SCENE, DEFAULT_SCENE_NAME};
+use crate::scene::{self, SceneDescription, SceneError, Settings};
+
+/// The scene file, or `None` for the built-in scene.
+#[derive(Clone, Debug)]
+pub struct SceneSource {
+    pub path: Option<PathBuf>,
+}
+
+impl SceneSource {
+    /// The name shown in the header.
+    pub fn name(&self) -> String {
+        match &self.path {
+            Some(path) => path.display().to_string(),
+            None => DEFAULT_SCENE_NAME.to_string(),
+        }
+    }
+
+    pub fn load(&self) -> Result<SceneDescription, SceneError> {
+        match &self.path {
+            Some(path) => scene::load(path),
+            None => scene::parse(Path::new(DEFAULT_SCENE_NAME), DEFAULT_SCENE),
+        }
+    }
+}
+
+/// Settings after a reload: the teaching switches stay as the user set them;
+/// the specular model and max depth follow the file only where the file
+/// changed them, so an edit to `max_depth` takes effect and a toggle is kept.
+pub fn merge_settings(old_file: &Settings, new_file: &Settings, current: &Settings) -> Settings {
+    let mut merged = new_file.clone();
+    merged.switches = current.switches;
+    if new_file.specular == old_file.specular {
+        merged.specular = current.specular;
+    }
+    if new_file.max_depth == old_file.max_depth {
+        merged.max_depth = current.max_depth;
+    }
+    merged
+}
+
+/// Watches a scene file. It watches the file's directory, so editors that
+/// save by writing a new file and renaming it over the old one are seen too.
+pub struct FileWatcher {
+    _watcher: notify::RecommendedWatcher,
+    changes: Receiver<()>,
+}
+
+impl FileWatcher {
+    pub fn new(path: &Path) -> notify::Result<Self> {
+        let name = path.file_name().map(|n| n.to_os_string());
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let (sender, changes) = channel();
+        let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
+            let Ok(event) = event else { return };
+            let relevant = matches!(event.kind, EventKind::Create(_) | EventKind::Modify(_) | EventKind::Remove(_));
+            if relevant && event.paths.iter().any(|p| p.file_name().map(|n| n.to_os_string()) == name) {
+                let _ = sender.send(());
+            }
+        })?;
+        watcher.watch(&dir, RecursiveMode::NonRecursive)?;
+        Ok(Self { _watcher: watcher, changes })
+    }
+
+    /// Whether the file changed since the last call.
+    pub fn changed(&self) -> bool {
+        let mut changed = false;
+        while self.changes.try_recv().is_ok() {
+            changed = true;
+        }
+        changed
+    }
+}

@@ -1,0 +1,86 @@
+//! The step-through pane: the execution-ordered event list, one line per
+//! event, indented by the depth of the ray it belongs to.
+
+use ratatui::style::{Color as TermColor, Style, Stylize};
+use ratatui::text::{Line, Span};
+
+use crate::math::Color;
+use crate::record::{Event, EventKind, RayTree, color, kind_name, num};
+use crate::scene::Scene;
+
+use super::tree_view::swatch;
+
+fn object_name(scene: &Scene, object: usize) -> &str {
+    scene.objects.get(object).map_or("?", |o| o.name.as_str())
+}
+
+fn light_name(scene: &Scene, light: usize) -> &str {
+    scene.lights.get(light).map_or("?", |l| l.name.as_str())
+}
+
+/// An event in words, and the colour it carries, if any.
+pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option<Color>) {
+    let node = &tree.nodes[event.node];
+    let ray = format!("r{}", event.node);
+    match &event.kind {
+        EventKind::RayCast { kind, depth } => {
+            let weight = if node.parent.is_some() { format!(", weight {}", num(node.weight)) } else { String::new() };
+            (format!("{ray}: cast {} ray, depth {depth}{weight}", kind_name(*kind)), None)
+        }
+        EventKind::Hit { object, t, tested } => (
+            format!("{ray}: hit {} at t = {} ({} primitives tested)", object_name(scene, *object), num(*t), tested.primitives),
+            None,
+        ),
+        EventKind::Miss { .. } => (format!("{ray}: missed everything: background"), Some(node.color)),
+        EventKind::Ambient { term } => (format!("{ray}: ambient {}", color(*term)), Some(*term)),
+        EventKind::ShadowCast { light } => (format!("{ray}: shadow ray to light {}", light_name(scene, *light)), None),
+        EventKind::Blocker { light, object, t, kt } => (
+            format!(
+                "{ray}: shadow ray to {} blocked by {} at t = {}, kt = {}",
+                light_name(scene, *light),
+                object_name(scene, *object),
+                num(*t),
+                num(*kt)
+            ),
+            None,
+        ),
+        EventKind::Light { light, faces_away: true, .. } => {
+            (format!("{ray}: light {} faces away: adds nothing", light_name(scene, *light)), None)
+        }
+        EventKind::Light { light, s, diffuse, specular, .. } => {
+            let s = s.map_or("shadows off".to_string(), |s| format!("S = {}", num(s)));
+            (
+                format!("{ray}: light {}: {s}, diffuse + specular {}", light_name(scene, *light), color(*diffuse + *specular)),
+                Some(*diffuse + *specular),
+            )
+        }
+        EventKind::Refraction { tir: true } => (format!("{ray}: total internal reflection: no transmitted ray"), None),
+        EventKind::Refraction { tir: false } => (format!("{ray}: refraction: a transmitted ray will be cast"), None),
+        EventKind::ChildReturned { child, kind, contribution } => (
+            format!("{ray}: {} ray r{child} returns, adds {}", kind_name(*kind), color(*contribution)),
+            Some(*contribution),
+        ),
+        EventKind::RayDone { color: c } => (format!("{ray}: done, colour {}", color(*c)), Some(*c)),
+    }
+}
+
+/// The lines of events around `current`, `height` of them, current marked.
+pub fn lines(tree: &RayTree, scene: &Scene, current: usize, height: usize) -> Vec<Line<'static>> {
+    let count = tree.events.len();
+    let first = current.saturating_sub(height / 2).min(count.saturating_sub(height));
+    (first..count.min(first + height))
+        .map(|i| {
+            let event = &tree.events[i];
+            let (text, swatch_color) = describe(tree, scene, event);
+            let indent = "  ".repeat(tree.nodes[event.node].depth.saturating_sub(1) as usize);
+            let marker = if i == current { "▶" } else { " " };
+            let mut spans = vec![Span::raw(format!("{marker}{:>3} {indent}{text}", i + 1))];
+            if let Some(c) = swatch_color {
+                spans.push(Span::raw(" "));
+                spans.push(swatch(c));
+            }
+            let line = Line::from(spans);
+            if i == current { line.style(Style::new().bold().fg(TermColor::Yellow)) } else { line }
+        })
+        .collect()
+}

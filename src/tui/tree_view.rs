@@ -1,0 +1,153 @@
+//! The ray tree pane: one row per shading ray and one per light it asked,
+//! indented like the tree, each with a colour swatch and its share of the
+//! pixel. A collapsed ray hides its lights and child rays.
+
+use std::collections::BTreeSet;
+
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+
+use crate::math::to_rgb8;
+use crate::record::{EventKind, LightRecord, NodeId, RayTree, kind_name, num};
+
+use super::stepper::event_light;
+
+/// What a row shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RowKind {
+    Ray(NodeId),
+    /// `light` indexes the node's `lights` (the scene's order).
+    Light { node: NodeId, light: usize },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Row {
+    pub kind: RowKind,
+    pub indent: usize,
+}
+
+/// The visible rows, depth first: a ray, its lights, then its child rays.
+pub fn rows(tree: &RayTree, collapsed: &BTreeSet<NodeId>) -> Vec<Row> {
+    let mut rows = Vec::new();
+    if !tree.nodes.is_empty() {
+        push_rows(tree, collapsed, 0, 0, &mut rows);
+    }
+    rows
+}
+
+fn push_rows(tree: &RayTree, collapsed: &BTreeSet<NodeId>, id: NodeId, indent: usize, rows: &mut Vec<Row>) {
+    rows.push(Row { kind: RowKind::Ray(id), indent });
+    if collapsed.contains(&id) {
+        return;
+    }
+    for light in 0..tree.nodes[id].lights.len() {
+        rows.push(Row { kind: RowKind::Light { node: id, light }, indent: indent + 1 });
+    }
+    for child in tree.children(id) {
+        push_rows(tree, collapsed, child, indent + 1, rows);
+    }
+}
+
+/// The row that stands for event `at`: its light's row, else its ray's row,
+/// else (when collapsed away) the nearest visible ancestor's.
+pub fn selected_row(tree: &RayTree, rows: &[Row], at: usize) -> Option<usize> {
+    let event = tree.events.get(at)?;
+    let node = event.node;
+    if let Some(light) = event_light(&event.kind) {
+        let index = tree.nodes[node].lights.iter().position(|l| l.light_index == light);
+        let row = rows.iter().position(|r| index.is_some_and(|i| r.kind == RowKind::Light { node, light: i }));
+        if row.is_some() {
+            return row;
+        }
+    }
+    let mut id = Some(node);
+    while let Some(n) = id {
+        if let Some(row) = rows.iter().position(|r| r.kind == RowKind::Ray(n)) {
+            return Some(row);
+        }
+        id = tree.nodes[n].parent;
+    }
+    None
+}
+
+/// The first row shown when `selected` must be visible in `height` rows.
+pub fn scroll_offset(selected: usize, height: usize) -> usize {
+    (selected + 1).saturating_sub(height.max(1))
+}
+
+/// The product of weights and attenuations from the primary ray down to `id`:
+/// what one unit of this ray's colour is worth in the pixel.
+pub fn path_factor(tree: &RayTree, id: NodeId) -> f64 {
+    let mut factor = 1.0;
+    let mut node = Some(id);
+    while let Some(n) = node {
+        factor *= tree.nodes[n].weight * tree.nodes[n].attenuation;
+        node = tree.nodes[n].parent;
+    }
+    factor
+}
+
+/// `part` (already scaled into the pixel) as a share of the pixel's colour.
+fn share(tree: &RayTree, part: crate::math::Color) -> String {
+    let total = tree.color().element_sum();
+    if total <= 1e-12 { "  -".into() } else { format!("{:>3.0}%", 100.0 * part.element_sum() / total) }
+}
+
+pub fn swatch(color: crate::math::Color) -> Span<'static> {
+    let [r, g, b] = to_rgb8(color);
+    Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
+}
+
+fn light_text(light: &LightRecord) -> String {
+    if light.faces_away {
+        return format!("light {}: faces away", light.light);
+    }
+    match &light.shadow {
+        None => format!("light {}: shadows off", light.light),
+        Some(s) if s.blockers.is_empty() => format!("light {}: lit, S = 1", light.light),
+        Some(s) => {
+            let mut names: Vec<&str> = s.blockers.iter().map(|b| b.object.as_str()).collect();
+            names.dedup();
+            format!("light {}: S = {}, blocked by {}", light.light, num(s.s), names.join(", "))
+        }
+    }
+}
+
+/// One row as text: marker, description, swatch and share, `width` columns.
+pub fn row_line(tree: &RayTree, collapsed: &BTreeSet<NodeId>, row: &Row, width: usize) -> Line<'static> {
+    let pad = "  ".repeat(row.indent);
+    let (text, color, part) = match row.kind {
+        RowKind::Ray(id) => {
+            let node = &tree.nodes[id];
+            let has_rows = !node.lights.is_empty() || tree.children(id).next().is_some();
+            let marker = match (has_rows, collapsed.contains(&id)) {
+                (false, _) => " ",
+                (true, true) => "▸",
+                (true, false) => "▾",
+            };
+            let what = node.hit.as_ref().map_or("miss".to_string(), |h| format!("hit {}", h.object));
+            let text = format!("{pad}{marker} r{id} {} → {what}", kind_name(node.kind));
+            (text, node.color, node.color * path_factor(tree, id))
+        }
+        RowKind::Light { node, light } => {
+            let record = &tree.nodes[node].lights[light];
+            let color = record.diffuse + record.specular;
+            (format!("{pad}  ☼ {}", light_text(record)), color, color * path_factor(tree, node))
+        }
+    };
+    let room = width.saturating_sub(8);
+    let text: String = text.chars().take(room).collect();
+    let fill = room.saturating_sub(text.chars().count());
+    Line::from(vec![Span::raw(text), Span::raw(" ".repeat(fill + 1)), swatch(color), Span::raw(" "), Span::raw(share(tree, part))])
+}
+
+/// The style of the selected row.
+pub fn selected_style(focused: bool) -> Style {
+    let style = Style::new().add_modifier(Modifier::REVERSED);
+    if focused { style.add_modifier(Modifier::BOLD) } else { style }
+}
+
+/// Whether event `at` is the shading ray's own (not a light's).
+pub fn is_ray_event(tree: &RayTree, at: usize) -> bool {
+    tree.events.get(at).is_some_and(|e| !matches!(e.kind, EventKind::ShadowCast { .. } | EventKind::Blocker { .. } | EventKind::Light { .. }))
+}
