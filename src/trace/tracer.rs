@@ -77,7 +77,7 @@ fn shade<R: Recorder>(scene: &Scene, ray: &Ray, hit: &SurfaceHit, depth: u32, re
         color += term.diffuse + term.specular;
     }
     if depth < settings.max_depth {
-        color += secondary_rays(scene, ray, hit, material, depth, rec);
+        color = secondary_rays(scene, ray, hit, material, depth, color, rec);
     }
     color
 }
@@ -146,13 +146,15 @@ fn shadow_ray<R: Recorder>(scene: &Scene, point: DVec3, to_light: DVec3, distanc
     outcome
 }
 
-/// The reflected and transmitted rays, each through `trace_child`.
+/// Adds the reflected and transmitted rays, each through `trace_child`, to
+/// the local colour, one after the other (the order of MODEL §6's sum).
 fn secondary_rays<R: Recorder>(
     scene: &Scene,
     ray: &Ray,
     hit: &SurfaceHit,
     material: &Material,
     depth: u32,
+    local: Color,
     rec: &mut R,
 ) -> Color {
     let switches = scene.settings.switches;
@@ -162,7 +164,7 @@ fn secondary_rays<R: Recorder>(
     }
     let tir = refraction.is_some_and(|r| r.tir);
     let reflected_weight = if switches.reflection { material.ks } else { 0.0 } + if tir { material.kt } else { 0.0 };
-    let mut color = Color::ZERO;
+    let mut color = local;
     if reflected_weight > 0.0 {
         let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
         color += trace_child(scene, hit, RayKind::Reflected, direction, reflected_weight, depth, rec);

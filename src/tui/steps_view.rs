@@ -64,10 +64,15 @@ pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option
     }
 }
 
+/// The first event shown when `height` lines centre `current`.
+pub fn first_line(current: usize, count: usize, height: usize) -> usize {
+    current.saturating_sub(height / 2).min(count.saturating_sub(height))
+}
+
 /// The lines of events around `current`, `height` of them, current marked.
 pub fn lines(tree: &RayTree, scene: &Scene, current: usize, height: usize) -> Vec<Line<'static>> {
     let count = tree.events.len();
-    let first = current.saturating_sub(height / 2).min(count.saturating_sub(height));
+    let first = first_line(current, count, height);
     (first..count.min(first + height))
         .map(|i| {
             let event = &tree.events[i];

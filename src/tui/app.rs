@@ -1,0 +1,352 @@
+//! The debugger's state and the one place it changes: `App::update(Action)`.
+//! Drawing only reads an `App`; keys become `Action`s in `event.rs` first.
+
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use image::RgbImage;
+use ratatui::layout::Rect;
+
+use crate::math::to_rgb8;
+use crate::record::{NodeId, RayTree, record_pixel};
+use crate::scene::{Scene, SceneDescription, SceneError, Settings, SpecularModel};
+use crate::terms::{Term, TermImages};
+
+use super::job::{Finished, Output, Renderer, Request};
+use super::layout::{self, Pane, Panes};
+use super::projection::ViewPlane;
+use super::source::{FileWatcher, SceneSource, merge_settings};
+use super::stepper::{Breakpoint, Step};
+use super::tree_view;
+
+/// The deepest max_depth the depth keys go to (a glass scene's tree doubles
+/// with every level).
+pub const MAX_DEPTH: u32 = 16;
+/// How long the file must be quiet before a reload (editors write in bursts).
+const RELOAD_DELAY: Duration = Duration::from_millis(150);
+
+/// Something the user asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Action {
+    Quit,
+    ToggleHelp,
+    CloseHelp,
+    FocusNext,
+    FocusPrevious,
+    /// Move the pixel cursor by image pixels.
+    Move(i32, i32),
+    Pick(u32, u32),
+    /// A mouse click on a screen cell.
+    Click(u16, u16),
+    ZoomIn,
+    ZoomOut,
+    Step(Step),
+    RunTo(Breakpoint),
+    /// Run to the next hit on the breakpoint object (the selected ray's object).
+    RunToObject,
+    CycleBreakObject,
+    /// Move the ray tree's selection by rows.
+    SelectRow(i32),
+    ToggleCollapse,
+    ScrollDetails(i32),
+    Toggle(Switch),
+    ToggleSpecular,
+    Depth(i32),
+    CycleView,
+    CyclePlane,
+    Reload,
+    Resize(u16, u16),
+}
+
+/// A teaching switch of the illumination model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Switch {
+    Shadows,
+    Reflection,
+    Transmission,
+    Ambient,
+}
+
+/// What the image pane shows: the render, or one term image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum View {
+    Image,
+    Term(Term),
+}
+
+pub struct App {
+    pub source: SceneSource,
+    /// The last good file's description and its own settings.
+    pub(super) description: SceneDescription,
+    pub(super) file_settings: Settings,
+    /// The scene traced: the description with the user's settings.
+    pub scene: Arc<Scene>,
+    /// The selected pixel, in the scene image's coordinates.
+    pub cursor: (u32, u32),
+    pub tree: RayTree,
+    /// The current event of `tree.events`.
+    pub current: usize,
+    pub collapsed: BTreeSet<NodeId>,
+    pub focus: Pane,
+    /// 1 shows the whole image; each doubling halves the pixels per cell.
+    pub zoom: u32,
+    pub view: View,
+    pub plane: ViewPlane,
+    pub help: bool,
+    /// The banner: why the last reload failed.
+    pub error: Option<String>,
+    /// The status line's message.
+    pub message: Option<String>,
+    pub break_object: Option<usize>,
+    /// Manual scroll of the details; `None` follows the current event.
+    pub details_scroll: Option<u16>,
+    pub screen: Rect,
+    pub quit: bool,
+    /// The latest finished render, and the term images when a term view asked for them.
+    pub image: Option<RgbImage>,
+    pub terms: Option<TermImages>,
+    pub(super) generation: u64,
+    pub(super) terms_generation: Option<u64>,
+    pub(super) renderer: Renderer,
+    pub(super) watcher: Option<FileWatcher>,
+    pub(super) reload_due: Option<Instant>,
+    /// How long the last pixel pick and the last render took.
+    pub pick_time: Duration,
+    pub render_time: Option<Duration>,
+    /// Show timings in the status line (off in tests, for stable screens).
+    pub show_timings: bool,
+}
+
+impl App {
+    /// Opens a scene (`None`: the built-in one). With `sync`, renders finish
+    /// before `update` returns, so tests see deterministic screens.
+    pub fn open(path: Option<PathBuf>, sync: bool) -> Result<App, SceneError> {
+        let source = SceneSource { path };
+        let description = source.load()?;
+        let file_settings = description.settings.clone();
+        let scene = build(&description, &file_settings);
+        let cursor = (scene.width / 2, scene.height / 2);
+        let tree = record_pixel(&scene, cursor.0, cursor.1);
+        let mut app = App {
+            source,
+            description,
+            file_settings,
+            scene,
+            cursor,
+            tree,
+            current: 0,
+            collapsed: BTreeSet::new(),
+            focus: Pane::Image,
+            zoom: 1,
+            view: View::Image,
+            plane: ViewPlane::Top,
+            help: false,
+            error: None,
+            message: None,
+            break_object: None,
+            details_scroll: None,
+            screen: Rect::new(0, 0, 120, 40),
+            quit: false,
+            image: None,
+            terms: None,
+            generation: 0,
+            terms_generation: None,
+            renderer: Renderer::new(sync),
+            watcher: None,
+            reload_due: None,
+            pick_time: Duration::ZERO,
+            render_time: None,
+            show_timings: !sync,
+        };
+        app.request_render();
+        app.collect_renders();
+        Ok(app)
+    }
+
+    /// Starts watching the scene file for changes (the built-in scene has none).
+    pub fn watch(&mut self) {
+        let Some(path) = &self.source.path else { return };
+        match FileWatcher::new(path) {
+            Ok(watcher) => self.watcher = Some(watcher),
+            Err(e) => self.message = Some(format!("cannot watch {} ({e}): press R to reload", path.display())),
+        }
+    }
+
+    pub fn update(&mut self, action: Action) {
+        self.message = None;
+        match action {
+            Action::Quit => self.quit = true,
+            Action::ToggleHelp => self.help = !self.help,
+            Action::CloseHelp => self.help = false,
+            Action::FocusNext => self.focus = self.focus.next(),
+            Action::FocusPrevious => self.focus = self.focus.previous(),
+            Action::Move(dx, dy) => self.move_cursor(dx, dy),
+            Action::Pick(x, y) => self.pick(x, y),
+            Action::Click(column, row) => self.click(column, row),
+            Action::ZoomIn => self.zoom_in(),
+            Action::ZoomOut => self.zoom = (self.zoom / 2).max(1),
+            Action::Step(step) => self.step(step),
+            Action::RunTo(breakpoint) => self.run_to(breakpoint),
+            Action::RunToObject => self.run_to_object(),
+            Action::CycleBreakObject => self.cycle_break_object(),
+            Action::SelectRow(delta) => self.select_row(delta),
+            Action::ToggleCollapse => self.toggle_collapse(),
+            Action::ScrollDetails(delta) => self.scroll_details(delta),
+            Action::Toggle(switch) => self.toggle(switch),
+            Action::ToggleSpecular => self.toggle_specular(),
+            Action::Depth(delta) => self.change_depth(delta),
+            Action::CycleView => self.cycle_view(),
+            Action::CyclePlane => self.plane = self.plane.next(),
+            Action::Reload => self.reload(),
+            Action::Resize(width, height) => self.screen = Rect::new(0, 0, width, height),
+        }
+        self.collect_renders();
+    }
+
+    /// Background work: finished renders and file changes. True when the
+    /// screen should be redrawn.
+    pub fn tick(&mut self) -> bool {
+        let mut changed = self.collect_renders() || self.renderer.busy();
+        if self.watcher.as_ref().is_some_and(|w| w.changed()) {
+            self.reload_due = Some(Instant::now() + RELOAD_DELAY);
+        }
+        if self.reload_due.is_some_and(|due| Instant::now() >= due) {
+            self.reload_due = None;
+            self.reload();
+            changed = true;
+        }
+        changed || self.reload_due.is_some()
+    }
+
+    /// Whether a render is under way (the loop then polls more often).
+    pub fn busy(&self) -> bool {
+        self.renderer.busy() || self.reload_due.is_some()
+    }
+
+    pub fn progress(&self) -> Option<super::job::Progress> {
+        self.renderer.progress()
+    }
+
+    /// Blocks until every requested render is in (benchmarks and tests).
+    pub fn wait_for_renders(&mut self) {
+        while let Some(finished) = self.renderer.wait() {
+            self.install(finished);
+        }
+    }
+
+    pub fn panes(&self) -> Panes {
+        let banner = self.error.as_ref().map_or(0, |e| e.lines().count() as u16);
+        let rows = tree_view::rows(&self.tree, &self.collapsed).len() as u16;
+        layout::panes(self.screen, banner, rows)
+    }
+
+    pub fn phong(&self) -> bool {
+        self.scene.settings.specular == SpecularModel::Phong
+    }
+
+    /// The node the tree and details show: the current event's ray.
+    pub fn selected_node(&self) -> NodeId {
+        self.tree.events.get(self.current).map_or(0, |e| e.node)
+    }
+
+    /// The colour of a pixel as the image pane shows it (render or term view).
+    pub fn shown_pixel(&self, x: u32, y: u32) -> Option<[u8; 3]> {
+        match self.view {
+            View::Image => self.image.as_ref().filter(|i| x < i.width() && y < i.height()).map(|i| i.get_pixel(x, y).0),
+            View::Term(term) => self.terms.as_ref().filter(|t| x < t.width && y < t.height).map(|t| {
+                t.rgb(term, (y * t.width + x) as usize, t.max_count(term))
+            }),
+        }
+    }
+
+    /// Renders the scene as it is now, as a new generation.
+    pub(super) fn request_render(&mut self) {
+        self.generation += 1;
+        self.request_current();
+    }
+
+    /// Renders the current generation again (a term view needs the terms).
+    pub(super) fn request_current(&mut self) {
+        let terms = matches!(self.view, View::Term(_));
+        self.renderer.request(Request { generation: self.generation, scene: self.scene.clone(), terms });
+    }
+
+    fn collect_renders(&mut self) -> bool {
+        let mut any = false;
+        while let Some(finished) = self.renderer.poll() {
+            self.install(finished);
+            any = true;
+        }
+        any
+    }
+
+    fn install(&mut self, finished: Finished) {
+        if finished.generation != self.generation {
+            return;
+        }
+        self.render_time = Some(finished.elapsed);
+        match finished.output {
+            Ok(Output::Image(image)) => self.image = Some(image),
+            Ok(Output::Terms(terms)) => {
+                self.image = Some(RgbImage::from_fn(terms.width, terms.height, |x, y| {
+                    image::Rgb(to_rgb8(terms.pixels[(y * terms.width + x) as usize].color))
+                }));
+                self.terms = Some(terms);
+                self.terms_generation = Some(finished.generation);
+            }
+            Err(message) => self.message = Some(message),
+        }
+    }
+
+    /// Re-records the selected pixel in the current scene, keeping the step.
+    pub(super) fn retrace(&mut self) {
+        self.cursor = (self.cursor.0.min(self.scene.width - 1), self.cursor.1.min(self.scene.height - 1));
+        let started = Instant::now();
+        self.tree = record_pixel(&self.scene, self.cursor.0, self.cursor.1);
+        self.pick_time = started.elapsed();
+        self.current = self.current.min(self.tree.events.len().saturating_sub(1));
+        self.collapsed.clear();
+        self.details_scroll = None;
+    }
+
+    /// Selects a pixel: only that pixel is traced again.
+    pub fn pick(&mut self, x: u32, y: u32) {
+        self.cursor = (x, y);
+        self.current = 0;
+        self.retrace();
+    }
+
+    /// Rebuilds the scene with new settings and renders it again.
+    pub(super) fn apply_settings(&mut self, settings: Settings) {
+        self.scene = build(&self.description, &settings);
+        self.retrace();
+        self.request_render();
+    }
+
+    /// Reloads the scene file; a broken file keeps the last good scene.
+    pub fn reload(&mut self) {
+        match self.source.load() {
+            Ok(description) => {
+                let settings = merge_settings(&self.file_settings, &description.settings, &self.scene.settings);
+                self.file_settings = description.settings.clone();
+                self.description = description;
+                self.error = None;
+                self.apply_settings(settings);
+                self.message = Some(format!("reloaded {}", self.source.name()));
+            }
+            Err(error) => {
+                self.error = Some(error.to_string());
+                self.message = Some("the scene file has an error: the last good scene stays".into());
+            }
+        }
+    }
+}
+
+/// The scene of `description` traced with `settings`.
+fn build(description: &SceneDescription, settings: &Settings) -> Arc<Scene> {
+    let mut description = description.clone();
+    description.settings = settings.clone();
+    Arc::new(description.prepare())
+}

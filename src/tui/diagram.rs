@@ -1,0 +1,140 @@
+//! The ray diagram pane: the textbook figure of the selected pixel's ray
+//! tree, drawn in Braille on a ratatui `Canvas` — object outlines, the eye,
+//! the lights, every ray, and the current event's ray in white.
+
+use glam::DVec2;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Style, Stylize};
+use ratatui::text::{Line as TextLine, Span};
+use ratatui::widgets::canvas::{Canvas, Circle, Context, Line};
+use ratatui::widgets::{Block, Widget};
+
+use crate::math::to_rgb8;
+use crate::record::RayTree;
+use crate::scene::Scene;
+
+use super::projection::{Outline, Projection, Segment, Stroke, ViewPlane, involved_objects, outline, ray_segments};
+
+/// Scenes with more objects show only those the pixel's rays meet.
+const MAX_OUTLINES: usize = 300;
+
+pub fn stroke_color(stroke: Stroke) -> Color {
+    match stroke {
+        Stroke::Primary => Color::Cyan,
+        Stroke::Reflected => Color::Magenta,
+        Stroke::Transmitted => Color::LightBlue,
+        Stroke::ShadowLit => Color::Yellow,
+        Stroke::ShadowBlocked => Color::Red,
+        Stroke::Normal => Color::Green,
+        Stroke::Later => Color::DarkGray,
+        Stroke::Current => Color::White,
+    }
+}
+
+/// The legend line for the pane's bottom border.
+pub fn legend() -> TextLine<'static> {
+    let item = |name: &'static str, stroke| Span::styled(format!(" {name}"), Style::new().fg(stroke_color(stroke)));
+    TextLine::from(vec![
+        item("primary", Stroke::Primary),
+        item("reflected", Stroke::Reflected),
+        item("transmitted", Stroke::Transmitted),
+        item("shadow", Stroke::ShadowLit),
+        item("blocked", Stroke::ShadowBlocked),
+        item("normal", Stroke::Normal),
+        item("current ", Stroke::Current),
+    ])
+}
+
+/// The world rectangle shown: every ray, light and met object, with a
+/// margin, stretched so that one unit is as wide as it is tall on screen
+/// (a Braille dot is about square).
+fn bounds(points: &[DVec2], area: Rect) -> ([f64; 2], [f64; 2]) {
+    let min = points.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
+    let max = points.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
+    let (min, max) = if min.is_finite() && max.is_finite() { (min, max) } else { (DVec2::splat(-1.0), DVec2::splat(1.0)) };
+    let centre = (min + max) / 2.0;
+    let size = (max - min).max(DVec2::splat(1e-3)) * 1.1;
+    let dots = DVec2::new(area.width.max(1) as f64 * 2.0, area.height.max(1) as f64 * 4.0);
+    let per_dot = (size.x / dots.x).max(size.y / dots.y);
+    let half = dots * per_dot / 2.0;
+    ([centre.x - half.x, centre.x + half.x], [centre.y - half.y, centre.y + half.y])
+}
+
+fn outline_points(outline: &Outline) -> Vec<DVec2> {
+    match outline {
+        Outline::Circle { center, radius } => vec![*center - DVec2::splat(*radius), *center + DVec2::splat(*radius)],
+        Outline::Polyline(points) => points.clone(),
+        Outline::Line { .. } => vec![],
+    }
+}
+
+fn draw_outline(ctx: &mut Context, outline: &Outline, color: Color, x: [f64; 2], y: [f64; 2]) {
+    match outline {
+        Outline::Circle { center, radius } => ctx.draw(&Circle { x: center.x, y: center.y, radius: *radius, color }),
+        Outline::Polyline(points) => {
+            for pair in points.windows(2) {
+                ctx.draw(&Line::new(pair[0].x, pair[0].y, pair[1].x, pair[1].y, color));
+            }
+        }
+        Outline::Line { normal, c } => {
+            // a·p + c = 0: solve for the coordinate the line is steeper in.
+            let (x1, y1, x2, y2) = if normal.y.abs() > normal.x.abs() {
+                let at = |u: f64| -(normal.x * u + c) / normal.y;
+                (x[0], at(x[0]), x[1], at(x[1]))
+            } else {
+                let at = |v: f64| -(normal.y * v + c) / normal.x;
+                (at(y[0]), y[0], at(y[1]), y[1])
+            };
+            ctx.draw(&Line::new(x1, y1, x2, y2, color));
+        }
+    }
+}
+
+/// A material's colour, darkened so rays stand out against outlines.
+fn object_color(scene: &Scene, object: usize) -> Color {
+    let [r, g, b] = to_rgb8(scene.material_of(object).color * 0.75);
+    Color::Rgb(r, g, b)
+}
+
+/// Draws the diagram of `tree` into `area` (block included).
+pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, scene: &Scene, tree: &RayTree, current: usize, plane: ViewPlane) {
+    let inner = block.inner(area);
+    let projection = Projection::new(plane, scene, tree);
+    let (segments, blockers) = ray_segments(tree, scene, &projection, current);
+    let involved = involved_objects(tree);
+    let shown: Vec<usize> = if scene.objects.len() <= MAX_OUTLINES { (0..scene.objects.len()).collect() } else { involved.clone() };
+    let outlines: Vec<(usize, Vec<Outline>)> = shown.iter().map(|&i| (i, outline(&scene.objects[i].shape, &projection))).collect();
+    let eye = projection.project(scene.camera.eye);
+    let lights: Vec<(DVec2, &str)> = scene.lights.iter().map(|l| (projection.project(l.position), l.name.as_str())).collect();
+    let mut points: Vec<DVec2> = segments.iter().flat_map(|s| [s.from, s.to]).collect();
+    points.push(eye);
+    points.extend(lights.iter().map(|l| l.0));
+    for (i, shapes) in &outlines {
+        if involved.contains(i) {
+            points.extend(shapes.iter().flat_map(outline_points));
+        }
+    }
+    let (x, y) = bounds(&points, inner);
+    let paint = |ctx: &mut Context| {
+        for (i, shapes) in &outlines {
+            for shape in shapes {
+                draw_outline(ctx, shape, object_color(scene, *i), x, y);
+            }
+        }
+        ctx.layer();
+        let draw = |ctx: &mut Context, s: &Segment| {
+            ctx.draw(&Line::new(s.from.x, s.from.y, s.to.x, s.to.y, stroke_color(s.stroke)));
+        };
+        segments.iter().filter(|s| s.stroke != Stroke::Current).for_each(|s| draw(ctx, s));
+        ctx.layer();
+        segments.iter().filter(|s| s.stroke == Stroke::Current).for_each(|s| draw(ctx, s));
+        for p in &blockers {
+            ctx.print(p.x, p.y, Span::from("×").red().bold());
+        }
+        for (p, name) in &lights {
+            ctx.print(p.x, p.y, Span::from(format!("☼ {name}")).yellow());
+        }
+        ctx.print(eye.x, eye.y, Span::from("◉ eye").cyan());
+    };
+    Canvas::default().block(block).x_bounds(x).y_bounds(y).paint(paint).render(area, buf);
+}

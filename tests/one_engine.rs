@@ -1,0 +1,57 @@
+//! One engine: a recorded tree never disagrees with the image, and the image
+//! is the same whatever the thread count.
+
+use std::path::{Path, PathBuf};
+
+use raystep::math::to_rgb8;
+use raystep::record::record_pixel;
+use raystep::render::{render, with_threads};
+use raystep::scene::{Scene, load};
+use raystep::trace::{NoRecorder, trace_pixel};
+
+fn example_scenes() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    paths.sort();
+    assert!(paths.len() >= 7, "the example scenes are there");
+    paths
+}
+
+fn small(path: &Path) -> Scene {
+    load(path).unwrap().prepare().with_size(32, 24).unwrap()
+}
+
+#[test]
+fn every_recorded_pixel_equals_the_rendered_pixel_bit_for_bit() {
+    for path in example_scenes() {
+        let scene = small(&path);
+        let (image, _) = render::<NoRecorder>(&scene, &|| {});
+        let viewport = scene.camera.viewport(scene.width, scene.height);
+        for y in 0..scene.height {
+            for x in 0..scene.width {
+                let tree = record_pixel(&scene, x, y);
+                let plain = trace_pixel(&scene, &viewport, x, y, &mut NoRecorder);
+                assert_eq!(tree.color().to_array().map(f64::to_bits), plain.to_array().map(f64::to_bits));
+                assert_eq!(to_rgb8(tree.color()), image.get_pixel(x, y).0, "{} ({x}, {y})", path.display());
+                // The stored terms add up to the node's colour, for every node.
+                for id in 0..tree.nodes.len() {
+                    assert_eq!(tree.sum_of_terms(id), tree.nodes[id].color, "{} ({x}, {y}) node {id}", path.display());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn one_thread_and_all_threads_give_the_same_bytes() {
+    let mut paths = example_scenes();
+    paths.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/spd/gears-small.nff"));
+    for path in paths.iter().filter(|p| p.exists()) {
+        let scene = load(path).unwrap().prepare().with_size(64, 48).unwrap();
+        let one = with_threads(Some(1), || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
+        let all = with_threads(None, || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
+        let three = with_threads(Some(3), || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
+        assert_eq!(one.as_raw(), all.as_raw(), "{}", path.display());
+        assert_eq!(one.as_raw(), three.as_raw(), "{}", path.display());
+    }
+}

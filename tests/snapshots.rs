@@ -1,0 +1,80 @@
+//! Pinned pictures and recordings of the example scenes. Every snapshot was
+//! read against MODEL.md before it was accepted; floats are rounded so the
+//! files are the same on every platform.
+
+use std::path::Path;
+
+use raystep::record::{explain, record_pixel};
+use raystep::render::render;
+use raystep::scene::{Scene, load};
+use raystep::trace::NoRecorder;
+use serde_json::Value;
+
+fn scene_at(path: &Path, size: Option<(u32, u32)>) -> Scene {
+    let scene = load(path).unwrap().prepare();
+    match size {
+        Some((w, h)) => scene.with_size(w, h).unwrap(),
+        None => scene,
+    }
+}
+
+fn scene_path(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
+}
+
+/// Rounds every float to 6 decimals (and -0 to 0) so snapshots are stable.
+fn rounded(value: Value) -> Value {
+    match value {
+        Value::Number(n) if n.is_f64() => {
+            let x = (n.as_f64().unwrap() * 1e6).round() / 1e6;
+            serde_json::json!(if x == 0.0 { 0.0 } else { x })
+        }
+        Value::Array(items) => Value::Array(items.into_iter().map(rounded).collect()),
+        Value::Object(map) => Value::Object(map.into_iter().map(|(k, v)| (k, rounded(v))).collect()),
+        other => other,
+    }
+}
+
+fn settings() -> insta::Settings {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../snapshots");
+    settings.set_prepend_module_to_snapshot(true);
+    settings
+}
+
+/// Each scene rendered at 32 x 24, one line of hex colours per pixel row.
+#[test]
+fn scene_pixels() {
+    insta::glob!("../scenes", "*.toml", |path| {
+        let scene = scene_at(path, Some((32, 24)));
+        let (image, _) = render::<NoRecorder>(&scene, &|| {});
+        let mut text = String::new();
+        for row in image.rows() {
+            let line: Vec<String> = row.map(|p| format!("{:02x}{:02x}{:02x}", p[0], p[1], p[2])).collect();
+            text.push_str(&line.join(" "));
+            text.push('\n');
+        }
+        settings().bind(|| insta::assert_snapshot!(text));
+    });
+}
+
+/// Chosen pixels: the tree as JSON, the explanation and the event list.
+const PIXELS: &[(&str, u32, u32, &str)] = &[("seven-rays.toml", 80, 60, "the seven-ray tree")];
+
+#[test]
+fn chosen_pixels() {
+    for &(file, x, y, why) in PIXELS {
+        let scene = scene_at(&scene_path(file), None);
+        let tree = record_pixel(&scene, x, y);
+        let name = format!("{}_{x}_{y}", file.trim_end_matches(".toml"));
+        let mut json = rounded(tree.to_json());
+        let events = json.as_object_mut().unwrap().remove("events").unwrap();
+        settings().bind(|| {
+            insta::with_settings!({ description => why }, {
+                insta::assert_json_snapshot!(format!("{name}_tree"), json);
+                insta::assert_json_snapshot!(format!("{name}_events"), events);
+                insta::assert_snapshot!(format!("{name}_explain"), explain(&tree));
+            });
+        });
+    }
+}
