@@ -140,8 +140,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-fn debug_command(_scene: Option<&Path>) -> Result<ExitCode> {
-    bail!("the interactive debugger is not built yet; use `raystep render`")
+fn debug_command(scene: Option<&Path>) -> Result<ExitCode> {
+    crate::tui::run(scene)
 }
 
 /// Loads the scene and records the pixel, refusing one outside the image.

@@ -13,3 +13,4 @@ pub mod cli;
 pub mod render;
 pub mod record;
 pub mod terms;
+pub mod tui;

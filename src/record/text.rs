@@ -218,6 +218,32 @@ fn header(node: &Node) -> String {
     text
 }
 
+/// The text form fits an 80-column terminal.
+const WIDTH: usize = 80;
+
+/// Breaks a line at spaces so each part has at most `room` characters (a
+/// single longer word stays whole); continuations are indented.
+pub fn wrap(line: &str, room: usize) -> Vec<String> {
+    let body = line.trim_start();
+    let lead = line.len() - body.len();
+    let indent = " ".repeat(lead + 4);
+    let room = room.max(lead + 24);
+    let mut parts = vec![line[..lead].to_string()];
+    for word in body.split(' ') {
+        let current = parts.last_mut().expect("never empty");
+        let used = current.chars().count();
+        if used > indent.len() && used + 1 + word.chars().count() > room {
+            parts.push(format!("{indent}{word}"));
+        } else {
+            if used > lead {
+                current.push(' ');
+            }
+            current.push_str(word);
+        }
+    }
+    parts
+}
+
 /// The whole recording as an indented tree, like `cargo tree`.
 pub fn text(tree: &RayTree, phong: bool) -> String {
     let c = tree.color();
@@ -236,8 +262,11 @@ fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str, phong:
     let _ = writeln!(out, "{}", header(&tree.nodes[id]));
     let children: Vec<NodeId> = tree.children(id).collect();
     let body = if children.is_empty() { "  " } else { "│ " };
+    let room = WIDTH.saturating_sub(prefix.chars().count() + 2);
     for line in node_lines(tree, id, phong) {
-        let _ = writeln!(out, "{prefix}{body}{line}");
+        for part in wrap(&line, room) {
+            let _ = writeln!(out, "{prefix}{body}{part}");
+        }
     }
     for (i, child) in children.iter().enumerate() {
         let last = i + 1 == children.len();

@@ -1,7 +1,7 @@
 //! The step-through pane: the execution-ordered event list, one line per
 //! event, indented by the depth of the ray it belongs to.
 
-use ratatui::style::{Color as TermColor, Style, Stylize};
+use ratatui::style::{Color as TermColor, Style};
 use ratatui::text::{Line, Span};
 
 use crate::math::Color;

@@ -8,7 +8,7 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 
 use crate::math::to_rgb8;
-use crate::record::{EventKind, LightRecord, NodeId, RayTree, kind_name, num};
+use crate::record::{LightRecord, NodeId, RayTree, kind_name, num};
 
 use super::stepper::event_light;
 
@@ -145,9 +145,4 @@ pub fn row_line(tree: &RayTree, collapsed: &BTreeSet<NodeId>, row: &Row, width: 
 pub fn selected_style(focused: bool) -> Style {
     let style = Style::new().add_modifier(Modifier::REVERSED);
     if focused { style.add_modifier(Modifier::BOLD) } else { style }
-}
-
-/// Whether event `at` is the shading ray's own (not a light's).
-pub fn is_ray_event(tree: &RayTree, at: usize) -> bool {
-    tree.events.get(at).is_some_and(|e| !matches!(e.kind, EventKind::ShadowCast { .. } | EventKind::Blocker { .. } | EventKind::Light { .. }))
 }

@@ -1,0 +1,137 @@
+//! The interactive debugger: pick a pixel, walk its ray tree, step through
+//! the trace event by event, and flip the model's terms on and off.
+//!
+//! The structure follows ratatui's event-driven template: state in
+//! `app.rs`, terminal events turned into `Action`s in `event.rs`,
+//! `App::update` the only place state changes, `ui::draw` only reading it.
+//! The main loop is generic over the ratatui `Backend`, so tests drive the
+//! real app on a `TestBackend`. Whole-image renders run on a background
+//! thread (`job.rs`); picking a pixel retraces that pixel alone.
+
+pub mod app;
+mod controls;
+pub mod details;
+pub mod diagram;
+pub mod event;
+mod help;
+pub mod image_view;
+pub mod job;
+pub mod layout;
+pub mod projection;
+pub mod source;
+pub mod stepper;
+pub mod steps_view;
+pub mod tree_view;
+pub mod ui;
+
+use std::collections::VecDeque;
+use std::io::{self, IsTerminal, stdout};
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Duration;
+
+use anyhow::{Context, Result, bail};
+use crossterm::event::{DisableMouseCapture, EnableMouseCapture, Event};
+use crossterm::execute;
+use ratatui::Terminal;
+use ratatui::backend::Backend;
+
+pub use app::{Action, App, Switch, View};
+pub use layout::Pane;
+pub use projection::ViewPlane;
+pub use stepper::{Breakpoint, Step};
+
+/// Where terminal events come from: the real terminal, or a script in tests.
+pub trait Input {
+    /// The next event, waiting at most `timeout`; `None` when none came.
+    fn next(&mut self, timeout: Duration) -> io::Result<Option<Event>>;
+}
+
+/// crossterm's event queue.
+pub struct TerminalInput;
+
+impl Input for TerminalInput {
+    fn next(&mut self, timeout: Duration) -> io::Result<Option<Event>> {
+        if crossterm::event::poll(timeout)? { crossterm::event::read().map(Some) } else { Ok(None) }
+    }
+}
+
+/// Scripted events; when they run out, the app is asked to quit.
+impl Input for VecDeque<Event> {
+    fn next(&mut self, _timeout: Duration) -> io::Result<Option<Event>> {
+        Ok(Some(self.pop_front().unwrap_or_else(|| {
+            Event::Key(crossterm::event::KeyEvent::from(crossterm::event::KeyCode::Char('q')))
+        })))
+    }
+}
+
+/// Draws one frame, first telling the app the terminal's size.
+pub fn draw<B: Backend>(terminal: &mut Terminal<B>, app: &mut App) -> Result<()>
+where
+    B::Error: Send + Sync + 'static,
+{
+    let size = terminal.size()?;
+    if (size.width, size.height) != (app.screen.width, app.screen.height) {
+        app.update(Action::Resize(size.width, size.height));
+    }
+    terminal.draw(|frame| ui::draw(frame, app))?;
+    Ok(())
+}
+
+/// The main loop: draw, wait for an event or for background work, update.
+pub fn run_loop<B: Backend>(terminal: &mut Terminal<B>, app: &mut App, input: &mut impl Input) -> Result<()>
+where
+    B::Error: Send + Sync + 'static,
+{
+    let mut dirty = true;
+    while !app.quit {
+        if dirty {
+            draw(terminal, app)?;
+        }
+        let timeout = Duration::from_millis(if app.busy() { 50 } else { 250 });
+        dirty = false;
+        if let Some(event) = input.next(timeout)? {
+            if let Some(action) = event::action(&event, app) {
+                app.update(action);
+            }
+            dirty = true;
+        }
+        dirty |= app.tick();
+    }
+    Ok(())
+}
+
+/// `raystep [debug] [SCENE]`: runs the debugger in the terminal.
+pub fn run(path: Option<&Path>) -> Result<ExitCode> {
+    if !io::stdin().is_terminal() || !io::stdout().is_terminal() {
+        bail!(
+            "the debugger needs a terminal (stdin and stdout must be a TTY); \
+             without one, use `raystep render SCENE -o image.png` for the image \
+             or `raystep inspect SCENE --pixel X,Y` for one pixel's ray tree"
+        );
+    }
+    let mut app = App::open(path.map(Path::to_path_buf), false).map_err(anyhow::Error::new)?;
+    app.watch();
+    let mut terminal = ratatui::try_init().context("cannot set up the terminal")?;
+    install_mouse_panic_hook();
+    let result = execute!(stdout(), EnableMouseCapture)
+        .context("cannot capture the mouse")
+        .and_then(|()| run_loop(&mut terminal, &mut app, &mut TerminalInput));
+    let _ = execute!(stdout(), DisableMouseCapture);
+    ratatui::restore();
+    result.map(|()| ExitCode::SUCCESS)
+}
+
+/// On a panic of the UI thread, turns mouse capture off before ratatui's
+/// hook restores the terminal. Render threads catch their own panics and
+/// report them in the status line, so they leave the terminal alone.
+fn install_mouse_panic_hook() {
+    let ui_thread = std::thread::current().id();
+    let restore_and_report = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if std::thread::current().id() == ui_thread {
+            let _ = execute!(stdout(), DisableMouseCapture);
+            restore_and_report(info);
+        }
+    }));
+}
