@@ -165,16 +165,16 @@ fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
     let (scene, tree) = record(&args.pixel)?;
     let phong = scene.settings.specular == crate::scene::SpecularModel::Phong;
     match args.format {
-        InspectFormat::Text => print!("{}", text(&tree, phong)),
-        InspectFormat::Json => println!("{}", serde_json::to_string_pretty(&tree.to_json())?),
-        InspectFormat::Dot => print!("{}", dot(&tree)),
+        InspectFormat::Text => emit(&text(&tree, phong))?,
+        InspectFormat::Json => emit(&format!("{}\n", serde_json::to_string_pretty(&tree.to_json())?))?,
+        InspectFormat::Dot => emit(&dot(&tree))?,
     }
     Ok(ExitCode::SUCCESS)
 }
 
 fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
     let (_, tree) = record(args)?;
-    print!("{}", explain(&tree));
+    emit(&explain(&tree))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -205,9 +205,30 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
         json["threads"] = threads.unwrap_or_else(rayon::current_num_threads).into();
         json["prepare_seconds"] = prepared.into();
         json["trace_seconds"] = tracing.into();
-        println!("{json}");
+        if let Some(peak) = peak_memory_mib() {
+            json["peak_memory_mib"] = peak.into();
+        }
+        emit(&format!("{json}\n"))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Writes to stdout; a reader that closed the pipe early (`| head`) is not an error.
+fn emit(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e).context("cannot write to stdout"),
+        _ => Ok(()),
+    }
+}
+
+/// The process's peak resident memory so far (Linux `VmHWM`), in MiB.
+fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
 }
 
 /// A progress bar on stderr when it is a terminal; hidden otherwise.

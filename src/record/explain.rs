@@ -92,8 +92,13 @@ fn light_fate(light: &LightRecord) -> String {
     let Some(shadow) = &light.shadow else {
         return format!("{}: lit (shadows are switched off), N·L = {}.", light.light, num(light.n_dot_l));
     };
+    let distance = if light.f_att < 1.0 {
+        format!(" At distance {} attenuation f_att = {} lets {}% of its light arrive.", num(light.distance), num(light.f_att), num(100.0 * light.f_att))
+    } else {
+        String::new()
+    };
     if shadow.blockers.is_empty() {
-        return format!("{}: lit, nothing in the way (N·L = {}).", light.light, num(light.n_dot_l));
+        return format!("{}: lit, nothing in the way (N·L = {}).{distance}", light.light, num(light.n_dot_l));
     }
     if let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0) {
         return format!(
@@ -117,7 +122,7 @@ fn light_fate(light: &LightRecord) -> String {
         }
     }
     format!(
-        "{}: partly blocked through {}: S = {}, so it gives {}% of its light.",
+        "{}: partly blocked through {}: S = {}, so it gives {}% of its light.{distance}",
         light.light,
         through.join(", "),
         num(shadow.s),

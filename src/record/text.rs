@@ -197,6 +197,9 @@ pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
             num(r.k)
         ));
     }
+    if node.reflected.is_none() && node.transmitted.is_none() && tree.max_depth.is_some_and(|m| node.depth >= m) {
+        lines.push(format!("no secondary rays: depth {} is max_depth", node.depth));
+    }
     lines.push(format!("colour {} = sum of the terms above and below", color(node.color)));
     if node.kind != RayKind::Primary {
         lines.push(format!(
