@@ -212,3 +212,28 @@ fn light_behind_the_surface_casts_no_shadow_ray() {
     assert_eq!(light.n_dot_l, -1.0);
     assert_eq!(tree.color(), DVec3::ZERO);
 }
+
+#[test]
+fn ray_through_a_concave_notch_records_the_polygon_it_passed() {
+    // A "U" in the plane z = 0, counter-clockwise seen from +z; its notch is
+    // x in (1, 2), y in (1, 3). A ray down -z at (1.5, 2) meets the plane at
+    // t = 5 inside the bounding box, but right of the point only the edges at
+    // x = 2 and x = 3 cross +U: 2 crossings, even, outside. It goes on to miss.
+    let s = scene(&format!(
+        "{CAMERA}
+        [materials.m]
+        kd = 1
+        [[object]]
+        name = \"u\"
+        material = \"m\"
+        polygon = {{ vertices = [[0, 0, 0], [3, 0, 0], [3, 3, 0], [2, 3, 0], [2, 1, 0], [1, 1, 0], [1, 3, 0], [0, 3, 0]] }}"
+    ));
+    let tree = record(&s, [1.5, 2.0, 5.0], [0.0, 0.0, -1.0]);
+    let root = tree.root();
+    assert!(root.hit.is_none());
+    assert_eq!(root.near_misses.len(), 1);
+    let raystep::shapes::Working::Polygon(working) = root.near_misses[0].working else { panic!("a polygon") };
+    assert_eq!(working.plane.t, Some(5.0));
+    let test = working.crossing.unwrap();
+    assert_eq!((test.crossings, test.inside), (2, false));
+}

@@ -1,10 +1,696 @@
-use ratatui::{Terminal, backend::TestBackend};
-use raystep::tui::{self, App};
+//! The debugger without a terminal: keys in, state out, and whole screens
+//! drawn on ratatui's `TestBackend`, pinned with insta in `snapshots/`.
+
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::style::Color;
+use raystep::math::to_rgb8;
+use raystep::record::{EventKind, record_pixel};
+use raystep::scene::SpecularModel;
+use raystep::terms::Term;
+use raystep::tui::{self, Action, App, Breakpoint, Pane, Step, View};
+
+/// The built-in seven-rays scene, rendering synchronously.
+fn app() -> App {
+    App::open(None, true).expect("the built-in scene loads")
+}
+
+fn key(code: KeyCode) -> Event {
+    Event::Key(KeyEvent::from(code))
+}
+
+fn shift(c: char) -> Event {
+    Event::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::SHIFT))
+}
+
+/// Feeds terminal events through the same mapping the main loop uses.
+fn press(app: &mut App, events: &[Event]) {
+    for event in events {
+        if let Some(action) = tui::event::action(event, app) {
+            app.update(action);
+        }
+    }
+}
+
+fn chars(app: &mut App, keys: &str) {
+    let events: Vec<Event> = keys.chars().map(|c| key(KeyCode::Char(c))).collect();
+    press(app, &events);
+}
+
+fn screen(app: &mut App, width: u16, height: u16) -> Terminal<TestBackend> {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    tui::draw(&mut terminal, app).unwrap();
+    terminal
+}
+
+macro_rules! snapshot {
+    ($name:expr, $terminal:expr) => {
+        insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => true }, {
+            insta::assert_snapshot!($name, $terminal.backend());
+        })
+    };
+}
+
+/// A copy of the seven-rays scene in a fixed relative place, so error
+/// messages name the same path on every machine.
+fn scene_file(name: &str) -> PathBuf {
+    let dir = Path::new("target/tui-tests");
+    std::fs::create_dir_all(dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, include_str!("../scenes/seven-rays.toml")).unwrap();
+    path
+}
+
+fn edit(path: &Path, from: &str, to: &str) {
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains(from), "{from} not in the scene");
+    std::fs::write(path, text.replace(from, to)).unwrap();
+}
 
 #[test]
-fn scratch() {
-    let mut app = App::open(None, true).unwrap();
+fn starts_on_the_centre_pixel_with_its_tree() {
+    let app = app();
+    assert_eq!(app.cursor, (80, 60));
+    assert_eq!(
+        app.tree.nodes.len(),
+        7,
+        "the seven rays of the seven-rays scene"
+    );
+    assert_eq!(app.current, 0);
+    assert_eq!(app.focus, Pane::Image);
+    assert!(app.image.is_some(), "sync mode renders before returning");
+}
+
+#[test]
+fn cursor_moves_and_clamps_at_the_image_edge() {
+    let mut app = app();
+    press(
+        &mut app,
+        &[
+            key(KeyCode::Right),
+            key(KeyCode::Char('l')),
+            key(KeyCode::Down),
+        ],
+    );
+    assert_eq!(app.cursor, (82, 61));
+    press(&mut app, &[shift('H'), key(KeyCode::Char('k'))]);
+    assert_eq!(app.cursor, (72, 60));
+    press(
+        &mut app,
+        &[Event::Key(KeyEvent::new(
+            KeyCode::Left,
+            KeyModifiers::SHIFT,
+        ))],
+    );
+    assert_eq!(app.cursor, (62, 60));
+    app.update(Action::Move(-1000, -1000));
+    assert_eq!(app.cursor, (0, 0));
+    app.update(Action::Move(1000, 1000));
+    assert_eq!(app.cursor, (160, 120));
+    chars(&mut app, "lj");
+    assert_eq!(app.cursor, (160, 120), "the cursor stays on the last pixel");
+}
+
+#[test]
+fn picking_a_pixel_shows_exactly_what_inspect_records() {
+    let mut app = app();
+    for (x, y) in [(0, 0), (80, 82), (123, 45), (160, 120)] {
+        app.update(Action::Pick(x, y));
+        let expected = record_pixel(&app.scene, x, y);
+        assert_eq!(app.tree.pixel, (x, y));
+        assert_eq!(app.tree.color(), expected.color());
+        assert_eq!(app.tree.events.len(), expected.events.len());
+        let shown = app.image.as_ref().unwrap().get_pixel(x, y).0;
+        assert_eq!(
+            shown,
+            to_rgb8(expected.color()),
+            "the image pixel is the recorded colour"
+        );
+    }
+}
+
+#[test]
+fn steps_move_like_a_debugger() {
+    // Events of pixel (80, 60): r0 refracts at 7, casts r1 at 8; r1 returns at 28; the end is 54.
+    let mut app = app();
+    let step = |app: &mut App, step: Step| {
+        app.update(Action::Step(step));
+        app.current
+    };
+    assert_eq!(
+        step(&mut app, Step::Previous),
+        0,
+        "no event before the first"
+    );
+    assert_eq!(step(&mut app, Step::Next), 1);
+    assert_eq!(step(&mut app, Step::Into), 8, "into: the next ray cast, r1");
+    assert_eq!(step(&mut app, Step::Next), 9);
+    assert_eq!(step(&mut app, Step::Out), 28, "out: where r1 returns to r0");
+    assert!(matches!(
+        app.tree.events[28].kind,
+        EventKind::ChildReturned { child: 1, .. }
+    ));
+    app.update(Action::Step(Step::Start));
+    for _ in 0..7 {
+        app.update(Action::Step(Step::Over));
+    }
+    assert_eq!(app.current, 7, "over: r0's own events one by one");
+    assert_eq!(step(&mut app, Step::Over), 28, "over skips r1's subtree");
+    assert_eq!(
+        step(&mut app, Step::Out),
+        54,
+        "out of the primary ray: the end"
+    );
+    assert_eq!(step(&mut app, Step::Next), 54, "no event after the last");
+    chars(&mut app, "g");
+    assert_eq!(app.current, 0);
+    chars(&mut app, "e");
+    assert_eq!(app.current, 54);
+    app.update(Action::Step(Step::Start));
+    chars(&mut app, "nnnp");
+    assert_eq!(app.current, 2);
+}
+
+#[test]
+fn over_at_the_end_of_a_child_ray_returns_to_the_parent() {
+    let mut app = app();
+    app.current = 16; // r2 done
+    app.update(Action::Step(Step::Over));
+    assert_eq!(app.current, 17);
+    assert_eq!(app.tree.events[17].node, 1);
+}
+
+#[test]
+fn blocked_shadow_breakpoint_lands_on_the_first_blocker() {
+    let mut app = app();
+    chars(&mut app, "b");
+    let event = &app.tree.events[app.current];
+    assert_eq!(app.current, 22);
+    assert_eq!(event.node, 3, "the transmitted ray inside the green ball");
+    assert!(
+        matches!(
+            event.kind,
+            EventKind::Blocker {
+                light: 0,
+                object: 1,
+                ..
+            }
+        ),
+        "key light blocked by the green ball"
+    );
+    chars(&mut app, "b");
+    assert_eq!(
+        app.current, 33,
+        "the next shadow ray, not the next blocker of the same ray"
+    );
+    chars(&mut app, "bb");
+    assert_eq!(app.current, 44);
+    chars(&mut app, "b");
+    assert_eq!(app.current, 44, "no more: it stays");
+    assert!(
+        app.message
+            .as_deref()
+            .unwrap_or("")
+            .contains("no blocked shadow ray")
+    );
+}
+
+#[test]
+fn floor_pixel_in_the_balls_shadow() {
+    let mut app = app();
+    app.update(Action::Pick(80, 82));
+    chars(&mut app, "b");
+    let event = &app.tree.events[app.current];
+    assert!(
+        matches!(
+            event.kind,
+            EventKind::Blocker {
+                light: 0,
+                object: 0,
+                ..
+            }
+        ),
+        "{event:?}"
+    );
+    let light = &app.tree.root().lights[0];
+    let shadow = light.shadow.as_ref().unwrap();
+    assert_eq!(shadow.blockers.len(), 2, "the glass ball is crossed twice");
+    assert!((shadow.s - 0.49).abs() < 1e-12, "S = 0.7 x 0.7");
+}
+
+#[test]
+fn object_breakpoint_uses_the_selected_rays_object_and_cycles() {
+    let mut app = app();
+    chars(&mut app, "x");
+    assert_eq!(app.break_object, Some(0), "r0 hits the glass ball");
+    assert_eq!(app.current, 1, "r0's own hit comes first");
+    chars(&mut app, "x");
+    assert_eq!(
+        app.current, 30,
+        "the next hit on the glass ball: r4 from inside"
+    );
+    chars(&mut app, "X");
+    assert_eq!(app.break_object, Some(1));
+    chars(&mut app, "gx");
+    assert_eq!(app.current, 9, "the first hit on the green ball: r1");
+    chars(&mut app, "XX");
+    assert_eq!(
+        app.break_object,
+        Some(0),
+        "cycles through the three objects"
+    );
+}
+
+#[test]
+fn tir_breakpoint_stops_at_total_internal_reflection() {
+    let mut app = app();
+    let scene = app.scene.clone();
+    let tir_pixel = (0..scene.height)
+        .flat_map(|y| (0..scene.width).map(move |x| (x, y)))
+        .find(|&(x, y)| {
+            record_pixel(&scene, x, y)
+                .events
+                .iter()
+                .any(|e| matches!(e.kind, EventKind::Refraction { tir: true }))
+        });
+    match tir_pixel {
+        Some((x, y)) => {
+            app.update(Action::Pick(x, y));
+            chars(&mut app, "T");
+            assert!(matches!(
+                app.tree.events[app.current].kind,
+                EventKind::Refraction { tir: true }
+            ));
+        }
+        None => {
+            chars(&mut app, "T");
+            assert_eq!(app.current, 0);
+        }
+    }
+    app.update(Action::Pick(80, 60));
+    app.update(Action::RunTo(Breakpoint::Tir));
+    assert_eq!(app.current, 0, "the centre pixel has no TIR");
+    assert!(
+        app.message
+            .as_deref()
+            .unwrap_or("")
+            .contains("no total internal reflection")
+    );
+}
+
+#[test]
+fn toggles_change_settings_and_render_again() {
+    let mut app = app();
+    app.update(Action::Pick(80, 82));
+    let before = app.image.as_ref().unwrap().get_pixel(80, 82).0;
+    chars(&mut app, "s");
+    assert!(!app.scene.settings.switches.shadows);
+    assert!(
+        app.tree.root().lights[0].shadow.is_none(),
+        "no shadow rays when shadows are off"
+    );
+    let after = app.image.as_ref().unwrap().get_pixel(80, 82).0;
+    assert!(
+        after[0] > before[0],
+        "the floor is lit without the ball's shadow: {before:?} -> {after:?}"
+    );
+    assert_eq!(after, to_rgb8(app.tree.color()));
+    chars(&mut app, "s");
+    assert!(app.scene.settings.switches.shadows);
+    assert_eq!(app.image.as_ref().unwrap().get_pixel(80, 82).0, before);
+
+    app.update(Action::Pick(80, 60));
+    chars(&mut app, "r");
+    assert!(!app.scene.settings.switches.reflection);
+    assert!(app.tree.root().reflected.is_none());
+    chars(&mut app, "t");
+    assert!(!app.scene.settings.switches.transmission);
+    assert_eq!(app.tree.nodes.len(), 1);
+    chars(&mut app, "a");
+    assert!(!app.scene.settings.switches.ambient);
+    assert_eq!(app.tree.root().ambient, glam::DVec3::ZERO);
+    chars(&mut app, "m");
+    assert_eq!(app.scene.settings.specular, SpecularModel::Phong);
+    chars(&mut app, "m");
+    assert_eq!(app.scene.settings.specular, SpecularModel::Blinn);
+}
+
+#[test]
+fn max_depth_stays_within_its_bounds() {
+    let mut app = app();
+    assert_eq!(app.scene.settings.max_depth, 3);
+    chars(&mut app, "[[[[");
+    assert_eq!(app.scene.settings.max_depth, 1);
+    assert_eq!(app.tree.nodes.len(), 1, "depth 1: the primary ray only");
+    assert!(app.message.as_deref().unwrap_or("").contains("stays 1"));
+    for _ in 0..40 {
+        chars(&mut app, "]");
+    }
+    assert_eq!(app.scene.settings.max_depth, tui::app::MAX_DEPTH);
+    assert!(
+        app.tree
+            .nodes
+            .iter()
+            .all(|n| n.depth <= tui::app::MAX_DEPTH)
+    );
+}
+
+#[test]
+fn term_views_cycle_and_render_the_terms() {
+    let mut app = app();
+    chars(&mut app, "v");
+    assert_eq!(app.view, View::Term(Term::Ambient));
+    assert!(app.terms.is_some());
+    for _ in 0..5 {
+        chars(&mut app, "v");
+    }
+    assert_eq!(app.view, View::Term(Term::Shadow));
+    app.update(Action::Pick(80, 82));
+    let shadow = app.shown_pixel(80, 82).unwrap();
+    assert_eq!(
+        shadow,
+        to_rgb8(glam::DVec3::splat((0.49 + 1.0) / 2.0)),
+        "mean S over the two lights"
+    );
+    chars(&mut app, "vvv");
+    assert_eq!(app.view, View::Image);
+}
+
+#[test]
+fn tree_selection_and_collapse_follow_the_events() {
+    let mut app = app();
+    app.focus = Pane::Tree;
+    press(&mut app, &[key(KeyCode::Down)]);
+    assert!(
+        matches!(
+            app.tree.events[app.current].kind,
+            EventKind::ShadowCast { light: 0 }
+        ),
+        "the key light's row"
+    );
+    press(&mut app, &[key(KeyCode::Down), key(KeyCode::Down)]);
+    assert_eq!(app.current, 8, "r1's row selects its cast");
+    press(&mut app, &[key(KeyCode::Enter)]);
+    assert!(app.collapsed.contains(&1));
+    let rows = tui::tree_view::rows(&app.tree, &app.collapsed);
+    assert_eq!(
+        rows.len(),
+        3 + 1 + 3 + 3 + 1,
+        "r0 and its lights, r1 collapsed, r4, r5 with their lights, r6"
+    );
+    press(&mut app, &[key(KeyCode::Enter)]);
+    assert!(app.collapsed.is_empty());
+}
+
+#[test]
+fn tab_cycles_the_panes_and_arrows_act_on_the_focused_one() {
+    let mut app = app();
+    let order: Vec<Pane> = (0..5)
+        .map(|_| {
+            press(&mut app, &[key(KeyCode::Tab)]);
+            app.focus
+        })
+        .collect();
+    assert_eq!(
+        order,
+        [
+            Pane::Tree,
+            Pane::Steps,
+            Pane::Details,
+            Pane::Diagram,
+            Pane::Image
+        ]
+    );
+    press(
+        &mut app,
+        &[
+            key(KeyCode::BackTab),
+            key(KeyCode::BackTab),
+            key(KeyCode::BackTab),
+        ],
+    );
+    assert_eq!(app.focus, Pane::Steps);
+    press(&mut app, &[key(KeyCode::Down), key(KeyCode::Down)]);
+    assert_eq!(
+        (app.current, app.cursor),
+        (2, (80, 60)),
+        "in the steps pane, arrows step"
+    );
+}
+
+#[test]
+fn clicks_pick_pixels_and_rows() {
+    let mut app = app();
+    let view = app.image_view().unwrap();
+    let (column, row, _) = view.cursor_cell((40, 30)).unwrap();
+    app.update(Action::Click(column, row));
+    let picked = app.cursor;
+    assert_eq!(view.pixel_at_cell(column, row), Some(picked));
+    assert!(
+        picked.0.abs_diff(40) <= 3 && picked.1.abs_diff(30) <= 3,
+        "{picked:?}"
+    );
+    assert_eq!(app.focus, Pane::Image);
+    let tree = app.panes().tree;
+    app.update(Action::Click(tree.x + 5, tree.y + 1));
+    assert_eq!(app.focus, Pane::Tree);
+    assert_eq!(app.current, 0, "the first row is the primary ray");
+}
+
+#[test]
+fn zoom_goes_down_to_one_pixel_per_half_cell() {
+    let mut app = app();
+    chars(&mut app, "++++++++");
+    let view = app.image_view().unwrap();
+    assert_eq!(view.scale, 1.0);
+    assert!(
+        app.message
+            .as_deref()
+            .unwrap_or("")
+            .contains("zoomed in all the way")
+    );
+    assert_eq!(
+        view.sample(0, 0),
+        (view.origin.0 as u32, view.origin.1 as u32)
+    );
+    assert!(
+        view.display_of(app.cursor).is_some(),
+        "the cursor stays in view"
+    );
+    chars(&mut app, "--------");
+    assert_eq!(app.zoom, 1);
+}
+
+#[test]
+fn image_cells_carry_the_pixel_colours() {
+    let mut app = app();
+    app.update(Action::Pick(10, 10));
+    let terminal = screen(&mut app, 120, 40);
+    let view = app.image_view().unwrap();
+    let (column, row) = (view.area.x + 20, view.area.y + 5);
+    let cell = &terminal.backend().buffer()[(column, row)];
+    let [r, g, b] = app
+        .image
+        .as_ref()
+        .unwrap()
+        .get_pixel(view.sample(20, 10).0, view.sample(20, 10).1)
+        .0;
+    assert_eq!(cell.symbol(), "▀");
+    assert_eq!(cell.fg, Color::Rgb(r, g, b));
+    let [r, g, b] = app
+        .image
+        .as_ref()
+        .unwrap()
+        .get_pixel(view.sample(20, 11).0, view.sample(20, 11).1)
+        .0;
+    assert_eq!(cell.bg, Color::Rgb(r, g, b));
+}
+
+#[test]
+fn reload_applies_an_edit_and_keeps_the_pixel() {
+    let path = scene_file("reload-edit.toml");
+    let mut app = App::open(Some(path.clone()), true).unwrap();
+    app.update(Action::Pick(80, 82));
+    chars(&mut app, "s");
+    edit(&path, "max_depth = 3", "max_depth = 2");
+    app.update(Action::Reload);
+    assert_eq!(app.cursor, (80, 82));
+    assert_eq!(
+        app.scene.settings.max_depth, 2,
+        "the file changed max_depth"
+    );
+    assert!(
+        !app.scene.settings.switches.shadows,
+        "the toggle survives the reload"
+    );
+    assert!(app.error.is_none());
+}
+
+#[test]
+fn reload_with_a_broken_file_keeps_the_last_good_scene() {
+    let path = scene_file("reload-broken.toml");
+    let mut app = App::open(Some(path.clone()), true).unwrap();
+    let objects = app.scene.objects.len();
+    edit(&path, "radius = 1.0", "radius = \"big\"");
+    app.update(Action::Reload);
+    let error = app.error.clone().expect("an error banner");
+    assert!(
+        error.starts_with("target/tui-tests/reload-broken.toml:"),
+        "{error}"
+    );
+    assert_eq!(app.scene.objects.len(), objects);
+    assert_eq!(
+        app.tree.nodes.len(),
+        7,
+        "the last good scene is still traced"
+    );
+    edit(&path, "radius = \"big\"", "radius = 1.0");
+    app.update(Action::Reload);
+    assert!(app.error.is_none());
+}
+
+#[test]
+fn the_watcher_reloads_on_save() {
+    let path = scene_file("reload-watched.toml");
+    let mut app = App::open(Some(path.clone()), true).unwrap();
+    app.watch();
+    std::thread::sleep(Duration::from_millis(100));
+    edit(&path, "max_depth = 3", "max_depth = 4");
+    let started = Instant::now();
+    while app.scene.settings.max_depth != 4 && started.elapsed() < Duration::from_secs(10) {
+        app.tick();
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert_eq!(app.scene.settings.max_depth, 4, "reloaded within 10 s");
+}
+
+#[test]
+fn the_main_loop_runs_on_a_test_backend() {
+    let mut app = app();
     let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
-    tui::draw(&mut terminal, &mut app).unwrap();
-    println!("{}", terminal.backend());
+    let mut input: VecDeque<Event> = [
+        key(KeyCode::Char('l')),
+        key(KeyCode::Char('n')),
+        key(KeyCode::Char('?')),
+    ]
+    .into();
+    tui::run_loop(&mut terminal, &mut app, &mut input).unwrap();
+    assert!(app.quit);
+    assert_eq!((app.cursor, app.current), ((81, 60), 1));
+}
+
+#[test]
+fn help_closes_on_any_key_and_esc_quits() {
+    let mut app = app();
+    chars(&mut app, "?");
+    assert!(app.help);
+    chars(&mut app, "n");
+    assert!(!app.help);
+    assert_eq!(app.current, 0, "the key only closed the help");
+    press(&mut app, &[key(KeyCode::Esc)]);
+    assert!(app.quit);
+}
+
+#[test]
+fn snapshot_start_screen() {
+    let mut app = app();
+    snapshot!("start_screen", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_shadowed_pixel() {
+    let mut app = app();
+    app.update(Action::Pick(80, 82));
+    chars(&mut app, "b");
+    snapshot!("shadowed_pixel", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_step_through() {
+    let mut app = app();
+    chars(&mut app, "ioi");
+    snapshot!("step_through", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_help_overlay() {
+    let mut app = app();
+    chars(&mut app, "?");
+    snapshot!("help_overlay", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_term_view() {
+    let mut app = app();
+    chars(&mut app, "vvvvvvv");
+    assert_eq!(app.view, View::Term(Term::Rays));
+    snapshot!("term_view_rays", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_error_banner() {
+    let path = scene_file("broken.toml");
+    let mut app = App::open(Some(path.clone()), true).unwrap();
+    edit(&path, "kt = 0.7", "kt = 0.7.5");
+    app.update(Action::Reload);
+    snapshot!("error_banner", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_too_small() {
+    let mut app = app();
+    snapshot!("too_small", screen(&mut app, 60, 20));
+}
+
+#[test]
+fn snapshot_wide_side_view() {
+    let mut app = app();
+    app.update(Action::Pick(80, 82));
+    chars(&mut app, "d");
+    snapshot!("wide_side_view", screen(&mut app, 200, 60));
+}
+
+/// Timings for the report: `cargo test --release --test tui -- --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement, not a check; needs ../shared/spd/teapot.nff"]
+fn measure_pick_and_render_on_the_teapot() {
+    let path = PathBuf::from("../shared/spd/teapot.nff");
+    if !path.exists() {
+        return;
+    }
+    let mut app = App::open(Some(path), true).unwrap();
+    println!(
+        "teapot {}x{}, {} objects",
+        app.scene.width,
+        app.scene.height,
+        app.scene.objects.len()
+    );
+    let mut picks = Vec::new();
+    for i in 0..200u32 {
+        app.update(Action::Pick(
+            (i * 37) % app.scene.width,
+            (i * 91) % app.scene.height,
+        ));
+        picks.push(app.pick_time);
+    }
+    picks.sort();
+    println!(
+        "pixel pick: median {:?}, max {:?}",
+        picks[picks.len() / 2],
+        picks[picks.len() - 1]
+    );
+    for _ in 0..3 {
+        let started = Instant::now();
+        app.update(Action::Toggle(tui::Switch::Shadows));
+        println!(
+            "toggle shadows: re-render {:?} (update returned after {:?})",
+            app.render_time.unwrap(),
+            started.elapsed()
+        );
+    }
 }

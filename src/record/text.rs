@@ -163,6 +163,10 @@ pub fn light_lines(light: &LightRecord, phong: bool) -> Vec<String> {
 pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
     let node = &tree.nodes[id];
     let mut lines = vec![format!("from {} along {}", vector(node.origin), vector(node.direction))];
+    for near in &node.near_misses {
+        lines.push(format!("passed by {} (#{}):", near.object, near.object_index));
+        lines.extend(working_lines(&near.working).into_iter().map(|l| format!("  {l}")));
+    }
     let Some(hit) = &node.hit else {
         lines.push(format!(
             "missed everything ({} primitives tested): background {}",

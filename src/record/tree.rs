@@ -9,7 +9,7 @@ use serde_json::Value;
 use crate::accel::Cost;
 use crate::math::{Color, Interval, Ray};
 use crate::scene::Scene;
-use crate::shapes::Working;
+use crate::shapes::{Shape, Working};
 use crate::trace::{Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel};
 
 pub type NodeId = usize;
@@ -28,6 +28,9 @@ pub struct Node {
     /// Distance attenuation applied in the parent (1 for a miss and for the primary ray).
     pub attenuation: f64,
     pub hit: Option<HitRecord>,
+    /// Polygons whose plane the ray met before its hit (or at all, on a miss)
+    /// but whose crossing test said outside: why the ray went past them.
+    pub near_misses: Vec<NearMiss>,
     /// What the closest-hit query tested.
     pub cost: Cost,
     pub ambient: Color,
@@ -59,6 +62,17 @@ pub struct HitRecord {
     /// The intersection worked the way the course notes teach it.
     pub working: Working,
 }
+
+#[derive(Clone, Debug, Serialize)]
+pub struct NearMiss {
+    pub object: String,
+    pub object_index: usize,
+    pub working: Working,
+}
+
+/// Near misses are looked for in scenes up to this size, where they teach;
+/// in benchmark scenes the scan would cost more than the whole pixel.
+pub const NEAR_MISS_SCENE_LIMIT: usize = 2000;
 
 #[derive(Clone, Debug, Serialize)]
 pub struct LightRecord {
@@ -190,6 +204,7 @@ impl Recorder for TreeRecorder<'_> {
             weight,
             attenuation: 1.0,
             hit: None,
+            near_misses: Vec::new(),
             cost: Cost::default(),
             ambient: Color::ZERO,
             lights: Vec::new(),
@@ -217,6 +232,7 @@ impl Recorder for TreeRecorder<'_> {
         let node = self.node();
         let ray = Ray::new(node.origin, node.direction);
         node.cost = cost;
+        node.near_misses = near_misses(scene, &ray, hit.t);
         node.hit = Some(HitRecord {
             object: object.name.clone(),
             object_index: hit.object,
@@ -233,7 +249,10 @@ impl Recorder for TreeRecorder<'_> {
     }
 
     fn miss(&mut self, _background: Color, cost: Cost) {
-        self.node().cost = cost;
+        let scene = self.scene;
+        let node = self.node();
+        node.cost = cost;
+        node.near_misses = near_misses(scene, &Ray::new(node.origin, node.direction), f64::INFINITY);
         self.push_event(EventKind::Miss { tested: cost });
     }
 
@@ -332,6 +351,30 @@ impl Recorder for TreeRecorder<'_> {
         self.push_event(EventKind::RayDone { color });
         self.stack.pop();
     }
+}
+
+/// Polygons and patches whose plane the ray meets in front of `before`,
+/// within the polygon's bounding box, but whose crossing test puts the point
+/// outside: a concave notch, or just past an edge.
+fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
+    if scene.objects.len() > NEAR_MISS_SCENE_LIMIT {
+        return Vec::new();
+    }
+    let range = Interval::new(crate::math::EPS, before);
+    let mut found = Vec::new();
+    for (index, object) in scene.objects.iter().enumerate() {
+        let polygon = match &object.shape {
+            Shape::Polygon(p) => p,
+            Shape::Patch(p) => &p.polygon,
+            _ => continue,
+        };
+        let working = polygon.solve(ray, range);
+        let in_box = working.plane.hit_t().is_some_and(|t| polygon.bounds().contains(ray.at(t)));
+        if in_box && working.crossing.is_some_and(|c| !c.inside) {
+            found.push(NearMiss { object: object.name.clone(), object_index: index, working: object.shape.working(ray, range) });
+        }
+    }
+    found
 }
 
 impl RayTree {

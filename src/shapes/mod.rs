@@ -189,6 +189,11 @@ impl Aabb {
         (self.max - self.min).length()
     }
 
+    /// True when the point lies in the box, its faces included.
+    pub fn contains(&self, point: DVec3) -> bool {
+        point.cmpge(self.min).all() && point.cmple(self.max).all()
+    }
+
     pub fn centroid(&self) -> DVec3 {
         0.5 * (self.min + self.max)
     }

@@ -9,72 +9,25 @@ use std::time::{Duration, Instant};
 use image::RgbImage;
 use ratatui::layout::Rect;
 
-use crate::math::to_rgb8;
 use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, SceneDescription, SceneError, Settings, SpecularModel};
-use crate::terms::{Term, TermImages};
+use crate::terms::TermImages;
 
-use super::job::{Finished, Output, Renderer, Request};
+pub use super::action::{Action, Switch, View};
+use super::job::Renderer;
 use super::layout::{self, Pane, Panes};
 use super::projection::ViewPlane;
 use super::source::{FileWatcher, SceneSource, merge_settings};
-use super::stepper::{Breakpoint, Step};
 use super::tree_view;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
 pub const MAX_DEPTH: u32 = 16;
+/// The first status message, for someone who has never seen the debugger.
+pub const WELCOME: &str =
+    "arrows pick a pixel, n steps through its trace, Tab changes pane, ? lists every key";
 /// How long the file must be quiet before a reload (editors write in bursts).
 const RELOAD_DELAY: Duration = Duration::from_millis(150);
-
-/// Something the user asked for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Action {
-    Quit,
-    ToggleHelp,
-    CloseHelp,
-    FocusNext,
-    FocusPrevious,
-    /// Move the pixel cursor by image pixels.
-    Move(i32, i32),
-    Pick(u32, u32),
-    /// A mouse click on a screen cell.
-    Click(u16, u16),
-    ZoomIn,
-    ZoomOut,
-    Step(Step),
-    RunTo(Breakpoint),
-    /// Run to the next hit on the breakpoint object (the selected ray's object).
-    RunToObject,
-    CycleBreakObject,
-    /// Move the ray tree's selection by rows.
-    SelectRow(i32),
-    ToggleCollapse,
-    ScrollDetails(i32),
-    Toggle(Switch),
-    ToggleSpecular,
-    Depth(i32),
-    CycleView,
-    CyclePlane,
-    Reload,
-    Resize(u16, u16),
-}
-
-/// A teaching switch of the illumination model.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Switch {
-    Shadows,
-    Reflection,
-    Transmission,
-    Ambient,
-}
-
-/// What the image pane shows: the render, or one term image.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum View {
-    Image,
-    Term(Term),
-}
 
 pub struct App {
     pub source: SceneSource,
@@ -95,6 +48,7 @@ pub struct App {
     pub view: View,
     pub plane: ViewPlane,
     pub help: bool,
+    pub help_scroll: u16,
     /// The banner: why the last reload failed.
     pub error: Option<String>,
     /// The status line's message.
@@ -143,8 +97,9 @@ impl App {
             view: View::Image,
             plane: ViewPlane::Top,
             help: false,
+            help_scroll: 0,
             error: None,
-            message: None,
+            message: Some(WELCOME.into()),
             break_object: None,
             details_scroll: None,
             screen: Rect::new(0, 0, 120, 40),
@@ -167,10 +122,17 @@ impl App {
 
     /// Starts watching the scene file for changes (the built-in scene has none).
     pub fn watch(&mut self) {
-        let Some(path) = &self.source.path else { return };
+        let Some(path) = &self.source.path else {
+            return;
+        };
         match FileWatcher::new(path) {
             Ok(watcher) => self.watcher = Some(watcher),
-            Err(e) => self.message = Some(format!("cannot watch {} ({e}): press R to reload", path.display())),
+            Err(e) => {
+                self.message = Some(format!(
+                    "cannot watch {} ({e}): press R to reload",
+                    path.display()
+                ))
+            }
         }
     }
 
@@ -178,8 +140,12 @@ impl App {
         self.message = None;
         match action {
             Action::Quit => self.quit = true,
-            Action::ToggleHelp => self.help = !self.help,
+            Action::ToggleHelp => (self.help, self.help_scroll) = (!self.help, 0),
             Action::CloseHelp => self.help = false,
+            Action::ScrollHelp(delta) => {
+                let most = super::help::hidden_lines(self.screen.height) as i32;
+                self.help_scroll = (self.help_scroll as i32 + delta).clamp(0, most) as u16;
+            }
             Action::FocusNext => self.focus = self.focus.next(),
             Action::FocusPrevious => self.focus = self.focus.previous(),
             Action::Move(dx, dy) => self.move_cursor(dx, dy),
@@ -220,22 +186,6 @@ impl App {
         changed || self.reload_due.is_some()
     }
 
-    /// Whether a render is under way (the loop then polls more often).
-    pub fn busy(&self) -> bool {
-        self.renderer.busy() || self.reload_due.is_some()
-    }
-
-    pub fn progress(&self) -> Option<super::job::Progress> {
-        self.renderer.progress()
-    }
-
-    /// Blocks until every requested render is in (benchmarks and tests).
-    pub fn wait_for_renders(&mut self) {
-        while let Some(finished) = self.renderer.wait() {
-            self.install(finished);
-        }
-    }
-
     pub fn panes(&self) -> Panes {
         let banner = self.error.as_ref().map_or(0, |e| e.lines().count() as u16);
         let rows = tree_view::rows(&self.tree, &self.collapsed).len() as u16;
@@ -254,55 +204,25 @@ impl App {
     /// The colour of a pixel as the image pane shows it (render or term view).
     pub fn shown_pixel(&self, x: u32, y: u32) -> Option<[u8; 3]> {
         match self.view {
-            View::Image => self.image.as_ref().filter(|i| x < i.width() && y < i.height()).map(|i| i.get_pixel(x, y).0),
-            View::Term(term) => self.terms.as_ref().filter(|t| x < t.width && y < t.height).map(|t| {
-                t.rgb(term, (y * t.width + x) as usize, t.max_count(term))
-            }),
-        }
-    }
-
-    /// Renders the scene as it is now, as a new generation.
-    pub(super) fn request_render(&mut self) {
-        self.generation += 1;
-        self.request_current();
-    }
-
-    /// Renders the current generation again (a term view needs the terms).
-    pub(super) fn request_current(&mut self) {
-        let terms = matches!(self.view, View::Term(_));
-        self.renderer.request(Request { generation: self.generation, scene: self.scene.clone(), terms });
-    }
-
-    fn collect_renders(&mut self) -> bool {
-        let mut any = false;
-        while let Some(finished) = self.renderer.poll() {
-            self.install(finished);
-            any = true;
-        }
-        any
-    }
-
-    fn install(&mut self, finished: Finished) {
-        if finished.generation != self.generation {
-            return;
-        }
-        self.render_time = Some(finished.elapsed);
-        match finished.output {
-            Ok(Output::Image(image)) => self.image = Some(image),
-            Ok(Output::Terms(terms)) => {
-                self.image = Some(RgbImage::from_fn(terms.width, terms.height, |x, y| {
-                    image::Rgb(to_rgb8(terms.pixels[(y * terms.width + x) as usize].color))
-                }));
-                self.terms = Some(terms);
-                self.terms_generation = Some(finished.generation);
-            }
-            Err(message) => self.message = Some(message),
+            View::Image => self
+                .image
+                .as_ref()
+                .filter(|i| x < i.width() && y < i.height())
+                .map(|i| i.get_pixel(x, y).0),
+            View::Term(term) => self
+                .terms
+                .as_ref()
+                .filter(|t| x < t.width && y < t.height)
+                .map(|t| t.rgb(term, (y * t.width + x) as usize, t.max_count(term))),
         }
     }
 
     /// Re-records the selected pixel in the current scene, keeping the step.
     pub(super) fn retrace(&mut self) {
-        self.cursor = (self.cursor.0.min(self.scene.width - 1), self.cursor.1.min(self.scene.height - 1));
+        self.cursor = (
+            self.cursor.0.min(self.scene.width - 1),
+            self.cursor.1.min(self.scene.height - 1),
+        );
         let started = Instant::now();
         self.tree = record_pixel(&self.scene, self.cursor.0, self.cursor.1);
         self.pick_time = started.elapsed();
@@ -329,7 +249,11 @@ impl App {
     pub fn reload(&mut self) {
         match self.source.load() {
             Ok(description) => {
-                let settings = merge_settings(&self.file_settings, &description.settings, &self.scene.settings);
+                let settings = merge_settings(
+                    &self.file_settings,
+                    &description.settings,
+                    &self.scene.settings,
+                );
                 self.file_settings = description.settings.clone();
                 self.description = description;
                 self.error = None;
@@ -338,7 +262,8 @@ impl App {
             }
             Err(error) => {
                 self.error = Some(error.to_string());
-                self.message = Some("the scene file has an error: the last good scene stays".into());
+                self.message =
+                    Some("the scene file has an error: the last good scene stays".into());
             }
         }
     }

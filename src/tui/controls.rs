@@ -9,8 +9,8 @@ use super::app::{App, MAX_DEPTH, Switch, View};
 use super::image_view::{ImageView, max_zoom};
 use super::layout::Pane;
 use super::stepper::{self, Breakpoint, Step};
-use super::tree_view::{self, RowKind};
 use super::steps_view;
+use super::tree_view::{self, RowKind};
 
 /// The inner area of a bordered pane.
 pub fn inner(area: ratatui::layout::Rect) -> ratatui::layout::Rect {
@@ -21,12 +21,21 @@ impl App {
     /// The image pane's mapping, for drawing and for clicks.
     pub fn image_view(&self) -> Option<ImageView> {
         let size = self.image.as_ref().map(|i| (i.width(), i.height()))?;
-        Some(ImageView::new(inner(self.panes().image), size, self.zoom, self.cursor))
+        Some(ImageView::new(
+            inner(self.panes().image),
+            size,
+            self.zoom,
+            self.cursor,
+        ))
     }
 
     pub(super) fn move_cursor(&mut self, dx: i32, dy: i32) {
-        let clamp = |v: u32, d: i32, size: u32| (v as i64 + d as i64).clamp(0, size as i64 - 1) as u32;
-        let (x, y) = (clamp(self.cursor.0, dx, self.scene.width), clamp(self.cursor.1, dy, self.scene.height));
+        let clamp =
+            |v: u32, d: i32, size: u32| (v as i64 + d as i64).clamp(0, size as i64 - 1) as u32;
+        let (x, y) = (
+            clamp(self.cursor.0, dx, self.scene.width),
+            clamp(self.cursor.1, dy, self.scene.height),
+        );
         if (x, y) != self.cursor {
             self.pick(x, y);
         }
@@ -34,7 +43,9 @@ impl App {
 
     pub(super) fn click(&mut self, column: u16, row: u16) {
         let panes = self.panes();
-        let Some(pane) = panes.pane_at(column, row) else { return };
+        let Some(pane) = panes.pane_at(column, row) else {
+            return;
+        };
         self.focus = pane;
         let inside = inner(panes.rect(pane));
         if !inside.contains(Position::new(column, row)) {
@@ -49,14 +60,19 @@ impl App {
             }
             Pane::Tree => {
                 let rows = tree_view::rows(&self.tree, &self.collapsed);
-                let selected = tree_view::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
+                let selected =
+                    tree_view::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
                 let first = tree_view::scroll_offset(selected, inside.height as usize);
                 if let Some(row) = rows.get(first + line) {
                     self.select(row.kind);
                 }
             }
             Pane::Steps => {
-                let first = steps_view::first_line(self.current, self.tree.events.len(), inside.height as usize);
+                let first = steps_view::first_line(
+                    self.current,
+                    self.tree.events.len(),
+                    inside.height as usize,
+                );
                 if first + line < self.tree.events.len() {
                     self.set_current(first + line);
                 }
@@ -66,7 +82,9 @@ impl App {
     }
 
     pub(super) fn zoom_in(&mut self) {
-        let Some(size) = self.image.as_ref().map(|i| (i.width(), i.height())) else { return };
+        let Some(size) = self.image.as_ref().map(|i| (i.width(), i.height())) else {
+            return;
+        };
         if self.zoom < max_zoom(inner(self.panes().image), size) {
             self.zoom *= 2;
         } else {
@@ -92,18 +110,29 @@ impl App {
                     Breakpoint::HitObject(object) => format!("hit on {}", self.object_name(object)),
                     Breakpoint::Tir => "total internal reflection".to_string(),
                 };
-                self.message = Some(format!("no {what} after event {} in this pixel", self.current + 1));
+                self.message = Some(format!(
+                    "no {what} after event {} in this pixel",
+                    self.current + 1
+                ));
             }
         }
     }
 
     fn object_name(&self, object: usize) -> &str {
-        self.scene.objects.get(object).map_or("?", |o| o.name.as_str())
+        self.scene
+            .objects
+            .get(object)
+            .map_or("?", |o| o.name.as_str())
     }
 
     /// The object breakpoint: the chosen one, else the selected ray's object.
     pub fn break_target(&self) -> Option<usize> {
-        self.break_object.or_else(|| self.tree.nodes[self.selected_node()].hit.as_ref().map(|h| h.object_index))
+        self.break_object.or_else(|| {
+            self.tree.nodes[self.selected_node()]
+                .hit
+                .as_ref()
+                .map(|h| h.object_index)
+        })
     }
 
     pub(super) fn run_to_object(&mut self) {
@@ -112,7 +141,10 @@ impl App {
                 self.break_object = Some(object);
                 self.run_to(Breakpoint::HitObject(object));
             }
-            None => self.message = Some("the selected ray hits nothing: press X to choose an object".into()),
+            None => {
+                self.message =
+                    Some("the selected ray hits nothing: press X to choose an object".into())
+            }
         }
     }
 
@@ -125,7 +157,10 @@ impl App {
             None => Some(0),
         };
         if let Some(object) = self.break_object {
-            self.message = Some(format!("x runs to the next hit on {}", self.object_name(object)));
+            self.message = Some(format!(
+                "x runs to the next hit on {}",
+                self.object_name(object)
+            ));
         }
     }
 
@@ -133,9 +168,11 @@ impl App {
     fn select(&mut self, kind: RowKind) {
         let event = match kind {
             RowKind::Ray(node) => stepper::cast_event(&self.tree, node),
-            RowKind::Light { node, light } => {
-                stepper::light_event(&self.tree, node, self.tree.nodes[node].lights[light].light_index)
-            }
+            RowKind::Light { node, light } => stepper::light_event(
+                &self.tree,
+                node,
+                self.tree.nodes[node].lights[light].light_index,
+            ),
         };
         if let Some(event) = event {
             self.set_current(event);
@@ -144,7 +181,9 @@ impl App {
 
     pub(super) fn select_row(&mut self, delta: i32) {
         let rows = tree_view::rows(&self.tree, &self.collapsed);
-        let Some(selected) = tree_view::selected_row(&self.tree, &rows, self.current) else { return };
+        let Some(selected) = tree_view::selected_row(&self.tree, &rows, self.current) else {
+            return;
+        };
         let row = (selected as i64 + delta as i64).clamp(0, rows.len() as i64 - 1) as usize;
         self.select(rows[row].kind);
     }
@@ -178,15 +217,29 @@ impl App {
     pub(super) fn toggle_specular(&mut self) {
         use crate::scene::SpecularModel::{Blinn, Phong};
         let mut settings = self.scene.settings.clone();
-        settings.specular = if settings.specular == Blinn { Phong } else { Blinn };
+        settings.specular = if settings.specular == Blinn {
+            Phong
+        } else {
+            Blinn
+        };
         self.apply_settings(settings);
-        self.message = Some(if self.phong() { "specular: Phong's R·V" } else { "specular: Blinn's N·H" }.into());
+        self.message = Some(
+            if self.phong() {
+                "specular: Phong's R·V"
+            } else {
+                "specular: Blinn's N·H"
+            }
+            .into(),
+        );
     }
 
     pub(super) fn change_depth(&mut self, delta: i32) {
         let depth = self.scene.settings.max_depth as i64 + delta as i64;
         if !(1..=MAX_DEPTH as i64).contains(&depth) {
-            self.message = Some(format!("max depth stays {}: it goes from 1 to {MAX_DEPTH}", self.scene.settings.max_depth));
+            self.message = Some(format!(
+                "max depth stays {}: it goes from 1 to {MAX_DEPTH}",
+                self.scene.settings.max_depth
+            ));
             return;
         }
         let mut settings = self.scene.settings.clone();
@@ -206,5 +259,9 @@ impl App {
         if matches!(self.view, View::Term(_)) && self.terms_generation != Some(self.generation) {
             self.request_current();
         }
+        self.message = Some(match self.view {
+            View::Image => "view: the render".to_string(),
+            View::Term(term) => format!("view {}: {}", term.name(), term.legend()),
+        });
     }
 }

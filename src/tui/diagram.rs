@@ -13,7 +13,9 @@ use crate::math::to_rgb8;
 use crate::record::RayTree;
 use crate::scene::Scene;
 
-use super::projection::{Outline, Projection, Segment, Stroke, ViewPlane, involved_objects, outline, ray_segments};
+use super::projection::{
+    Outline, Projection, Segment, Stroke, ViewPlane, involved_objects, outline, ray_segments,
+};
 
 /// Scenes with more objects show only those the pixel's rays meet.
 const MAX_OUTLINES: usize = 300;
@@ -33,15 +35,15 @@ pub fn stroke_color(stroke: Stroke) -> Color {
 
 /// The legend line for the pane's bottom border.
 pub fn legend() -> TextLine<'static> {
-    let item = |name: &'static str, stroke| Span::styled(format!(" {name}"), Style::new().fg(stroke_color(stroke)));
+    let item = |name: &'static str, stroke| {
+        Span::styled(format!(" {name}"), Style::new().fg(stroke_color(stroke)))
+    };
     TextLine::from(vec![
         item("primary", Stroke::Primary),
         item("reflected", Stroke::Reflected),
         item("transmitted", Stroke::Transmitted),
         item("shadow", Stroke::ShadowLit),
-        item("blocked", Stroke::ShadowBlocked),
-        item("normal", Stroke::Normal),
-        item("current ", Stroke::Current),
+        item("blocked ", Stroke::ShadowBlocked),
     ])
 }
 
@@ -51,29 +53,58 @@ pub fn legend() -> TextLine<'static> {
 fn bounds(points: &[DVec2], area: Rect) -> ([f64; 2], [f64; 2]) {
     let min = points.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
     let max = points.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
-    let (min, max) = if min.is_finite() && max.is_finite() { (min, max) } else { (DVec2::splat(-1.0), DVec2::splat(1.0)) };
+    let (min, max) = if min.is_finite() && max.is_finite() {
+        (min, max)
+    } else {
+        (DVec2::splat(-1.0), DVec2::splat(1.0))
+    };
     let centre = (min + max) / 2.0;
     let size = (max - min).max(DVec2::splat(1e-3)) * 1.1;
-    let dots = DVec2::new(area.width.max(1) as f64 * 2.0, area.height.max(1) as f64 * 4.0);
+    let dots = DVec2::new(
+        area.width.max(1) as f64 * 2.0,
+        area.height.max(1) as f64 * 4.0,
+    );
     let per_dot = (size.x / dots.x).max(size.y / dots.y);
     let half = dots * per_dot / 2.0;
-    ([centre.x - half.x, centre.x + half.x], [centre.y - half.y, centre.y + half.y])
+    (
+        [centre.x - half.x, centre.x + half.x],
+        [centre.y - half.y, centre.y + half.y],
+    )
 }
 
 fn outline_points(outline: &Outline) -> Vec<DVec2> {
     match outline {
-        Outline::Circle { center, radius } => vec![*center - DVec2::splat(*radius), *center + DVec2::splat(*radius)],
+        Outline::Circle { center, radius } => vec![
+            *center - DVec2::splat(*radius),
+            *center + DVec2::splat(*radius),
+        ],
         Outline::Polyline(points) => points.clone(),
         Outline::Line { .. } => vec![],
     }
 }
 
+/// Where an object's name goes: above a circle, at a polygon's first corner.
+fn label_point(outline: &Outline) -> Option<DVec2> {
+    match outline {
+        Outline::Circle { center, radius } => Some(*center + DVec2::new(-radius / 2.0, *radius)),
+        Outline::Polyline(points) => points.first().copied(),
+        Outline::Line { .. } => None,
+    }
+}
+
 fn draw_outline(ctx: &mut Context, outline: &Outline, color: Color, x: [f64; 2], y: [f64; 2]) {
     match outline {
-        Outline::Circle { center, radius } => ctx.draw(&Circle { x: center.x, y: center.y, radius: *radius, color }),
+        Outline::Circle { center, radius } => ctx.draw(&Circle {
+            x: center.x,
+            y: center.y,
+            radius: *radius,
+            color,
+        }),
         Outline::Polyline(points) => {
             for pair in points.windows(2) {
-                ctx.draw(&Line::new(pair[0].x, pair[0].y, pair[1].x, pair[1].y, color));
+                ctx.draw(&Line::new(
+                    pair[0].x, pair[0].y, pair[1].x, pair[1].y, color,
+                ));
             }
         }
         Outline::Line { normal, c } => {
@@ -97,15 +128,34 @@ fn object_color(scene: &Scene, object: usize) -> Color {
 }
 
 /// Draws the diagram of `tree` into `area` (block included).
-pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, scene: &Scene, tree: &RayTree, current: usize, plane: ViewPlane) {
+pub fn render(
+    area: Rect,
+    buf: &mut ratatui::buffer::Buffer,
+    block: Block,
+    scene: &Scene,
+    tree: &RayTree,
+    current: usize,
+    plane: ViewPlane,
+) {
     let inner = block.inner(area);
     let projection = Projection::new(plane, scene, tree);
     let (segments, blockers) = ray_segments(tree, scene, &projection, current);
     let involved = involved_objects(tree);
-    let shown: Vec<usize> = if scene.objects.len() <= MAX_OUTLINES { (0..scene.objects.len()).collect() } else { involved.clone() };
-    let outlines: Vec<(usize, Vec<Outline>)> = shown.iter().map(|&i| (i, outline(&scene.objects[i].shape, &projection))).collect();
+    let shown: Vec<usize> = if scene.objects.len() <= MAX_OUTLINES {
+        (0..scene.objects.len()).collect()
+    } else {
+        involved.clone()
+    };
+    let outlines: Vec<(usize, Vec<Outline>)> = shown
+        .iter()
+        .map(|&i| (i, outline(&scene.objects[i].shape, &projection)))
+        .collect();
     let eye = projection.project(scene.camera.eye);
-    let lights: Vec<(DVec2, &str)> = scene.lights.iter().map(|l| (projection.project(l.position), l.name.as_str())).collect();
+    let lights: Vec<(DVec2, &str)> = scene
+        .lights
+        .iter()
+        .map(|l| (projection.project(l.position), l.name.as_str()))
+        .collect();
     let mut points: Vec<DVec2> = segments.iter().flat_map(|s| [s.from, s.to]).collect();
     points.push(eye);
     points.extend(lights.iter().map(|l| l.0));
@@ -123,11 +173,32 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, scene
         }
         ctx.layer();
         let draw = |ctx: &mut Context, s: &Segment| {
-            ctx.draw(&Line::new(s.from.x, s.from.y, s.to.x, s.to.y, stroke_color(s.stroke)));
+            ctx.draw(&Line::new(
+                s.from.x,
+                s.from.y,
+                s.to.x,
+                s.to.y,
+                stroke_color(s.stroke),
+            ));
         };
-        segments.iter().filter(|s| s.stroke != Stroke::Current).for_each(|s| draw(ctx, s));
+        segments
+            .iter()
+            .filter(|s| s.stroke != Stroke::Current)
+            .for_each(|s| draw(ctx, s));
         ctx.layer();
-        segments.iter().filter(|s| s.stroke == Stroke::Current).for_each(|s| draw(ctx, s));
+        segments
+            .iter()
+            .filter(|s| s.stroke == Stroke::Current)
+            .for_each(|s| draw(ctx, s));
+        for (i, shapes) in outlines.iter().filter(|(i, _)| involved.contains(i)) {
+            if let Some(at) = shapes.first().and_then(label_point) {
+                ctx.print(
+                    at.x,
+                    at.y,
+                    Span::from(scene.objects[*i].name.clone()).dark_gray(),
+                );
+            }
+        }
         for p in &blockers {
             ctx.print(p.x, p.y, Span::from("×").red().bold());
         }
@@ -136,5 +207,10 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, scene
         }
         ctx.print(eye.x, eye.y, Span::from("◉ eye").cyan());
     };
-    Canvas::default().block(block).x_bounds(x).y_bounds(y).paint(paint).render(area, buf);
+    Canvas::default()
+        .block(block)
+        .x_bounds(x)
+        .y_bounds(y)
+        .paint(paint)
+        .render(area, buf);
 }

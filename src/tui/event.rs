@@ -1,7 +1,9 @@
 //! Terminal events become `Action`s here and nowhere else; the help overlay
 //! lists the same bindings from `KEYS`, so the two cannot drift apart.
 
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind};
+use crossterm::event::{
+    Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
+};
 
 use super::app::{Action, App, Switch};
 use super::layout::Pane;
@@ -12,33 +14,60 @@ pub const BIG_STEP: i32 = 10;
 
 /// Every key, grouped for the help overlay: (keys, what they do).
 pub const KEYS: &[(&str, &[(&str, &str)])] = &[
-    ("Pixel and view", &[
-        ("arrows, h j k l", "move the pixel cursor (in the image pane)"),
-        ("Shift+arrows, H J K L", "move the pixel cursor 10 pixels"),
-        ("mouse click", "pick a pixel, a tree row or an event"),
-        ("+  -", "zoom in / out (down to one pixel per half cell)"),
-        ("v", "cycle the image: render, each term, shadow, rays, cost"),
-        ("d", "diagram plane: top, side, plane of the primary ray"),
-        ("Tab  Shift+Tab", "next / previous pane (arrows act on it)"),
-        ("Enter", "collapse / expand the selected ray in the tree"),
-    ]),
-    ("Step through the trace", &[
-        ("n  p", "next / previous event"),
-        ("i", "step into: on to the next ray cast"),
-        ("o", "step over: next event of this ray, skipping child rays"),
-        ("u", "step out: to where this ray returns to its parent"),
-        ("g  e", "go to the first event / run to the end"),
-        ("b", "run to the next blocked shadow ray"),
-        ("x  X", "run to the next hit on object X / choose X"),
-        ("T", "run to the next total internal reflection"),
-    ]),
-    ("Teaching toggles (re-render at once)", &[
-        ("s  r  t  a", "shadows, reflection, transmission, ambient on/off"),
-        ("m", "specular model: Blinn's N·H or Phong's R·V"),
-        ("[  ]", "max depth down / up"),
-        ("R", "reload the scene file now (it also reloads on save)"),
-    ]),
-    ("Other", &[("?", "this help"), ("q  Esc", "quit (Esc first closes this help)")]),
+    (
+        "Pixel and view",
+        &[
+            (
+                "arrows, h j k l",
+                "move the pixel cursor (in the image pane)",
+            ),
+            ("Shift+arrows, H J K L", "move the pixel cursor 10 pixels"),
+            ("mouse click", "pick a pixel, a tree row or an event"),
+            ("+  -", "zoom in / out (down to one pixel per half cell)"),
+            (
+                "v",
+                "cycle the image: render, each term, shadow, rays, cost",
+            ),
+            ("d", "diagram plane: top, side, plane of the primary ray"),
+            ("Tab  Shift+Tab", "next / previous pane (arrows act on it)"),
+            ("Enter", "collapse / expand the selected ray in the tree"),
+        ],
+    ),
+    (
+        "Step through the trace",
+        &[
+            ("n  p", "next / previous event"),
+            ("i", "step into: on to the next ray cast"),
+            (
+                "o",
+                "step over: next event of this ray, skipping child rays",
+            ),
+            ("u", "step out: to where this ray returns to its parent"),
+            ("g  e", "go to the first event / run to the end"),
+            ("b", "run to the next blocked shadow ray"),
+            ("x  X", "run to the next hit on object X / choose X"),
+            ("T", "run to the next total internal reflection"),
+        ],
+    ),
+    (
+        "Teaching toggles (re-render at once)",
+        &[
+            (
+                "s  r  t  a",
+                "shadows, reflection, transmission, ambient on/off",
+            ),
+            ("m", "specular model: Blinn's N·H or Phong's R·V"),
+            ("[  ]", "max depth down / up"),
+            ("R", "reload the scene file now (it also reloads on save)"),
+        ],
+    ),
+    (
+        "Other",
+        &[
+            ("?", "this help"),
+            ("q  Esc", "quit (Esc first closes this help)"),
+        ],
+    ),
 ];
 
 /// The action for a terminal event, if it means one.
@@ -48,7 +77,9 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
         Event::Mouse(mouse) => {
             let pane = app.panes().pane_at(mouse.column, mouse.row);
             match (mouse.kind, pane) {
-                (MouseEventKind::Down(MouseButton::Left), _) => Some(Action::Click(mouse.column, mouse.row)),
+                (MouseEventKind::Down(MouseButton::Left), _) => {
+                    Some(Action::Click(mouse.column, mouse.row))
+                }
                 (MouseEventKind::ScrollDown, Some(Pane::Steps)) => Some(Action::Step(Step::Next)),
                 (MouseEventKind::ScrollUp, Some(Pane::Steps)) => Some(Action::Step(Step::Previous)),
                 (MouseEventKind::ScrollDown, Some(Pane::Tree)) => Some(Action::SelectRow(1)),
@@ -73,6 +104,8 @@ fn key_action(key: &KeyEvent, app: &App) -> Option<Action> {
     if app.help {
         return Some(match key.code {
             KeyCode::Char('q') => Action::Quit,
+            KeyCode::Down | KeyCode::Char('j') => Action::ScrollHelp(1),
+            KeyCode::Up | KeyCode::Char('k') => Action::ScrollHelp(-1),
             _ => Action::CloseHelp,
         });
     }
@@ -134,7 +167,9 @@ fn arrow_action(code: KeyCode, shift: bool, focus: Pane) -> Option<Action> {
     Some(match (focus, dx, dy) {
         (Pane::Tree, 0, dy) => Action::SelectRow(dy),
         (Pane::Tree, _, _) => Action::ToggleCollapse,
-        (Pane::Steps, d, 0) | (Pane::Steps, 0, d) => Action::Step(if d > 0 { Step::Next } else { Step::Previous }),
+        (Pane::Steps, d, 0) | (Pane::Steps, 0, d) => {
+            Action::Step(if d > 0 { Step::Next } else { Step::Previous })
+        }
         (Pane::Details, 0, dy) => Action::ScrollDetails(dy),
         _ => Action::Move(dx, dy),
     })

@@ -18,18 +18,41 @@ pub fn lines() -> Vec<Line<'static>> {
         }
         lines.push(Line::from(Span::raw(*group).bold().underlined()));
         for (key, what) in *keys {
-            lines.push(Line::from(vec![Span::raw(format!("  {key:<KEY_WIDTH$}")).cyan().bold(), Span::raw(*what)]));
+            lines.push(Line::from(vec![
+                Span::raw(format!("  {key:<KEY_WIDTH$}")).cyan().bold(),
+                Span::raw(*what),
+            ]));
         }
     }
     lines
 }
 
-pub fn draw(frame: &mut Frame, area: Rect) {
+/// How many lines of the help a terminal `height` rows tall cannot show.
+pub fn hidden_lines(height: u16) -> u16 {
+    (lines().len() as u16 + 2).saturating_sub(height)
+}
+
+/// The overlay, scrolled by `scroll` lines when the terminal is too short.
+pub fn draw(frame: &mut Frame, area: Rect, scroll: u16) {
     let lines = lines();
-    let width = (lines.iter().map(|l| l.width()).max().unwrap_or(40) as u16 + 4).min(area.width);
+    let width = (lines.iter().map(|l| l.width()).max().unwrap_or(40) as u16 + 2).min(area.width);
     let height = (lines.len() as u16 + 2).min(area.height);
-    let rect = Rect::new(area.x + (area.width - width) / 2, area.y + (area.height - height) / 2, width, height);
-    let block = Block::bordered().title(" Keys · any key closes this help ".bold()).title_bottom(" raystep ".dark_gray());
+    let hidden = hidden_lines(area.height);
+    let scroll = scroll.min(hidden);
+    let rect = Rect::new(
+        area.x + (area.width - width) / 2,
+        area.y + (area.height - height) / 2,
+        width,
+        height,
+    );
+    let bottom = if hidden > 0 {
+        " j/k scroll for more, any other key closes "
+    } else {
+        " any key closes this help "
+    };
+    let block = Block::bordered()
+        .title(" raystep keys ".bold())
+        .title_bottom(bottom.dark_gray());
     frame.render_widget(Clear, rect);
-    frame.render_widget(Paragraph::new(lines).block(block), rect);
+    frame.render_widget(Paragraph::new(lines).block(block).scroll((scroll, 0)), rect);
 }

@@ -48,11 +48,30 @@ impl ImageView {
         let shown_h = rows.min((image.1 as f64 / scale).ceil() as u32);
         let axis = |size: u32, shown: u32, cursor: u32| {
             let span = shown as f64 * scale;
-            if span >= size as f64 { 0.0 } else { (cursor as f64 + 0.5 - span / 2.0).clamp(0.0, size as f64 - span).floor() }
+            if span >= size as f64 {
+                0.0
+            } else {
+                (cursor as f64 + 0.5 - span / 2.0)
+                    .clamp(0.0, size as f64 - span)
+                    .floor()
+            }
         };
-        let origin = (axis(image.0, shown_w, cursor.0), axis(image.1, shown_h, cursor.1));
-        let offset = (((cols - shown_w) / 2) as u16, ((area.height as u32 - shown_h.div_ceil(2)) / 2) as u16);
-        Self { area, scale, origin, shown: (shown_w, shown_h), offset, image }
+        let origin = (
+            axis(image.0, shown_w, cursor.0),
+            axis(image.1, shown_h, cursor.1),
+        );
+        let offset = (
+            ((cols - shown_w) / 2) as u16,
+            ((area.height as u32 - shown_h.div_ceil(2)) / 2) as u16,
+        );
+        Self {
+            area,
+            scale,
+            origin,
+            shown: (shown_w, shown_h),
+            offset,
+            image,
+        }
     }
 
     /// The image pixel a display pixel shows.
@@ -84,7 +103,11 @@ impl ImageView {
     /// The screen cell that holds the cursor, and whether it is the upper half.
     pub fn cursor_cell(&self, cursor: (u32, u32)) -> Option<(u16, u16, bool)> {
         let (dx, dy) = self.display_of(cursor)?;
-        Some((self.area.x + self.offset.0 + dx as u16, self.area.y + self.offset.1 + (dy / 2) as u16, dy % 2 == 0))
+        Some((
+            self.area.x + self.offset.0 + dx as u16,
+            self.area.y + self.offset.1 + (dy / 2) as u16,
+            dy % 2 == 0,
+        ))
     }
 }
 
@@ -98,7 +121,11 @@ pub struct ImageWidget<'a> {
 /// The cursor's colour: one that stands out against the pixel under it.
 fn cursor_color(under: [u8; 3]) -> Color {
     let luma = 0.3 * under[0] as f64 + 0.59 * under[1] as f64 + 0.11 * under[2] as f64;
-    if luma > 140.0 { Color::Rgb(200, 0, 160) } else { Color::Rgb(255, 90, 255) }
+    if luma > 140.0 {
+        Color::Rgb(200, 0, 160)
+    } else {
+        Color::Rgb(255, 90, 255)
+    }
 }
 
 impl Widget for ImageWidget<'_> {
@@ -111,11 +138,22 @@ impl Widget for ImageWidget<'_> {
                 let color_at = |dy: u32| {
                     let (x, y) = view.sample(dx, dy);
                     let color = (self.pixel)(x, y);
-                    if cursor == Some((dx, dy)) { cursor_color(color) } else { rgb(color) }
+                    if cursor == Some((dx, dy)) {
+                        cursor_color(color)
+                    } else {
+                        rgb(color)
+                    }
                 };
                 let upper = color_at(dy);
-                let lower = if dy + 1 < view.shown.1 { color_at(dy + 1) } else { Color::Reset };
-                let position = (view.area.x + view.offset.0 + dx as u16, view.area.y + view.offset.1 + (dy / 2) as u16);
+                let lower = if dy + 1 < view.shown.1 {
+                    color_at(dy + 1)
+                } else {
+                    Color::Reset
+                };
+                let position = (
+                    view.area.x + view.offset.0 + dx as u16,
+                    view.area.y + view.offset.1 + (dy / 2) as u16,
+                );
                 if let Some(cell) = buf.cell_mut(position) {
                     cell.set_symbol("▀").set_fg(upper).set_bg(lower);
                 }

@@ -4,9 +4,9 @@
 //! channel tagged with their generation, and the app drops stale ones.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::sync::Arc;
 use std::thread;
 use std::time::{Duration, Instant};
 
@@ -62,7 +62,13 @@ pub struct Renderer {
 impl Renderer {
     pub fn new(sync: bool) -> Self {
         let (sender, receiver) = channel();
-        Self { sync, sender, receiver, running: None, pending: None }
+        Self {
+            sync,
+            sender,
+            receiver,
+            running: None,
+            pending: None,
+        }
     }
 
     /// Renders `request` now, or after the running render ends.
@@ -75,7 +81,10 @@ impl Renderer {
     }
 
     pub fn progress(&self) -> Option<Progress> {
-        self.running.as_ref().map(|r| Progress { rows_done: r.rows_done.load(Ordering::Relaxed), rows: r.rows })
+        self.running.as_ref().map(|r| Progress {
+            rows_done: r.rows_done.load(Ordering::Relaxed),
+            rows: r.rows,
+        })
     }
 
     pub fn busy(&self) -> bool {
@@ -105,14 +114,21 @@ impl Renderer {
 
     fn start(&mut self, request: Request) {
         let rows_done = Arc::new(AtomicU32::new(0));
-        self.running = Some(Running { rows_done: rows_done.clone(), rows: request.scene.height });
+        self.running = Some(Running {
+            rows_done: rows_done.clone(),
+            rows: request.scene.height,
+        });
         let sender = self.sender.clone();
         let job = move || {
             let started = Instant::now();
             let output = catch_unwind(AssertUnwindSafe(|| run(&request, &rows_done)))
                 .map_err(|payload| panic_message(payload.as_ref()));
             let elapsed = started.elapsed();
-            let _ = sender.send(Finished { generation: request.generation, output, elapsed });
+            let _ = sender.send(Finished {
+                generation: request.generation,
+                output,
+                elapsed,
+            });
         };
         if self.sync {
             job();

@@ -18,7 +18,13 @@ pub enum Pane {
 }
 
 impl Pane {
-    pub const ALL: [Pane; 5] = [Pane::Image, Pane::Tree, Pane::Steps, Pane::Details, Pane::Diagram];
+    pub const ALL: [Pane; 5] = [
+        Pane::Image,
+        Pane::Tree,
+        Pane::Steps,
+        Pane::Details,
+        Pane::Diagram,
+    ];
 
     pub fn next(self) -> Pane {
         let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
@@ -58,7 +64,9 @@ impl Panes {
     /// The pane under a screen cell.
     pub fn pane_at(&self, column: u16, row: u16) -> Option<Pane> {
         let position = ratatui::layout::Position::new(column, row);
-        Pane::ALL.into_iter().find(|&p| self.rect(p).contains(position))
+        Pane::ALL
+            .into_iter()
+            .find(|&p| self.rect(p).contains(position))
     }
 }
 
@@ -69,7 +77,11 @@ pub fn too_small(area: Rect) -> bool {
 /// Cuts `area`: `banner_lines` of error text (0 for none), `tree_rows` rows
 /// wanted by the ray tree.
 pub fn panes(area: Rect, banner_lines: u16, tree_rows: u16) -> Panes {
-    let banner = if banner_lines == 0 { 0 } else { (banner_lines + 2).min(area.height / 3) };
+    let banner = if banner_lines == 0 {
+        0
+    } else {
+        (banner_lines + 2).min(area.height / 3)
+    };
     let [header, main, banner, status] = Layout::vertical([
         Constraint::Length(1),
         Constraint::Fill(1),
@@ -77,8 +89,10 @@ pub fn panes(area: Rect, banner_lines: u16, tree_rows: u16) -> Panes {
         Constraint::Length(1),
     ])
     .areas(area);
-    let [left, right] = Layout::horizontal([Constraint::Percentage(42), Constraint::Fill(1)]).areas(main);
-    let [image, diagram] = Layout::vertical([Constraint::Percentage(55), Constraint::Fill(1)]).areas(left);
+    let [left, right] =
+        Layout::horizontal([Constraint::Percentage(42), Constraint::Fill(1)]).areas(main);
+    let [image, diagram] =
+        Layout::vertical([Constraint::Percentage(55), Constraint::Fill(1)]).areas(left);
     let tree_height = (tree_rows + 2).clamp(5, (main.height / 3).max(5));
     let steps_height = (main.height / 4).max(7);
     let [tree, steps, details] = Layout::vertical([
@@ -87,5 +101,14 @@ pub fn panes(area: Rect, banner_lines: u16, tree_rows: u16) -> Panes {
         Constraint::Fill(1),
     ])
     .areas(right);
-    Panes { header, image, diagram, tree, steps, details, banner, status }
+    Panes {
+        header,
+        image,
+        diagram,
+        tree,
+        steps,
+        details,
+        banner,
+        status,
+    }
 }

@@ -8,16 +8,19 @@
 //! real app on a `TestBackend`. Whole-image renders run on a background
 //! thread (`job.rs`); picking a pixel retraces that pixel alone.
 
+pub mod action;
 pub mod app;
 mod controls;
 pub mod details;
 pub mod diagram;
 pub mod event;
 mod help;
+mod image_pane;
 pub mod image_view;
 pub mod job;
 pub mod layout;
 pub mod projection;
+mod renders;
 pub mod source;
 pub mod stepper;
 pub mod steps_view;
@@ -36,7 +39,8 @@ use crossterm::execute;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-pub use app::{Action, App, Switch, View};
+pub use action::{Action, Switch, View};
+pub use app::App;
 pub use layout::Pane;
 pub use projection::ViewPlane;
 pub use stepper::{Breakpoint, Step};
@@ -52,7 +56,11 @@ pub struct TerminalInput;
 
 impl Input for TerminalInput {
     fn next(&mut self, timeout: Duration) -> io::Result<Option<Event>> {
-        if crossterm::event::poll(timeout)? { crossterm::event::read().map(Some) } else { Ok(None) }
+        if crossterm::event::poll(timeout)? {
+            crossterm::event::read().map(Some)
+        } else {
+            Ok(None)
+        }
     }
 }
 
@@ -60,7 +68,9 @@ impl Input for TerminalInput {
 impl Input for VecDeque<Event> {
     fn next(&mut self, _timeout: Duration) -> io::Result<Option<Event>> {
         Ok(Some(self.pop_front().unwrap_or_else(|| {
-            Event::Key(crossterm::event::KeyEvent::from(crossterm::event::KeyCode::Char('q')))
+            Event::Key(crossterm::event::KeyEvent::from(
+                crossterm::event::KeyCode::Char('q'),
+            ))
         })))
     }
 }
@@ -79,7 +89,11 @@ where
 }
 
 /// The main loop: draw, wait for an event or for background work, update.
-pub fn run_loop<B: Backend>(terminal: &mut Terminal<B>, app: &mut App, input: &mut impl Input) -> Result<()>
+pub fn run_loop<B: Backend>(
+    terminal: &mut Terminal<B>,
+    app: &mut App,
+    input: &mut impl Input,
+) -> Result<()>
 where
     B::Error: Send + Sync + 'static,
 {

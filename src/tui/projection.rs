@@ -8,15 +8,15 @@ use crate::record::{EventKind, NodeId, RayTree};
 use crate::scene::Scene;
 use crate::shapes::Shape;
 
-/// Which plane the diagram shows.
+/// Which plane the diagram shows, in the camera's frame (so a z-up NFF
+/// scene is seen from above too).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ViewPlane {
-    /// Seen from above: x to the right, -z up.
+    /// Seen from above: the camera's right to the right, its forward up.
     Top,
-    /// Seen from the +x side: -z to the right, y up.
+    /// Seen from the camera's right: forward to the right, up up.
     Side,
-    /// The plane of incidence of the primary ray: its direction to the right,
-    /// the hit's normal (or the camera's up) upward.
+    /// The plane of incidence of the primary ray, its normal upward.
     Primary,
 }
 
@@ -31,9 +31,9 @@ impl ViewPlane {
 
     pub fn name(self) -> &'static str {
         match self {
-            ViewPlane::Top => "top view (x, -z)",
-            ViewPlane::Side => "side view (-z, y)",
-            ViewPlane::Primary => "plane of the primary ray",
+            ViewPlane::Top => "from above",
+            ViewPlane::Side => "from the right",
+            ViewPlane::Primary => "primary ray's plane",
         }
     }
 }
@@ -50,29 +50,42 @@ impl Projection {
     pub fn new(plane: ViewPlane, scene: &Scene, tree: &RayTree) -> Self {
         let root = tree.root();
         let origin = root.hit.as_ref().map_or(root.origin, |h| h.point);
+        let camera = &scene.camera;
+        let forward = (camera.look_at - camera.eye).normalize();
+        let camera_right = forward.cross(camera.up).normalize();
         let (right, up) = match plane {
-            ViewPlane::Top => (DVec3::X, -DVec3::Z),
-            ViewPlane::Side => (-DVec3::Z, DVec3::Y),
-            ViewPlane::Primary => {
-                let d = root.direction.normalize();
-                let camera_up = scene.camera.up;
-                let candidates = [root.hit.as_ref().map(|h| h.shading_normal), Some(camera_up), Some(DVec3::Y), Some(DVec3::X)];
-                let up = candidates
-                    .into_iter()
-                    .flatten()
-                    .map(|n| n - n.dot(d) * d)
-                    .find(|n| n.length() > 1e-6)
-                    .map_or(DVec3::Y, |n| n.normalize());
-                (d, if up.dot(camera_up) < 0.0 { -up } else { up })
-            }
+            ViewPlane::Top => (camera_right, forward),
+            ViewPlane::Side => (forward, camera_right.cross(forward)),
+            ViewPlane::Primary => primary_plane(root, camera.up),
         };
         Self { origin, right, up }
     }
 
+    /// Where a point lands in the plane.
     pub fn project(&self, p: DVec3) -> DVec2 {
         let v = p - self.origin;
         DVec2::new(v.dot(self.right), v.dot(self.up))
     }
+}
+
+/// The plane of incidence drawn as in a textbook: the surface's normal N
+/// up, the surface running left to right, the ray coming in from the left.
+/// For a missed primary ray: the ray to the right, the camera's up up.
+fn primary_plane(root: &crate::record::Node, camera_up: DVec3) -> (DVec3, DVec3) {
+    let d = root.direction.normalize();
+    if let Some(hit) = &root.hit {
+        let n = hit.shading_normal;
+        let along = d - d.dot(n) * n;
+        if along.length() > 1e-6 {
+            return (along.normalize(), n);
+        }
+    }
+    let up = [camera_up, DVec3::Y, DVec3::X]
+        .into_iter()
+        .map(|u| u - u.dot(d) * d)
+        .find(|u| u.length() > 1e-6)
+        .map_or(DVec3::Y, |u| u.normalize());
+    (d, up)
 }
 
 /// What a drawn ray is, for its colour.
@@ -97,17 +110,29 @@ pub struct Segment {
 }
 
 /// The rays of a pixel as projected segments, plus blocker points.
-pub fn ray_segments(tree: &RayTree, scene: &Scene, projection: &Projection, current: usize) -> (Vec<Segment>, Vec<DVec2>) {
+pub fn ray_segments(
+    tree: &RayTree,
+    scene: &Scene,
+    projection: &Projection,
+    current: usize,
+) -> (Vec<Segment>, Vec<DVec2>) {
     let current_event = tree.events.get(current);
     let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
-        tree.events.iter().take(current + 1).any(|e| test(&e.kind, e.node))
+        tree.events
+            .iter()
+            .take(current + 1)
+            .any(|e| test(&e.kind, e.node))
     };
     let miss_length = miss_length(tree, scene);
     let mut segments = Vec::new();
     let mut blockers = Vec::new();
     for (id, node) in tree.nodes.iter().enumerate() {
-        let end = node.hit.as_ref().map_or(node.origin + node.direction.normalize() * miss_length, |h| h.point);
-        let is_current = current_event.is_some_and(|e| e.node == id && super::stepper::event_light(&e.kind).is_none());
+        let end = node.hit.as_ref().map_or(
+            node.origin + node.direction.normalize() * miss_length,
+            |h| h.point,
+        );
+        let is_current = current_event
+            .is_some_and(|e| e.node == id && super::stepper::event_light(&e.kind).is_none());
         let stroke = if is_current {
             Stroke::Current
         } else if !reached(&|k, n| n == id && matches!(k, EventKind::RayCast { .. })) {
@@ -119,23 +144,50 @@ pub fn ray_segments(tree: &RayTree, scene: &Scene, projection: &Projection, curr
                 crate::trace::RayKind::Transmitted => Stroke::Transmitted,
             }
         };
-        segments.push(Segment { from: projection.project(node.origin), to: projection.project(end), stroke });
+        segments.push(Segment {
+            from: projection.project(node.origin),
+            to: projection.project(end),
+            stroke,
+        });
         let Some(hit) = &node.hit else { continue };
         let normal_end = hit.point + hit.shading_normal * miss_length * 0.08;
-        segments.push(Segment { from: projection.project(hit.point), to: projection.project(normal_end), stroke: Stroke::Normal });
+        segments.push(Segment {
+            from: projection.project(hit.point),
+            to: projection.project(normal_end),
+            stroke: Stroke::Normal,
+        });
         for light in &node.lights {
-            let Some(shadow) = &light.shadow else { continue };
-            let target = scene.lights.get(light.light_index).map_or(hit.point, |l| l.position);
-            let is_current = current_event.is_some_and(|e| e.node == id && super::stepper::event_light(&e.kind) == Some(light.light_index));
-            let cast = |k: &EventKind, n| n == id && matches!(k, EventKind::ShadowCast { light: l } if *l == light.light_index);
+            let Some(shadow) = &light.shadow else {
+                continue;
+            };
+            let target = scene
+                .lights
+                .get(light.light_index)
+                .map_or(hit.point, |l| l.position);
+            let is_current = current_event.is_some_and(|e| {
+                e.node == id && super::stepper::event_light(&e.kind) == Some(light.light_index)
+            });
+            let cast = |k: &EventKind, n| {
+                n == id
+                    && matches!(k, EventKind::ShadowCast { light: l } if *l == light.light_index)
+            };
             let stroke = match () {
                 _ if is_current => Stroke::Current,
                 _ if !reached(&cast) => Stroke::Later,
                 _ if shadow.blockers.is_empty() => Stroke::ShadowLit,
                 _ => Stroke::ShadowBlocked,
             };
-            segments.push(Segment { from: projection.project(hit.point), to: projection.project(target), stroke });
-            blockers.extend(shadow.blockers.iter().map(|b| projection.project(shadow.origin + shadow.direction * b.t)));
+            segments.push(Segment {
+                from: projection.project(hit.point),
+                to: projection.project(target),
+                stroke,
+            });
+            blockers.extend(
+                shadow
+                    .blockers
+                    .iter()
+                    .map(|b| projection.project(shadow.origin + shadow.direction * b.t)),
+            );
         }
     }
     (segments, blockers)
@@ -143,7 +195,11 @@ pub fn ray_segments(tree: &RayTree, scene: &Scene, projection: &Projection, curr
 
 /// How far a missed ray is drawn: half the size of the pixel's scene.
 fn miss_length(tree: &RayTree, scene: &Scene) -> f64 {
-    let mut points: Vec<DVec3> = tree.nodes.iter().filter_map(|n| n.hit.as_ref().map(|h| h.point)).collect();
+    let mut points: Vec<DVec3> = tree
+        .nodes
+        .iter()
+        .filter_map(|n| n.hit.as_ref().map(|h| h.point))
+        .collect();
     points.push(tree.root().origin);
     points.extend(scene.lights.iter().map(|l| l.position));
     let min = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
@@ -154,9 +210,15 @@ fn miss_length(tree: &RayTree, scene: &Scene) -> f64 {
 /// An object's outline in the plane.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Outline {
-    Circle { center: DVec2, radius: f64 },
+    Circle {
+        center: DVec2,
+        radius: f64,
+    },
     /// An infinite line a·(x, y) + c = 0 (a plane cut by the view plane).
-    Line { normal: DVec2, c: f64 },
+    Line {
+        normal: DVec2,
+        c: f64,
+    },
     Polyline(Vec<DVec2>),
 }
 
@@ -166,24 +228,45 @@ pub enum Outline {
 pub fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
     let p = |v: DVec3| projection.project(v);
     match shape {
-        Shape::Sphere(s) => vec![Outline::Circle { center: p(s.center), radius: s.radius }],
+        Shape::Sphere(s) => vec![Outline::Circle {
+            center: p(s.center),
+            radius: s.radius,
+        }],
         Shape::Plane(plane) => {
-            let normal = DVec2::new(plane.normal.dot(projection.right), plane.normal.dot(projection.up));
+            let normal = DVec2::new(
+                plane.normal.dot(projection.right),
+                plane.normal.dot(projection.up),
+            );
             let c = plane.normal.dot(projection.origin) + plane.d;
-            if normal.length() < 1e-9 { vec![] } else { vec![Outline::Line { normal, c }] }
+            if normal.length() < 1e-9 {
+                vec![]
+            } else {
+                vec![Outline::Line { normal, c }]
+            }
         }
         Shape::Polygon(polygon) => vec![closed(polygon.vertices.iter().map(|&v| p(v)).collect())],
-        Shape::Patch(patch) => vec![closed(patch.polygon.vertices.iter().map(|&v| p(v)).collect())],
+        Shape::Patch(patch) => vec![closed(
+            patch.polygon.vertices.iter().map(|&v| p(v)).collect(),
+        )],
         Shape::Cone(cone) => {
             let (base, apex) = (p(cone.base), p(cone.apex));
             let axis = apex - base;
             if axis.length() < 1e-9 {
                 let r = cone.base_radius.max(cone.apex_radius);
-                return vec![Outline::Circle { center: base, radius: r }];
+                return vec![Outline::Circle {
+                    center: base,
+                    radius: r,
+                }];
             }
             let side = axis.perp().normalize();
-            let (b0, b1) = (base + side * cone.base_radius, base - side * cone.base_radius);
-            let (a0, a1) = (apex + side * cone.apex_radius, apex - side * cone.apex_radius);
+            let (b0, b1) = (
+                base + side * cone.base_radius,
+                base - side * cone.base_radius,
+            );
+            let (a0, a1) = (
+                apex + side * cone.apex_radius,
+                apex - side * cone.apex_radius,
+            );
             vec![Outline::Polyline(vec![b0, a0, a1, b1, b0])]
         }
     }

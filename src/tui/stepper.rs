@@ -44,14 +44,21 @@ fn find_after(tree: &RayTree, at: usize, test: impl Fn(usize) -> bool) -> Option
 }
 
 pub fn step(tree: &RayTree, at: usize, step: Step) -> usize {
-    let Some(event) = tree.events.get(at) else { return 0 };
+    let Some(event) = tree.events.get(at) else {
+        return 0;
+    };
     let end = last(tree);
     let node = event.node;
     match step {
         Step::Next => (at + 1).min(end),
         Step::Previous => at.saturating_sub(1),
-        Step::Into => find_after(tree, at, |i| matches!(tree.events[i].kind, EventKind::RayCast { .. })).unwrap_or(end),
-        Step::Over => find_after(tree, at, |i| tree.events[i].node == node).unwrap_or((at + 1).min(end)),
+        Step::Into => find_after(tree, at, |i| {
+            matches!(tree.events[i].kind, EventKind::RayCast { .. })
+        })
+        .unwrap_or(end),
+        Step::Over => {
+            find_after(tree, at, |i| tree.events[i].node == node).unwrap_or((at + 1).min(end))
+        }
         Step::Out => match tree.nodes[node].parent {
             Some(parent) => find_after(tree, at, |i| tree.events[i].node == parent).unwrap_or(end),
             None => end,
@@ -80,7 +87,9 @@ pub fn run_to(tree: &RayTree, at: usize, breakpoint: Breakpoint) -> Option<usize
 
 /// The event where `node`'s ray is cast.
 pub fn cast_event(tree: &RayTree, node: usize) -> Option<usize> {
-    tree.events.iter().position(|e| e.node == node && matches!(e.kind, EventKind::RayCast { .. }))
+    tree.events
+        .iter()
+        .position(|e| e.node == node && matches!(e.kind, EventKind::RayCast { .. }))
 }
 
 /// The event where `node` casts its shadow ray to `light`, or where it finds
@@ -90,16 +99,18 @@ pub fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<usize> {
         e.node == node && matches!(e.kind, EventKind::ShadowCast { light: l } if l == light)
     });
     shadow.or_else(|| {
-        tree.events.iter().position(|e| e.node == node && matches!(e.kind, EventKind::Light { light: l, .. } if l == light))
+        tree.events.iter().position(|e| {
+            e.node == node && matches!(e.kind, EventKind::Light { light: l, .. } if l == light)
+        })
     })
 }
 
 /// The light an event is about, if any.
 pub fn event_light(kind: &EventKind) -> Option<usize> {
     match kind {
-        EventKind::ShadowCast { light } | EventKind::Blocker { light, .. } | EventKind::Light { light, .. } => {
-            Some(*light)
-        }
+        EventKind::ShadowCast { light }
+        | EventKind::Blocker { light, .. }
+        | EventKind::Light { light, .. } => Some(*light),
         _ => None,
     }
 }

@@ -10,14 +10,23 @@ use ratatui::text::{Line, Span};
 use crate::math::to_rgb8;
 use crate::record::{LightRecord, NodeId, RayTree, kind_name, num};
 
+use super::app::App;
+use super::layout::Pane;
 use super::stepper::event_light;
+use super::ui::pane_block;
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::widgets::Paragraph;
 
 /// What a row shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RowKind {
     Ray(NodeId),
     /// `light` indexes the node's `lights` (the scene's order).
-    Light { node: NodeId, light: usize },
+    Light {
+        node: NodeId,
+        light: usize,
+    },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,13 +44,25 @@ pub fn rows(tree: &RayTree, collapsed: &BTreeSet<NodeId>) -> Vec<Row> {
     rows
 }
 
-fn push_rows(tree: &RayTree, collapsed: &BTreeSet<NodeId>, id: NodeId, indent: usize, rows: &mut Vec<Row>) {
-    rows.push(Row { kind: RowKind::Ray(id), indent });
+fn push_rows(
+    tree: &RayTree,
+    collapsed: &BTreeSet<NodeId>,
+    id: NodeId,
+    indent: usize,
+    rows: &mut Vec<Row>,
+) {
+    rows.push(Row {
+        kind: RowKind::Ray(id),
+        indent,
+    });
     if collapsed.contains(&id) {
         return;
     }
     for light in 0..tree.nodes[id].lights.len() {
-        rows.push(Row { kind: RowKind::Light { node: id, light }, indent: indent + 1 });
+        rows.push(Row {
+            kind: RowKind::Light { node: id, light },
+            indent: indent + 1,
+        });
     }
     for child in tree.children(id) {
         push_rows(tree, collapsed, child, indent + 1, rows);
@@ -54,8 +75,13 @@ pub fn selected_row(tree: &RayTree, rows: &[Row], at: usize) -> Option<usize> {
     let event = tree.events.get(at)?;
     let node = event.node;
     if let Some(light) = event_light(&event.kind) {
-        let index = tree.nodes[node].lights.iter().position(|l| l.light_index == light);
-        let row = rows.iter().position(|r| index.is_some_and(|i| r.kind == RowKind::Light { node, light: i }));
+        let index = tree.nodes[node]
+            .lights
+            .iter()
+            .position(|l| l.light_index == light);
+        let row = rows
+            .iter()
+            .position(|r| index.is_some_and(|i| r.kind == RowKind::Light { node, light: i }));
         if row.is_some() {
             return row;
         }
@@ -90,7 +116,11 @@ pub fn path_factor(tree: &RayTree, id: NodeId) -> f64 {
 /// `part` (already scaled into the pixel) as a share of the pixel's colour.
 fn share(tree: &RayTree, part: crate::math::Color) -> String {
     let total = tree.color().element_sum();
-    if total <= 1e-12 { "  -".into() } else { format!("{:>3.0}%", 100.0 * part.element_sum() / total) }
+    if total <= 1e-12 {
+        "  -".into()
+    } else {
+        format!("{:>3.0}%", 100.0 * part.element_sum() / total)
+    }
 }
 
 pub fn swatch(color: crate::math::Color) -> Span<'static> {
@@ -98,23 +128,38 @@ pub fn swatch(color: crate::math::Color) -> Span<'static> {
     Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
 }
 
+/// "light key", or just the name when it already says "light" (NFF's "light 0").
+pub fn light_label(name: &str) -> String {
+    if name.starts_with("light") {
+        name.to_string()
+    } else {
+        format!("light {name}")
+    }
+}
+
 fn light_text(light: &LightRecord) -> String {
+    let name = light_label(&light.light);
     if light.faces_away {
-        return format!("light {}: faces away", light.light);
+        return format!("{name}: faces away");
     }
     match &light.shadow {
-        None => format!("light {}: shadows off", light.light),
-        Some(s) if s.blockers.is_empty() => format!("light {}: lit, S = 1", light.light),
+        None => format!("{name}: shadows off"),
+        Some(s) if s.blockers.is_empty() => format!("{name}: lit, S = 1"),
         Some(s) => {
             let mut names: Vec<&str> = s.blockers.iter().map(|b| b.object.as_str()).collect();
             names.dedup();
-            format!("light {}: S = {}, blocked by {}", light.light, num(s.s), names.join(", "))
+            format!("{name}: S = {}, blocked by {}", num(s.s), names.join(", "))
         }
     }
 }
 
 /// One row as text: marker, description, swatch and share, `width` columns.
-pub fn row_line(tree: &RayTree, collapsed: &BTreeSet<NodeId>, row: &Row, width: usize) -> Line<'static> {
+pub fn row_line(
+    tree: &RayTree,
+    collapsed: &BTreeSet<NodeId>,
+    row: &Row,
+    width: usize,
+) -> Line<'static> {
     let pad = "  ".repeat(row.indent);
     let (text, color, part) = match row.kind {
         RowKind::Ray(id) => {
@@ -125,24 +170,72 @@ pub fn row_line(tree: &RayTree, collapsed: &BTreeSet<NodeId>, row: &Row, width: 
                 (true, true) => "▸",
                 (true, false) => "▾",
             };
-            let what = node.hit.as_ref().map_or("miss".to_string(), |h| format!("hit {}", h.object));
+            let what = node
+                .hit
+                .as_ref()
+                .map_or("miss".to_string(), |h| format!("hit {}", h.object));
             let text = format!("{pad}{marker} r{id} {} → {what}", kind_name(node.kind));
             (text, node.color, node.color * path_factor(tree, id))
         }
         RowKind::Light { node, light } => {
             let record = &tree.nodes[node].lights[light];
             let color = record.diffuse + record.specular;
-            (format!("{pad}  ☼ {}", light_text(record)), color, color * path_factor(tree, node))
+            (
+                format!("{pad}  ☼ {}", light_text(record)),
+                color,
+                color * path_factor(tree, node),
+            )
         }
     };
     let room = width.saturating_sub(8);
     let text: String = text.chars().take(room).collect();
     let fill = room.saturating_sub(text.chars().count());
-    Line::from(vec![Span::raw(text), Span::raw(" ".repeat(fill + 1)), swatch(color), Span::raw(" "), Span::raw(share(tree, part))])
+    Line::from(vec![
+        Span::raw(text),
+        Span::raw(" ".repeat(fill + 1)),
+        swatch(color),
+        Span::raw(" "),
+        Span::raw(share(tree, part)),
+    ])
 }
 
 /// The style of the selected row.
 pub fn selected_style(focused: bool) -> Style {
     let style = Style::new().add_modifier(Modifier::REVERSED);
-    if focused { style.add_modifier(Modifier::BOLD) } else { style }
+    if focused {
+        style.add_modifier(Modifier::BOLD)
+    } else {
+        style
+    }
+}
+
+pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
+    let tree = &app.tree;
+    let rays = tree.nodes.len();
+    let title = format!(
+        " Ray tree · pixel ({}, {}) · {rays} ray{} ",
+        tree.pixel.0,
+        tree.pixel.1,
+        if rays == 1 { "" } else { "s" }
+    );
+    let block = pane_block(app, Pane::Tree, title);
+    let inside = block.inner(area);
+    let rows = rows(tree, &app.collapsed);
+    let selected = selected_row(tree, &rows, app.current);
+    let first = scroll_offset(selected.unwrap_or(0), inside.height as usize);
+    let lines: Vec<Line> = rows
+        .iter()
+        .enumerate()
+        .skip(first)
+        .take(inside.height as usize)
+        .map(|(i, row)| {
+            let line = row_line(tree, &app.collapsed, row, inside.width as usize);
+            if Some(i) == selected {
+                line.patch_style(selected_style(app.focus == Pane::Tree))
+            } else {
+                line
+            }
+        })
+        .collect();
+    frame.render_widget(Paragraph::new(lines).block(block), area);
 }

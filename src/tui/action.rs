@@ -1,0 +1,56 @@
+//! What the user can ask for: the `Action`s that `event.rs` makes of keys
+//! and that `App::update` carries out.
+
+use crate::terms::Term;
+
+use super::stepper::{Breakpoint, Step};
+
+/// Something the user asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Action {
+    Quit,
+    ToggleHelp,
+    CloseHelp,
+    ScrollHelp(i32),
+    FocusNext,
+    FocusPrevious,
+    /// Move the pixel cursor by image pixels.
+    Move(i32, i32),
+    Pick(u32, u32),
+    /// A mouse click on a screen cell.
+    Click(u16, u16),
+    ZoomIn,
+    ZoomOut,
+    Step(Step),
+    RunTo(Breakpoint),
+    /// Run to the next hit on the breakpoint object (the selected ray's object).
+    RunToObject,
+    CycleBreakObject,
+    /// Move the ray tree's selection by rows.
+    SelectRow(i32),
+    ToggleCollapse,
+    ScrollDetails(i32),
+    Toggle(Switch),
+    ToggleSpecular,
+    Depth(i32),
+    CycleView,
+    CyclePlane,
+    Reload,
+    Resize(u16, u16),
+}
+
+/// A teaching switch of the illumination model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Switch {
+    Shadows,
+    Reflection,
+    Transmission,
+    Ambient,
+}
+
+/// What the image pane shows: the render, or one term image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum View {
+    Image,
+    Term(Term),
+}

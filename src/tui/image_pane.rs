@@ -1,0 +1,111 @@
+//! The image pane: the render (or a term view) with the pixel cursor, the
+//! selected pixel's coordinates and colour in the title, and the term
+//! view's legend at the bottom.
+
+use ratatui::Frame;
+use ratatui::layout::{Alignment, Rect};
+use ratatui::style::{Color, Style, Stylize};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::Paragraph;
+
+use crate::record::{color, num};
+use crate::terms::{Term, false_color};
+
+use super::app::{App, View};
+use super::controls::inner;
+use super::image_view::ImageWidget;
+use super::layout::Pane;
+use super::ui::pane_block;
+
+pub fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
+    Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
+}
+
+pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
+    let (x, y) = app.cursor;
+    let mut title = vec![Span::raw(format!(" Pixel ({x}, {y}) "))];
+    if let Some(rgb) = app
+        .image
+        .as_ref()
+        .filter(|i| x < i.width() && y < i.height())
+        .map(|i| i.get_pixel(x, y).0)
+    {
+        title.push(Span::raw(format!("rgb({},{},{}) ", rgb[0], rgb[1], rgb[2])));
+        title.push(rgb_swatch(rgb));
+    }
+    title.push(Span::raw(format!(" zoom {}x ", app.zoom)));
+    let mut block = pane_block(app, Pane::Image, String::new()).title(Line::from(title));
+    if let View::Term(term) = app.view {
+        block = block.title_bottom(term_legend(app, term).right_aligned());
+    }
+    frame.render_widget(block, area);
+    let (Some(view), Some(_)) = (app.image_view(), app.shown_pixel(0, 0)) else {
+        let text = match app.progress() {
+            Some(p) => format!("rendering… {}/{} rows", p.rows_done, p.rows),
+            None => "rendering…".into(),
+        };
+        frame.render_widget(
+            Paragraph::new(text).alignment(Alignment::Center),
+            inner(area),
+        );
+        return;
+    };
+    let pixel = |x: u32, y: u32| app.shown_pixel(x, y).unwrap_or([0, 0, 0]);
+    frame.render_widget(
+        ImageWidget {
+            view,
+            pixel: &pixel,
+            cursor: app.cursor,
+        },
+        area,
+    );
+    if let Some((column, row, _)) = view.cursor_cell(app.cursor) {
+        // Marks on the border point at the cursor's column and row.
+        let marks = [
+            ((column, area.y + area.height - 1), "▲", "─"),
+            ((area.x, row), "▶", "│"),
+        ];
+        for (position, mark, border) in marks {
+            if let Some(cell) = frame
+                .buffer_mut()
+                .cell_mut(position)
+                .filter(|c| c.symbol() == border)
+            {
+                cell.set_symbol(mark).set_fg(Color::LightMagenta);
+            }
+        }
+    }
+}
+
+/// The term view's legend: the view's name, the selected pixel's value,
+/// and the scale of a count view.
+fn term_legend(app: &App, term: Term) -> Line<'static> {
+    let Some(terms) = &app.terms else {
+        return Line::raw(format!(" {}: rendering… ", term.name()));
+    };
+    let (x, y) = app.cursor;
+    let index = (x < terms.width && y < terms.height).then_some((y * terms.width + x) as usize);
+    let here = index
+        .and_then(|i| terms.pixels.get(i))
+        .map_or(String::new(), |p| match term {
+            Term::Ambient => color(p.ambient),
+            Term::Diffuse => color(p.diffuse),
+            Term::Specular => color(p.specular),
+            Term::Reflected => color(p.reflected),
+            Term::Transmitted => color(p.transmitted),
+            Term::Shadow => p
+                .shadow
+                .map_or("no light faces it".into(), |s| format!("S = {}", num(s))),
+            Term::Rays => p.rays.to_string(),
+            Term::Cost => p.cost.to_string(),
+        });
+    let mut spans = vec![Span::raw(format!(" {}: {here} ", term.name())).bold()];
+    if matches!(term, Term::Rays | Term::Cost) {
+        spans.push(Span::raw("0 "));
+        for i in 0..8 {
+            spans.push(rgb_swatch(false_color(i as f64 / 7.0)));
+        }
+        spans.push(Span::raw(format!(" {} ", terms.max_count(term))));
+    }
+    Line::from(spans)
+}
