@@ -51,6 +51,12 @@ impl Interval {
     }
 }
 
+/// `value > bound`, false when either is NaN: validation reads
+/// `!exceeds(radius, 0.0)` to refuse NaN along with non-positive values.
+pub fn exceeds(value: f64, bound: f64) -> bool {
+    value > bound
+}
+
 /// Attenuation `min(1, 1 / (c1 + c2 d + c3 d^2))`, used for lights and for
 /// secondary rays (MODEL §4, §5). A non-positive denominator means no attenuation.
 pub fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
@@ -64,7 +70,11 @@ pub fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
 
 /// An 8-bit channel value: clamp to [0, 1], then floor(255 c + 0.5) (MODEL §6).
 pub fn to_byte(channel: f64) -> u8 {
-    let clamped = if channel.is_nan() { 0.0 } else { channel.clamp(0.0, 1.0) };
+    let clamped = if channel.is_nan() {
+        0.0
+    } else {
+        channel.clamp(0.0, 1.0)
+    };
     (255.0 * clamped + 0.5).floor() as u8
 }
 

@@ -25,7 +25,10 @@ pub struct SceneError {
 impl SceneError {
     /// An error that belongs to no place in a file (an unreadable file, a bad size).
     pub fn plain(message: impl Into<String>) -> Self {
-        Self { message: message.into(), location: None }
+        Self {
+            message: message.into(),
+            location: None,
+        }
     }
 
     /// An error at a byte range of `text`, the contents of `path`.
@@ -33,14 +36,22 @@ impl SceneError {
         let start = span.start.min(text.len());
         let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
         let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
-        let line_text = text[line_start..line_end].trim_end_matches('\r').to_string();
+        let line_text = text[line_start..line_end]
+            .trim_end_matches('\r')
+            .to_string();
         let line = text[..start].matches('\n').count() + 1;
         let column = text[line_start..start].chars().count() + 1;
         let end = span.end.clamp(start, line_end);
         let width = text[start..end].chars().count().max(1);
         Self {
             message: message.into(),
-            location: Some(SourceLocation { path: path.to_path_buf(), line, column, line_text, width }),
+            location: Some(SourceLocation {
+                path: path.to_path_buf(),
+                line,
+                column,
+                line_text,
+                width,
+            }),
         }
     }
 }
@@ -50,11 +61,24 @@ impl fmt::Display for SceneError {
         let Some(at) = &self.location else {
             return write!(f, "{}", self.message);
         };
-        writeln!(f, "{}:{}:{}: {}", at.path.display(), at.line, at.column, self.message)?;
+        writeln!(
+            f,
+            "{}:{}:{}: {}",
+            at.path.display(),
+            at.line,
+            at.column,
+            self.message
+        )?;
         let gutter = at.line.to_string().len();
         writeln!(f, "{:gutter$} |", "")?;
         writeln!(f, "{} | {}", at.line, at.line_text)?;
-        write!(f, "{:gutter$} | {}{}", "", " ".repeat(at.column - 1), "^".repeat(at.width))
+        write!(
+            f,
+            "{:gutter$} | {}{}",
+            "",
+            " ".repeat(at.column - 1),
+            "^".repeat(at.width)
+        )
     }
 }
 

@@ -15,6 +15,7 @@ pub use error::{SceneError, SourceLocation};
 use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::math::Color;
+use crate::math::exceeds;
 use crate::shapes::Shape;
 
 /// The largest image side accepted; beyond it a render would take minutes and
@@ -44,7 +45,12 @@ pub struct Switches {
 
 impl Default for Switches {
     fn default() -> Self {
-        Self { shadows: true, reflection: true, transmission: true, ambient: true }
+        Self {
+            shadows: true,
+            reflection: true,
+            transmission: true,
+            ambient: true,
+        }
     }
 }
 
@@ -97,7 +103,17 @@ pub struct Material {
 impl Material {
     /// NFF's material before the first `f` line: white, k_d = 1, all else 0 (MODEL §4).
     pub fn default_white() -> Self {
-        Self { name: "default".into(), color: Color::ONE, kd: 1.0, ks: 0.0, shininess: 0.0, kt: 0.0, ior: 1.0, ka: 1.0, specular: None }
+        Self {
+            name: "default".into(),
+            color: Color::ONE,
+            kd: 1.0,
+            ks: 0.0,
+            shininess: 0.0,
+            kt: 0.0,
+            ior: 1.0,
+            ka: 1.0,
+            specular: None,
+        }
     }
 }
 
@@ -181,14 +197,22 @@ pub fn load(path: &Path) -> Result<SceneDescription, SceneError> {
 
 /// Parses scene text; `path` names it in messages and picks the format.
 pub fn parse(path: &Path, text: &str) -> Result<SceneDescription, SceneError> {
-    let is_nff = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nff"));
-    if is_nff { nff::parse(path, text) } else { toml_format::parse(path, text) }
+    let is_nff = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("nff"));
+    if is_nff {
+        nff::parse(path, text)
+    } else {
+        toml_format::parse(path, text)
+    }
 }
 
 /// Refuses empty or absurd image sizes, saying why.
 pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
     if width == 0 || height == 0 {
-        return Err(format!("image size {width}x{height} is empty: both sides must be at least 1"));
+        return Err(format!(
+            "image size {width}x{height} is empty: both sides must be at least 1"
+        ));
     }
     if width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
         return Err(format!(
@@ -208,7 +232,9 @@ pub fn check_fov(fov: f64) -> Result<(), String> {
     if fov > 0.0 && fov < 180.0 {
         Ok(())
     } else {
-        Err(format!("fov must be between 0 and 180 degrees (exclusive), got {fov}"))
+        Err(format!(
+            "fov must be between 0 and 180 degrees (exclusive), got {fov}"
+        ))
     }
 }
 
@@ -216,10 +242,16 @@ pub fn check_fov(fov: f64) -> Result<(), String> {
 pub fn check_camera(camera: &Camera) -> Result<(), String> {
     check_fov(camera.fov)?;
     let forward = camera.look_at - camera.eye;
-    if !(forward.length() > 0.0) {
-        return Err(format!("camera eye and look_at are the same point {}", camera.eye));
+    if !exceeds(forward.length(), 0.0) {
+        return Err(format!(
+            "camera eye and look_at are the same point {}",
+            camera.eye
+        ));
     }
-    if !(forward.cross(camera.up).length() > 1e-12 * forward.length() * camera.up.length()) {
+    if !exceeds(
+        forward.cross(camera.up).length(),
+        1e-12 * forward.length() * camera.up.length(),
+    ) {
         return Err(format!(
             "camera up {} is zero or parallel to the viewing direction {}",
             camera.up, forward

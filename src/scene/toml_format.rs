@@ -44,9 +44,11 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{
-    Light, Material, Object, SceneDescription, SceneError, Settings, SpecularModel, check_camera, check_image_size,
+    Light, Material, Object, SceneDescription, SceneError, Settings, SpecularModel, check_camera,
+    check_image_size,
 };
 use crate::camera::Camera;
+use crate::math::exceeds;
 use crate::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
 
 /// A number that must be finite: TOML allows `nan` and `inf`, scenes do not.
@@ -59,7 +61,9 @@ impl<'de> Deserialize<'de> for Finite {
         if value.is_finite() {
             Ok(Finite(value))
         } else {
-            Err(serde::de::Error::custom(format!("numbers must be finite, got {value}")))
+            Err(serde::de::Error::custom(format!(
+                "numbers must be finite, got {value}"
+            )))
         }
     }
 }
@@ -248,11 +252,22 @@ pub fn parse(path: &Path, text: &str) -> Result<SceneDescription, SceneError> {
         if let Some(name) = &def.get_ref().name
             && objects.iter().any(|o| o.name == object.name)
         {
-            return Err(source.error(name.span(), format!("object name `{}` is used twice", object.name)));
+            return Err(source.error(
+                name.span(),
+                format!("object name `{}` is used twice", object.name),
+            ));
         }
         objects.push(object);
     }
-    Ok(SceneDescription { camera, width, height, settings, materials, lights, objects })
+    Ok(SceneDescription {
+        camera,
+        width,
+        height,
+        settings,
+        materials,
+        lights,
+        objects,
+    })
 }
 
 fn camera(source: &Source, def: &Spanned<CameraDef>) -> Result<Camera, SceneError> {
@@ -273,7 +288,10 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
         Some(depth) if !(1..=MAX_DEPTH_LIMIT).contains(depth.get_ref()) => {
             return Err(source.error(
                 depth.span(),
-                format!("max_depth must be between 1 and {MAX_DEPTH_LIMIT}, got {}", depth.get_ref()),
+                format!(
+                    "max_depth must be between 1 and {MAX_DEPTH_LIMIT}, got {}",
+                    depth.get_ref()
+                ),
             ));
         }
         Some(depth) => *depth.get_ref(),
@@ -282,7 +300,9 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
     Ok(Settings {
         background: def.background.map_or(defaults.background, vec3),
         ambient: def.ambient.map_or(defaults.ambient, vec3),
-        light_attenuation: def.light_attenuation.map_or(defaults.light_attenuation, triple),
+        light_attenuation: def
+            .light_attenuation
+            .map_or(defaults.light_attenuation, triple),
         ray_attenuation: def.ray_attenuation.map_or(defaults.ray_attenuation, triple),
         max_depth,
         specular: def.specular.unwrap_or_default(),
@@ -290,7 +310,11 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
     })
 }
 
-fn material(source: &Source, name: &str, def: &Spanned<MaterialDef>) -> Result<Material, SceneError> {
+fn material(
+    source: &Source,
+    name: &str,
+    def: &Spanned<MaterialDef>,
+) -> Result<Material, SceneError> {
     let m = def.get_ref();
     let material = Material {
         name: name.to_string(),
@@ -305,9 +329,18 @@ fn material(source: &Source, name: &str, def: &Spanned<MaterialDef>) -> Result<M
     };
     let fail = |what: String| Err(source.error(def.span(), format!("material `{name}`: {what}")));
     if material.color.min_element() < 0.0 {
-        return fail(format!("color components must be >= 0, got {}", material.color));
+        return fail(format!(
+            "color components must be >= 0, got {}",
+            material.color
+        ));
     }
-    for (key, value) in [("kd", material.kd), ("ks", material.ks), ("n", material.shininess), ("kt", material.kt), ("ka", material.ka)] {
+    for (key, value) in [
+        ("kd", material.kd),
+        ("ks", material.ks),
+        ("n", material.shininess),
+        ("kt", material.kt),
+        ("ka", material.ka),
+    ] {
         if value < 0.0 {
             return fail(format!("{key} must be >= 0, got {value}"));
         }
@@ -315,7 +348,7 @@ fn material(source: &Source, name: &str, def: &Spanned<MaterialDef>) -> Result<M
     if material.kt > 1.0 {
         return fail(format!("kt must be at most 1, got {}", material.kt));
     }
-    if !(material.ior > 0.0) {
+    if !exceeds(material.ior, 0.0) {
         return fail(format!("ior must be > 0, got {}", material.ior));
     }
     Ok(material)
@@ -325,7 +358,10 @@ fn light(source: &Source, index: usize, def: &Spanned<LightDef>) -> Result<Light
     let l = def.get_ref();
     let color = l.color.map_or(DVec3::ONE, vec3);
     if color.min_element() < 0.0 {
-        return Err(source.error(def.span(), format!("light color components must be >= 0, got {color}")));
+        return Err(source.error(
+            def.span(),
+            format!("light color components must be >= 0, got {color}"),
+        ));
     }
     Ok(Light {
         name: l.name.clone().unwrap_or_else(|| format!("light {index}")),
@@ -334,19 +370,31 @@ fn light(source: &Source, index: usize, def: &Spanned<LightDef>) -> Result<Light
     })
 }
 
-fn object(source: &Source, index: usize, def: &Spanned<ObjectDef>, materials: &[Material]) -> Result<Object, SceneError> {
+fn object(
+    source: &Source,
+    index: usize,
+    def: &Spanned<ObjectDef>,
+    materials: &[Material],
+) -> Result<Object, SceneError> {
     let o = def.get_ref();
-    let material = materials.iter().position(|m| &m.name == o.material.get_ref()).ok_or_else(|| {
-        let known: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
-        source.error(
-            o.material.span(),
-            format!(
-                "unknown material `{}`; the materials defined are: {}",
-                o.material.get_ref(),
-                if known.is_empty() { "none".to_string() } else { known.join(", ") }
-            ),
-        )
-    })?;
+    let material = materials
+        .iter()
+        .position(|m| &m.name == o.material.get_ref())
+        .ok_or_else(|| {
+            let known: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+            source.error(
+                o.material.span(),
+                format!(
+                    "unknown material `{}`; the materials defined are: {}",
+                    o.material.get_ref(),
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                ),
+            )
+        })?;
     let (shape, span) = shape(o).ok_or_else(|| {
         source.error(
             def.span(),
@@ -354,8 +402,15 @@ fn object(source: &Source, index: usize, def: &Spanned<ObjectDef>, materials: &[
         )
     })?;
     let shape = shape.map_err(|e| source.error(span, e))?;
-    let name = o.name.as_ref().map_or_else(|| format!("{} {index}", shape.kind()), |n| n.get_ref().clone());
-    Ok(Object { name, shape, material })
+    let name = o.name.as_ref().map_or_else(
+        || format!("{} {index}", shape.kind()),
+        |n| n.get_ref().clone(),
+    );
+    Ok(Object {
+        name,
+        shape,
+        material,
+    })
 }
 
 /// The object's one shape and where it is written, or `None` when there is
@@ -365,27 +420,46 @@ fn shape(o: &ObjectDef) -> Option<(Result<Shape, GeometryError>, Range<usize>)> 
     let mut shapes = Vec::new();
     if let Some(s) = &o.sphere {
         let d = s.get_ref();
-        shapes.push((Sphere::new(vec3(d.center), d.radius.0).map(Shape::Sphere), s.span()));
+        shapes.push((
+            Sphere::new(vec3(d.center), d.radius.0).map(Shape::Sphere),
+            s.span(),
+        ));
     }
     if let Some(s) = &o.plane {
         let d = s.get_ref();
-        shapes.push((Plane::new(vec3(d.normal), vec3(d.point)).map(Shape::Plane), s.span()));
+        shapes.push((
+            Plane::new(vec3(d.normal), vec3(d.point)).map(Shape::Plane),
+            s.span(),
+        ));
     }
     if let Some(s) = &o.polygon {
-        shapes.push((Polygon::new(points(&s.get_ref().vertices)).map(Shape::Polygon), s.span()));
+        shapes.push((
+            Polygon::new(points(&s.get_ref().vertices)).map(Shape::Polygon),
+            s.span(),
+        ));
     }
     if let Some(s) = &o.patch {
         let d = s.get_ref();
-        shapes.push((Patch::new(points(&d.vertices), points(&d.normals)).map(Shape::Patch), s.span()));
+        shapes.push((
+            Patch::new(points(&d.vertices), points(&d.normals)).map(Shape::Patch),
+            s.span(),
+        ));
     }
     if let Some(s) = &o.cylinder {
         let d = s.get_ref();
-        shapes.push((Cone::new(vec3(d.base), d.radius.0, vec3(d.apex), d.radius.0).map(Shape::Cone), s.span()));
+        shapes.push((
+            Cone::new(vec3(d.base), d.radius.0, vec3(d.apex), d.radius.0).map(Shape::Cone),
+            s.span(),
+        ));
     }
     if let Some(s) = &o.cone {
         let d = s.get_ref();
         let cone = Cone::new(vec3(d.base), d.base_radius.0, vec3(d.apex), d.apex_radius.0);
         shapes.push((cone.map(Shape::Cone), s.span()));
     }
-    if shapes.len() == 1 { shapes.pop() } else { None }
+    if shapes.len() == 1 {
+        shapes.pop()
+    } else {
+        None
+    }
 }

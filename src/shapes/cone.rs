@@ -6,7 +6,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 use super::{Aabb, GeometryError, Roots};
-use crate::math::{Interval, Ray};
+use crate::math::{Interval, Ray, exceeds};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cone {
@@ -52,12 +52,17 @@ impl ConeWorking {
 }
 
 impl Cone {
-    pub fn new(base: DVec3, base_radius: f64, apex: DVec3, apex_radius: f64) -> Result<Self, GeometryError> {
+    pub fn new(
+        base: DVec3,
+        base_radius: f64,
+        apex: DVec3,
+        apex_radius: f64,
+    ) -> Result<Self, GeometryError> {
         let height = (apex - base).length();
-        if !(height > 0.0) {
+        if !exceeds(height, 0.0) {
             return Err(GeometryError("the cone's two ends coincide".into()));
         }
-        if base_radius < 0.0 || apex_radius < 0.0 || !(base_radius.max(apex_radius) > 0.0) {
+        if base_radius < 0.0 || apex_radius < 0.0 || !exceeds(base_radius.max(apex_radius), 0.0) {
             return Err(GeometryError(format!(
                 "cone radii must be >= 0 and not both 0, got {base_radius} and {apex_radius}"
             )));
@@ -150,9 +155,16 @@ impl Cone {
 
     pub fn bounds(&self) -> Aabb {
         // Each end circle lies in the box centre +- r * sqrt(1 - axis_i^2).
-        let extent = |r: f64| r * (DVec3::ONE - self.axis * self.axis).max(DVec3::ZERO).powf(0.5);
+        let extent = |r: f64| {
+            r * (DVec3::ONE - self.axis * self.axis)
+                .max(DVec3::ZERO)
+                .powf(0.5)
+        };
         let (eb, ea) = (extent(self.base_radius), extent(self.apex_radius));
-        Aabb::new((self.base - eb).min(self.apex - ea), (self.base + eb).max(self.apex + ea))
+        Aabb::new(
+            (self.base - eb).min(self.apex - ea),
+            (self.base + eb).max(self.apex + ea),
+        )
     }
 }
 
@@ -175,7 +187,10 @@ mod tests {
         assert_eq!(w.t(), Some(2.0));
         // Hit point (-1, 0, 1): outward normal (-1, 0, 0).
         assert_eq!(cylinder.normal_at(ray.at(2.0)), DVec3::new(-1.0, 0.0, 0.0));
-        assert_eq!(cylinder.roots(&ray, Interval::in_front()).as_slice(), &[2.0, 4.0]);
+        assert_eq!(
+            cylinder.roots(&ray, Interval::in_front()).as_slice(),
+            &[2.0, 4.0]
+        );
     }
 
     #[test]
@@ -228,7 +243,12 @@ mod tests {
 
     #[test]
     fn degenerate_cones_are_rejected() {
-        assert!(Cone::new(DVec3::ONE, 1.0, DVec3::ONE, 1.0).unwrap_err().0.contains("coincide"));
+        assert!(
+            Cone::new(DVec3::ONE, 1.0, DVec3::ONE, 1.0)
+                .unwrap_err()
+                .0
+                .contains("coincide")
+        );
         assert!(Cone::new(DVec3::ZERO, 0.0, DVec3::Z, 0.0).is_err());
         assert!(Cone::new(DVec3::ZERO, -1.0, DVec3::Z, 1.0).is_err());
     }

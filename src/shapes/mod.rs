@@ -52,7 +52,10 @@ pub struct Roots {
 }
 
 impl Roots {
-    pub const NONE: Roots = Roots { ts: [0.0; 2], count: 0 };
+    pub const NONE: Roots = Roots {
+        ts: [0.0; 2],
+        count: 0,
+    };
 
     fn of_one(t: Option<f64>) -> Roots {
         let mut roots = Roots::NONE;
@@ -171,14 +174,19 @@ pub struct Aabb {
 }
 
 impl Aabb {
-    pub const EMPTY: Aabb = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
+    pub const EMPTY: Aabb = Aabb {
+        min: DVec3::INFINITY,
+        max: DVec3::NEG_INFINITY,
+    };
 
     pub fn new(min: DVec3, max: DVec3) -> Self {
         Self { min, max }
     }
 
     pub fn around(points: &[DVec3]) -> Self {
-        points.iter().fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(*p, *p)))
+        points
+            .iter()
+            .fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(*p, *p)))
     }
 
     pub fn union(&self, other: &Aabb) -> Aabb {

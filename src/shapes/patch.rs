@@ -4,8 +4,10 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use super::polygon::{Polygon, PolygonWorking};
+use crate::math::exceeds;
+
 use super::GeometryError;
+use super::polygon::{Polygon, PolygonWorking};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
@@ -37,12 +39,15 @@ impl Patch {
         let mut unit = Vec::with_capacity(normals.len());
         for (i, n) in normals.iter().enumerate() {
             let length = n.length();
-            if !(length > 0.0) || !length.is_finite() {
+            if !exceeds(length, 0.0) || !length.is_finite() {
                 return Err(GeometryError(format!("vertex normal {i} is zero")));
             }
             unit.push(*n / length);
         }
-        Ok(Self { polygon, normals: unit })
+        Ok(Self {
+            polygon,
+            normals: unit,
+        })
     }
 
     /// The fan triangle holding `point` and the point's barycentric weights in it,
@@ -77,7 +82,11 @@ impl Patch {
         let (i, [w0, wi, wj]) = self.locate(point);
         let blended = w0 * self.normals[0] + wi * self.normals[i] + wj * self.normals[i + 1];
         let length = blended.length();
-        if length > 0.0 { blended / length } else { self.polygon.plane.normal }
+        if length > 0.0 {
+            blended / length
+        } else {
+            self.polygon.plane.normal
+        }
     }
 }
 

@@ -5,7 +5,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 use super::{GeometryError, Roots};
-use crate::math::{Interval, Ray};
+use crate::math::{Interval, Ray, exceeds};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plane {
@@ -39,21 +39,40 @@ impl Plane {
     /// The plane through `point` with the given normal (normalized here).
     pub fn new(normal: DVec3, point: DVec3) -> Result<Self, GeometryError> {
         let length = normal.length();
-        if !(length > 0.0) || !length.is_finite() {
-            return Err(GeometryError(format!("plane normal must be non-zero, got {normal}")));
+        if !exceeds(length, 0.0) || !length.is_finite() {
+            return Err(GeometryError(format!(
+                "plane normal must be non-zero, got {normal}"
+            )));
         }
         let normal = normal / length;
-        Ok(Self { normal, d: -normal.dot(point) })
+        Ok(Self {
+            normal,
+            d: -normal.dot(point),
+        })
     }
 
     pub fn solve(&self, ray: &Ray, range: Interval) -> PlaneWorking {
         let v_d = self.normal.dot(ray.direction);
         let v_0 = -(self.normal.dot(ray.origin) + self.d);
         if v_d == 0.0 {
-            return PlaneWorking { v_d, v_0, parallel: true, faces_away: false, t: None, behind: true };
+            return PlaneWorking {
+                v_d,
+                v_0,
+                parallel: true,
+                faces_away: false,
+                t: None,
+                behind: true,
+            };
         }
         let t = v_0 / v_d;
-        PlaneWorking { v_d, v_0, parallel: false, faces_away: v_d > 0.0, t: Some(t), behind: !range.surrounds(t) }
+        PlaneWorking {
+            v_d,
+            v_0,
+            parallel: false,
+            faces_away: v_d > 0.0,
+            t: Some(t),
+            behind: !range.surrounds(t),
+        }
     }
 
     pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {

@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use super::plane::{Plane, PlaneWorking};
 use super::{Aabb, GeometryError, Roots};
-use crate::math::{Interval, Ray};
+use crate::math::{Interval, Ray, exceeds};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
@@ -89,7 +89,7 @@ impl Polygon {
         }
         let cross = (vertices[1] - vertices[0]).cross(vertices[2] - vertices[0]);
         let extent = Aabb::around(&vertices).diagonal();
-        if !(cross.length() > 1e-12 * extent * extent) {
+        if !exceeds(cross.length(), 1e-12 * extent * extent) {
             return Err(GeometryError(
                 "vertices 0, 1 and 2 are collinear, so the normal (v1 - v0) x (v2 - v0) is undefined"
                     .into(),
@@ -107,7 +107,12 @@ impl Polygon {
         }
         let dropped = Axis::dominant(plane.normal);
         let projected = vertices.iter().map(|v| dropped.project(*v)).collect();
-        Ok(Self { vertices, plane, dropped, projected })
+        Ok(Self {
+            vertices,
+            plane,
+            dropped,
+            projected,
+        })
     }
 
     pub fn solve(&self, ray: &Ray, range: Interval) -> PolygonWorking {
@@ -170,7 +175,12 @@ mod tests {
     #[test]
     fn convex_square_inside_and_outside() {
         // Unit square, counter-clockwise seen from +z: normal (0,0,1), D = 0, drop z.
-        let square = polygon(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+        let square = polygon(&[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ]);
         assert_eq!(square.dropped, Axis::Z);
         // Point (0.5, 0.5): vertices translated are (-.5,-.5) (.5,-.5) (.5,.5) (-.5,.5).
         // Edges crossing V = 0: (.5,-.5)->(.5,.5) at U = .5 > 0 (counts),
@@ -181,7 +191,10 @@ mod tests {
         assert_eq!((test.crossings, test.inside), (1, true));
         assert_eq!(w.hit_t(), Some(5.0));
         // Point (-1, 0.5): both crossing edges at U = 2 and U = 1: two, outside.
-        let test = square.solve(&down_at(-1.0, 0.5), Interval::in_front()).crossing.unwrap();
+        let test = square
+            .solve(&down_at(-1.0, 0.5), Interval::in_front())
+            .crossing
+            .unwrap();
         assert_eq!((test.crossings, test.inside), (2, false));
     }
 
@@ -200,10 +213,16 @@ mod tests {
         ]);
         // (1.5, 2): edges crossing V = 0 (y = 2) are x = 3, x = 2 (the notch's right
         // side), x = 1 and x = 0. Right of the point (U > 0): x = 3 and x = 2: two, outside.
-        let test = u_shape.solve(&down_at(1.5, 2.0), Interval::in_front()).crossing.unwrap();
+        let test = u_shape
+            .solve(&down_at(1.5, 2.0), Interval::in_front())
+            .crossing
+            .unwrap();
         assert_eq!((test.crossings, test.inside), (2, false));
         // (0.5, 2): right of it x = 1, 2, 3: three, inside the left arm.
-        let test = u_shape.solve(&down_at(0.5, 2.0), Interval::in_front()).crossing.unwrap();
+        let test = u_shape
+            .solve(&down_at(0.5, 2.0), Interval::in_front())
+            .crossing
+            .unwrap();
         assert_eq!((test.crossings, test.inside), (3, true));
     }
 
@@ -213,12 +232,23 @@ mod tests {
         // (2,0) lies exactly on the axis. V >= 0 counts as above, so the edges
         // (0,-1)->(2,0) crosses (below -> above) and (2,0)->(0,1) does not
         // (above -> above): one crossing, inside.
-        let diamond = polygon(&[[0.0, -1.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-2.0, 0.0, 0.0]]);
-        let test = diamond.solve(&down_at(0.0, 0.0), Interval::in_front()).crossing.unwrap();
+        let diamond = polygon(&[
+            [0.0, -1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [-2.0, 0.0, 0.0],
+        ]);
+        let test = diamond
+            .solve(&down_at(0.0, 0.0), Interval::in_front())
+            .crossing
+            .unwrap();
         // The edge (-2,0)->(0,-1) goes above -> below at U = -2: not counted.
         assert_eq!((test.crossings, test.inside), (1, true));
         // Point (-3, 0): edges at U = 5 via the vertex (2,0) once, and U = 1 via (-2,0): 2, outside.
-        let test = diamond.solve(&down_at(-3.0, 0.0), Interval::in_front()).crossing.unwrap();
+        let test = diamond
+            .solve(&down_at(-3.0, 0.0), Interval::in_front())
+            .crossing
+            .unwrap();
         assert_eq!((test.crossings, test.inside), (2, false));
     }
 
@@ -228,14 +258,22 @@ mod tests {
         let tilted = polygon(&[[2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 4.0]]);
         assert_eq!(tilted.dropped, Axis::Y);
         // (U, V) = (x, z) keep x-y-z order.
-        assert_eq!(Axis::Y.project(DVec3::new(1.0, 2.0, 3.0)), DVec2::new(1.0, 3.0));
+        assert_eq!(
+            Axis::Y.project(DVec3::new(1.0, 2.0, 3.0)),
+            DVec2::new(1.0, 3.0)
+        );
         // A tie between x and y drops x.
         assert_eq!(Axis::dominant(DVec3::new(1.0, -1.0, 0.5)), Axis::X);
     }
 
     #[test]
     fn polygon_seen_from_behind_is_hit() {
-        let square = polygon(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+        let square = polygon(&[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ]);
         let from_below = Ray::new(DVec3::new(0.5, 0.5, -2.0), DVec3::Z);
         let w = square.solve(&from_below, Interval::in_front());
         assert!(w.plane.faces_away);
@@ -248,7 +286,12 @@ mod tests {
         assert!(Polygon::new(two).unwrap_err().0.contains("at least 3"));
         let collinear = vec![DVec3::ZERO, DVec3::X, DVec3::X * 2.0, DVec3::Y];
         assert!(Polygon::new(collinear).unwrap_err().0.contains("collinear"));
-        let bent = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.0, 1.0, 0.5)];
+        let bent = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.5),
+        ];
         assert!(Polygon::new(bent).unwrap_err().0.contains("not planar"));
     }
 }

@@ -4,7 +4,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 use super::{Aabb, GeometryError, Roots};
-use crate::math::{Interval, Ray};
+use crate::math::{Interval, Ray, exceeds};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sphere {
@@ -41,8 +41,10 @@ pub struct SphereWorking {
 
 impl Sphere {
     pub fn new(center: DVec3, radius: f64) -> Result<Self, GeometryError> {
-        if !(radius > 0.0) {
-            return Err(GeometryError(format!("sphere radius must be > 0, got {radius}")));
+        if !exceeds(radius, 0.0) {
+            return Err(GeometryError(format!(
+                "sphere radius must be > 0, got {radius}"
+            )));
         }
         Ok(Self { center, radius })
     }
@@ -55,7 +57,15 @@ impl Sphere {
         let c = oc.length_squared() - self.radius * self.radius;
         let discriminant = b * b - 4.0 * a * c;
         if discriminant < 0.0 {
-            return SphereWorking { a, b, c, discriminant, t0: None, t1: None, choice: RootChoice::NoRealRoots };
+            return SphereWorking {
+                a,
+                b,
+                c,
+                discriminant,
+                t0: None,
+                t1: None,
+                choice: RootChoice::NoRealRoots,
+            };
         }
         let root = discriminant.sqrt();
         let t0 = (-b - root) / (2.0 * a);
@@ -67,7 +77,15 @@ impl Sphere {
         } else {
             RootChoice::BothBehind
         };
-        SphereWorking { a, b, c, discriminant, t0: Some(t0), t1: Some(t1), choice }
+        SphereWorking {
+            a,
+            b,
+            c,
+            discriminant,
+            t0: Some(t0),
+            t1: Some(t1),
+            choice,
+        }
     }
 
     pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {
@@ -83,7 +101,10 @@ impl Sphere {
     }
 
     pub fn bounds(&self) -> Aabb {
-        Aabb::new(self.center - DVec3::splat(self.radius), self.center + DVec3::splat(self.radius))
+        Aabb::new(
+            self.center - DVec3::splat(self.radius),
+            self.center + DVec3::splat(self.radius),
+        )
     }
 }
 
