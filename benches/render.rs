@@ -11,7 +11,13 @@ use raystep::trace::{NoRecorder, RayStats};
 
 fn scene(relative: &str, size: u32) -> Option<Scene> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
-    path.exists().then(|| load(&path).unwrap().prepare().with_size(size, size).unwrap())
+    path.exists().then(|| {
+        load(&path)
+            .unwrap()
+            .prepare()
+            .with_size(size, size)
+            .unwrap()
+    })
 }
 
 fn recorders(c: &mut Criterion) {
@@ -20,21 +26,32 @@ fn recorders(c: &mut Criterion) {
         ("teapot", "../shared/spd/teapot.nff"),
         ("gears", "../shared/spd/gears.nff"),
     ] {
-        let Some(scene) = scene(relative, 128) else { continue };
+        let Some(scene) = scene(relative, 128) else {
+            continue;
+        };
         let mut group = c.benchmark_group(format!("render 128x128 {name}"));
         group.sample_size(20);
-        group.bench_function("recording off (NoRecorder)", |b| b.iter(|| render::<NoRecorder>(&scene, &|| {})));
-        group.bench_function("ray counts on (RayStats)", |b| b.iter(|| render::<RayStats>(&scene, &|| {})));
+        group.bench_function("recording off (NoRecorder)", |b| {
+            b.iter(|| render::<NoRecorder>(&scene, &|| {}))
+        });
+        group.bench_function("ray counts on (RayStats)", |b| {
+            b.iter(|| render::<RayStats>(&scene, &|| {}))
+        });
         group.finish();
     }
 }
 
 fn pick_pixel(c: &mut Criterion) {
-    for (name, relative, x, y) in
-        [("teapot", "../shared/spd/teapot.nff", 256, 256), ("gears", "../shared/spd/gears.nff", 256, 300)]
-    {
-        let Some(scene) = scene(relative, 512) else { continue };
-        c.bench_function(&format!("record one pixel {name}"), |b| b.iter(|| record_pixel(&scene, x, y)));
+    for (name, relative, x, y) in [
+        ("teapot", "../shared/spd/teapot.nff", 256, 256),
+        ("gears", "../shared/spd/gears.nff", 256, 300),
+    ] {
+        let Some(scene) = scene(relative, 512) else {
+            continue;
+        };
+        c.bench_function(&format!("record one pixel {name}"), |b| {
+            b.iter(|| record_pixel(&scene, x, y))
+        });
     }
 }
 

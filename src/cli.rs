@@ -100,16 +100,23 @@ pub struct SizeArg {
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`{text}` is not a size: expected WIDTHxHEIGHT, e.g. 320x240");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
-    let (w, h) = (w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?);
+    let (w, h) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
     scene::check_image_size(w, h)?;
     Ok((w, h))
 }
 
 /// Parses `X,Y`, e.g. `160,120`.
 pub fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 160,120");
+    let bad =
+        || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 160,120");
     let (x, y) = text.split_once(',').ok_or_else(bad)?;
-    Ok((x.trim().parse().map_err(|_| bad())?, y.trim().parse().map_err(|_| bad())?))
+    Ok((
+        x.trim().parse().map_err(|_| bad())?,
+        y.trim().parse().map_err(|_| bad())?,
+    ))
 }
 
 /// The scene shown when none is named: the seven-rays scene.
@@ -166,7 +173,10 @@ fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
     let phong = scene.settings.specular == crate::scene::SpecularModel::Phong;
     match args.format {
         InspectFormat::Text => emit(&text(&tree, phong))?,
-        InspectFormat::Json => emit(&format!("{}\n", serde_json::to_string_pretty(&tree.to_json())?))?,
+        InspectFormat::Json => emit(&format!(
+            "{}\n",
+            serde_json::to_string_pretty(&tree.to_json())?
+        ))?,
         InspectFormat::Dot => emit(&dot(&tree))?,
     }
     Ok(ExitCode::SUCCESS)
@@ -187,7 +197,11 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     let threads = args.threads.map(usize::from);
     let traced = Instant::now();
     let (image, stats) = with_threads(threads, || {
-        if args.stats { render::<RayStats>(&scene, &tick) } else { (render::<NoRecorder>(&scene, &tick).0, RayStats::default()) }
+        if args.stats {
+            render::<RayStats>(&scene, &tick)
+        } else {
+            (render::<NoRecorder>(&scene, &tick).0, RayStats::default())
+        }
     })?;
     let tracing = traced.elapsed().as_secs_f64();
     progress.finish_and_clear();
@@ -218,7 +232,9 @@ fn emit(text: &str) -> Result<()> {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
     match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e).context("cannot write to stdout"),
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(e).context("cannot write to stdout")
+        }
         _ => Ok(()),
     }
 }
@@ -237,7 +253,9 @@ fn progress_bar(rows: u32) -> indicatif::ProgressBar {
         return indicatif::ProgressBar::hidden();
     }
     let bar = indicatif::ProgressBar::new(rows.into());
-    if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} rendering {bar:40} {pos}/{len} rows {elapsed}") {
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{spinner} rendering {bar:40} {pos}/{len} rows {elapsed}",
+    ) {
         bar.set_style(style);
     }
     bar

@@ -3,14 +3,14 @@
 //! One engine renders whole images and records, for any pixel, the tree of
 //! rays and illumination terms that produced its colour (see MODEL.md).
 
-pub mod camera;
-pub mod math;
-pub mod shapes;
 pub mod accel;
-pub mod scene;
-pub mod trace;
+pub mod camera;
 pub mod cli;
-pub mod render;
+pub mod math;
 pub mod record;
+pub mod render;
+pub mod scene;
+pub mod shapes;
 pub mod terms;
+pub mod trace;
 pub mod tui;

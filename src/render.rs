@@ -58,7 +58,10 @@ pub fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + 
     match threads {
         None => Ok(work()),
         Some(n) => {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().context("cannot start threads")?;
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .context("cannot start threads")?;
             Ok(pool.install(work))
         }
     }
@@ -72,7 +75,11 @@ pub fn write_png(path: &Path, image: &RgbImage) -> Result<()> {
         _ => Path::new("."),
     };
     let fail = || format!("cannot write {}", path.display());
-    let temp = tempfile::Builder::new().prefix(".raystep-").suffix(".png.tmp").tempfile_in(dir).with_context(fail)?;
+    let temp = tempfile::Builder::new()
+        .prefix(".raystep-")
+        .suffix(".png.tmp")
+        .tempfile_in(dir)
+        .with_context(fail)?;
     {
         let mut out = BufWriter::new(temp.as_file());
         let encoder = image::codecs::png::PngEncoder::new(&mut out);

@@ -157,23 +157,35 @@ pub struct TermImages {
 pub fn render_terms(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> TermImages {
     let viewport = scene.camera.viewport(scene.width, scene.height);
     let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
-    pixels.par_chunks_mut(scene.width as usize).enumerate().for_each(|(y, row)| {
-        for (x, pixel) in row.iter_mut().enumerate() {
-            let mut rec = TermsRecorder::default();
-            let color = trace_pixel(scene, &viewport, x as u32, y as u32, &mut rec);
-            rec.terms.color = color;
-            rec.terms.shadow = (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);
-            *pixel = rec.terms;
-        }
-        row_done();
-    });
-    TermImages { width: scene.width, height: scene.height, pixels }
+    pixels
+        .par_chunks_mut(scene.width as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, pixel) in row.iter_mut().enumerate() {
+                let mut rec = TermsRecorder::default();
+                let color = trace_pixel(scene, &viewport, x as u32, y as u32, &mut rec);
+                rec.terms.color = color;
+                rec.terms.shadow =
+                    (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);
+                *pixel = rec.terms;
+            }
+            row_done();
+        });
+    TermImages {
+        width: scene.width,
+        height: scene.height,
+        pixels,
+    }
 }
 
 impl TermImages {
     /// The largest count in a count view (rays or cost), for its legend.
     pub fn max_count(&self, term: Term) -> u32 {
-        self.pixels.iter().map(|p| if term == Term::Rays { p.rays } else { p.cost }).max().unwrap_or(0)
+        self.pixels
+            .iter()
+            .map(|p| if term == Term::Rays { p.rays } else { p.cost })
+            .max()
+            .unwrap_or(0)
     }
 
     /// One pixel of a view as 8-bit RGB; counts are scaled by `max_count`.
@@ -210,11 +222,20 @@ impl TermImages {
 
 /// A dark-blue to yellow ramp for counts in [0, 1].
 pub fn false_color(v: f64) -> [u8; 3] {
-    const STOPS: [[f64; 3]; 5] =
-        [[0.05, 0.03, 0.25], [0.25, 0.2, 0.6], [0.1, 0.55, 0.55], [0.5, 0.8, 0.25], [1.0, 0.95, 0.2]];
+    const STOPS: [[f64; 3]; 5] = [
+        [0.05, 0.03, 0.25],
+        [0.25, 0.2, 0.6],
+        [0.1, 0.55, 0.55],
+        [0.5, 0.8, 0.25],
+        [1.0, 0.95, 0.2],
+    ];
     let v = v.clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
     let i = (v.floor() as usize).min(STOPS.len() - 2);
     let f = v - i as f64;
     let [a, b] = [STOPS[i], STOPS[i + 1]];
-    to_rgb8(Color::new(a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2])))
+    to_rgb8(Color::new(
+        a[0] + f * (b[0] - a[0]),
+        a[1] + f * (b[1] - a[1]),
+        a[2] + f * (b[2] - a[2]),
+    ))
 }

@@ -5,7 +5,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn raystep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raystep")).args(args).output().expect("raystep runs")
+    Command::new(env!("CARGO_BIN_EXE_raystep"))
+        .args(args)
+        .output()
+        .expect("raystep runs")
 }
 
 fn stderr(output: &Output) -> String {
@@ -27,9 +30,18 @@ fn render_fails(name: &str, text: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
     let path = scene_file(&dir, name, text);
     let out = dir.path().join("out.png");
-    let output = raystep(&["render", path.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let output = raystep(&[
+        "render",
+        path.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     let message = stderr(&output);
-    assert_eq!(output.status.code(), Some(1), "exit code, stderr: {message}");
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "exit code, stderr: {message}"
+    );
     assert!(!message.contains("panicked"), "{message}");
     assert!(!out.exists(), "no output written on failure");
     message
@@ -40,7 +52,12 @@ fn good_scene_renders() {
     let dir = tempfile::tempdir().unwrap();
     let path = scene_file(&dir, "good.toml", GOOD);
     let out = dir.path().join("out.png");
-    let output = raystep(&["render", path.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let output = raystep(&[
+        "render",
+        path.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let image = image::open(&out).unwrap();
     assert_eq!((image.width(), image.height()), (8, 6));
@@ -50,19 +67,31 @@ fn good_scene_renders() {
 fn syntax_error_names_file_line_and_column() {
     let message = render_fails("bad.toml", "[camera]\nfov = abc\n");
     assert!(message.contains("bad.toml:2:7:"), "{message}");
-    assert!(message.contains("2 | fov = abc"), "shows the offending line: {message}");
+    assert!(
+        message.contains("2 | fov = abc"),
+        "shows the offending line: {message}"
+    );
 }
 
 #[test]
 fn misspelt_key_is_an_error() {
     let message = render_fails("typo.toml", &GOOD.replace("radius", "radious"));
-    assert!(message.contains("radious") && message.contains("typo.toml:13:"), "{message}");
+    assert!(
+        message.contains("radious") && message.contains("typo.toml:13:"),
+        "{message}"
+    );
 }
 
 #[test]
 fn unknown_material_is_named() {
-    let message = render_fails("mat.toml", &GOOD.replace("material = \"m\"", "material = \"glas\""));
-    assert!(message.contains("unknown material `glas`") && message.contains("mat.toml:12:12"), "{message}");
+    let message = render_fails(
+        "mat.toml",
+        &GOOD.replace("material = \"m\"", "material = \"glas\""),
+    );
+    assert!(
+        message.contains("unknown material `glas`") && message.contains("mat.toml:12:12"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -97,36 +126,67 @@ fn degenerate_geometry_is_refused() {
     ];
     for (from, to, expected) in cases {
         let message = render_fails("geometry.toml", &GOOD.replace(from, to));
-        assert!(message.contains(expected) && message.contains("geometry.toml:13:"), "{expected}: {message}");
+        assert!(
+            message.contains(expected) && message.contains("geometry.toml:13:"),
+            "{expected}: {message}"
+        );
     }
 }
 
 #[test]
 fn non_finite_numbers_are_refused() {
     let message = render_fails("nan.toml", &GOOD.replace("radius = 1", "radius = nan"));
-    assert!(message.contains("finite") && message.contains("nan.toml:13:"), "{message}");
-    let message = render_fails("inf.toml", &GOOD.replace("eye = [0, 0, 5]", "eye = [0, inf, 5]"));
-    assert!(message.contains("finite") && message.contains("inf.toml:2:"), "{message}");
+    assert!(
+        message.contains("finite") && message.contains("nan.toml:13:"),
+        "{message}"
+    );
+    let message = render_fails(
+        "inf.toml",
+        &GOOD.replace("eye = [0, 0, 5]", "eye = [0, inf, 5]"),
+    );
+    assert!(
+        message.contains("finite") && message.contains("inf.toml:2:"),
+        "{message}"
+    );
 }
 
 #[test]
 fn field_of_view_must_lie_strictly_between_0_and_180() {
     for fov in ["0", "180", "-5"] {
-        let message = render_fails("fov.toml", &GOOD.replace("look_at = [0, 0, 0]\n", &format!("look_at = [0, 0, 0]\nfov = {fov}\n")));
-        assert!(message.contains("fov must be between 0 and 180"), "{message}");
+        let message = render_fails(
+            "fov.toml",
+            &GOOD.replace(
+                "look_at = [0, 0, 0]\n",
+                &format!("look_at = [0, 0, 0]\nfov = {fov}\n"),
+            ),
+        );
+        assert!(
+            message.contains("fov must be between 0 and 180"),
+            "{message}"
+        );
     }
 }
 
 #[test]
 fn empty_and_absurd_image_sizes_are_refused() {
     let message = render_fails("zero.toml", &GOOD.replace("width = 8", "width = 0"));
-    assert!(message.contains("empty") && message.contains("zero.toml:"), "{message}");
+    assert!(
+        message.contains("empty") && message.contains("zero.toml:"),
+        "{message}"
+    );
     let message = render_fails("huge.toml", &GOOD.replace("width = 8", "width = 100000"));
     assert!(message.contains("at most 16384"), "{message}");
     let dir = tempfile::tempdir().unwrap();
     let path = scene_file(&dir, "good.toml", GOOD);
     let out = dir.path().join("out.png");
-    let output = raystep(&["render", path.to_str().unwrap(), "-o", out.to_str().unwrap(), "--size", "0x10"]);
+    let output = raystep(&[
+        "render",
+        path.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "0x10",
+    ]);
     assert_eq!(output.status.code(), Some(2), "clap rejects the argument");
     assert!(stderr(&output).contains("empty"), "{}", stderr(&output));
 }
@@ -135,22 +195,41 @@ fn empty_and_absurd_image_sizes_are_refused() {
 fn nff_with_missing_or_extra_numbers() {
     let view = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 6\n";
     let message = render_fails("short.nff", &format!("{view}s 0 0 0\n"));
-    assert!(message.contains("short.nff:8:") && message.contains("expected a number"), "{message}");
+    assert!(
+        message.contains("short.nff:8:") && message.contains("expected a number"),
+        "{message}"
+    );
     let message = render_fails("long.nff", &format!("{view}s 0 0 0 1 7\n"));
-    assert!(message.contains("long.nff:8:11") && message.contains("unexpected number"), "{message}");
+    assert!(
+        message.contains("long.nff:8:11") && message.contains("unexpected number"),
+        "{message}"
+    );
 }
 
 #[test]
 fn unreadable_input_and_unwritable_output() {
     let output = raystep(&["render", "/no/such/scene.toml", "-o", "/tmp/x.png"]);
     assert_eq!(output.status.code(), Some(1));
-    assert!(stderr(&output).contains("cannot read /no/such/scene.toml"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("cannot read /no/such/scene.toml"),
+        "{}",
+        stderr(&output)
+    );
 
     let dir = tempfile::tempdir().unwrap();
     let path = scene_file(&dir, "good.toml", GOOD);
-    let output = raystep(&["render", path.to_str().unwrap(), "-o", "/no/such/dir/out.png"]);
+    let output = raystep(&[
+        "render",
+        path.to_str().unwrap(),
+        "-o",
+        "/no/such/dir/out.png",
+    ]);
     assert_eq!(output.status.code(), Some(1));
-    assert!(stderr(&output).contains("cannot write /no/such/dir/out.png"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("cannot write /no/such/dir/out.png"),
+        "{}",
+        stderr(&output)
+    );
 }
 
 #[test]
@@ -163,7 +242,10 @@ fn failed_render_leaves_an_existing_file_intact() {
     assert_eq!(output.status.code(), Some(1));
     assert_eq!(std::fs::read(&out).unwrap(), b"previous contents");
     // No temporary file is left behind either.
-    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(names.len(), 2, "{names:?}");
 }
 
@@ -173,11 +255,19 @@ fn pixel_outside_the_image_and_malformed_pixel() {
     let scene = scene.to_str().unwrap();
     let output = raystep(&["inspect", scene, "--pixel", "161,0"]);
     assert_eq!(output.status.code(), Some(1));
-    assert!(stderr(&output).contains("pixel (161, 0) is outside the 161x121 image"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("pixel (161, 0) is outside the 161x121 image"),
+        "{}",
+        stderr(&output)
+    );
     for bad in ["12", "a,b", "-1,3", "1,2,3"] {
         let output = raystep(&["explain", scene, &format!("--pixel={bad}")]);
         assert_eq!(output.status.code(), Some(2), "{bad}");
-        assert!(stderr(&output).contains("is not a pixel"), "{bad}: {}", stderr(&output));
+        assert!(
+            stderr(&output).contains("is not a pixel"),
+            "{bad}: {}",
+            stderr(&output)
+        );
     }
 }
 
@@ -186,12 +276,29 @@ fn stats_are_one_json_object() {
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/seven-rays.toml");
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out.png");
-    let output = raystep(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--stats", "--size", "16x12"]);
+    let output = raystep(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+        "--size",
+        "16x12",
+    ]);
     assert!(output.status.success());
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     // 16 x 12 = 192 primary rays, one per pixel.
     assert_eq!(json["primary"], 192);
-    for key in ["primary_hit", "reflected", "transmitted", "shadow", "shadow_blocked", "shadow_opaque", "prepare_seconds", "trace_seconds"] {
+    for key in [
+        "primary_hit",
+        "reflected",
+        "transmitted",
+        "shadow",
+        "shadow_blocked",
+        "shadow_opaque",
+        "prepare_seconds",
+        "trace_seconds",
+    ] {
         assert!(json.get(key).is_some(), "{key} missing");
     }
 }

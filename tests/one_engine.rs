@@ -11,7 +11,10 @@ use raystep::trace::{NoRecorder, trace_pixel};
 
 fn example_scenes() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     paths.sort();
     assert!(paths.len() >= 7, "the example scenes are there");
     paths
@@ -31,11 +34,24 @@ fn every_recorded_pixel_equals_the_rendered_pixel_bit_for_bit() {
             for x in 0..scene.width {
                 let tree = record_pixel(&scene, x, y);
                 let plain = trace_pixel(&scene, &viewport, x, y, &mut NoRecorder);
-                assert_eq!(tree.color().to_array().map(f64::to_bits), plain.to_array().map(f64::to_bits));
-                assert_eq!(to_rgb8(tree.color()), image.get_pixel(x, y).0, "{} ({x}, {y})", path.display());
+                assert_eq!(
+                    tree.color().to_array().map(f64::to_bits),
+                    plain.to_array().map(f64::to_bits)
+                );
+                assert_eq!(
+                    to_rgb8(tree.color()),
+                    image.get_pixel(x, y).0,
+                    "{} ({x}, {y})",
+                    path.display()
+                );
                 // The stored terms add up to the node's colour, for every node.
                 for id in 0..tree.nodes.len() {
-                    assert_eq!(tree.sum_of_terms(id), tree.nodes[id].color, "{} ({x}, {y}) node {id}", path.display());
+                    assert_eq!(
+                        tree.sum_of_terms(id),
+                        tree.nodes[id].color,
+                        "{} ({x}, {y}) node {id}",
+                        path.display()
+                    );
                 }
             }
         }

@@ -56,7 +56,10 @@ fn one_light_head_on() {
     assert_eq!(root.hit.as_ref().unwrap().t, 4.0);
     assert!(close(root.ambient, [0.1, 0.05, 0.025]));
     let light = &root.lights[0];
-    assert_eq!((light.n_dot_l, light.specular_cosine, light.f_att), (1.0, 1.0, 1.0));
+    assert_eq!(
+        (light.n_dot_l, light.specular_cosine, light.f_att),
+        (1.0, 1.0, 1.0)
+    );
     assert_eq!(light.shadow.as_ref().unwrap().s, 1.0);
     assert!(close(light.diffuse, [0.8, 0.4, 0.2]));
     assert!(close(light.specular, [0.5, 0.5, 0.5]));
@@ -97,7 +100,11 @@ fn opaque_blocker_casts_a_full_shadow() {
     let shadow = light.shadow.as_ref().unwrap();
     assert_eq!(shadow.s, 0.0);
     // The recording lists every blocker, nearest first, even past the first opaque one.
-    let blockers: Vec<(&str, f64)> = shadow.blockers.iter().map(|b| (b.object.as_str(), b.t)).collect();
+    let blockers: Vec<(&str, f64)> = shadow
+        .blockers
+        .iter()
+        .map(|b| (b.object.as_str(), b.t))
+        .collect();
     assert_eq!(blockers, [("ball", 1.5), ("ball", 2.5)]);
     assert_eq!(light.diffuse, DVec3::ZERO);
     assert_eq!(tree.color(), DVec3::ZERO);
@@ -232,7 +239,9 @@ fn ray_through_a_concave_notch_records_the_polygon_it_passed() {
     let root = tree.root();
     assert!(root.hit.is_none());
     assert_eq!(root.near_misses.len(), 1);
-    let raystep::shapes::Working::Polygon(working) = root.near_misses[0].working else { panic!("a polygon") };
+    let raystep::shapes::Working::Polygon(working) = root.near_misses[0].working else {
+        panic!("a polygon")
+    };
     assert_eq!(working.plane.t, Some(5.0));
     let test = working.crossing.unwrap();
     assert_eq!((test.crossings, test.inside), (2, false));

@@ -19,7 +19,9 @@ fn scene_at(path: &Path, size: Option<(u32, u32)>) -> Scene {
 }
 
 fn scene_path(name: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name)
 }
 
 /// Rounds every float to 6 decimals (and -0 to 0) so snapshots are stable.
@@ -30,7 +32,9 @@ fn rounded(value: Value) -> Value {
             serde_json::json!(if x == 0.0 { 0.0 } else { x })
         }
         Value::Array(items) => Value::Array(items.into_iter().map(rounded).collect()),
-        Value::Object(map) => Value::Object(map.into_iter().map(|(k, v)| (k, rounded(v))).collect()),
+        Value::Object(map) => {
+            Value::Object(map.into_iter().map(|(k, v)| (k, rounded(v))).collect())
+        }
         other => other,
     }
 }
@@ -50,7 +54,9 @@ fn scene_pixels() {
         let (image, _) = render::<NoRecorder>(&scene, &|| {});
         let mut text = String::new();
         for row in image.rows() {
-            let line: Vec<String> = row.map(|p| format!("{:02x}{:02x}{:02x}", p[0], p[1], p[2])).collect();
+            let line: Vec<String> = row
+                .map(|p| format!("{:02x}{:02x}{:02x}", p[0], p[1], p[2]))
+                .collect();
             text.push_str(&line.join(" "));
             text.push('\n');
         }

@@ -18,9 +18,18 @@ pub fn explain(tree: &RayTree) -> String {
     let root = tree.root();
     let c = tree.color();
     let [r, g, b] = to_rgb8(c);
-    let _ = writeln!(out, "Pixel ({}, {}) has colour {} (stored as {r}, {g}, {b}).", tree.pixel.0, tree.pixel.1, color(c));
+    let _ = writeln!(
+        out,
+        "Pixel ({}, {}) has colour {} (stored as {r}, {g}, {b}).",
+        tree.pixel.0,
+        tree.pixel.1,
+        color(c)
+    );
     let Some(hit) = &root.hit else {
-        let _ = writeln!(out, "Its primary ray hits nothing, so it shows the background colour.");
+        let _ = writeln!(
+            out,
+            "Its primary ray hits nothing, so it shows the background colour."
+        );
         return out;
     };
     let _ = writeln!(
@@ -38,7 +47,10 @@ pub fn explain(tree: &RayTree) -> String {
         let _ = writeln!(out, "  {}", light_fate(light));
     }
     if root.lights.is_empty() {
-        let _ = writeln!(out, "  the scene has no lights: only ambient light and secondary rays add colour.");
+        let _ = writeln!(
+            out,
+            "  the scene has no lights: only ambient light and secondary rays add colour."
+        );
     }
     if root.tir {
         let _ = writeln!(
@@ -51,7 +63,10 @@ pub fn explain(tree: &RayTree) -> String {
         write_child(&mut out, tree, child);
     }
     if tree.max_depth.is_some_and(|max| root.depth >= max) {
-        let _ = writeln!(out, "No secondary rays: max_depth is 1, so the primary ray spawns none.");
+        let _ = writeln!(
+            out,
+            "No secondary rays: max_depth is 1, so the primary ray spawns none."
+        );
     }
     write_clamping(&mut out, c);
     out
@@ -71,9 +86,16 @@ fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
     }
     let total: f64 = terms.iter().map(|(_, c)| weight(*c)).sum();
     terms.sort_by(|a, b| weight(b.1).total_cmp(&weight(a.1)));
-    let _ = writeln!(out, "Its colour is the sum of these terms (largest first, share of the brightness):");
+    let _ = writeln!(
+        out,
+        "Its colour is the sum of these terms (largest first, share of the brightness):"
+    );
     for (name, term) in terms.iter().filter(|(_, c)| weight(*c) > 0.0) {
-        let share = if total > 0.0 { 100.0 * weight(*term) / total } else { 0.0 };
+        let share = if total > 0.0 {
+            100.0 * weight(*term) / total
+        } else {
+            0.0
+        };
         let _ = writeln!(out, "  {name:<28} {}  {share:>5.1}%", color(*term));
     }
     if total <= 0.0 {
@@ -90,15 +112,28 @@ fn light_fate(light: &LightRecord) -> String {
         );
     }
     let Some(shadow) = &light.shadow else {
-        return format!("{}: lit (shadows are switched off), N·L = {}.", light.light, num(light.n_dot_l));
+        return format!(
+            "{}: lit (shadows are switched off), N·L = {}.",
+            light.light,
+            num(light.n_dot_l)
+        );
     };
     let distance = if light.f_att < 1.0 {
-        format!(" At distance {} attenuation f_att = {} lets {}% of its light arrive.", num(light.distance), num(light.f_att), num(100.0 * light.f_att))
+        format!(
+            " At distance {} attenuation f_att = {} lets {}% of its light arrive.",
+            num(light.distance),
+            num(light.f_att),
+            num(100.0 * light.f_att)
+        )
     } else {
         String::new()
     };
     if shadow.blockers.is_empty() {
-        return format!("{}: lit, nothing in the way (N·L = {}).{distance}", light.light, num(light.n_dot_l));
+        return format!(
+            "{}: lit, nothing in the way (N·L = {}).{distance}",
+            light.light,
+            num(light.n_dot_l)
+        );
     }
     if let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0) {
         return format!(
@@ -111,9 +146,17 @@ fn light_fate(light: &LightRecord) -> String {
     }
     let mut through: Vec<String> = Vec::new();
     for b in &shadow.blockers {
-        let crossings = shadow.blockers.iter().filter(|o| o.object_index == b.object_index).count();
+        let crossings = shadow
+            .blockers
+            .iter()
+            .filter(|o| o.object_index == b.object_index)
+            .count();
         let entry = if crossings > 1 {
-            format!("{} (k_t {}, crossed {crossings} times)", b.object, num(b.kt))
+            format!(
+                "{} (k_t {}, crossed {crossings} times)",
+                b.object,
+                num(b.kt)
+            )
         } else {
             format!("{} (k_t {})", b.object, num(b.kt))
         };
@@ -153,9 +196,17 @@ fn write_child(out: &mut String, tree: &RayTree, id: NodeId) {
 fn write_clamping(out: &mut String, c: Color) {
     for (name, value) in [("red", c.x), ("green", c.y), ("blue", c.z)] {
         if value > 1.0 {
-            let _ = writeln!(out, "The {name} channel is {} before clamping: it is stored as 255 (clamped).", num(value));
+            let _ = writeln!(
+                out,
+                "The {name} channel is {} before clamping: it is stored as 255 (clamped).",
+                num(value)
+            );
         } else if value < 0.0 {
-            let _ = writeln!(out, "The {name} channel is {} before clamping: it is stored as 0.", num(value));
+            let _ = writeln!(
+                out,
+                "The {name} channel is {} before clamping: it is stored as 0.",
+                num(value)
+            );
         }
     }
 }

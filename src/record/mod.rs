@@ -8,6 +8,6 @@ mod tree;
 pub use explain::explain;
 pub use text::{color, dot, kind_name, light_lines, node_lines, num, text, vector, working_lines};
 pub use tree::{
-    BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree, ShadowRecord, TreeRecorder,
-    record_pixel,
+    BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,
+    ShadowRecord, TreeRecorder, record_pixel,
 };

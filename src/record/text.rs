@@ -51,7 +51,9 @@ pub fn working_lines(working: &Working) -> Vec<String> {
             if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
                 let why = match w.choice {
                     RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
-                    RootChoice::FartherRoot => "took t1: t0 is behind, the ray starts inside".to_string(),
+                    RootChoice::FartherRoot => {
+                        "took t1: t0 is behind, the ray starts inside".to_string()
+                    }
                     RootChoice::BothBehind => "both roots are behind the ray".to_string(),
                     RootChoice::NoRealRoots => String::new(),
                 };
@@ -84,10 +86,22 @@ fn plane_line(w: &crate::shapes::PlaneWorking) -> String {
     if w.parallel {
         return format!("plane: v_d = P_n·d = {}: parallel, no hit", num(w.v_d));
     }
-    let facing = if w.faces_away { "faces away, hit from behind" } else { "faces the ray" };
+    let facing = if w.faces_away {
+        "faces away, hit from behind"
+    } else {
+        "faces the ray"
+    };
     let t = w.t.map(num).unwrap_or_default();
-    let behind = if w.behind { ", behind the ray: no hit" } else { "" };
-    format!("plane: v_d = P_n·d = {} ({facing}), v_0 = {}, t = v_0 / v_d = {t}{behind}", num(w.v_d), num(w.v_0))
+    let behind = if w.behind {
+        ", behind the ray: no hit"
+    } else {
+        ""
+    };
+    format!(
+        "plane: v_d = P_n·d = {} ({facing}), v_0 = {}, t = v_0 / v_d = {t}{behind}",
+        num(w.v_d),
+        num(w.v_0)
+    )
 }
 
 fn polygon_lines(w: &PolygonWorking) -> Vec<String> {
@@ -100,7 +114,11 @@ fn polygon_lines(w: &PolygonWorking) -> Vec<String> {
             num(u),
             num(v),
             test.crossings,
-            if test.inside { "odd, inside" } else { "even, outside" }
+            if test.inside {
+                "odd, inside"
+            } else {
+                "even, outside"
+            }
         ));
     }
     lines
@@ -120,7 +138,11 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
             num(t),
             num(s),
             num(w.height),
-            if ok { "on the surface" } else { "rejected (behind, or beyond an end)" }
+            if ok {
+                "on the surface"
+            } else {
+                "rejected (behind, or beyond an end)"
+            }
         ),
         _ => format!("{name}: none"),
     };
@@ -146,26 +168,52 @@ pub fn light_lines(light: &LightRecord, phong: bool) -> Vec<String> {
         None => "shadows off".to_string(),
         Some(s) if s.blockers.is_empty() => "S = 1 (nothing in the way)".to_string(),
         Some(s) => {
-            let names: Vec<String> =
-                s.blockers.iter().map(|b| format!("{} t={} kt={}", b.object, num(b.t), num(b.kt))).collect();
+            let names: Vec<String> = s
+                .blockers
+                .iter()
+                .map(|b| format!("{} t={} kt={}", b.object, num(b.t), num(b.kt)))
+                .collect();
             format!("S = {}, blocked by {}", num(s.s), names.join("; "))
         }
     };
     let cosine = if phong { "R·V" } else { "N·H" };
     vec![
-        format!("light {}: N·L = {}, {shadow}", light.light, num(light.n_dot_l)),
-        format!("  f_att = {}, {cosine} = {}", num(light.f_att), num(light.specular_cosine)),
-        format!("  diffuse {} specular {}", color(light.diffuse), color(light.specular)),
+        format!(
+            "light {}: N·L = {}, {shadow}",
+            light.light,
+            num(light.n_dot_l)
+        ),
+        format!(
+            "  f_att = {}, {cosine} = {}",
+            num(light.f_att),
+            num(light.specular_cosine)
+        ),
+        format!(
+            "  diffuse {} specular {}",
+            color(light.diffuse),
+            color(light.specular)
+        ),
     ]
 }
 
 /// The lines describing one node (not its children).
 pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
     let node = &tree.nodes[id];
-    let mut lines = vec![format!("from {} along {}", vector(node.origin), vector(node.direction))];
+    let mut lines = vec![format!(
+        "from {} along {}",
+        vector(node.origin),
+        vector(node.direction)
+    )];
     for near in &node.near_misses {
-        lines.push(format!("passed by {} (#{}):", near.object, near.object_index));
-        lines.extend(working_lines(&near.working).into_iter().map(|l| format!("  {l}")));
+        lines.push(format!(
+            "passed by {} (#{}):",
+            near.object, near.object_index
+        ));
+        lines.extend(
+            working_lines(&near.working)
+                .into_iter()
+                .map(|l| format!("  {l}")),
+        );
     }
     let Some(hit) = &node.hit else {
         lines.push(format!(
@@ -182,18 +230,37 @@ pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
         hit.object_index,
         hit.material,
         num(hit.t),
-        if hit.entering { "front side" } else { "back side (normal flipped)" }
+        if hit.entering {
+            "front side"
+        } else {
+            "back side (normal flipped)"
+        }
     ));
     lines.push(format!("  point {}", vector(hit.point)));
-    lines.push(format!("  N_g {} N {}", vector(hit.normal), vector(hit.shading_normal)));
-    lines.extend(working_lines(&hit.working).into_iter().map(|l| format!("  {l}")));
-    lines.push(format!("  tested {} nodes, {} primitives", node.cost.nodes, node.cost.primitives));
+    lines.push(format!(
+        "  N_g {} N {}",
+        vector(hit.normal),
+        vector(hit.shading_normal)
+    ));
+    lines.extend(
+        working_lines(&hit.working)
+            .into_iter()
+            .map(|l| format!("  {l}")),
+    );
+    lines.push(format!(
+        "  tested {} nodes, {} primitives",
+        node.cost.nodes, node.cost.primitives
+    ));
     lines.push(format!("ambient {}", color(node.ambient)));
     for light in &node.lights {
         lines.extend(light_lines(light, phong));
     }
     if let Some(r) = &node.refraction {
-        let outcome = if r.tir { "total internal reflection: kt goes to the reflected ray" } else { "transmitted" };
+        let outcome = if r.tir {
+            "total internal reflection: kt goes to the reflected ray"
+        } else {
+            "transmitted"
+        };
         lines.push(format!(
             "refraction: cos_i = {}, eta = {}, k = {}: {outcome}",
             num(r.cos_i),
@@ -201,10 +268,19 @@ pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
             num(r.k)
         ));
     }
-    if node.reflected.is_none() && node.transmitted.is_none() && tree.max_depth.is_some_and(|m| node.depth >= m) {
-        lines.push(format!("no secondary rays: depth {} is max_depth", node.depth));
+    if node.reflected.is_none()
+        && node.transmitted.is_none()
+        && tree.max_depth.is_some_and(|m| node.depth >= m)
+    {
+        lines.push(format!(
+            "no secondary rays: depth {} is max_depth",
+            node.depth
+        ));
     }
-    lines.push(format!("colour {} = sum of the terms above and below", color(node.color)));
+    lines.push(format!(
+        "colour {} = sum of the terms above and below",
+        color(node.color)
+    ));
     if node.kind != RayKind::Primary {
         lines.push(format!(
             "adds {} x {} (attenuation) x {} = {}",
@@ -285,7 +361,9 @@ fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str, phong:
 
 /// Graphviz: one box per ray, one ellipse per light at each hit.
 pub fn dot(tree: &RayTree) -> String {
-    let mut out = String::from("digraph raytree {\n  rankdir=TB;\n  node [fontname=\"Helvetica\", fontsize=10];\n");
+    let mut out = String::from(
+        "digraph raytree {\n  rankdir=TB;\n  node [fontname=\"Helvetica\", fontsize=10];\n",
+    );
     let _ = writeln!(out, "  eye [shape=point, label=\"\"];");
     for (id, node) in tree.nodes.iter().enumerate() {
         let what = match &node.hit {
@@ -318,9 +396,16 @@ pub fn dot(tree: &RayTree) -> String {
                 None => "unshadowed".to_string(),
                 Some(s) => format!("S = {}", num(s.s)),
             };
-            let _ = writeln!(out, "  n{id}l{i} [shape=ellipse, label=\"{}\\n{fate}\"];", escape(&light.light));
+            let _ = writeln!(
+                out,
+                "  n{id}l{i} [shape=ellipse, label=\"{}\\n{fate}\"];",
+                escape(&light.light)
+            );
             let style = if light.faces_away { "dotted" } else { "dashed" };
-            let _ = writeln!(out, "  n{id} -> n{id}l{i} [style={style}, label=\"shadow\"];");
+            let _ = writeln!(
+                out,
+                "  n{id} -> n{id}l{i} [style={style}, label=\"shadow\"];"
+            );
         }
     }
     out.push_str("}\n");

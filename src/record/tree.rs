@@ -10,7 +10,9 @@ use crate::accel::Cost;
 use crate::math::{Color, Interval, Ray};
 use crate::scene::Scene;
 use crate::shapes::{Shape, Working};
-use crate::trace::{Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel};
+use crate::trace::{
+    Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel,
+};
 
 pub type NodeId = usize;
 
@@ -121,16 +123,48 @@ pub struct Event {
 #[derive(Clone, Debug, Serialize)]
 #[serde(tag = "event", rename_all = "snake_case")]
 pub enum EventKind {
-    RayCast { kind: RayKind, depth: u32 },
-    Hit { object: usize, t: f64, tested: Cost },
-    Miss { tested: Cost },
-    Ambient { term: Color },
-    ShadowCast { light: usize },
-    Blocker { light: usize, object: usize, t: f64, kt: f64 },
-    Light { light: usize, faces_away: bool, s: Option<f64>, diffuse: Color, specular: Color },
-    Refraction { tir: bool },
-    ChildReturned { child: NodeId, kind: RayKind, contribution: Color },
-    RayDone { color: Color },
+    RayCast {
+        kind: RayKind,
+        depth: u32,
+    },
+    Hit {
+        object: usize,
+        t: f64,
+        tested: Cost,
+    },
+    Miss {
+        tested: Cost,
+    },
+    Ambient {
+        term: Color,
+    },
+    ShadowCast {
+        light: usize,
+    },
+    Blocker {
+        light: usize,
+        object: usize,
+        t: f64,
+        kt: f64,
+    },
+    Light {
+        light: usize,
+        faces_away: bool,
+        s: Option<f64>,
+        diffuse: Color,
+        specular: Color,
+    },
+    Refraction {
+        tir: bool,
+    },
+    ChildReturned {
+        child: NodeId,
+        kind: RayKind,
+        contribution: Color,
+    },
+    RayDone {
+        color: Color,
+    },
 }
 
 /// A pixel's recording: the tree (node 0 is the primary ray) and its events.
@@ -166,12 +200,24 @@ pub fn record_pixel(scene: &Scene, x: u32, y: u32) -> RayTree {
 
 impl<'a> TreeRecorder<'a> {
     pub fn new(scene: &'a Scene) -> Self {
-        Self { scene, nodes: Vec::new(), events: Vec::new(), stack: Vec::new(), blockers: Vec::new(), shadow_ray: None }
+        Self {
+            scene,
+            nodes: Vec::new(),
+            events: Vec::new(),
+            stack: Vec::new(),
+            blockers: Vec::new(),
+            shadow_ray: None,
+        }
     }
 
     /// The finished recording, labelled with the pixel it belongs to.
     pub fn into_tree(self, pixel: (u32, u32)) -> RayTree {
-        RayTree { pixel, max_depth: Some(self.scene.settings.max_depth), nodes: self.nodes, events: self.events }
+        RayTree {
+            pixel,
+            max_depth: Some(self.scene.settings.max_depth),
+            nodes: self.nodes,
+            events: self.events,
+        }
     }
 
     fn current(&self) -> NodeId {
@@ -245,14 +291,19 @@ impl Recorder for TreeRecorder<'_> {
             entering: hit.entering,
             working: object.shape.working(&ray, Interval::in_front()),
         });
-        self.push_event(EventKind::Hit { object: hit.object, t: hit.t, tested: cost });
+        self.push_event(EventKind::Hit {
+            object: hit.object,
+            t: hit.t,
+            tested: cost,
+        });
     }
 
     fn miss(&mut self, _background: Color, cost: Cost) {
         let scene = self.scene;
         let node = self.node();
         node.cost = cost;
-        node.near_misses = near_misses(scene, &Ray::new(node.origin, node.direction), f64::INFINITY);
+        node.near_misses =
+            near_misses(scene, &Ray::new(node.origin, node.direction), f64::INFINITY);
         self.push_event(EventKind::Miss { tested: cost });
     }
 
@@ -269,8 +320,15 @@ impl Recorder for TreeRecorder<'_> {
 
     fn blocker(&mut self, blocker: &Blocker) {
         self.blockers.push(*blocker);
-        let Some((light, _, _)) = self.shadow_ray else { return };
-        self.push_event(EventKind::Blocker { light, object: blocker.object, t: blocker.t, kt: blocker.kt });
+        let Some((light, _, _)) = self.shadow_ray else {
+            return;
+        };
+        self.push_event(EventKind::Blocker {
+            light,
+            object: blocker.object,
+            t: blocker.t,
+            kt: blocker.kt,
+        });
     }
 
     fn light(&mut self, term: &LightTerm) {
@@ -287,7 +345,10 @@ impl Recorder for TreeRecorder<'_> {
                         kt: b.kt,
                     })
                     .collect();
-                blockers.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.object_index.cmp(&b.object_index)));
+                blockers.sort_by(|a, b| {
+                    a.t.total_cmp(&b.t)
+                        .then(a.object_index.cmp(&b.object_index))
+                });
                 Some(ShadowRecord {
                     origin: ray.origin,
                     direction: ray.direction,
@@ -326,7 +387,9 @@ impl Recorder for TreeRecorder<'_> {
         let node = self.node();
         node.refraction = Some(*refraction);
         node.tir = refraction.tir;
-        self.push_event(EventKind::Refraction { tir: refraction.tir });
+        self.push_event(EventKind::Refraction {
+            tir: refraction.tir,
+        });
     }
 
     fn child(&mut self, term: &ChildTerm) {
@@ -339,7 +402,11 @@ impl Recorder for TreeRecorder<'_> {
         let Some(child) = child else { return };
         self.nodes[child].attenuation = term.attenuation;
         self.nodes[child].contribution = term.contribution;
-        self.push_event(EventKind::ChildReturned { child, kind: term.kind, contribution: term.contribution });
+        self.push_event(EventKind::ChildReturned {
+            child,
+            kind: term.kind,
+            contribution: term.contribution,
+        });
     }
 
     fn ray_done(&mut self, color: Color) {
@@ -369,9 +436,16 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
             _ => continue,
         };
         let working = polygon.solve(ray, range);
-        let in_box = working.plane.hit_t().is_some_and(|t| polygon.bounds().contains(ray.at(t)));
+        let in_box = working
+            .plane
+            .hit_t()
+            .is_some_and(|t| polygon.bounds().contains(ray.at(t)));
         if in_box && working.crossing.is_some_and(|c| !c.inside) {
-            found.push(NearMiss { object: object.name.clone(), object_index: index, working: object.shape.working(ray, range) });
+            found.push(NearMiss {
+                object: object.name.clone(),
+                object_index: index,
+                working: object.shape.working(ray, range),
+            });
         }
     }
     found

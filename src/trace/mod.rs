@@ -5,6 +5,9 @@ mod recorder;
 mod stats;
 mod tracer;
 
-pub use recorder::{Blocker, ChildTerm, LightTerm, NoRecorder, RayKind, Recorder, Refraction, ShadowOutcome, SurfaceHit};
+pub use recorder::{
+    Blocker, ChildTerm, LightTerm, NoRecorder, RayKind, Recorder, Refraction, ShadowOutcome,
+    SurfaceHit,
+};
 pub use stats::RayStats;
 pub use tracer::{Traced, trace, trace_pixel};

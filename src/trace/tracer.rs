@@ -22,45 +22,79 @@ pub struct Traced {
 }
 
 /// The colour of pixel (x, y), unclamped: the colour of its primary ray.
-pub fn trace_pixel<R: Recorder>(scene: &Scene, viewport: &Viewport, x: u32, y: u32, rec: &mut R) -> Color {
+pub fn trace_pixel<R: Recorder>(
+    scene: &Scene,
+    viewport: &Viewport,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+) -> Color {
     let ray = viewport.primary_ray(x, y);
     trace(scene, &ray, RayKind::Primary, 1, 1.0, rec).color
 }
 
 /// Traces one ray of depth `depth` (the primary ray has depth 1). `weight` is
 /// the factor its colour will be scaled by in its parent, passed on for the record.
-pub fn trace<R: Recorder>(scene: &Scene, ray: &Ray, kind: RayKind, depth: u32, weight: f64, rec: &mut R) -> Traced {
+pub fn trace<R: Recorder>(
+    scene: &Scene,
+    ray: &Ray,
+    kind: RayKind,
+    depth: u32,
+    weight: f64,
+    rec: &mut R,
+) -> Traced {
     rec.ray_cast(kind, depth, ray, weight);
     let mut cost = Cost::default();
-    let Some(candidate) = scene.accel.closest(&scene.objects, ray, Interval::in_front(), &mut cost) else {
+    let Some(candidate) = scene
+        .accel
+        .closest(&scene.objects, ray, Interval::in_front(), &mut cost)
+    else {
         let background = scene.settings.background;
         rec.miss(background, cost);
         rec.ray_done(background);
-        return Traced { color: background, distance: None };
+        return Traced {
+            color: background,
+            distance: None,
+        };
     };
     let hit = surface_hit(scene, ray, candidate);
     rec.hit(&hit, cost);
     let color = shade(scene, ray, &hit, depth, rec);
     rec.ray_done(color);
-    Traced { color, distance: Some(hit.t) }
+    Traced {
+        color,
+        distance: Some(hit.t),
+    }
 }
 
 fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
     let point = ray.at(candidate.t);
-    let geometric_normal = scene.objects[candidate.object].shape.geometric_normal(point);
+    let geometric_normal = scene.objects[candidate.object]
+        .shape
+        .geometric_normal(point);
     let entering = geometric_normal.dot(ray.direction) < 0.0;
     SurfaceHit {
         object: candidate.object,
         t: candidate.t,
         point,
         geometric_normal,
-        normal: if entering { geometric_normal } else { -geometric_normal },
+        normal: if entering {
+            geometric_normal
+        } else {
+            -geometric_normal
+        },
         entering,
     }
 }
 
 /// I = ambient + sum_i (diffuse_i + specular_i) + reflected + transmitted.
-fn shade<R: Recorder>(scene: &Scene, ray: &Ray, hit: &SurfaceHit, depth: u32, rec: &mut R) -> Color {
+fn shade<R: Recorder>(
+    scene: &Scene,
+    ray: &Ray,
+    hit: &SurfaceHit,
+    depth: u32,
+    rec: &mut R,
+) -> Color {
     let settings = &scene.settings;
     let material = scene.material_of(hit.object);
     let ambient = if settings.switches.ambient {
@@ -122,27 +156,45 @@ fn light_term<R: Recorder>(
     };
     let strength = s * f_att;
     term.diffuse = light.color * material.color * (strength * material.kd * n_dot_l);
-    term.specular = light.color * (strength * material.ks * term.specular_cosine.max(0.0).powf(material.shininess));
+    term.specular = light.color
+        * (strength * material.ks * term.specular_cosine.max(0.0).powf(material.shininess));
     term
 }
 
 /// S_i: the product of k_t over every crossing of the segment to the light.
-fn shadow_ray<R: Recorder>(scene: &Scene, point: DVec3, to_light: DVec3, distance: f64, light: usize, rec: &mut R) -> ShadowOutcome {
+fn shadow_ray<R: Recorder>(
+    scene: &Scene,
+    point: DVec3,
+    to_light: DVec3,
+    distance: f64,
+    light: usize,
+    rec: &mut R,
+) -> ShadowOutcome {
     let ray = Ray::new(point, to_light);
     rec.shadow_cast(light, &ray, distance);
-    let mut outcome = ShadowOutcome { s: 1.0, crossings: 0, cost: Cost::default() };
+    let mut outcome = ShadowOutcome {
+        s: 1.0,
+        crossings: 0,
+        cost: Cost::default(),
+    };
     let segment = Interval::new(EPS, distance);
-    scene.accel.crossings(&scene.objects, &ray, segment, &mut outcome.cost, |object, t| {
-        let kt = scene.material_of(object).kt;
-        outcome.s *= kt;
-        outcome.crossings += 1;
-        rec.blocker(&Blocker { object, t, kt });
-        if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
-            ControlFlow::Break(())
-        } else {
-            ControlFlow::Continue(())
-        }
-    });
+    scene.accel.crossings(
+        &scene.objects,
+        &ray,
+        segment,
+        &mut outcome.cost,
+        |object, t| {
+            let kt = scene.material_of(object).kt;
+            outcome.s *= kt;
+            outcome.crossings += 1;
+            rec.blocker(&Blocker { object, t, kt });
+            if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        },
+    );
     outcome
 }
 
@@ -158,19 +210,40 @@ fn secondary_rays<R: Recorder>(
     rec: &mut R,
 ) -> Color {
     let switches = scene.settings.switches;
-    let refraction = (material.kt > 0.0 && switches.transmission).then(|| refract(ray.direction, hit, material.ior));
+    let refraction = (material.kt > 0.0 && switches.transmission)
+        .then(|| refract(ray.direction, hit, material.ior));
     if let Some(refraction) = &refraction {
         rec.refraction(refraction);
     }
     let tir = refraction.is_some_and(|r| r.tir);
-    let reflected_weight = if switches.reflection { material.ks } else { 0.0 } + if tir { material.kt } else { 0.0 };
+    let reflected_weight = if switches.reflection {
+        material.ks
+    } else {
+        0.0
+    } + if tir { material.kt } else { 0.0 };
     let mut color = local;
     if reflected_weight > 0.0 {
         let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
-        color += trace_child(scene, hit, RayKind::Reflected, direction, reflected_weight, depth, rec);
+        color += trace_child(
+            scene,
+            hit,
+            RayKind::Reflected,
+            direction,
+            reflected_weight,
+            depth,
+            rec,
+        );
     }
     if let Some(direction) = refraction.and_then(|r| r.direction) {
-        color += trace_child(scene, hit, RayKind::Transmitted, direction, material.kt, depth, rec);
+        color += trace_child(
+            scene,
+            hit,
+            RayKind::Transmitted,
+            direction,
+            material.kt,
+            depth,
+            rec,
+        );
     }
     color
 }
@@ -182,7 +255,13 @@ fn refract(direction: DVec3, hit: &SurfaceHit, ior: f64) -> Refraction {
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
     let tir = k < 0.0;
     let direction = (!tir).then(|| eta * direction + (eta * cos_i - k.sqrt()) * hit.normal);
-    Refraction { cos_i, eta, k, tir, direction }
+    Refraction {
+        cos_i,
+        eta,
+        k,
+        tir,
+        direction,
+    }
 }
 
 /// Traces a secondary ray from the hit and scales what it returns by its
@@ -198,8 +277,17 @@ fn trace_child<R: Recorder>(
 ) -> Color {
     let ray = Ray::new(hit.point, direction);
     let traced = trace(scene, &ray, kind, depth + 1, weight, rec);
-    let attenuation = traced.distance.map_or(1.0, |t| attenuation(scene.settings.ray_attenuation, t));
+    let attenuation = traced
+        .distance
+        .map_or(1.0, |t| attenuation(scene.settings.ray_attenuation, t));
     let contribution = traced.color * (weight * attenuation);
-    rec.child(&ChildTerm { kind, weight, attenuation, distance: traced.distance, color: traced.color, contribution });
+    rec.child(&ChildTerm {
+        kind,
+        weight,
+        attenuation,
+        distance: traced.distance,
+        color: traced.color,
+        contribution,
+    });
     contribution
 }
