@@ -152,7 +152,7 @@ fn debug_command(scene: Option<&Path>) -> Result<ExitCode> {
 }
 
 /// Loads the scene and records the pixel, refusing one outside the image.
-fn record(args: &PixelArgs) -> Result<(Scene, RayTree)> {
+fn record(args: &PixelArgs) -> Result<RayTree> {
     let scene = load_scene(Some(&args.scene), args.size)?;
     let (x, y) = args.pixel;
     if x >= scene.width || y >= scene.height {
@@ -164,15 +164,13 @@ fn record(args: &PixelArgs) -> Result<(Scene, RayTree)> {
             scene.height
         );
     }
-    let tree = record_pixel(&scene, x, y);
-    Ok((scene, tree))
+    Ok(record_pixel(&scene, x, y))
 }
 
 fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
-    let (scene, tree) = record(&args.pixel)?;
-    let phong = scene.settings.specular == crate::scene::SpecularModel::Phong;
+    let tree = record(&args.pixel)?;
     match args.format {
-        InspectFormat::Text => emit(&text(&tree, phong))?,
+        InspectFormat::Text => emit(&text(&tree))?,
         InspectFormat::Json => emit(&format!(
             "{}\n",
             serde_json::to_string_pretty(&tree.to_json())?
@@ -183,7 +181,7 @@ fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
 }
 
 fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
-    let (_, tree) = record(args)?;
+    let tree = record(args)?;
     emit(&explain(&tree))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -7,6 +7,7 @@ use glam::DVec3;
 
 use super::tree::{LightRecord, Node, NodeId, RayTree};
 use crate::math::to_rgb8;
+use crate::scene::SpecularModel;
 use crate::shapes::{ConeWorking, PolygonWorking, RootChoice, Working};
 use crate::trace::RayKind;
 
@@ -156,7 +157,7 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
 }
 
 /// What one light did at a hit, in one or two lines.
-pub fn light_lines(light: &LightRecord, phong: bool) -> Vec<String> {
+pub fn light_lines(light: &LightRecord) -> Vec<String> {
     if light.faces_away {
         return vec![format!(
             "light {}: faces away (N·L = {}), no shadow ray, adds nothing",
@@ -176,7 +177,10 @@ pub fn light_lines(light: &LightRecord, phong: bool) -> Vec<String> {
             format!("S = {}, blocked by {}", num(s.s), names.join("; "))
         }
     };
-    let cosine = if phong { "R·V" } else { "N·H" };
+    let cosine = match light.specular_model {
+        SpecularModel::Blinn => "N·H",
+        SpecularModel::Phong => "R·V",
+    };
     vec![
         format!(
             "light {}: N·L = {}, {shadow}",
@@ -197,7 +201,7 @@ pub fn light_lines(light: &LightRecord, phong: bool) -> Vec<String> {
 }
 
 /// The lines describing one node (not its children).
-pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
+pub fn node_lines(tree: &RayTree, id: NodeId) -> Vec<String> {
     let node = &tree.nodes[id];
     let mut lines = vec![format!(
         "from {} along {}",
@@ -253,7 +257,7 @@ pub fn node_lines(tree: &RayTree, id: NodeId, phong: bool) -> Vec<String> {
     ));
     lines.push(format!("ambient {}", color(node.ambient)));
     for light in &node.lights {
-        lines.extend(light_lines(light, phong));
+        lines.extend(light_lines(light));
     }
     if let Some(r) = &node.refraction {
         let outcome = if r.tir {
@@ -328,7 +332,7 @@ pub fn wrap(line: &str, room: usize) -> Vec<String> {
 }
 
 /// The whole recording as an indented tree, like `cargo tree`.
-pub fn text(tree: &RayTree, phong: bool) -> String {
+pub fn text(tree: &RayTree) -> String {
     let c = tree.color();
     let [r, g, b] = to_rgb8(c);
     let mut out = format!(
@@ -337,16 +341,16 @@ pub fn text(tree: &RayTree, phong: bool) -> String {
         tree.pixel.1,
         color(c)
     );
-    write_node(&mut out, tree, 0, "", phong);
+    write_node(&mut out, tree, 0, "");
     out
 }
 
-fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str, phong: bool) {
+fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str) {
     let _ = writeln!(out, "{}", header(&tree.nodes[id]));
     let children: Vec<NodeId> = tree.children(id).collect();
     let body = if children.is_empty() { "  " } else { "│ " };
     let room = WIDTH.saturating_sub(prefix.chars().count() + 2);
-    for line in node_lines(tree, id, phong) {
+    for line in node_lines(tree, id) {
         for part in wrap(&line, room) {
             let _ = writeln!(out, "{prefix}{body}{part}");
         }
@@ -355,7 +359,7 @@ fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str, phong:
         let last = i + 1 == children.len();
         let _ = write!(out, "{prefix}{}", if last { "└─ " } else { "├─ " });
         let next = format!("{prefix}{}", if last { "   " } else { "│  " });
-        write_node(out, tree, *child, &next, phong);
+        write_node(out, tree, *child, &next);
     }
 }
 

@@ -8,7 +8,7 @@ use serde_json::Value;
 
 use crate::accel::Cost;
 use crate::math::{Color, Interval, Ray};
-use crate::scene::Scene;
+use crate::scene::{Scene, SpecularModel};
 use crate::shapes::{Shape, Working};
 use crate::trace::{
     Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel,
@@ -86,6 +86,7 @@ pub struct LightRecord {
     pub faces_away: bool,
     pub shadow: Option<ShadowRecord>,
     pub f_att: f64,
+    pub specular_model: SpecularModel,
     /// N·H with Blinn, R·V with Phong, before clamping.
     pub specular_cosine: f64,
     pub diffuse: Color,
@@ -370,6 +371,7 @@ impl Recorder for TreeRecorder<'_> {
             faces_away: term.faces_away,
             shadow,
             f_att: term.f_att,
+            specular_model: term.specular_model,
             specular_cosine: term.specular_cosine,
             diffuse: term.diffuse,
             specular: term.specular,

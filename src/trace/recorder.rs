@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use crate::accel::Cost;
 use crate::math::{Color, Ray};
+use crate::scene::SpecularModel;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -62,6 +63,8 @@ pub struct LightTerm {
     /// The shadow ray's result; `None` when none was cast (faces away, or shadows off).
     pub shadow: Option<ShadowOutcome>,
     pub f_att: f64,
+    /// Which specular model this material used: Blinn's N·H or Phong's R·V.
+    pub specular_model: SpecularModel,
     /// N·H (Blinn) or R·V (Phong), before clamping to 0.
     pub specular_cosine: f64,
     pub diffuse: Color,

@@ -139,6 +139,7 @@ fn light_term<R: Recorder>(
         faces_away: n_dot_l <= 0.0,
         shadow: None,
         f_att,
+        specular_model: material.specular.unwrap_or(settings.specular),
         specular_cosine: 0.0,
         diffuse: Color::ZERO,
         specular: Color::ZERO,
@@ -150,7 +151,7 @@ fn light_term<R: Recorder>(
         term.shadow = Some(shadow_ray(scene, hit.point, to_light, distance, index, rec));
     }
     let s = term.shadow.map_or(1.0, |shadow| shadow.s);
-    term.specular_cosine = match material.specular.unwrap_or(settings.specular) {
+    term.specular_cosine = match term.specular_model {
         SpecularModel::Blinn => hit.normal.dot((to_light + to_viewer).normalize()),
         SpecularModel::Phong => (2.0 * n_dot_l * hit.normal - to_light).dot(to_viewer),
     };

@@ -17,19 +17,14 @@ use ratatui::layout::Rect;
 use ratatui::widgets::Paragraph;
 
 /// The text lines of a ray, and which of them the event `at` is about.
-pub fn text_lines(
-    tree: &RayTree,
-    id: NodeId,
-    at: Option<usize>,
-    phong: bool,
-) -> (Vec<String>, Vec<usize>) {
+pub fn text_lines(tree: &RayTree, id: NodeId, at: Option<usize>) -> (Vec<String>, Vec<usize>) {
     let node = &tree.nodes[id];
     let mut header = format!("r{id}: {} ray, depth {}", kind_name(node.kind), node.depth);
     if node.parent.is_some() {
         header.push_str(&format!(", weight {}", num(node.weight)));
     }
     let mut lines = vec![header];
-    let mut body = node_lines(tree, id, phong);
+    let mut body = node_lines(tree, id);
     let children: Vec<String> = tree
         .children(id)
         .map(|c| {
@@ -173,10 +168,9 @@ pub fn lines(
     tree: &RayTree,
     id: NodeId,
     at: Option<usize>,
-    phong: bool,
     width: usize,
 ) -> (Vec<Line<'static>>, Option<usize>) {
-    let (text, marked) = text_lines(tree, id, at, phong);
+    let (text, marked) = text_lines(tree, id, at);
     let mut out = Vec::new();
     let mut first_marked = None;
     for (i, line) in text.iter().enumerate() {
@@ -201,13 +195,7 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let title = format!(" Details · r{id} {} ray ", kind_name(node.kind));
     let block = pane_block(app, Pane::Details, title);
     let inside = block.inner(area);
-    let (lines, marked) = lines(
-        &app.tree,
-        id,
-        Some(app.current),
-        app.phong(),
-        inside.width as usize,
-    );
+    let (lines, marked) = lines(&app.tree, id, Some(app.current), inside.width as usize);
     let height = inside.height as usize;
     let auto = marked.map_or(0, |m| {
         if m + 4 <= height {
