@@ -13,15 +13,19 @@ use glam::DVec3;
 use super::node::Node;
 use crate::shapes::Aabb;
 
+// BINS, TRAVERSAL_COST and MAX_LEAF were measured on rays replayed from
+// renders of the SPD scenes: 8 or 32 bins, a traversal cost of 0.5 or 2 and
+// leaves of at most 4 all came within the noise of these values.
+
 /// Centroid bins per split.
 const BINS: usize = 16;
 /// The cost of visiting one node, relative to testing one primitive.
 const TRAVERSAL_COST: f64 = 1.0;
-/// A leaf never holds more, whatever the SAH says (unless the primitives'
-/// centroids coincide and cannot be told apart: then the list is halved).
+/// A leaf never holds more, whatever the SAH says.
 pub(super) const MAX_LEAF: usize = 8;
 /// Below this depth the SAH chooses the split; deeper, the primitives are
-/// halved at their median, so the depth stays below `MAX_DEPTH`.
+/// halved at their median, so the depth stays below `MAX_DEPTH`. Primitives
+/// whose centroids coincide are halved too (by file order).
 const SAH_DEPTH: usize = 32;
 /// No path from the root is longer: the traversal stack holds this many nodes.
 pub(super) const MAX_DEPTH: usize = SAH_DEPTH + 33;
@@ -133,22 +137,23 @@ fn split(primitives: &mut [PrimitiveRef], bounds: &Aabb, depth: usize) -> Option
     });
     let extent = centroids.max - centroids.min;
     let axis = extent.max_position();
-    if !(extent[axis] > 0.0) {
-        // Every centroid is the same point: nothing tells the primitives apart.
-        return (n > MAX_LEAF).then_some((axis, n / 2));
+    // Centroids that all coincide (or spread beyond the f64 range) cannot be binned.
+    let binnable = extent[axis] > 0.0 && extent[axis].is_finite();
+    let plane = (binnable && depth < SAH_DEPTH)
+        .then(|| best_plane(primitives, bounds, &centroids, axis))
+        .flatten();
+    match plane {
+        Some((cost, _)) if n <= MAX_LEAF && cost >= n as f64 => None,
+        Some((_, plane)) => {
+            let scale = BINS as f64 / extent[axis];
+            let middle = partition(primitives, |p| {
+                bin(p.centroid[axis], centroids.min[axis], scale) < plane
+            });
+            Some((axis, middle))
+        }
+        None if n <= MAX_LEAF => None,
+        None => Some((axis, median_split(primitives, axis))),
     }
-    if depth >= SAH_DEPTH {
-        return Some((axis, median_split(primitives, axis)));
-    }
-    let (cost, plane) = best_plane(primitives, bounds, &centroids, axis)?;
-    if n <= MAX_LEAF && cost >= n as f64 {
-        return None;
-    }
-    let scale = BINS as f64 / extent[axis];
-    let middle = partition(primitives, |p| {
-        bin(p.centroid[axis], centroids.min[axis], scale) < plane
-    });
-    Some((axis, middle))
 }
 
 fn bin(centroid: f64, min: f64, scale: f64) -> usize {

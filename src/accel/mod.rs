@@ -6,8 +6,9 @@
 //! A query walks it from the root, skipping every subtree whose box the ray
 //! misses, nearer child first. Infinite planes have no box; they are kept
 //! aside and tested on every query. The answers are exactly those of testing
-//! every object in file order (`brute`, kept as the oracle): only the cost,
-//! the nodes visited and primitives tested that the debugger shows, differs.
+//! every object in file order (`brute`, kept as the oracle): the same nearest
+//! hit to the bit, the same crossings (in another order). Only the cost, the
+//! nodes visited and primitives tested that the debugger shows, differs.
 
 pub mod brute;
 mod bvh;
@@ -87,8 +88,7 @@ impl Accel {
         let mut nearest = Nearest {
             objects,
             ray,
-            min: range.min,
-            max: range.max,
+            range,
             best: None,
         };
         // Planes first: a hit there shortens the ray before the walk.
@@ -99,7 +99,7 @@ impl Accel {
             for &object in leaf {
                 nearest.test(object, cost);
             }
-            ControlFlow::Continue(nearest.max)
+            ControlFlow::Continue(nearest.bound())
         });
         nearest.best
     }
@@ -186,17 +186,20 @@ impl Accel {
     }
 }
 
-/// The closest-hit search so far: the best candidate and the range still open.
+/// The closest-hit search so far: the query's range and the best candidate.
 struct Nearest<'a> {
     objects: &'a [Object],
     ray: &'a Ray,
-    min: f64,
-    /// The best hit's t, or the range's end while there is none.
-    max: f64,
+    range: Interval,
     best: Option<Candidate>,
 }
 
 impl Nearest<'_> {
+    /// How far a hit may still lie: the best hit's t, or the range's end.
+    fn bound(&self) -> f64 {
+        self.best.map_or(self.range.max, |best| best.t)
+    }
+
     /// Tests one object. The objects come in tree order, not file order, so a
     /// hit at exactly the best t must still win when its object comes first in
     /// the file: for such objects the range is closed at the best t.
@@ -206,14 +209,11 @@ impl Nearest<'_> {
         let object = object as usize;
         let max = match self.best {
             Some(best) if object < best.object => best.t.next_up(),
-            _ => self.max,
+            _ => self.bound(),
         };
-        if let Some(t) = self.objects[object]
-            .shape
-            .intersect(self.ray, Interval::new(self.min, max))
-        {
+        let range = Interval::new(self.range.min, max);
+        if let Some(t) = self.objects[object].shape.intersect(self.ray, range) {
             self.best = Some(Candidate { object, t });
-            self.max = t;
         }
     }
 }
@@ -225,5 +225,147 @@ impl fmt::Debug for Accel {
             .field("bounded", &self.objects.len())
             .field("unbounded", &self.unbounded.len())
             .finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::bvh::MAX_LEAF;
+    use super::*;
+    use crate::shapes::{Aabb, Plane, Shape, Sphere};
+
+    fn sphere(center: DVec3, radius: f64) -> Object {
+        Object {
+            name: String::new(),
+            shape: Shape::Sphere(Sphere::new(center, radius).unwrap()),
+            material: 0,
+        }
+    }
+
+    /// Checks the subtree at `index` and returns its end in the array, its
+    /// depth and the objects of its leaves.
+    fn check(
+        accel: &Accel,
+        objects: &[Object],
+        index: usize,
+        outer: &Aabb,
+        depth: usize,
+    ) -> (usize, usize, Vec<u32>) {
+        let node = accel.nodes[index];
+        let b = node.bounds();
+        assert!(
+            outer.min.cmple(b.min).all() && b.max.cmple(outer.max).all(),
+            "node {index} sticks out of its parent"
+        );
+        if node.is_leaf() {
+            let first = node.offset as usize;
+            let leaf = &accel.objects[first..first + usize::from(node.count)];
+            assert!(
+                leaf.len() <= MAX_LEAF && leaf.is_sorted(),
+                "leaf {index}: {leaf:?}"
+            );
+            for &o in leaf {
+                let p = objects[o as usize].shape.bounds().unwrap();
+                assert!(
+                    b.min.cmplt(p.min).all() && p.max.cmplt(b.max).all(),
+                    "object {o} not strictly inside"
+                );
+            }
+            return (index + 1, depth, leaf.to_vec());
+        }
+        let (first_end, d1, mut under) = check(accel, objects, index + 1, &b, depth + 1);
+        assert_eq!(
+            node.offset as usize, first_end,
+            "the second child follows the first subtree"
+        );
+        let (end, d2, second) = check(accel, objects, node.offset as usize, &b, depth + 1);
+        under.extend(second);
+        (end, d1.max(d2), under)
+    }
+
+    fn check_all(objects: &[Object]) -> usize {
+        let accel = Accel::build(objects);
+        let everything = Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY);
+        let (end, depth, mut seen) = check(&accel, objects, 0, &everything, 1);
+        assert_eq!(end, accel.nodes.len());
+        assert!(depth <= bvh::MAX_DEPTH);
+        seen.extend(&accel.unbounded);
+        seen.sort_unstable();
+        assert_eq!(
+            seen,
+            (0..objects.len() as u32).collect::<Vec<_>>(),
+            "every object exactly once"
+        );
+        depth
+    }
+
+    #[test]
+    fn tree_holds_every_object_once_inside_its_boxes() {
+        // A deterministic scatter of spheres of many sizes, and a plane.
+        let mut objects: Vec<Object> = (0..3000)
+            .map(|i| {
+                let f = i as f64;
+                let center = DVec3::new(
+                    (f * 0.618).fract(),
+                    (f * 0.414).fract(),
+                    (f * 0.732).fract(),
+                ) * 100.0;
+                sphere(center, 0.01 + (f * 0.3).fract())
+            })
+            .collect();
+        objects.push(Object {
+            name: String::new(),
+            shape: Shape::Plane(Plane::new(DVec3::Y, DVec3::ZERO).unwrap()),
+            material: 0,
+        });
+        let depth = check_all(&objects);
+        assert!(depth < 30, "depth {depth}");
+    }
+
+    #[test]
+    fn coincident_objects_are_split_into_small_leaves() {
+        // Nothing tells them apart: the list is halved until leaves are small.
+        let objects: Vec<Object> = (0..1000).map(|_| sphere(DVec3::ONE, 1.0)).collect();
+        check_all(&objects);
+    }
+
+    #[test]
+    fn centroids_spread_beyond_the_f64_range_are_halved() {
+        // From -1e308 to 1e308 the extent overflows to infinity: no bins.
+        let objects: Vec<Object> = (0..100)
+            .map(|i| sphere(DVec3::X * if i % 2 == 0 { 1e308 } else { -1e308 }, 1.0))
+            .collect();
+        check_all(&objects);
+    }
+
+    #[test]
+    fn depth_stays_bounded_on_a_skewed_scene() {
+        // Radii and spacing doubling every other sphere: the SAH peels a pair off
+        // per level, until the median split takes over.
+        let objects: Vec<Object> = (0..200)
+            .map(|i| sphere(DVec3::X * 2f64.powi(i / 2), 2f64.powi(i / 2 - 3)))
+            .collect();
+        assert!(
+            check_all(&objects) > 32,
+            "deep enough to need the median split"
+        );
+    }
+
+    #[test]
+    fn unbounded_and_non_finite_objects_are_tested_on_every_query() {
+        let objects = vec![
+            sphere(DVec3::ZERO, 1.0),
+            Object {
+                name: String::new(),
+                shape: Shape::Plane(Plane::new(DVec3::Z, DVec3::ZERO).unwrap()),
+                material: 0,
+            },
+            sphere(DVec3::new(f64::NAN, 0.0, 0.0), 1.0),
+        ];
+        let accel = Accel::build(&objects);
+        assert_eq!(accel.unbounded, [1, 2]);
+        assert_eq!(accel.objects, [0]);
     }
 }
