@@ -65,7 +65,63 @@ fn scene_pixels() {
 }
 
 /// Chosen pixels: the tree as JSON, the explanation and the event list.
-const PIXELS: &[(&str, u32, u32, &str)] = &[("seven-rays.toml", 80, 60, "the seven-ray tree")];
+const PIXELS: &[(&str, u32, u32, &str)] = &[
+    (
+        "seven-rays.toml",
+        80,
+        60,
+        "the seven-ray tree: 1 primary, 2 secondary, 4 at max_depth 3",
+    ),
+    (
+        "seven-rays.toml",
+        80,
+        5,
+        "a miss: the background colour, no terms",
+    ),
+    (
+        "shadows.toml",
+        14,
+        66,
+        "floor in the box's shadow: opaque blockers, S = 0",
+    ),
+    (
+        "shadows.toml",
+        66,
+        68,
+        "floor behind the glass ball: two crossings, S = 0.6^2 = 0.36",
+    ),
+    (
+        "mirrors.toml",
+        127,
+        48,
+        "the ball's fourth reflection, at max_depth 5",
+    ),
+    (
+        "glass.toml",
+        132,
+        88,
+        "into the glass block, then total internal reflection",
+    ),
+    (
+        "polygons.toml",
+        32,
+        52,
+        "a concave star's leg: 3 crossings, odd, inside",
+    ),
+    (
+        "polygons.toml",
+        30,
+        30,
+        "through the star's notch: a near miss, 2 crossings, outside",
+    ),
+    ("highlights.toml", 107, 32, "Phong's R·V beside Blinn's N·H"),
+    (
+        "attenuation.toml",
+        66,
+        48,
+        "a far pillar: light attenuation f_att = 0.21",
+    ),
+];
 
 #[test]
 fn chosen_pixels() {

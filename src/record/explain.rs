@@ -6,6 +6,7 @@ use std::fmt::Write;
 use super::text::{color, kind_name, num};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, to_rgb8};
+use crate::shapes::Working;
 use crate::trace::RayKind;
 
 /// The brightness used to compare terms: the sum of the three channels.
@@ -25,6 +26,7 @@ pub fn explain(tree: &RayTree) -> String {
         tree.pixel.1,
         color(c)
     );
+    write_near_misses(&mut out, tree);
     let Some(hit) = &root.hit else {
         let _ = writeln!(
             out,
@@ -191,6 +193,26 @@ fn write_child(out: &mut String, tree: &RayTree, id: NodeId) {
         num(child.attenuation),
         color(child.contribution)
     );
+}
+
+/// Polygons the primary ray went past although it met their plane within
+/// their bounds: the crossing test said outside.
+fn write_near_misses(out: &mut String, tree: &RayTree) {
+    for near in &tree.root().near_misses {
+        let crossings = match near.working {
+            Working::Polygon(w) => w.crossing,
+            Working::Patch(w) => w.polygon.crossing,
+            _ => None,
+        };
+        if let Some(test) = crossings {
+            let _ = writeln!(
+                out,
+                "On its way it passes through the plane of {} inside its bounding box, but the point \
+                 is outside the polygon: {} edge crossings, an even number.",
+                near.object, test.crossings
+            );
+        }
+    }
 }
 
 fn write_clamping(out: &mut String, c: Color) {
