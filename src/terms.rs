@@ -12,7 +12,9 @@ use crate::accel::Cost;
 use crate::math::{Color, Ray, to_rgb8};
 use crate::render::write_png;
 use crate::scene::Scene;
-use crate::trace::{ChildTerm, LightTerm, RayKind, Recorder, SurfaceHit, trace_pixel};
+use crate::trace::{
+    ChildTerm, LightTerm, RayKind, Recorder, ShadowCache, SurfaceHit, trace_pixel_in_row,
+};
 
 /// One view of the per-pixel terms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
@@ -161,9 +163,11 @@ pub fn render_terms(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> TermImages {
         .par_chunks_mut(scene.width as usize)
         .enumerate()
         .for_each(|(y, row)| {
+            let mut cache = ShadowCache::default();
             for (x, pixel) in row.iter_mut().enumerate() {
                 let mut rec = TermsRecorder::default();
-                let color = trace_pixel(scene, &viewport, x as u32, y as u32, &mut rec);
+                let color =
+                    trace_pixel_in_row(scene, &viewport, x as u32, y as u32, &mut cache, &mut rec);
                 rec.terms.color = color;
                 rec.terms.shadow =
                     (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);

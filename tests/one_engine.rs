@@ -71,3 +71,39 @@ fn one_thread_and_all_threads_give_the_same_bytes() {
         assert_eq!(one.as_raw(), three.as_raw(), "{}", path.display());
     }
 }
+
+#[test]
+fn the_shadow_cache_changes_no_colour_and_no_count() {
+    // The render keeps the last opaque blocker per light along a row; tracing
+    // each pixel on its own (a fresh cache) must give the same bytes and the
+    // same ray counts. The SPD rings are full of self-shadowing.
+    let rings = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/spd/rings-small.nff");
+    let mut paths = example_scenes();
+    paths.push(rings);
+    for path in paths.iter().filter(|p| p.exists()) {
+        let scene = load(path).unwrap().prepare().with_size(48, 36).unwrap();
+        let (image, stats) = render::<raystep::trace::RayStats>(&scene, &|| {});
+        let viewport = scene.camera.viewport(scene.width, scene.height);
+        let mut alone = raystep::trace::RayStats::default();
+        for y in 0..scene.height {
+            for x in 0..scene.width {
+                let mut pixel = raystep::trace::RayStats::default();
+                let color = trace_pixel(&scene, &viewport, x, y, &mut pixel);
+                alone.add(&pixel);
+                assert_eq!(
+                    to_rgb8(color),
+                    image.get_pixel(x, y).0,
+                    "{} ({x}, {y})",
+                    path.display()
+                );
+            }
+        }
+        assert_eq!(stats, alone, "{}", path.display());
+        if path.ends_with("rings-small.nff") {
+            assert!(
+                stats.shadow_opaque > 100,
+                "the cache is exercised: {stats:?}"
+            );
+        }
+    }
+}
