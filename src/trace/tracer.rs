@@ -62,7 +62,9 @@ pub fn trace_pixel_in_row<R: Recorder>(
     rec: &mut R,
 ) -> Color {
     let ray = viewport.primary_ray(x, y);
-    trace_ray(scene, &ray, RayKind::Primary, 1, 1.0, cache, rec).color
+    Tracer { scene, cache, rec }
+        .trace(&ray, RayKind::Primary, 1, 1.0)
+        .color
 }
 
 /// Traces one ray of depth `depth` (the primary ray has depth 1). `weight` is
@@ -75,47 +77,230 @@ pub fn trace<R: Recorder>(
     weight: f64,
     rec: &mut R,
 ) -> Traced {
-    trace_ray(
-        scene,
-        ray,
-        kind,
-        depth,
-        weight,
-        &mut ShadowCache::default(),
-        rec,
-    )
+    let cache = &mut ShadowCache::default();
+    Tracer { scene, cache, rec }.trace(ray, kind, depth, weight)
 }
 
-fn trace_ray<R: Recorder>(
-    scene: &Scene,
-    ray: &Ray,
-    kind: RayKind,
-    depth: u32,
-    weight: f64,
-    cache: &mut ShadowCache,
-    rec: &mut R,
-) -> Traced {
-    rec.ray_cast(kind, depth, ray, weight);
-    let mut cost = Cost::default();
-    let Some(candidate) = scene
-        .accel
-        .closest(&scene.objects, ray, Interval::in_front(), &mut cost)
-    else {
-        let background = scene.settings.background;
-        rec.miss(background, cost);
-        rec.ray_done(background);
-        return Traced {
-            color: background,
-            distance: None,
+/// One trace in progress: the scene, the row's shadow cache and the recorder.
+struct Tracer<'a, R> {
+    scene: &'a Scene,
+    cache: &'a mut ShadowCache,
+    rec: &'a mut R,
+}
+
+impl<R: Recorder> Tracer<'_, R> {
+    fn trace(&mut self, ray: &Ray, kind: RayKind, depth: u32, weight: f64) -> Traced {
+        let scene = self.scene;
+        self.rec.ray_cast(kind, depth, ray, weight);
+        let mut cost = Cost::default();
+        let found = scene
+            .accel
+            .closest(&scene.objects, ray, Interval::in_front(), &mut cost);
+        let Some(candidate) = found else {
+            let background = scene.settings.background;
+            self.rec.miss(background, cost);
+            self.rec.ray_done(background);
+            return Traced {
+                color: background,
+                distance: None,
+            };
         };
-    };
-    let hit = surface_hit(scene, ray, candidate);
-    rec.hit(&hit, cost);
-    let color = shade(scene, ray, &hit, depth, cache, rec);
-    rec.ray_done(color);
-    Traced {
-        color,
-        distance: Some(hit.t),
+        let hit = surface_hit(scene, ray, candidate);
+        self.rec.hit(&hit, cost);
+        let color = self.shade(ray, &hit, depth);
+        self.rec.ray_done(color);
+        Traced {
+            color,
+            distance: Some(hit.t),
+        }
+    }
+
+    /// I = ambient + sum_i (diffuse_i + specular_i) + reflected + transmitted.
+    fn shade(&mut self, ray: &Ray, hit: &SurfaceHit, depth: u32) -> Color {
+        let scene = self.scene;
+        let settings = &scene.settings;
+        let material = scene.material_of(hit.object);
+        let ambient = if settings.switches.ambient {
+            settings.ambient * material.color * material.ka
+        } else {
+            Color::ZERO
+        };
+        self.rec.ambient(ambient);
+        let mut color = ambient;
+        let to_viewer = -ray.direction;
+        for (index, light) in scene.lights.iter().enumerate() {
+            let term = self.light_term(hit, material, to_viewer, index, light);
+            self.rec.light(&term);
+            color += term.diffuse + term.specular;
+        }
+        if depth < settings.max_depth {
+            color = self.secondary_rays(ray, hit, material, depth, color);
+        }
+        color
+    }
+
+    fn light_term(
+        &mut self,
+        hit: &SurfaceHit,
+        material: &Material,
+        to_viewer: DVec3,
+        index: usize,
+        light: &Light,
+    ) -> LightTerm {
+        let settings = &self.scene.settings;
+        let offset = light.position - hit.point;
+        let distance = offset.length();
+        let to_light = offset / distance;
+        let n_dot_l = hit.normal.dot(to_light);
+        let mut term = LightTerm {
+            light: index,
+            to_light,
+            distance,
+            n_dot_l,
+            faces_away: n_dot_l <= 0.0,
+            shadow: None,
+            f_att: attenuation(settings.light_attenuation, distance),
+            specular_model: material.specular.unwrap_or(settings.specular),
+            specular_cosine: 0.0,
+            diffuse: Color::ZERO,
+            specular: Color::ZERO,
+        };
+        if term.faces_away {
+            return term;
+        }
+        if settings.switches.shadows {
+            term.shadow = Some(self.shadow_ray(hit.point, to_light, distance, index));
+        }
+        let s = term.shadow.map_or(1.0, |shadow| shadow.s);
+        term.specular_cosine = match term.specular_model {
+            SpecularModel::Blinn => hit.normal.dot((to_light + to_viewer).normalize()),
+            SpecularModel::Phong => (2.0 * n_dot_l * hit.normal - to_light).dot(to_viewer),
+        };
+        let strength = s * term.f_att;
+        let highlight = term.specular_cosine.max(0.0).powf(material.shininess);
+        term.diffuse = light.color * material.color * (strength * material.kd * n_dot_l);
+        term.specular = light.color * (strength * material.ks * highlight);
+        term
+    }
+
+    /// S_i: the product of k_t over every crossing of the segment to the light.
+    fn shadow_ray(
+        &mut self,
+        point: DVec3,
+        to_light: DVec3,
+        distance: f64,
+        light: usize,
+    ) -> ShadowOutcome {
+        let scene = self.scene;
+        let ray = Ray::new(point, to_light);
+        self.rec.shadow_cast(light, &ray, distance);
+        let mut outcome = ShadowOutcome {
+            s: 1.0,
+            crossings: 0,
+            cost: Cost::default(),
+        };
+        let segment = Interval::new(EPS, distance);
+        // The opaque object that blocked this light last time is tried first: in a
+        // shadow, neighbouring points are usually blocked by the same object. S = 0
+        // either way, so only the cost changes. A recording lists every blocker
+        // and so always walks the whole segment.
+        if !R::RECORDS_ALL_BLOCKERS
+            && let Some(object) = self.cache.blocker(light)
+        {
+            outcome.cost.primitives += 1;
+            if let Some(&t) = scene.objects[object]
+                .shape
+                .roots(&ray, segment)
+                .as_slice()
+                .first()
+            {
+                outcome.s = 0.0;
+                outcome.crossings = 1;
+                self.rec.blocker(&Blocker { object, t, kt: 0.0 });
+                return outcome;
+            }
+        }
+        let (cache, rec) = (&mut *self.cache, &mut *self.rec);
+        scene.accel.crossings(
+            &scene.objects,
+            &ray,
+            segment,
+            &mut outcome.cost,
+            |object, t| {
+                let kt = scene.material_of(object).kt;
+                outcome.s *= kt;
+                outcome.crossings += 1;
+                rec.blocker(&Blocker { object, t, kt });
+                if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
+                    cache.remember(light, object);
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        );
+        outcome
+    }
+
+    /// Adds the reflected and transmitted rays, each through `trace_child`, to
+    /// the local colour, one after the other (the order of MODEL §6's sum).
+    fn secondary_rays(
+        &mut self,
+        ray: &Ray,
+        hit: &SurfaceHit,
+        material: &Material,
+        depth: u32,
+        local: Color,
+    ) -> Color {
+        let switches = self.scene.settings.switches;
+        let refraction = (material.kt > 0.0 && switches.transmission)
+            .then(|| refract(ray.direction, hit, material.ior));
+        if let Some(refraction) = &refraction {
+            self.rec.refraction(refraction);
+        }
+        let tir = refraction.is_some_and(|r| r.tir);
+        let mirror = if switches.reflection {
+            material.ks
+        } else {
+            0.0
+        };
+        let reflected_weight = mirror + if tir { material.kt } else { 0.0 };
+        let mut color = local;
+        if reflected_weight > 0.0 {
+            let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
+            color += self.trace_child(hit, RayKind::Reflected, direction, reflected_weight, depth);
+        }
+        if let Some(direction) = refraction.and_then(|r| r.direction) {
+            color += self.trace_child(hit, RayKind::Transmitted, direction, material.kt, depth);
+        }
+        color
+    }
+
+    /// Traces a secondary ray from the hit and scales what it returns by its
+    /// weight and its distance attenuation.
+    fn trace_child(
+        &mut self,
+        hit: &SurfaceHit,
+        kind: RayKind,
+        direction: DVec3,
+        weight: f64,
+        depth: u32,
+    ) -> Color {
+        let ray = Ray::new(hit.point, direction);
+        let traced = self.trace(&ray, kind, depth + 1, weight);
+        let attenuation = traced
+            .distance
+            .map_or(1.0, |t| attenuation(self.scene.settings.ray_attenuation, t));
+        let contribution = traced.color * (weight * attenuation);
+        self.rec.child(&ChildTerm {
+            kind,
+            weight,
+            attenuation,
+            distance: traced.distance,
+            color: traced.color,
+            contribution,
+        });
+        contribution
     }
 }
 
@@ -139,197 +324,6 @@ fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
     }
 }
 
-/// I = ambient + sum_i (diffuse_i + specular_i) + reflected + transmitted.
-fn shade<R: Recorder>(
-    scene: &Scene,
-    ray: &Ray,
-    hit: &SurfaceHit,
-    depth: u32,
-    cache: &mut ShadowCache,
-    rec: &mut R,
-) -> Color {
-    let settings = &scene.settings;
-    let material = scene.material_of(hit.object);
-    let ambient = if settings.switches.ambient {
-        settings.ambient * material.color * material.ka
-    } else {
-        Color::ZERO
-    };
-    rec.ambient(ambient);
-    let mut color = ambient;
-    let to_viewer = -ray.direction;
-    for (index, light) in scene.lights.iter().enumerate() {
-        let term = light_term(scene, hit, material, to_viewer, index, light, cache, rec);
-        rec.light(&term);
-        color += term.diffuse + term.specular;
-    }
-    if depth < settings.max_depth {
-        color = secondary_rays(scene, ray, hit, material, depth, color, cache, rec);
-    }
-    color
-}
-
-fn light_term<R: Recorder>(
-    scene: &Scene,
-    hit: &SurfaceHit,
-    material: &Material,
-    to_viewer: DVec3,
-    index: usize,
-    light: &Light,
-    cache: &mut ShadowCache,
-    rec: &mut R,
-) -> LightTerm {
-    let settings = &scene.settings;
-    let offset = light.position - hit.point;
-    let distance = offset.length();
-    let to_light = offset / distance;
-    let n_dot_l = hit.normal.dot(to_light);
-    let f_att = attenuation(settings.light_attenuation, distance);
-    let mut term = LightTerm {
-        light: index,
-        to_light,
-        distance,
-        n_dot_l,
-        faces_away: n_dot_l <= 0.0,
-        shadow: None,
-        f_att,
-        specular_model: material.specular.unwrap_or(settings.specular),
-        specular_cosine: 0.0,
-        diffuse: Color::ZERO,
-        specular: Color::ZERO,
-    };
-    if term.faces_away {
-        return term;
-    }
-    if settings.switches.shadows {
-        term.shadow = Some(shadow_ray(
-            scene, hit.point, to_light, distance, index, cache, rec,
-        ));
-    }
-    let s = term.shadow.map_or(1.0, |shadow| shadow.s);
-    term.specular_cosine = match term.specular_model {
-        SpecularModel::Blinn => hit.normal.dot((to_light + to_viewer).normalize()),
-        SpecularModel::Phong => (2.0 * n_dot_l * hit.normal - to_light).dot(to_viewer),
-    };
-    let strength = s * f_att;
-    term.diffuse = light.color * material.color * (strength * material.kd * n_dot_l);
-    term.specular = light.color
-        * (strength * material.ks * term.specular_cosine.max(0.0).powf(material.shininess));
-    term
-}
-
-/// S_i: the product of k_t over every crossing of the segment to the light.
-fn shadow_ray<R: Recorder>(
-    scene: &Scene,
-    point: DVec3,
-    to_light: DVec3,
-    distance: f64,
-    light: usize,
-    cache: &mut ShadowCache,
-    rec: &mut R,
-) -> ShadowOutcome {
-    let ray = Ray::new(point, to_light);
-    rec.shadow_cast(light, &ray, distance);
-    let mut outcome = ShadowOutcome {
-        s: 1.0,
-        crossings: 0,
-        cost: Cost::default(),
-    };
-    let segment = Interval::new(EPS, distance);
-    // The opaque object that blocked this light last time is tried first: in a
-    // shadow, neighbouring points are usually blocked by the same object. S = 0
-    // either way, so only the cost changes. A recording lists every blocker
-    // and so always walks the whole segment.
-    if !R::RECORDS_ALL_BLOCKERS
-        && let Some(object) = cache.blocker(light)
-    {
-        outcome.cost.primitives += 1;
-        if let Some(&t) = scene.objects[object]
-            .shape
-            .roots(&ray, segment)
-            .as_slice()
-            .first()
-        {
-            outcome.s = 0.0;
-            outcome.crossings = 1;
-            rec.blocker(&Blocker { object, t, kt: 0.0 });
-            return outcome;
-        }
-    }
-    scene.accel.crossings(
-        &scene.objects,
-        &ray,
-        segment,
-        &mut outcome.cost,
-        |object, t| {
-            let kt = scene.material_of(object).kt;
-            outcome.s *= kt;
-            outcome.crossings += 1;
-            rec.blocker(&Blocker { object, t, kt });
-            if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
-                cache.remember(light, object);
-                ControlFlow::Break(())
-            } else {
-                ControlFlow::Continue(())
-            }
-        },
-    );
-    outcome
-}
-
-/// Adds the reflected and transmitted rays, each through `trace_child`, to
-/// the local colour, one after the other (the order of MODEL §6's sum).
-fn secondary_rays<R: Recorder>(
-    scene: &Scene,
-    ray: &Ray,
-    hit: &SurfaceHit,
-    material: &Material,
-    depth: u32,
-    local: Color,
-    cache: &mut ShadowCache,
-    rec: &mut R,
-) -> Color {
-    let switches = scene.settings.switches;
-    let refraction = (material.kt > 0.0 && switches.transmission)
-        .then(|| refract(ray.direction, hit, material.ior));
-    if let Some(refraction) = &refraction {
-        rec.refraction(refraction);
-    }
-    let tir = refraction.is_some_and(|r| r.tir);
-    let reflected_weight = if switches.reflection {
-        material.ks
-    } else {
-        0.0
-    } + if tir { material.kt } else { 0.0 };
-    let mut color = local;
-    if reflected_weight > 0.0 {
-        let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
-        color += trace_child(
-            scene,
-            hit,
-            RayKind::Reflected,
-            direction,
-            reflected_weight,
-            depth,
-            cache,
-            rec,
-        );
-    }
-    if let Some(direction) = refraction.and_then(|r| r.direction) {
-        color += trace_child(
-            scene,
-            hit,
-            RayKind::Transmitted,
-            direction,
-            material.kt,
-            depth,
-            cache,
-            rec,
-        );
-    }
-    color
-}
-
 /// Snell's law with N facing the incoming ray; eta = 1 / ior entering, ior leaving.
 fn refract(direction: DVec3, hit: &SurfaceHit, ior: f64) -> Refraction {
     let cos_i = -direction.dot(hit.normal);
@@ -344,33 +338,4 @@ fn refract(direction: DVec3, hit: &SurfaceHit, ior: f64) -> Refraction {
         tir,
         direction,
     }
-}
-
-/// Traces a secondary ray from the hit and scales what it returns by its
-/// weight and its distance attenuation.
-fn trace_child<R: Recorder>(
-    scene: &Scene,
-    hit: &SurfaceHit,
-    kind: RayKind,
-    direction: DVec3,
-    weight: f64,
-    depth: u32,
-    cache: &mut ShadowCache,
-    rec: &mut R,
-) -> Color {
-    let ray = Ray::new(hit.point, direction);
-    let traced = trace_ray(scene, &ray, kind, depth + 1, weight, cache, rec);
-    let attenuation = traced
-        .distance
-        .map_or(1.0, |t| attenuation(scene.settings.ray_attenuation, t));
-    let contribution = traced.color * (weight * attenuation);
-    rec.child(&ChildTerm {
-        kind,
-        weight,
-        attenuation,
-        distance: traced.distance,
-        color: traced.color,
-        contribution,
-    });
-    contribution
 }
