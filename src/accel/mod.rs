@@ -152,36 +152,59 @@ impl Accel {
             return;
         }
         let boxes = BoxTest::new(ray);
-        let mut stack = [0u32; MAX_DEPTH];
+        cost.nodes += 1;
+        if boxes.entry(&self.nodes[0], t_min, t_max).is_none() {
+            return;
+        }
+        // Both children are tested at their parent; the nearer is entered
+        // first and the farther waits with its entry distance, so it is
+        // skipped once a hit closer than that entry is known.
+        let mut stack = [(0u32, 0f64); MAX_DEPTH];
         let mut pending = 0;
         let mut index = 0;
         loop {
             let node = &self.nodes[index];
-            cost.nodes += 1;
-            if boxes.hits(node, t_min, t_max) {
-                if !node.is_leaf() {
-                    // The first child holds the smaller centroids along the axis.
-                    let (near, far) = if boxes.negative(node.axis) {
-                        (node.offset as usize, index + 1)
-                    } else {
-                        (index + 1, node.offset as usize)
-                    };
-                    stack[pending] = far as u32;
-                    pending += 1;
-                    index = near;
-                    continue;
-                }
+            if node.is_leaf() {
                 let first = node.offset as usize;
                 match leaf(&self.objects[first..first + usize::from(node.count)], cost) {
                     ControlFlow::Continue(max) => t_max = max,
                     ControlFlow::Break(()) => return,
                 }
+            } else {
+                let (a, b) = (index + 1, node.offset as usize);
+                cost.nodes += 2;
+                let ta = boxes.entry(&self.nodes[a], t_min, t_max);
+                let tb = boxes.entry(&self.nodes[b], t_min, t_max);
+                match (ta, tb) {
+                    (Some(x), Some(y)) => {
+                        let (near, far, t_far) = if x <= y { (a, b, y) } else { (b, a, x) };
+                        stack[pending] = (far as u32, t_far);
+                        pending += 1;
+                        index = near;
+                        continue;
+                    }
+                    (Some(_), None) => {
+                        index = a;
+                        continue;
+                    }
+                    (None, Some(_)) => {
+                        index = b;
+                        continue;
+                    }
+                    (None, None) => {}
+                }
             }
-            if pending == 0 {
-                return;
+            loop {
+                if pending == 0 {
+                    return;
+                }
+                pending -= 1;
+                let (next, entry) = stack[pending];
+                if entry <= t_max {
+                    index = next as usize;
+                    break;
+                }
             }
-            pending -= 1;
-            index = stack[pending] as usize;
         }
     }
 }

@@ -78,16 +78,15 @@ impl BoxTest {
         }
     }
 
-    /// Whether the ray's part with `t_min <= t <= t_max` meets the node's box
-    /// (closed at both ends, so that a hit at exactly `t_max` is still found).
-    ///
-    /// A zero direction component makes its inverse infinite: a slab the
-    /// origin lies strictly inside then gives (-inf, +inf), one it lies outside
-    /// gives an empty interval. An origin exactly on the slab's face gives
-    /// 0 * inf = NaN, which compares false and so never moves a bound: that
-    /// slab constrains nothing, and a ray running along a face meets the box.
+    /// Whether the ray meets the box within (t_min, t_max).
+    #[cfg(test)]
+    pub fn hits(&self, node: &Node, t_min: f64, t_max: f64) -> bool {
+        self.entry(node, t_min, t_max).is_some()
+    }
+
+    /// Where the ray enters the box within (t_min, t_max), if it does.
     #[inline]
-    pub fn hits(&self, node: &Node, mut t_min: f64, mut t_max: f64) -> bool {
+    pub fn entry(&self, node: &Node, mut t_min: f64, mut t_max: f64) -> Option<f64> {
         for axis in 0..3 {
             let (near, far) = if self.negative[axis] {
                 (node.max[axis], node.min[axis])
@@ -96,7 +95,6 @@ impl BoxTest {
             };
             let t_near = (near - self.origin[axis]) * self.inverse[axis];
             let t_far = (far - self.origin[axis]) * self.inverse[axis];
-            // Comparisons rather than `f64::max`: the same NaN rule, one instruction.
             if t_near > t_min {
                 t_min = t_near;
             }
@@ -104,13 +102,7 @@ impl BoxTest {
                 t_max = t_far;
             }
         }
-        t_min <= t_max
-    }
-
-    /// Whether the ray runs towards decreasing coordinates along `axis`.
-    #[inline]
-    pub fn negative(&self, axis: u16) -> bool {
-        self.negative[usize::from(axis)]
+        (t_min <= t_max).then_some(t_min)
     }
 }
 
