@@ -31,7 +31,17 @@ impl RowRecorder for RayStats {
 /// Renders the scene at its size. `row_done` is called once per finished row
 /// (from any thread), for progress display.
 pub fn render<R: RowRecorder>(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> (RgbImage, R) {
-    let (width, height) = (scene.width, scene.height);
+    render_at(scene, scene.width, scene.height, row_done)
+}
+
+/// Renders the scene at another size with the same field of view (a quick
+/// preview; its pixels are not the scene's own).
+pub fn render_at<R: RowRecorder>(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    row_done: &(dyn Fn() + Sync),
+) -> (RgbImage, R) {
     let viewport = scene.camera.viewport(width, height);
     let mut image = RgbImage::new(width, height);
     let recorder = image

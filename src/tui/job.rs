@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use image::RgbImage;
 
-use crate::render::render;
+use crate::render::{render, render_at};
 use crate::scene::Scene;
 use crate::terms::{TermImages, render_terms};
 use crate::trace::NoRecorder;
@@ -55,6 +55,8 @@ pub struct Renderer {
     sync: bool,
     sender: Sender<Finished>,
     receiver: Receiver<Finished>,
+    /// Quick low-resolution images sent ahead of a large render.
+    previews: (Sender<Preview>, Receiver<Preview>),
     running: Option<Running>,
     pending: Option<Request>,
 }
@@ -66,6 +68,7 @@ impl Renderer {
             sync,
             sender,
             receiver,
+            previews: channel(),
             running: None,
             pending: None,
         }
@@ -89,6 +92,12 @@ impl Renderer {
 
     pub fn busy(&self) -> bool {
         self.running.is_some() || self.pending.is_some()
+    }
+
+    /// A preview that came in, if any. It is sent before its render's result,
+    /// so draining previews before results never shows a stale one.
+    pub fn poll_preview(&mut self) -> Option<Preview> {
+        self.previews.1.try_recv().ok()
     }
 
     /// A finished render, if any; starts the pending one when the last ends.
@@ -119,8 +128,16 @@ impl Renderer {
             rows: request.scene.height,
         });
         let sender = self.sender.clone();
+        let previews = self.previews.0.clone();
+        let preview = !self.sync && !request.terms;
         let job = move || {
             let started = Instant::now();
+            if preview && let Some(image) = preview_image(&request.scene) {
+                let _ = previews.send(Preview {
+                    generation: request.generation,
+                    image,
+                });
+            }
             let output = catch_unwind(AssertUnwindSafe(|| run(&request, &rows_done)))
                 .map_err(|payload| panic_message(payload.as_ref()));
             let elapsed = started.elapsed();
@@ -139,6 +156,37 @@ impl Renderer {
                 .expect("cannot start the render thread");
         }
     }
+}
+
+/// A render sent ahead of a large image, scaled up to its size.
+pub struct Preview {
+    pub generation: u64,
+    pub image: RgbImage,
+}
+
+/// Images with more pixels than this get a preview first.
+const PREVIEW_ABOVE: u32 = 60_000;
+/// About how many pixels a preview traces: a terminal's worth.
+const PREVIEW_PIXELS: u32 = 30_000;
+
+/// The scene rendered at about terminal resolution and scaled up (nearest
+/// neighbour) to its own size, or `None` when the scene is small anyway.
+fn preview_image(scene: &Scene) -> Option<RgbImage> {
+    let (width, height) = (scene.width, scene.height);
+    if width * height <= PREVIEW_ABOVE {
+        return None;
+    }
+    let step = ((width * height) as f64 / PREVIEW_PIXELS as f64)
+        .sqrt()
+        .ceil() as u32;
+    let (small_w, small_h) = (width.div_ceil(step), height.div_ceil(step));
+    let small = catch_unwind(AssertUnwindSafe(|| {
+        render_at::<NoRecorder>(scene, small_w, small_h, &|| {}).0
+    }))
+    .ok()?;
+    Some(RgbImage::from_fn(width, height, |x, y| {
+        *small.get_pixel((x / step).min(small_w - 1), (y / step).min(small_h - 1))
+    }))
 }
 
 fn run(request: &Request, rows_done: &AtomicU32) -> Output {
@@ -160,4 +208,32 @@ fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
         .or_else(|| payload.downcast_ref::<String>().cloned())
         .unwrap_or_else(|| "unknown panic".into());
     format!("the render failed: {text}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seven_rays(width: u32, height: u32) -> Scene {
+        let text = crate::cli::DEFAULT_SCENE;
+        let scene = crate::scene::parse(std::path::Path::new("seven-rays.toml"), text).unwrap();
+        scene.prepare().with_size(width, height).unwrap()
+    }
+
+    #[test]
+    fn large_images_get_a_preview_of_their_own_size() {
+        // 400 x 300 = 120,000 pixels > 60,000: step = ceil(sqrt(4)) = 2, so the
+        // preview traces 200 x 150 and each of its pixels fills a 2 x 2 block.
+        let scene = seven_rays(400, 300);
+        let preview = preview_image(&scene).unwrap();
+        assert_eq!(preview.dimensions(), (400, 300));
+        assert_eq!(preview.get_pixel(0, 0), preview.get_pixel(1, 1));
+        let small = render_at::<NoRecorder>(&scene, 200, 150, &|| {}).0;
+        assert_eq!(preview.get_pixel(123, 77), small.get_pixel(61, 38));
+    }
+
+    #[test]
+    fn small_images_need_no_preview() {
+        assert!(preview_image(&seven_rays(161, 121)).is_none());
+    }
 }

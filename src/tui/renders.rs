@@ -43,6 +43,12 @@ impl App {
 
     pub(super) fn collect_renders(&mut self) -> bool {
         let mut any = false;
+        while let Some(preview) = self.renderer.poll_preview() {
+            if preview.generation == self.generation {
+                self.image = Some(preview.image);
+                any = true;
+            }
+        }
         while let Some(finished) = self.renderer.poll() {
             self.install(finished);
             any = true;
