@@ -167,7 +167,7 @@ pub struct Preview {
 /// Images with more pixels than this get a preview first.
 const PREVIEW_ABOVE: u32 = 60_000;
 /// About how many pixels a preview traces: a terminal's worth.
-const PREVIEW_PIXELS: u32 = 30_000;
+const PREVIEW_PIXELS: u32 = 20_000;
 
 /// The scene rendered at about terminal resolution and scaled up (nearest
 /// neighbour) to its own size, or `None` when the scene is small anyway.
@@ -222,14 +222,15 @@ mod tests {
 
     #[test]
     fn large_images_get_a_preview_of_their_own_size() {
-        // 400 x 300 = 120,000 pixels > 60,000: step = ceil(sqrt(4)) = 2, so the
-        // preview traces 200 x 150 and each of its pixels fills a 2 x 2 block.
+        // 400 x 300 = 120,000 pixels > 60,000: step = ceil(sqrt(120,000 / 20,000))
+        // = ceil(2.45) = 3, so the preview traces 134 x 100 and each of its
+        // pixels fills a 3 x 3 block.
         let scene = seven_rays(400, 300);
         let preview = preview_image(&scene).unwrap();
         assert_eq!(preview.dimensions(), (400, 300));
-        assert_eq!(preview.get_pixel(0, 0), preview.get_pixel(1, 1));
-        let small = render_at::<NoRecorder>(&scene, 200, 150, &|| {}).0;
-        assert_eq!(preview.get_pixel(123, 77), small.get_pixel(61, 38));
+        assert_eq!(preview.get_pixel(0, 0), preview.get_pixel(2, 2));
+        let small = render_at::<NoRecorder>(&scene, 134, 100, &|| {}).0;
+        assert_eq!(preview.get_pixel(123, 77), small.get_pixel(41, 25));
     }
 
     #[test]
