@@ -2,12 +2,14 @@
 //! event list, and their text, JSON and Graphviz forms.
 
 mod explain;
+mod recorder;
 mod text;
 mod tree;
 
 pub use explain::explain;
+pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use text::{color, dot, kind_name, light_lines, node_lines, num, text, vector, working_lines};
 pub use tree::{
     BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,
-    ShadowRecord, TreeRecorder, record_pixel,
+    ShadowRecord,
 };

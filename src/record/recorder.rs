@@ -1,0 +1,295 @@
+//! The recorder that builds a pixel's ray tree and event list from the
+//! tracer's callbacks. It never computes a term itself: every number it holds
+//! is the one the tracer used, so a tree cannot disagree with the image.
+
+use crate::accel::Cost;
+use crate::math::{Color, Interval, Ray};
+use crate::scene::Scene;
+use crate::shapes::Shape;
+use crate::trace::{
+    Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel,
+};
+
+use super::tree::{
+    BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,
+    ShadowRecord,
+};
+
+/// Near misses are looked for in scenes up to this size, where they teach;
+/// in benchmark scenes the scan would cost more than the whole pixel.
+pub const NEAR_MISS_SCENE_LIMIT: usize = 2000;
+
+/// Builds a `RayTree` from the tracer's callbacks.
+pub struct TreeRecorder<'a> {
+    scene: &'a Scene,
+    nodes: Vec<Node>,
+    events: Vec<Event>,
+    /// The node of the ray being traced, innermost last.
+    stack: Vec<NodeId>,
+    /// Blockers of the shadow ray being traced, in the order found.
+    blockers: Vec<Blocker>,
+    /// The shadow ray being traced: its light, ray and length.
+    shadow_ray: Option<(usize, Ray, f64)>,
+}
+
+/// Records pixel (x, y): the same `trace_pixel` call the render makes.
+pub fn record_pixel(scene: &Scene, x: u32, y: u32) -> RayTree {
+    let viewport = scene.camera.viewport(scene.width, scene.height);
+    let mut recorder = TreeRecorder::new(scene);
+    trace_pixel(scene, &viewport, x, y, &mut recorder);
+    recorder.into_tree((x, y))
+}
+
+impl<'a> TreeRecorder<'a> {
+    pub fn new(scene: &'a Scene) -> Self {
+        Self {
+            scene,
+            nodes: Vec::new(),
+            events: Vec::new(),
+            stack: Vec::new(),
+            blockers: Vec::new(),
+            shadow_ray: None,
+        }
+    }
+
+    /// The finished recording, labelled with the pixel it belongs to.
+    pub fn into_tree(self, pixel: (u32, u32)) -> RayTree {
+        RayTree {
+            pixel,
+            max_depth: Some(self.scene.settings.max_depth),
+            nodes: self.nodes,
+            events: self.events,
+        }
+    }
+
+    fn current(&self) -> NodeId {
+        *self.stack.last().expect("a callback outside any ray")
+    }
+
+    fn node(&mut self) -> &mut Node {
+        let id = self.current();
+        &mut self.nodes[id]
+    }
+
+    fn push_event(&mut self, kind: EventKind) {
+        let node = self.current();
+        self.events.push(Event { node, kind });
+    }
+}
+
+impl Recorder for TreeRecorder<'_> {
+    const RECORDS_ALL_BLOCKERS: bool = true;
+
+    fn ray_cast(&mut self, kind: RayKind, depth: u32, ray: &Ray, weight: f64) {
+        let parent = self.stack.last().copied();
+        let id = self.nodes.len();
+        self.nodes.push(Node {
+            parent,
+            kind,
+            depth,
+            origin: ray.origin,
+            direction: ray.direction,
+            weight,
+            attenuation: 1.0,
+            hit: None,
+            near_misses: Vec::new(),
+            cost: Cost::default(),
+            ambient: Color::ZERO,
+            lights: Vec::new(),
+            refraction: None,
+            tir: false,
+            reflected: None,
+            transmitted: None,
+            color: Color::ZERO,
+            contribution: Color::ZERO,
+        });
+        if let Some(parent) = parent {
+            match kind {
+                RayKind::Reflected => self.nodes[parent].reflected = Some(id),
+                RayKind::Transmitted => self.nodes[parent].transmitted = Some(id),
+                RayKind::Primary => {}
+            }
+        }
+        self.stack.push(id);
+        self.push_event(EventKind::RayCast { kind, depth });
+    }
+
+    fn hit(&mut self, hit: &SurfaceHit, cost: Cost) {
+        let scene = self.scene;
+        let object = &scene.objects[hit.object];
+        let node = self.node();
+        let ray = Ray::new(node.origin, node.direction);
+        node.cost = cost;
+        node.near_misses = near_misses(scene, &ray, hit.t);
+        node.hit = Some(HitRecord {
+            object: object.name.clone(),
+            object_index: hit.object,
+            kind: object.shape.kind(),
+            material: scene.materials[object.material].name.clone(),
+            t: hit.t,
+            point: hit.point,
+            normal: hit.geometric_normal,
+            shading_normal: hit.normal,
+            entering: hit.entering,
+            working: object.shape.working(&ray, Interval::in_front()),
+        });
+        self.push_event(EventKind::Hit {
+            object: hit.object,
+            t: hit.t,
+            tested: cost,
+        });
+    }
+
+    fn miss(&mut self, _background: Color, cost: Cost) {
+        let scene = self.scene;
+        let node = self.node();
+        node.cost = cost;
+        node.near_misses =
+            near_misses(scene, &Ray::new(node.origin, node.direction), f64::INFINITY);
+        self.push_event(EventKind::Miss { tested: cost });
+    }
+
+    fn ambient(&mut self, term: Color) {
+        self.node().ambient = term;
+        self.push_event(EventKind::Ambient { term });
+    }
+
+    fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: f64) {
+        self.blockers.clear();
+        self.shadow_ray = Some((light, *ray, distance));
+        self.push_event(EventKind::ShadowCast { light });
+    }
+
+    fn blocker(&mut self, blocker: &Blocker) {
+        self.blockers.push(*blocker);
+        let Some((light, _, _)) = self.shadow_ray else {
+            return;
+        };
+        self.push_event(EventKind::Blocker {
+            light,
+            object: blocker.object,
+            t: blocker.t,
+            kt: blocker.kt,
+        });
+    }
+
+    fn light(&mut self, term: &LightTerm) {
+        let scene = self.scene;
+        let shadow = match (term.shadow, self.shadow_ray.take()) {
+            (Some(outcome), Some((_, ray, distance))) => {
+                let mut blockers: Vec<BlockerRecord> = self
+                    .blockers
+                    .iter()
+                    .map(|b| BlockerRecord {
+                        object: scene.objects[b.object].name.clone(),
+                        object_index: b.object,
+                        t: b.t,
+                        kt: b.kt,
+                    })
+                    .collect();
+                blockers.sort_by(|a, b| {
+                    a.t.total_cmp(&b.t)
+                        .then(a.object_index.cmp(&b.object_index))
+                });
+                Some(ShadowRecord {
+                    origin: ray.origin,
+                    direction: ray.direction,
+                    distance,
+                    blockers,
+                    s: outcome.s,
+                    cost: outcome.cost,
+                })
+            }
+            _ => None,
+        };
+        let s = shadow.as_ref().map(|s| s.s);
+        self.node().lights.push(LightRecord {
+            light: scene.lights[term.light].name.clone(),
+            light_index: term.light,
+            to_light: term.to_light,
+            distance: term.distance,
+            n_dot_l: term.n_dot_l,
+            faces_away: term.faces_away,
+            shadow,
+            f_att: term.f_att,
+            specular_model: term.specular_model,
+            specular_cosine: term.specular_cosine,
+            diffuse: term.diffuse,
+            specular: term.specular,
+        });
+        self.push_event(EventKind::Light {
+            light: term.light,
+            faces_away: term.faces_away,
+            s,
+            diffuse: term.diffuse,
+            specular: term.specular,
+        });
+    }
+
+    fn refraction(&mut self, refraction: &Refraction) {
+        let node = self.node();
+        node.refraction = Some(*refraction);
+        node.tir = refraction.tir;
+        self.push_event(EventKind::Refraction {
+            tir: refraction.tir,
+        });
+    }
+
+    fn child(&mut self, term: &ChildTerm) {
+        let parent = self.current();
+        let child = match term.kind {
+            RayKind::Reflected => self.nodes[parent].reflected,
+            RayKind::Transmitted => self.nodes[parent].transmitted,
+            RayKind::Primary => None,
+        };
+        let Some(child) = child else { return };
+        self.nodes[child].attenuation = term.attenuation;
+        self.nodes[child].contribution = term.contribution;
+        self.push_event(EventKind::ChildReturned {
+            child,
+            kind: term.kind,
+            contribution: term.contribution,
+        });
+    }
+
+    fn ray_done(&mut self, color: Color) {
+        let node = self.node();
+        node.color = color;
+        if node.parent.is_none() {
+            node.contribution = color;
+        }
+        self.push_event(EventKind::RayDone { color });
+        self.stack.pop();
+    }
+}
+
+/// Polygons and patches whose plane the ray meets in front of `before`,
+/// within the polygon's bounding box, but whose crossing test puts the point
+/// outside: a concave notch, or just past an edge.
+fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
+    if scene.objects.len() > NEAR_MISS_SCENE_LIMIT {
+        return Vec::new();
+    }
+    let range = Interval::new(crate::math::EPS, before);
+    let mut found = Vec::new();
+    for (index, object) in scene.objects.iter().enumerate() {
+        let polygon = match &object.shape {
+            Shape::Polygon(p) => p,
+            Shape::Patch(p) => &p.polygon,
+            _ => continue,
+        };
+        let working = polygon.solve(ray, range);
+        let in_box = working
+            .plane
+            .hit_t()
+            .is_some_and(|t| polygon.bounds().contains(ray.at(t)));
+        if in_box && working.crossing.is_some_and(|c| !c.inside) {
+            found.push(NearMiss {
+                object: object.name.clone(),
+                object_index: index,
+                working: object.shape.working(ray, range),
+            });
+        }
+    }
+    found
+}
