@@ -1,8 +1,7 @@
-//! The debugger without a terminal: keys in, state out, and whole screens
-//! drawn on ratatui's `TestBackend`, pinned with insta in `snapshots/`.
+//! The debugger without a terminal: keys in, state out. Whole screens are
+//! pinned in `tui_screens.rs`.
 
 use std::collections::VecDeque;
-use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -15,62 +14,9 @@ use raystep::scene::SpecularModel;
 use raystep::terms::Term;
 use raystep::tui::{self, Action, App, Breakpoint, Pane, Step, View};
 
-/// The built-in seven-rays scene, rendering synchronously.
-fn app() -> App {
-    App::open(None, true).expect("the built-in scene loads")
-}
+mod common;
 
-fn key(code: KeyCode) -> Event {
-    Event::Key(KeyEvent::from(code))
-}
-
-fn shift(c: char) -> Event {
-    Event::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::SHIFT))
-}
-
-/// Feeds terminal events through the same mapping the main loop uses.
-fn press(app: &mut App, events: &[Event]) {
-    for event in events {
-        if let Some(action) = tui::event::action(event, app) {
-            app.update(action);
-        }
-    }
-}
-
-fn chars(app: &mut App, keys: &str) {
-    let events: Vec<Event> = keys.chars().map(|c| key(KeyCode::Char(c))).collect();
-    press(app, &events);
-}
-
-fn screen(app: &mut App, width: u16, height: u16) -> Terminal<TestBackend> {
-    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
-    tui::draw(&mut terminal, app).unwrap();
-    terminal
-}
-
-macro_rules! snapshot {
-    ($name:expr, $terminal:expr) => {
-        insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => true }, {
-            insta::assert_snapshot!($name, $terminal.backend());
-        })
-    };
-}
-
-/// A copy of the seven-rays scene in a fixed relative place, so error
-/// messages name the same path on every machine.
-fn scene_file(name: &str) -> PathBuf {
-    let dir = Path::new("target/tui-tests");
-    std::fs::create_dir_all(dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, include_str!("../scenes/seven-rays.toml")).unwrap();
-    path
-}
-
-fn edit(path: &Path, from: &str, to: &str) {
-    let text = std::fs::read_to_string(path).unwrap();
-    assert!(text.contains(from), "{from} not in the scene");
-    std::fs::write(path, text.replace(from, to)).unwrap();
-}
+use common::*;
 
 #[test]
 fn starts_on_the_centre_pixel_with_its_tree() {
@@ -594,103 +540,4 @@ fn help_closes_on_any_key_and_esc_quits() {
     assert_eq!(app.current, 0, "the key only closed the help");
     press(&mut app, &[key(KeyCode::Esc)]);
     assert!(app.quit);
-}
-
-#[test]
-fn snapshot_start_screen() {
-    let mut app = app();
-    snapshot!("start_screen", screen(&mut app, 120, 40));
-}
-
-#[test]
-fn snapshot_shadowed_pixel() {
-    let mut app = app();
-    app.update(Action::Pick(80, 82));
-    chars(&mut app, "b");
-    snapshot!("shadowed_pixel", screen(&mut app, 120, 40));
-}
-
-#[test]
-fn snapshot_step_through() {
-    let mut app = app();
-    chars(&mut app, "ioi");
-    snapshot!("step_through", screen(&mut app, 120, 40));
-}
-
-#[test]
-fn snapshot_help_overlay() {
-    let mut app = app();
-    chars(&mut app, "?");
-    snapshot!("help_overlay", screen(&mut app, 120, 40));
-}
-
-#[test]
-fn snapshot_term_view() {
-    let mut app = app();
-    chars(&mut app, "vvvvvvv");
-    assert_eq!(app.view, View::Term(Term::Rays));
-    snapshot!("term_view_rays", screen(&mut app, 120, 40));
-}
-
-#[test]
-fn snapshot_error_banner() {
-    let path = scene_file("broken.toml");
-    let mut app = App::open(Some(path.clone()), true).unwrap();
-    edit(&path, "kt = 0.7", "kt = 0.7.5");
-    app.update(Action::Reload);
-    snapshot!("error_banner", screen(&mut app, 120, 40));
-}
-
-#[test]
-fn snapshot_too_small() {
-    let mut app = app();
-    snapshot!("too_small", screen(&mut app, 60, 20));
-}
-
-#[test]
-fn snapshot_wide_side_view() {
-    let mut app = app();
-    app.update(Action::Pick(80, 82));
-    chars(&mut app, "d");
-    snapshot!("wide_side_view", screen(&mut app, 200, 60));
-}
-
-/// Timings for the report: `cargo test --release --test tui -- --ignored --nocapture`.
-#[test]
-#[ignore = "a measurement, not a check; needs ../shared/spd/teapot.nff"]
-fn measure_pick_and_render_on_the_teapot() {
-    let path = PathBuf::from("../shared/spd/teapot.nff");
-    if !path.exists() {
-        return;
-    }
-    let mut app = App::open(Some(path), true).unwrap();
-    println!(
-        "teapot {}x{}, {} objects",
-        app.scene.width,
-        app.scene.height,
-        app.scene.objects.len()
-    );
-    let mut picks = Vec::new();
-    for i in 0..200u32 {
-        app.update(Action::Pick(
-            (i * 37) % app.scene.width,
-            (i * 91) % app.scene.height,
-        ));
-        picks.push(app.pick_time);
-    }
-    picks.sort();
-    println!(
-        "pixel pick: median {:?}, max {:?}",
-        picks[picks.len() / 2],
-        picks[picks.len() - 1]
-    );
-    for _ in 0..3 {
-        let started = Instant::now();
-        app.update(Action::Toggle(tui::Switch::Shadows));
-        println!(
-            "toggle shadows: re-render {:?} (update returned after {:?})",
-            app.render_time.unwrap(),
-            started.elapsed()
-        );
-    }
 }

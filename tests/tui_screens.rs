@@ -1,0 +1,120 @@
+//! Whole debugger screens drawn on ratatui's `TestBackend`, pinned with insta
+//! in `snapshots/` (as `tui__<name>.snap`). Every one was read against
+//! `raystep inspect` before it was accepted.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use raystep::terms::Term;
+use raystep::tui::{self, Action, App, View};
+
+mod common;
+
+use common::*;
+
+macro_rules! snapshot {
+    ($name:expr, $terminal:expr) => {
+        insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
+            insta::assert_snapshot!(format!("tui__{}", $name), $terminal.backend());
+        })
+    };
+}
+
+#[test]
+fn snapshot_start_screen() {
+    let mut app = app();
+    snapshot!("start_screen", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_shadowed_pixel() {
+    let mut app = app();
+    app.update(Action::Pick(80, 82));
+    chars(&mut app, "b");
+    snapshot!("shadowed_pixel", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_step_through() {
+    let mut app = app();
+    chars(&mut app, "ioi");
+    snapshot!("step_through", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_help_overlay() {
+    let mut app = app();
+    chars(&mut app, "?");
+    snapshot!("help_overlay", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_term_view() {
+    let mut app = app();
+    chars(&mut app, "vvvvvvv");
+    assert_eq!(app.view, View::Term(Term::Rays));
+    snapshot!("term_view_rays", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_error_banner() {
+    let path = scene_file("broken.toml");
+    let mut app = App::open(Some(path.clone()), true).unwrap();
+    edit(&path, "kt = 0.7", "kt = 0.7.5");
+    app.update(Action::Reload);
+    snapshot!("error_banner", screen(&mut app, 120, 40));
+}
+
+#[test]
+fn snapshot_too_small() {
+    let mut app = app();
+    snapshot!("too_small", screen(&mut app, 60, 20));
+}
+
+#[test]
+fn snapshot_wide_side_view() {
+    let mut app = app();
+    app.update(Action::Pick(80, 82));
+    chars(&mut app, "d");
+    snapshot!("wide_side_view", screen(&mut app, 200, 60));
+}
+
+/// Timings for the report: `cargo test --release --test tui -- --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement, not a check; needs ../shared/spd/teapot.nff"]
+fn measure_pick_and_render_on_the_teapot() {
+    let path = PathBuf::from("../shared/spd/teapot.nff");
+    if !path.exists() {
+        return;
+    }
+    let mut app = App::open(Some(path), true).unwrap();
+    println!(
+        "teapot {}x{}, {} objects",
+        app.scene.width,
+        app.scene.height,
+        app.scene.objects.len()
+    );
+    let mut picks = Vec::new();
+    for i in 0..200u32 {
+        app.update(Action::Pick(
+            (i * 37) % app.scene.width,
+            (i * 91) % app.scene.height,
+        ));
+        picks.push(app.pick_time);
+    }
+    picks.sort();
+    println!(
+        "pixel pick: median {:?}, max {:?}",
+        picks[picks.len() / 2],
+        picks[picks.len() - 1]
+    );
+    for _ in 0..3 {
+        let started = Instant::now();
+        app.update(Action::Toggle(tui::Switch::Shadows));
+        println!(
+            "toggle shadows: re-render {:?} (update returned after {:?})",
+            app.render_time.unwrap(),
+            started.elapsed()
+        );
+    }
+}
