@@ -11,13 +11,8 @@ use raystep::trace::{NoRecorder, RayStats};
 
 fn scene(relative: &str, size: u32) -> Option<Scene> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
-    path.exists().then(|| {
-        load(&path)
-            .unwrap()
-            .prepare()
-            .with_size(size, size)
-            .unwrap()
-    })
+    path.exists()
+        .then(|| load(&path).unwrap().with_size(size, size).unwrap())
 }
 
 fn recorders(c: &mut Criterion) {

@@ -123,14 +123,12 @@ pub fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
 pub const DEFAULT_SCENE_NAME: &str = "seven-rays.toml (built in)";
 pub const DEFAULT_SCENE: &str = include_str!("../scenes/seven-rays.toml");
 
-/// Loads a scene (or the built-in one), applies `--size`, and builds its
-/// acceleration structure.
+/// Loads a scene (or the built-in one) and applies `--size`.
 pub fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
-    let description = match path {
+    let scene = match path {
         Some(path) => scene::load(path)?,
         None => scene::parse(Path::new(DEFAULT_SCENE_NAME), DEFAULT_SCENE)?,
     };
-    let scene = description.prepare();
     Ok(match size.size {
         Some((w, h)) => scene.with_size(w, h)?,
         None => scene,

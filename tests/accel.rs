@@ -534,7 +534,7 @@ fn timings() {
         };
         let (_, accel) = time_build(&description.objects);
         time_queries(name, &description.objects, &accel, &mut rng);
-        let scene = description.prepare();
+        let scene = description;
         let viewport = scene.camera.viewport(256, 256);
         let start = Instant::now();
         for y in 0..256 {

@@ -21,7 +21,7 @@ fn example_scenes() -> Vec<PathBuf> {
 }
 
 fn small(path: &Path) -> Scene {
-    load(path).unwrap().prepare().with_size(32, 24).unwrap()
+    load(path).unwrap().with_size(32, 24).unwrap()
 }
 
 #[test]
@@ -63,7 +63,7 @@ fn one_thread_and_all_threads_give_the_same_bytes() {
     let mut paths = example_scenes();
     paths.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/spd/gears-small.nff"));
     for path in paths.iter().filter(|p| p.exists()) {
-        let scene = load(path).unwrap().prepare().with_size(64, 48).unwrap();
+        let scene = load(path).unwrap().with_size(64, 48).unwrap();
         let one = with_threads(Some(1), || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
         let all = with_threads(None, || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
         let three = with_threads(Some(3), || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
@@ -81,7 +81,7 @@ fn the_shadow_cache_changes_no_colour_and_no_count() {
     let mut paths = example_scenes();
     paths.push(rings);
     for path in paths.iter().filter(|p| p.exists()) {
-        let scene = load(path).unwrap().prepare().with_size(48, 36).unwrap();
+        let scene = load(path).unwrap().with_size(48, 36).unwrap();
         let (image, stats) = render::<raystep::trace::RayStats>(&scene, &|| {});
         let viewport = scene.camera.viewport(scene.width, scene.height);
         let mut alone = raystep::trace::RayStats::default();

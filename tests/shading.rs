@@ -9,7 +9,7 @@ use raystep::scene::{Scene, parse};
 use raystep::trace::{RayKind, trace};
 
 fn scene(text: &str) -> Scene {
-    parse(Path::new("test.toml"), text).unwrap().prepare()
+    parse(Path::new("test.toml"), text).unwrap()
 }
 
 fn record(scene: &Scene, origin: [f64; 3], direction: [f64; 3]) -> RayTree {

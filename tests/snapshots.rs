@@ -11,7 +11,7 @@ use raystep::trace::NoRecorder;
 use serde_json::Value;
 
 fn scene_at(path: &Path, size: Option<(u32, u32)>) -> Scene {
-    let scene = load(path).unwrap().prepare();
+    let scene = load(path).unwrap();
     match size {
         Some((w, h)) => scene.with_size(w, h).unwrap(),
         None => scene,

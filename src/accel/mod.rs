@@ -42,7 +42,7 @@ pub struct Candidate {
 
 /// The query structure of a scene's objects, built once by `Accel::build`.
 /// The queries take the same object list it was built from.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Accel {
     /// The hierarchy, root first; empty when no object is bounded.
     nodes: Vec<Node>,

@@ -134,7 +134,7 @@ pub struct Object {
 }
 
 /// A scene ready to trace: validated, with its acceleration structure built.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Scene {
     pub camera: Camera,
     pub width: u32,
@@ -146,35 +146,37 @@ pub struct Scene {
     pub accel: Accel,
 }
 
-/// The parts of a scene a file describes, before the acceleration structure.
-#[derive(Clone, Debug)]
-pub struct SceneDescription {
-    pub camera: Camera,
-    pub width: u32,
-    pub height: u32,
-    pub settings: Settings,
-    pub materials: Vec<Material>,
-    pub lights: Vec<Light>,
-    pub objects: Vec<Object>,
-}
-
-impl SceneDescription {
-    pub fn prepare(self) -> Scene {
-        let accel = Accel::build(&self.objects);
+impl Scene {
+    /// The scene of a file's parts, with its acceleration structure built.
+    pub fn new(
+        camera: Camera,
+        (width, height): (u32, u32),
+        settings: Settings,
+        materials: Vec<Material>,
+        lights: Vec<Light>,
+        objects: Vec<Object>,
+    ) -> Scene {
+        let accel = Accel::build(&objects);
         Scene {
-            camera: self.camera,
-            width: self.width,
-            height: self.height,
-            settings: self.settings,
-            materials: self.materials,
-            lights: self.lights,
-            objects: self.objects,
+            camera,
+            width,
+            height,
+            settings,
+            materials,
+            lights,
+            objects,
             accel,
         }
     }
-}
 
-impl Scene {
+    /// The same scene traced with other settings (the debugger's toggles).
+    pub fn with_settings(&self, settings: Settings) -> Scene {
+        Scene {
+            settings,
+            ..self.clone()
+        }
+    }
+
     /// The same scene rendered at another size (the field of view is kept).
     pub fn with_size(mut self, width: u32, height: u32) -> Result<Scene, SceneError> {
         check_image_size(width, height).map_err(SceneError::plain)?;
@@ -189,14 +191,14 @@ impl Scene {
 }
 
 /// Reads a scene file, choosing the format by extension (`.nff`, else TOML).
-pub fn load(path: &Path) -> Result<SceneDescription, SceneError> {
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
     parse(path, &text)
 }
 
 /// Parses scene text; `path` names it in messages and picks the format.
-pub fn parse(path: &Path, text: &str) -> Result<SceneDescription, SceneError> {
+pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     let is_nff = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("nff"));

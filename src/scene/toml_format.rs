@@ -44,7 +44,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{
-    Light, Material, Object, SceneDescription, SceneError, Settings, SpecularModel, check_camera,
+    Light, Material, Object, Scene, SceneError, Settings, SpecularModel, check_camera,
     check_image_size,
 };
 use crate::camera::Camera;
@@ -217,7 +217,7 @@ impl Source<'_> {
     }
 }
 
-pub fn parse(path: &Path, text: &str) -> Result<SceneDescription, SceneError> {
+pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     let source = Source { path, text };
     let file: FileDef = toml::from_str(text).map_err(|e| {
         let message = e.message().trim_end().to_string();
@@ -259,15 +259,14 @@ pub fn parse(path: &Path, text: &str) -> Result<SceneDescription, SceneError> {
         }
         objects.push(object);
     }
-    Ok(SceneDescription {
+    Ok(Scene::new(
         camera,
-        width,
-        height,
+        (width, height),
         settings,
         materials,
         lights,
         objects,
-    })
+    ))
 }
 
 fn camera(source: &Source, def: &Spanned<CameraDef>) -> Result<Camera, SceneError> {

@@ -10,7 +10,7 @@ use image::RgbImage;
 use ratatui::layout::Rect;
 
 use crate::record::{NodeId, RayTree, record_pixel};
-use crate::scene::{Scene, SceneDescription, SceneError, Settings, SpecularModel};
+use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::terms::TermImages;
 
 pub use super::action::{Action, Switch, View};
@@ -31,10 +31,10 @@ const RELOAD_DELAY: Duration = Duration::from_millis(150);
 
 pub struct App {
     pub source: SceneSource,
-    /// The last good file's description and its own settings.
-    pub(super) description: SceneDescription,
+    /// The last good file's scene, with the file's own settings.
+    pub(super) file_scene: Scene,
     pub(super) file_settings: Settings,
-    /// The scene traced: the description with the user's settings.
+    /// The scene traced: the file's scene with the user's settings.
     pub scene: Arc<Scene>,
     /// The selected pixel, in the scene image's coordinates.
     pub cursor: (u32, u32),
@@ -78,14 +78,14 @@ impl App {
     /// before `update` returns, so tests see deterministic screens.
     pub fn open(path: Option<PathBuf>, sync: bool) -> Result<App, SceneError> {
         let source = SceneSource { path };
-        let description = source.load()?;
-        let file_settings = description.settings.clone();
-        let scene = build(&description, &file_settings);
+        let file_scene = source.load()?;
+        let file_settings = file_scene.settings.clone();
+        let scene = build(&file_scene, &file_settings);
         let cursor = (scene.width / 2, scene.height / 2);
         let tree = record_pixel(&scene, cursor.0, cursor.1);
         let mut app = App {
             source,
-            description,
+            file_scene,
             file_settings,
             scene,
             cursor,
@@ -240,7 +240,7 @@ impl App {
 
     /// Rebuilds the scene with new settings and renders it again.
     pub(super) fn apply_settings(&mut self, settings: Settings) {
-        self.scene = build(&self.description, &settings);
+        self.scene = build(&self.file_scene, &settings);
         self.retrace();
         self.request_render();
     }
@@ -248,14 +248,14 @@ impl App {
     /// Reloads the scene file; a broken file keeps the last good scene.
     pub fn reload(&mut self) {
         match self.source.load() {
-            Ok(description) => {
+            Ok(file_scene) => {
                 let settings = merge_settings(
                     &self.file_settings,
-                    &description.settings,
+                    &file_scene.settings,
                     &self.scene.settings,
                 );
-                self.file_settings = description.settings.clone();
-                self.description = description;
+                self.file_settings = file_scene.settings.clone();
+                self.file_scene = file_scene;
                 self.error = None;
                 self.apply_settings(settings);
                 self.message = Some(format!("reloaded {}", self.source.name()));
@@ -269,9 +269,7 @@ impl App {
     }
 }
 
-/// The scene of `description` traced with `settings`.
-fn build(description: &SceneDescription, settings: &Settings) -> Arc<Scene> {
-    let mut description = description.clone();
-    description.settings = settings.clone();
-    Arc::new(description.prepare())
+/// The file's scene traced with the user's `settings`.
+fn build(file_scene: &Scene, settings: &Settings) -> Arc<Scene> {
+    Arc::new(file_scene.with_settings(settings.clone()))
 }

@@ -217,7 +217,7 @@ mod tests {
     fn seven_rays(width: u32, height: u32) -> Scene {
         let text = crate::cli::DEFAULT_SCENE;
         let scene = crate::scene::parse(std::path::Path::new("seven-rays.toml"), text).unwrap();
-        scene.prepare().with_size(width, height).unwrap()
+        scene.with_size(width, height).unwrap()
     }
 
     #[test]

@@ -7,7 +7,7 @@ use std::sync::mpsc::{Receiver, channel};
 use notify::{EventKind, RecursiveMode, Watcher as _};
 
 use crate::cli::{DEFAULT_SCENE, DEFAULT_SCENE_NAME};
-use crate::scene::{self, SceneDescription, SceneError, Settings};
+use crate::scene::{self, Scene, SceneError, Settings};
 
 /// The scene file, or `None` for the built-in scene.
 #[derive(Clone, Debug)]
@@ -24,7 +24,7 @@ impl SceneSource {
         }
     }
 
-    pub fn load(&self) -> Result<SceneDescription, SceneError> {
+    pub fn load(&self) -> Result<Scene, SceneError> {
         match &self.path {
             Some(path) => scene::load(path),
             None => scene::parse(Path::new(DEFAULT_SCENE_NAME), DEFAULT_SCENE),

@@ -16,9 +16,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::{
-    Light, Material, Object, SceneDescription, SceneError, Settings, check_camera, check_image_size,
-};
+use super::{Light, Material, Object, Scene, SceneError, Settings, check_camera, check_image_size};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::shapes::{Cone, GeometryError, Patch, Polygon, Shape, Sphere};
@@ -32,7 +30,7 @@ const RGB: [&str; 3] = ["red", "green", "blue"];
 const MAX_PREALLOCATED_VERTICES: usize = 4096;
 
 /// Parses NFF text; `path` names it in messages.
-pub fn parse(path: &Path, text: &str) -> Result<SceneDescription, SceneError> {
+pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     let mut parser = Parser::new(path, text);
     let mut scene = Builder::default();
     while let Some(keyword) = parser.next() {
@@ -207,7 +205,7 @@ impl Builder {
         Ok(())
     }
 
-    fn finish(self, parser: &Parser) -> Result<SceneDescription, SceneError> {
+    fn finish(self, parser: &Parser) -> Result<Scene, SceneError> {
         let Some(view) = self.view else {
             return Err(parser.error(
                 0..0,
@@ -252,18 +250,18 @@ impl Builder {
                 color: color.unwrap_or(grey),
             })
             .collect();
-        Ok(SceneDescription {
+        let settings = Settings {
+            background: self.background,
+            ambient: grey,
+            ..Settings::default()
+        };
+        Ok(Scene::new(
             camera,
-            width,
-            height,
-            settings: Settings {
-                background: self.background,
-                ambient: grey,
-                ..Settings::default()
-            },
-            materials: self.materials,
+            (width, height),
+            settings,
+            self.materials,
             lights,
-            objects: self.objects,
-        })
+            self.objects,
+        ))
     }
 }

@@ -1,6 +1,6 @@
 use super::*;
 
-fn parse_str(text: &str) -> Result<SceneDescription, SceneError> {
+fn parse_str(text: &str) -> Result<Scene, SceneError> {
     parse(Path::new("t.nff"), text)
 }
 
