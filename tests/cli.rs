@@ -296,6 +296,10 @@ fn stats_are_one_json_object() {
         "shadow",
         "shadow_blocked",
         "shadow_opaque",
+        "closest_nodes",
+        "closest_primitives",
+        "shadow_nodes",
+        "shadow_primitives",
         "prepare_seconds",
         "trace_seconds",
     ] {

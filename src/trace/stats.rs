@@ -4,7 +4,7 @@ use serde::Serialize;
 
 use super::recorder::{LightTerm, RayKind, Recorder, SurfaceHit};
 use crate::accel::Cost;
-use crate::math::Ray;
+use crate::math::{Color, Ray};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct RayStats {
@@ -19,6 +19,13 @@ pub struct RayStats {
     pub shadow_blocked: u64,
     /// Shadow rays fully blocked (S = 0).
     pub shadow_opaque: u64,
+    /// What the closest-hit queries of all primary, reflected and transmitted
+    /// rays tested: bounding-volume nodes and primitives.
+    pub closest_nodes: u64,
+    pub closest_primitives: u64,
+    /// What the shadow queries tested.
+    pub shadow_nodes: u64,
+    pub shadow_primitives: u64,
     #[serde(skip)]
     depth: u32,
 }
@@ -32,6 +39,17 @@ impl RayStats {
         self.shadow += other.shadow;
         self.shadow_blocked += other.shadow_blocked;
         self.shadow_opaque += other.shadow_opaque;
+        self.closest_nodes += other.closest_nodes;
+        self.closest_primitives += other.closest_primitives;
+        self.shadow_nodes += other.shadow_nodes;
+        self.shadow_primitives += other.shadow_primitives;
+    }
+}
+
+impl RayStats {
+    fn closest(&mut self, cost: Cost) {
+        self.closest_nodes += u64::from(cost.nodes);
+        self.closest_primitives += u64::from(cost.primitives);
     }
 }
 
@@ -47,10 +65,16 @@ impl Recorder for RayStats {
     }
 
     #[inline]
-    fn hit(&mut self, _hit: &SurfaceHit, _cost: Cost) {
+    fn hit(&mut self, _hit: &SurfaceHit, cost: Cost) {
         if self.depth == 1 {
             self.primary_hit += 1;
         }
+        self.closest(cost);
+    }
+
+    #[inline]
+    fn miss(&mut self, _background: Color, cost: Cost) {
+        self.closest(cost);
     }
 
     #[inline]
@@ -59,6 +83,8 @@ impl Recorder for RayStats {
             self.shadow += 1;
             self.shadow_blocked += u64::from(shadow.crossings > 0);
             self.shadow_opaque += u64::from(shadow.s == 0.0);
+            self.shadow_nodes += u64::from(shadow.cost.nodes);
+            self.shadow_primitives += u64::from(shadow.cost.primitives);
         }
     }
 }
