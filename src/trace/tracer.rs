@@ -177,7 +177,14 @@ impl<R: Recorder> Tracer<'_, R> {
             SpecularModel::Phong => (2.0 * n_dot_l * hit.normal - to_light).dot(to_viewer),
         };
         let strength = s * term.f_att;
-        let highlight = term.specular_cosine.max(0.0).powf(material.shininess);
+        // powf is slow, slower still when it underflows (a shininess of 100000
+        // in the SPD tree); where the product is zero anyway it is skipped,
+        // giving the same bits (the highlight is finite and at least 0).
+        let highlight = if strength * material.ks == 0.0 {
+            0.0
+        } else {
+            term.specular_cosine.max(0.0).powf(material.shininess)
+        };
         term.diffuse = light.color * material.color * (strength * material.kd * n_dot_l);
         term.specular = light.color * (strength * material.ks * highlight);
         term
