@@ -3,6 +3,7 @@
 //! place a shadow segment crosses it, and the lecture's working for one ray.
 
 mod cone;
+mod edge_bands;
 mod patch;
 mod plane;
 mod polygon;

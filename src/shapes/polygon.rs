@@ -6,6 +6,7 @@
 use glam::{DVec2, DVec3};
 use serde::Serialize;
 
+use super::edge_bands::EdgeBands;
 use super::plane::{Plane, PlaneWorking};
 use super::{Aabb, GeometryError, Roots};
 use crate::math::{Interval, Ray, exceeds};
@@ -18,6 +19,8 @@ pub struct Polygon {
     pub dropped: Axis,
     /// The vertices projected to (U, V) by dropping `dropped`, computed once.
     projected: Vec<DVec2>,
+    /// For many-sided polygons, which edges can cross the axis at a given V.
+    bands: Option<EdgeBands>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -79,6 +82,12 @@ impl Axis {
     }
 }
 
+/// Whether the edge from a to b (relative to the point) crosses the +U axis.
+#[inline]
+fn crosses(a: DVec2, b: DVec2) -> bool {
+    (a.y >= 0.0) != (b.y >= 0.0) && a.x - a.y * (b.x - a.x) / (b.y - a.y) > 0.0
+}
+
 impl Polygon {
     pub fn new(vertices: Vec<DVec3>) -> Result<Self, GeometryError> {
         if vertices.len() < 3 {
@@ -106,8 +115,9 @@ impl Polygon {
             }
         }
         let dropped = Axis::dominant(plane.normal);
-        let projected = vertices.iter().map(|v| dropped.project(*v)).collect();
+        let projected: Vec<DVec2> = vertices.iter().map(|v| dropped.project(*v)).collect();
         Ok(Self {
+            bands: EdgeBands::new(&projected),
             vertices,
             plane,
             dropped,
@@ -127,27 +137,42 @@ impl Polygon {
 
     /// Counts the edges that cross the +U axis once the point is moved to the
     /// origin. A vertex with V >= 0 is above the axis, so a vertex lying on it
-    /// is counted once.
+    /// is counted once. Many-sided polygons look only at the edges of the
+    /// point's band, which are all that can cross.
     pub fn crossing_test(&self, point: DVec3) -> CrossingTest {
         let p = self.dropped.project(point);
-        let mut crossings = 0;
-        let mut a = self.projected[self.projected.len() - 1] - p;
-        for vertex in &self.projected {
-            let b = *vertex - p;
-            if (a.y >= 0.0) != (b.y >= 0.0) {
-                let u = a.x - a.y * (b.x - a.x) / (b.y - a.y);
-                if u > 0.0 {
-                    crossings += 1;
-                }
-            }
-            a = b;
-        }
+        let crossings = match &self.bands {
+            Some(bands) => bands
+                .edges_near(p.y)
+                .iter()
+                .map(|&edge| self.edge_crosses(edge as usize, p))
+                .sum(),
+            None => self.crossings_of_every_edge(p),
+        };
         CrossingTest {
             dropped_axis: self.dropped,
             projected_point: [p.x, p.y],
             crossings,
             inside: crossings % 2 == 1,
         }
+    }
+
+    fn crossings_of_every_edge(&self, p: DVec2) -> u32 {
+        let mut crossings = 0;
+        let mut a = self.projected[self.projected.len() - 1] - p;
+        for vertex in &self.projected {
+            let b = *vertex - p;
+            crossings += u32::from(crosses(a, b));
+            a = b;
+        }
+        crossings
+    }
+
+    /// Whether edge i, from vertex i - 1 to vertex i, crosses the +U axis from `p`.
+    fn edge_crosses(&self, i: usize, p: DVec2) -> u32 {
+        let n = self.projected.len();
+        let a = self.projected[(i + n - 1) % n] - p;
+        u32::from(crosses(a, self.projected[i] - p))
     }
 
     pub(super) fn projected(&self) -> &[DVec2] {
@@ -250,6 +275,45 @@ mod tests {
             .crossing
             .unwrap();
         assert_eq!((test.crossings, test.inside), (2, false));
+    }
+
+    #[test]
+    fn many_sided_polygon_counts_as_if_every_edge_were_tested() {
+        // A gear outline like the SPD's: 36 teeth, 144 vertices, concave.
+        let vertices: Vec<DVec3> = (0..144)
+            .map(|i| {
+                let angle = (i / 2) as f64 * std::f64::consts::TAU / 72.0;
+                let r = if (i + 1) % 4 < 2 { 1.0 } else { 0.8 };
+                DVec3::new(r * angle.cos(), r * angle.sin(), 0.0)
+            })
+            .collect();
+        let gear = Polygon::new(vertices.clone()).unwrap();
+        assert!(gear.bands.is_some());
+        // The centre: one crossing to its right (the rim at U = 1 or 0.8): inside.
+        let centre = gear.crossing_test(DVec3::ZERO);
+        assert_eq!((centre.crossings, centre.inside), (1, true));
+        // Left of everything on V = 0.1: both sides of the rim, outside.
+        assert_eq!(gear.crossing_test(DVec3::new(-2.0, 0.1, 0.0)).crossings, 2);
+        // A sweep, and every vertex's own V, where ties decide.
+        let mut points: Vec<DVec3> = (0..4000)
+            .map(|i| {
+                let f = i as f64;
+                DVec3::new(
+                    (f * 0.618).fract() * 2.4 - 1.2,
+                    (f * 0.414).fract() * 2.4 - 1.2,
+                    0.0,
+                )
+            })
+            .collect();
+        points.extend(vertices.iter().map(|v| DVec3::new(0.3 * v.x, v.y, 0.0)));
+        for point in points {
+            let p = Axis::Z.project(point);
+            assert_eq!(
+                gear.crossing_test(point).crossings,
+                gear.crossings_of_every_edge(p),
+                "{point}"
+            );
+        }
     }
 
     #[test]
