@@ -10,7 +10,6 @@
 
 use glam::DVec3;
 
-use super::node::Node;
 use crate::shapes::Aabb;
 
 // BINS, TRAVERSAL_COST and MAX_LEAF were measured on rays replayed from
@@ -36,6 +35,24 @@ pub(super) const MAX_DEPTH: usize = SAH_DEPTH + 33;
 const RELATIVE_PADDING: f64 = 1.0 / (1u64 << 22) as f64;
 const SCENE_PADDING: f64 = 1.0 / (1u64 << 30) as f64;
 
+/// A node of the binary tree as built: a box and what is under it, a range
+/// of primitives (a leaf, `count > 0`) or two children (`count == 0`): the
+/// first right after this node in the array, the second at `offset`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct BuildNode {
+    pub bounds: Aabb,
+    /// Leaf: the first position in the primitive index array; interior: the second child.
+    pub offset: u32,
+    /// Leaf: how many primitives (at least 1); interior: 0.
+    pub count: u16,
+}
+
+impl BuildNode {
+    pub fn is_leaf(&self) -> bool {
+        self.count > 0
+    }
+}
+
 /// A bounded object as the build sees it.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct PrimitiveRef {
@@ -57,7 +74,7 @@ impl PrimitiveRef {
 /// The hierarchy: nodes in depth-first order (the root first) and the
 /// objects of the leaves, each leaf's run in file order.
 pub(super) struct Bvh {
-    pub nodes: Vec<Node>,
+    pub nodes: Vec<BuildNode>,
     pub objects: Vec<u32>,
 }
 
@@ -76,7 +93,7 @@ pub(super) fn build(mut primitives: Vec<PrimitiveRef>) -> Bvh {
 }
 
 struct Builder {
-    nodes: Vec<Node>,
+    nodes: Vec<BuildNode>,
     floor_padding: f64,
 }
 
@@ -85,14 +102,21 @@ impl Builder {
     /// final primitive order, and reorders them so each leaf's run is contiguous.
     fn subdivide(&mut self, primitives: &mut [PrimitiveRef], first: usize, depth: usize) {
         let bounds = self.padded(bounds_of(primitives));
-        let Some((axis, middle)) = split(primitives, &bounds, depth) else {
+        let Some(middle) = split(primitives, &bounds, depth) else {
             primitives.sort_unstable_by_key(|p| p.object);
-            self.nodes
-                .push(Node::leaf(&bounds, first as u32, primitives.len() as u16));
+            self.nodes.push(BuildNode {
+                bounds,
+                offset: first as u32,
+                count: primitives.len() as u16,
+            });
             return;
         };
         let index = self.nodes.len();
-        self.nodes.push(Node::interior(&bounds, axis));
+        self.nodes.push(BuildNode {
+            bounds,
+            offset: 0,
+            count: 0,
+        });
         let (left, right) = primitives.split_at_mut(middle);
         self.subdivide(left, first, depth + 1);
         self.nodes[index].offset = self.nodes.len() as u32;
@@ -125,9 +149,9 @@ fn surface_area(bounds: &Aabb) -> f64 {
     2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
 }
 
-/// Where to split: the axis, and how many primitives (now reordered) go to
-/// the first child. `None` makes a leaf.
-fn split(primitives: &mut [PrimitiveRef], bounds: &Aabb, depth: usize) -> Option<(usize, usize)> {
+/// Where to split: how many primitives (now reordered) go to the first
+/// child. `None` makes a leaf.
+fn split(primitives: &mut [PrimitiveRef], bounds: &Aabb, depth: usize) -> Option<usize> {
     let n = primitives.len();
     if n == 1 {
         return None;
@@ -149,10 +173,10 @@ fn split(primitives: &mut [PrimitiveRef], bounds: &Aabb, depth: usize) -> Option
             let middle = partition(primitives, |p| {
                 bin(p.centroid[axis], centroids.min[axis], scale) < plane
             });
-            Some((axis, middle))
+            Some(middle)
         }
         None if n <= MAX_LEAF => None,
-        None => Some((axis, median_split(primitives, axis))),
+        None => Some(median_split(primitives, axis)),
     }
 }
 

@@ -12,6 +12,7 @@
 
 pub mod brute;
 mod bvh;
+mod lanes;
 mod node;
 
 use std::fmt;
@@ -22,8 +23,8 @@ use serde::Serialize;
 
 use crate::math::{Interval, Ray};
 use crate::scene::Object;
-use bvh::{MAX_DEPTH, PrimitiveRef};
-use node::{BoxTest, Node};
+use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
+use node::{BoxTest, Child, Node};
 
 /// What one query tested: the price of a ray, shown to students.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -45,7 +46,8 @@ pub struct Candidate {
 /// The queries take the same object list it was built from.
 #[derive(Clone, Default)]
 pub struct Accel {
-    /// The hierarchy, root first; empty when no object is bounded.
+    /// The hierarchy as pairs of child boxes, the root's node first; empty
+    /// when no object is bounded.
     nodes: Vec<Node>,
     /// The objects of the leaves: a leaf holds `objects[offset..offset + count]`.
     objects: Vec<u32>,
@@ -55,24 +57,9 @@ pub struct Accel {
 
 impl Accel {
     pub fn build(objects: &[Object]) -> Accel {
-        assert!(
-            u32::try_from(objects.len()).is_ok(),
-            "more objects than a u32 can count"
-        );
-        let mut bounded = Vec::with_capacity(objects.len());
-        let mut unbounded = Vec::new();
-        for (index, object) in objects.iter().enumerate() {
-            let index = index as u32;
-            match object.shape.bounds() {
-                Some(b) if b.min.is_finite() && b.max.is_finite() => {
-                    bounded.push(PrimitiveRef::new(index, b));
-                }
-                _ => unbounded.push(index),
-            }
-        }
-        let bvh = bvh::build(bounded);
+        let (bvh, unbounded) = build_tree(objects);
         Accel {
-            nodes: bvh.nodes,
+            nodes: node::pair_up(&bvh.nodes),
             objects: bvh.objects,
             unbounded,
         }
@@ -153,59 +140,77 @@ impl Accel {
             return;
         }
         let boxes = BoxTest::new(ray);
-        cost.nodes += 1;
-        if boxes.entry(&self.nodes[0], t_min, t_max).is_none() {
-            return;
-        }
+        // The root's node holds the root alone: one box tested, not two.
+        let mut tested = 1;
         // Both children are tested at their parent; the nearer is entered
         // first and the farther waits with its entry distance, so it is
-        // skipped once a hit closer than that entry is known.
-        // Not zeroed: a shadow ray visits about ten nodes, and clearing a whole
-        // array for it cost a fifth of the walk.
-        let mut stack = ArrayVec::<(u32, f64), MAX_DEPTH>::new();
-        let mut index = 0;
+        // skipped once a hit closer than that entry is known. Not zeroed: a
+        // shadow ray visits about ten nodes, and clearing a whole array for
+        // it cost a fifth of the walk.
+        let mut stack = ArrayVec::<(Child, f64), MAX_DEPTH>::new();
+        let mut node = &self.nodes[0];
         loop {
-            let node = &self.nodes[index];
-            if node.is_leaf() {
-                let first = node.offset as usize;
-                match leaf(&self.objects[first..first + usize::from(node.count)], cost) {
-                    ControlFlow::Continue(max) => t_max = max,
-                    ControlFlow::Break(()) => return,
+            cost.nodes += tested;
+            tested = 2;
+            let [a, b] = node.children;
+            let next = match boxes.entries(node, t_min, t_max) {
+                [Some(x), Some(y)] => {
+                    let (near, far, t_far) = if x <= y { (a, b, y) } else { (b, a, x) };
+                    stack.push((far, t_far));
+                    Some(near)
                 }
-            } else {
-                let (a, b) = (index + 1, node.offset as usize);
-                cost.nodes += 2;
-                let ta = boxes.entry(&self.nodes[a], t_min, t_max);
-                let tb = boxes.entry(&self.nodes[b], t_min, t_max);
-                match (ta, tb) {
-                    (Some(x), Some(y)) => {
-                        let (near, far, t_far) = if x <= y { (a, b, y) } else { (b, a, x) };
-                        stack.push((far as u32, t_far));
-                        index = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        index = a;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        index = b;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
+                [Some(_), None] => Some(a),
+                [None, Some(_)] => Some(b),
+                [None, None] => None,
+            };
+            let mut next = next;
             loop {
-                let Some((next, entry)) = stack.pop() else {
-                    return;
-                };
-                if entry <= t_max {
-                    index = next as usize;
-                    break;
+                match next {
+                    Some(child) if child.is_leaf() => {
+                        let first = child.offset as usize;
+                        let run = &self.objects[first..first + usize::from(child.count)];
+                        match leaf(run, cost) {
+                            ControlFlow::Continue(max) => t_max = max,
+                            ControlFlow::Break(()) => return,
+                        }
+                    }
+                    Some(child) => {
+                        node = &self.nodes[child.offset as usize];
+                        break;
+                    }
+                    None => {}
                 }
+                next = loop {
+                    let Some((child, entry)) = stack.pop() else {
+                        return;
+                    };
+                    if entry <= t_max {
+                        break Some(child);
+                    }
+                };
             }
         }
     }
+}
+
+/// The builder's binary tree over the bounded objects, and the unbounded ones.
+fn build_tree(objects: &[Object]) -> (Bvh, Vec<u32>) {
+    assert!(
+        u32::try_from(objects.len()).is_ok(),
+        "more objects than a u32 can count"
+    );
+    let mut bounded = Vec::with_capacity(objects.len());
+    let mut unbounded = Vec::new();
+    for (index, object) in objects.iter().enumerate() {
+        let index = index as u32;
+        match object.shape.bounds() {
+            Some(b) if b.min.is_finite() && b.max.is_finite() => {
+                bounded.push(PrimitiveRef::new(index, b));
+            }
+            _ => unbounded.push(index),
+        }
+    }
+    (bvh::build(bounded), unbounded)
 }
 
 /// The closest-hit search so far: the query's range and the best candidate.
@@ -266,27 +271,26 @@ mod tests {
         }
     }
 
-    /// Checks the subtree at `index` and returns its end in the array, its
-    /// depth and the objects of its leaves.
+    /// Checks the child whose box is `b`, reached `depth` boxes down, and
+    /// returns its depth, the nodes under it and the objects of its leaves.
     fn check(
         accel: &Accel,
         objects: &[Object],
-        index: usize,
+        child: Child,
+        b: &Aabb,
         outer: &Aabb,
         depth: usize,
-    ) -> (usize, usize, Vec<u32>) {
-        let node = accel.nodes[index];
-        let b = node.bounds();
+    ) -> (usize, Vec<usize>, Vec<u32>) {
         assert!(
             outer.min.cmple(b.min).all() && b.max.cmple(outer.max).all(),
-            "node {index} sticks out of its parent"
+            "{child:?} sticks out of its parent"
         );
-        if node.is_leaf() {
-            let first = node.offset as usize;
-            let leaf = &accel.objects[first..first + usize::from(node.count)];
+        if child.is_leaf() {
+            let first = child.offset as usize;
+            let leaf = &accel.objects[first..first + usize::from(child.count)];
             assert!(
-                leaf.len() <= MAX_LEAF && leaf.is_sorted(),
-                "leaf {index}: {leaf:?}"
+                !leaf.is_empty() && leaf.len() <= MAX_LEAF && leaf.is_sorted(),
+                "{child:?}: {leaf:?}"
             );
             for &o in leaf {
                 let p = objects[o as usize].shape.bounds().unwrap();
@@ -295,23 +299,46 @@ mod tests {
                     "object {o} not strictly inside"
                 );
             }
-            return (index + 1, depth, leaf.to_vec());
+            return (depth, Vec::new(), leaf.to_vec());
         }
-        let (first_end, d1, mut under) = check(accel, objects, index + 1, &b, depth + 1);
-        assert_eq!(
-            node.offset as usize, first_end,
-            "the second child follows the first subtree"
-        );
-        let (end, d2, second) = check(accel, objects, node.offset as usize, &b, depth + 1);
-        under.extend(second);
-        (end, d1.max(d2), under)
+        let index = child.offset as usize;
+        let node = &accel.nodes[index];
+        let (mut deepest, mut nodes, mut under) = (depth, vec![index], Vec::new());
+        for lane in 0..2 {
+            let (d, n, o) = check(
+                accel,
+                objects,
+                node.children[lane],
+                &node.bounds(lane),
+                b,
+                depth + 1,
+            );
+            deepest = deepest.max(d);
+            nodes.extend(n);
+            under.extend(o);
+        }
+        (deepest, nodes, under)
     }
 
     fn check_all(objects: &[Object]) -> usize {
         let accel = Accel::build(objects);
+        // The root's node: the root in lane 0, an empty leaf and box in lane 1.
+        let top = &accel.nodes[0];
+        assert_eq!(top.children[1], Child::NOTHING);
+        assert_eq!(top.bounds(1), Aabb::EMPTY);
         let everything = Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY);
-        let (end, depth, mut seen) = check(&accel, objects, 0, &everything, 1);
-        assert_eq!(end, accel.nodes.len());
+        let (depth, mut nodes, mut seen) = check(
+            &accel,
+            objects,
+            top.children[0],
+            &top.bounds(0),
+            &everything,
+            1,
+        );
+        // Every node but the root's is some child's, exactly once.
+        nodes.push(0);
+        nodes.sort_unstable();
+        assert_eq!(nodes, (0..accel.nodes.len()).collect::<Vec<_>>());
         assert!(depth <= bvh::MAX_DEPTH);
         seen.extend(&accel.unbounded);
         seen.sort_unstable();
