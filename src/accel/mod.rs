@@ -1,10 +1,11 @@
 //! Which objects a ray meets: the closest-hit query for rays that shade, and
 //! the every-crossing query for shadow rays.
 //!
-//! The bounded objects sit in a bounding volume hierarchy (`bvh`): a binary
-//! tree of boxes, each around everything below it, stored as one flat array.
-//! A query walks it from the root, skipping every subtree whose box the ray
-//! misses, nearer child first. Infinite planes have no box; they are kept
+//! The bounded objects sit in a bounding volume hierarchy: a tree of boxes,
+//! each around everything below it, built binary (`bvh`) and stored as one
+//! flat array of nodes of up to four children (`node`). A query walks it from
+//! the root, skipping every subtree whose box the ray misses, nearest child
+//! first. Infinite planes have no box; they are kept
 //! aside and tested on every query. The answers are exactly those of testing
 //! every object in file order (`brute`, kept as the oracle): the same nearest
 //! hit to the bit, the same crossings (in another order). Only the cost, the
@@ -24,12 +25,13 @@ use serde::Serialize;
 use crate::math::{Interval, Ray};
 use crate::scene::Object;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
-use node::{BoxTest, Child, Node};
+use node::{BoxTest, Child, Node, WIDTH};
 
 /// What one query tested: the price of a ray, shown to students.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Cost {
-    /// Bounding-volume nodes visited.
+    /// Bounding-volume nodes whose box was tested against the ray (all the
+    /// children of each node the walk reached).
     pub nodes: u32,
     /// Primitives whose intersection routine ran.
     pub primitives: u32,
@@ -46,8 +48,8 @@ pub struct Candidate {
 /// The queries take the same object list it was built from.
 #[derive(Clone, Default)]
 pub struct Accel {
-    /// The hierarchy as pairs of child boxes, the root's node first; empty
-    /// when no object is bounded.
+    /// The hierarchy, up to four child boxes per node, the root's node
+    /// first; empty when no object is bounded.
     nodes: Vec<Node>,
     /// The objects of the leaves: a leaf holds `objects[offset..offset + count]`.
     objects: Vec<u32>,
@@ -59,7 +61,7 @@ impl Accel {
     pub fn build(objects: &[Object]) -> Accel {
         let (bvh, unbounded) = build_tree(objects);
         Accel {
-            nodes: node::pair_up(&bvh.nodes),
+            nodes: node::collapse(&bvh.nodes),
             objects: bvh.objects,
             unbounded,
         }
@@ -140,30 +142,44 @@ impl Accel {
             return;
         }
         let boxes = BoxTest::new(ray);
-        // The root's node holds the root alone: one box tested, not two.
-        let mut tested = 1;
-        // Both children are tested at their parent; the nearer is entered
-        // first and the farther waits with its entry distance, so it is
-        // skipped once a hit closer than that entry is known. Not zeroed: a
-        // shadow ray visits about ten nodes, and clearing a whole array for
-        // it cost a fifth of the walk.
-        let mut stack = ArrayVec::<(Child, f64), MAX_DEPTH>::new();
+        // The children met are entered nearest first; the others wait with
+        // their entry distances, and are skipped once a hit closer than their
+        // entry is known. Not zeroed: a shadow ray visits a handful of nodes,
+        // and clearing a whole array for it cost a fifth of the walk.
+        let mut stack = ArrayVec::<(Child, f64), { MAX_DEPTH * (WIDTH - 1) }>::new();
         let mut node = &self.nodes[0];
-        loop {
-            cost.nodes += tested;
-            tested = 2;
-            let [a, b] = node.children;
-            let next = match boxes.entries(node, t_min, t_max) {
-                [Some(x), Some(y)] => {
-                    let (near, far, t_far) = if x <= y { (a, b, y) } else { (b, a, x) };
-                    stack.push((far, t_far));
-                    Some(near)
+        // Counted here and added once: `cost` is also the leaves', so adding
+        // to it on every step would go through memory.
+        let mut tested = 0;
+        'walk: loop {
+            tested += node.arity;
+            let (mask, entry) = boxes.entries(node, t_min, t_max);
+            let mut next = match mask {
+                0 => None,
+                1 | 2 | 4 | 8 => Some(node.children[mask.trailing_zeros() as usize]),
+                _ => {
+                    // Nearest first, ties in child order; the others wait on
+                    // the stack, the farthest pushed first.
+                    let mut met = [(0.0, 0); WIDTH];
+                    let mut count = 0;
+                    for (i, &t) in entry.iter().enumerate() {
+                        if mask & 1 << i != 0 {
+                            // Insertion by entry: a later child goes after an equal one.
+                            let mut at = count;
+                            while at > 0 && met[at - 1].0 > t {
+                                met[at] = met[at - 1];
+                                at -= 1;
+                            }
+                            met[at] = (t, i);
+                            count += 1;
+                        }
+                    }
+                    for &(t, i) in met[1..count].iter().rev() {
+                        stack.push((node.children[i], t));
+                    }
+                    Some(node.children[met[0].1])
                 }
-                [Some(_), None] => Some(a),
-                [None, Some(_)] => Some(b),
-                [None, None] => None,
             };
-            let mut next = next;
             loop {
                 match next {
                     Some(child) if child.is_leaf() => {
@@ -171,7 +187,7 @@ impl Accel {
                         let run = &self.objects[first..first + usize::from(child.count)];
                         match leaf(run, cost) {
                             ControlFlow::Continue(max) => t_max = max,
-                            ControlFlow::Break(()) => return,
+                            ControlFlow::Break(()) => break 'walk,
                         }
                     }
                     Some(child) => {
@@ -182,7 +198,7 @@ impl Accel {
                 }
                 next = loop {
                     let Some((child, entry)) = stack.pop() else {
-                        return;
+                        break 'walk;
                     };
                     if entry <= t_max {
                         break Some(child);
@@ -190,6 +206,7 @@ impl Accel {
                 };
             }
         }
+        cost.nodes += tested;
     }
 }
 
@@ -303,8 +320,17 @@ mod tests {
         }
         let index = child.offset as usize;
         let node = &accel.nodes[index];
+        let arity = node.arity as usize;
+        assert!(
+            (2..=WIDTH).contains(&arity),
+            "node {index} has {arity} children"
+        );
+        for unused in arity..WIDTH {
+            assert_eq!(node.children[unused], Child::NOTHING);
+            assert_eq!(node.bounds(unused), Aabb::EMPTY);
+        }
         let (mut deepest, mut nodes, mut under) = (depth, vec![index], Vec::new());
-        for lane in 0..2 {
+        for lane in 0..arity {
             let (d, n, o) = check(
                 accel,
                 objects,
@@ -322,10 +348,13 @@ mod tests {
 
     fn check_all(objects: &[Object]) -> usize {
         let accel = Accel::build(objects);
-        // The root's node: the root in lane 0, an empty leaf and box in lane 1.
+        // The root's node: the root alone, empty leaves and boxes beside it.
         let top = &accel.nodes[0];
-        assert_eq!(top.children[1], Child::NOTHING);
-        assert_eq!(top.bounds(1), Aabb::EMPTY);
+        assert_eq!(top.arity, 1);
+        for unused in 1..WIDTH {
+            assert_eq!(top.children[unused], Child::NOTHING);
+            assert_eq!(top.bounds(unused), Aabb::EMPTY);
+        }
         let everything = Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY);
         let (depth, mut nodes, mut seen) = check(
             &accel,
@@ -396,10 +425,21 @@ mod tests {
         let objects: Vec<Object> = (0..200)
             .map(|i| sphere(DVec3::X * 2f64.powi(i / 2), 2f64.powi(i / 2 - 3)))
             .collect();
+        check_all(&objects);
+        let (bvh, _) = build_tree(&objects);
         assert!(
-            check_all(&objects) > 32,
+            binary_depth(&bvh.nodes, 0) > 32,
             "deep enough to need the median split"
         );
+    }
+
+    /// Levels of the builder's binary tree under `tree[index]`, itself included.
+    fn binary_depth(tree: &[bvh::BuildNode], index: usize) -> usize {
+        let node = &tree[index];
+        if node.is_leaf() {
+            return 1;
+        }
+        1 + binary_depth(tree, index + 1).max(binary_depth(tree, node.offset as usize))
     }
 
     #[test]
