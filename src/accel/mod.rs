@@ -348,24 +348,24 @@ mod tests {
 
     fn check_all(objects: &[Object]) -> usize {
         let accel = Accel::build(objects);
-        // The root's node: the root alone, empty leaves and boxes beside it.
-        let top = &accel.nodes[0];
-        assert_eq!(top.arity, 1);
-        for unused in 1..WIDTH {
-            assert_eq!(top.children[unused], Child::NOTHING);
-            assert_eq!(top.bounds(unused), Aabb::EMPTY);
-        }
+        // The walk starts at node 0: the root's children, or a lone leaf.
         let everything = Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY);
-        let (depth, mut nodes, mut seen) = check(
-            &accel,
-            objects,
-            top.children[0],
-            &top.bounds(0),
-            &everything,
-            1,
-        );
-        // Every node but the root's is some child's, exactly once.
-        nodes.push(0);
+        let top = &accel.nodes[0];
+        let (depth, mut nodes, mut seen) = if top.arity == 1 {
+            assert!(top.children[0].is_leaf(), "a lone root is a leaf");
+            let (depth, _, seen) = check(
+                &accel,
+                objects,
+                top.children[0],
+                &top.bounds(0),
+                &everything,
+                1,
+            );
+            (depth, vec![0], seen)
+        } else {
+            check(&accel, objects, Child::node(0), &everything, &everything, 0)
+        };
+        // Every node is reached exactly once.
         nodes.sort_unstable();
         assert_eq!(nodes, (0..accel.nodes.len()).collect::<Vec<_>>());
         assert!(depth <= bvh::MAX_DEPTH);
@@ -400,6 +400,16 @@ mod tests {
         });
         let depth = check_all(&objects);
         assert!(depth < 30, "depth {depth}");
+    }
+
+    #[test]
+    fn a_root_that_is_a_leaf_gets_a_node_of_its_own() {
+        // Three spheres around one centre cannot be told apart: one leaf, so
+        // node 0 holds it alone.
+        let objects: Vec<Object> = (1..4).map(|i| sphere(DVec3::ZERO, i as f64)).collect();
+        check_all(&objects);
+        let accel = Accel::build(&objects);
+        assert_eq!((accel.nodes.len(), accel.nodes[0].arity), (1, 1));
     }
 
     #[test]

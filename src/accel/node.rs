@@ -4,8 +4,7 @@
 //! up to four children per node, whose boxes sit side by side in the node:
 //! one ray meets all four in a handful of SSE2 instructions (`lanes`, two
 //! boxes per instruction), and a walk takes half as many steps down as in the
-//! binary tree, each a single node read. The root gets a node of its own,
-//! with nothing beside it.
+//! binary tree, each a single node read.
 //!
 //! Bounds are f64, like the tracing, so a box test answers exactly as the
 //! scalar slab test would. Nodes with f32 bounds (rounded outward) were
@@ -39,7 +38,7 @@ impl Child {
         count: 0,
     };
 
-    fn node(index: usize) -> Child {
+    pub fn node(index: usize) -> Child {
         Child {
             offset: index as u32,
             count: INTERIOR,
@@ -93,14 +92,20 @@ impl Node {
 
 /// Collapses the builder's tree (depth first, the first child right after
 /// its parent, the second at `offset`) into nodes of up to four children,
-/// the root's node first, then each node before the nodes below it.
+/// each node before the nodes below it. The walk starts at the first node:
+/// the root's children, whose boxes lie inside the root's (so the root's own
+/// box needs no test); or, when the root is a leaf, a node holding it alone.
 pub(super) fn collapse(tree: &[BuildNode]) -> Vec<Node> {
     let Some(root) = tree.first() else {
         return Vec::new();
     };
     let mut nodes = Vec::with_capacity(tree.len() / 3 + 1);
-    nodes.push(Node::new(&[root.bounds], &[Child::NOTHING]));
-    nodes[0].children[0] = place(tree, 0, &mut nodes);
+    if root.is_leaf() {
+        let leaf = place(tree, 0, &mut nodes);
+        nodes.push(Node::new(&[root.bounds], &[leaf]));
+    } else {
+        place(tree, 0, &mut nodes);
+    }
     nodes
 }
 
