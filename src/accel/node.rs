@@ -156,13 +156,21 @@ pub(super) struct BoxTest {
 }
 
 impl BoxTest {
+    #[inline]
     pub fn new(ray: &Ray) -> BoxTest {
-        let inverse = DVec3::ONE / ray.direction;
+        // Component by component: going through arrays made the compiler
+        // store whole vectors and reload halves, stalling every query.
+        let (o, d) = (ray.origin, ray.direction);
+        let inverse = [1.0 / d.x, 1.0 / d.y, 1.0 / d.z];
         BoxTest {
-            origin: ray.origin.to_array().map(Lanes::splat),
-            inverse: inverse.to_array().map(Lanes::splat),
+            origin: [Lanes::splat(o.x), Lanes::splat(o.y), Lanes::splat(o.z)],
+            inverse: [
+                Lanes::splat(inverse[0]),
+                Lanes::splat(inverse[1]),
+                Lanes::splat(inverse[2]),
+            ],
             // 1 / -0 = -inf: a ray with a -0 component counts as running downwards.
-            negative: inverse.to_array().map(f64::is_sign_negative),
+            negative: inverse.map(f64::is_sign_negative),
         }
     }
 
