@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use crate::math::to_rgb8;
 use crate::scene::Scene;
-use crate::trace::{NoRecorder, RayStats, Recorder, ShadowCache, trace_pixel_in_row};
+use crate::trace::{NoRecorder, RayStats, Recorder, ShadowCache, trace_primary_in_row};
 
 /// A recorder that can follow a whole render: one per row, summed at the end.
 pub trait RowRecorder: Recorder + Default + Send {
@@ -50,9 +50,8 @@ pub fn render_at<R: RowRecorder>(
         .map(|(y, row)| {
             let mut rec = R::default();
             let mut cache = ShadowCache::default();
-            for (x, pixel) in row.chunks_exact_mut(3).enumerate() {
-                let color =
-                    trace_pixel_in_row(scene, &viewport, x as u32, y as u32, &mut cache, &mut rec);
+            for (ray, pixel) in viewport.row(y as u32).iter().zip(row.chunks_exact_mut(3)) {
+                let color = trace_primary_in_row(scene, ray, &mut cache, &mut rec);
                 pixel.copy_from_slice(&to_rgb8(color));
             }
             row_done();

@@ -13,7 +13,7 @@ use crate::math::{Color, Ray, to_rgb8};
 use crate::render::write_png;
 use crate::scene::Scene;
 use crate::trace::{
-    ChildTerm, LightTerm, RayKind, Recorder, ShadowCache, SurfaceHit, trace_pixel_in_row,
+    ChildTerm, LightTerm, RayKind, Recorder, ShadowCache, SurfaceHit, trace_primary_in_row,
 };
 
 /// One view of the per-pixel terms.
@@ -164,10 +164,9 @@ pub fn render_terms(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> TermImages {
         .enumerate()
         .for_each(|(y, row)| {
             let mut cache = ShadowCache::default();
-            for (x, pixel) in row.iter_mut().enumerate() {
+            for (ray, pixel) in viewport.row(y as u32).iter().zip(row.iter_mut()) {
                 let mut rec = TermsRecorder::default();
-                let color =
-                    trace_pixel_in_row(scene, &viewport, x as u32, y as u32, &mut cache, &mut rec);
+                let color = trace_primary_in_row(scene, ray, &mut cache, &mut rec);
                 rec.terms.color = color;
                 rec.terms.shadow =
                     (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);

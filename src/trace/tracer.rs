@@ -48,22 +48,21 @@ pub fn trace_pixel<R: Recorder>(
     y: u32,
     rec: &mut R,
 ) -> Color {
-    trace_pixel_in_row(scene, viewport, x, y, &mut ShadowCache::default(), rec)
+    let ray = viewport.primary_ray(x, y);
+    trace_primary_in_row(scene, &ray, &mut ShadowCache::default(), rec)
 }
 
-/// `trace_pixel` for a render that goes along a row with one shadow cache:
-/// the colour is the same, only the shadow queries get cheaper.
-pub fn trace_pixel_in_row<R: Recorder>(
+/// `trace_pixel` for a render that goes along a row with one shadow cache,
+/// given the pixel's primary ray: the colour is the same, only the shadow
+/// queries get cheaper.
+pub fn trace_primary_in_row<R: Recorder>(
     scene: &Scene,
-    viewport: &Viewport,
-    x: u32,
-    y: u32,
+    ray: &Ray,
     cache: &mut ShadowCache,
     rec: &mut R,
 ) -> Color {
-    let ray = viewport.primary_ray(x, y);
     Tracer { scene, cache, rec }
-        .trace(&ray, RayKind::Primary, 1, 1.0)
+        .trace(ray, RayKind::Primary, 1, 1.0)
         .color
 }
 
