@@ -85,7 +85,7 @@ impl Accel {
         for &object in &self.unbounded {
             nearest.test(object, cost);
         }
-        self.walk(ray, range.min, range.max, cost, |leaf, cost| {
+        self.walk::<true>(ray, range.min, range.max, cost, |leaf, cost| {
             for &object in leaf {
                 nearest.test(object, cost);
             }
@@ -96,8 +96,11 @@ impl Accel {
 
     /// Calls `visit(object, t)` for every crossing of the segment `range` until
     /// it breaks. The order of the calls is fixed for a given ray and scene:
-    /// the planes in file order, then the leaves nearer first, each leaf in
-    /// file order and each object's roots in increasing t. It is not sorted by t.
+    /// the planes in file order, then the leaves in the order of the walk
+    /// (children met in tree order, not by distance: most shadow segments
+    /// reach their light, so all their boxes are opened anyway, and sorting
+    /// cost more than it saved), each leaf in file order and each object's
+    /// roots in increasing t. It is not sorted by t.
     pub fn crossings(
         &self,
         objects: &[Object],
@@ -119,7 +122,7 @@ impl Accel {
                 return;
             }
         }
-        self.walk(ray, range.min, range.max, cost, |leaf, cost| {
+        self.walk::<false>(ray, range.min, range.max, cost, |leaf, cost| {
             for &object in leaf {
                 segment(object, cost)?;
             }
@@ -127,10 +130,11 @@ impl Accel {
         });
     }
 
-    /// Visits, nearer child first, every leaf whose box meets the ray between
-    /// `t_min` and `t_max`; `leaf` returns the new `t_max` or stops the walk.
+    /// Visits every leaf whose box meets the ray between `t_min` and `t_max`,
+    /// the children of a node nearest first when `NEAREST_FIRST`, else in
+    /// tree order; `leaf` returns the new `t_max` or stops the walk.
     #[inline]
-    fn walk(
+    fn walk<const NEAREST_FIRST: bool>(
         &self,
         ray: &Ray,
         t_min: f64,
@@ -157,6 +161,16 @@ impl Accel {
             let mut next = match mask {
                 0 => None,
                 1 | 2 | 4 | 8 => Some(node.children[mask.trailing_zeros() as usize]),
+                _ if !NEAREST_FIRST => {
+                    // The first child met goes next, the others wait.
+                    let mut rest = mask & (mask - 1);
+                    while rest != 0 {
+                        let i = rest.trailing_zeros() as usize;
+                        stack.push((node.children[i], entry[i]));
+                        rest &= rest - 1;
+                    }
+                    Some(node.children[mask.trailing_zeros() as usize])
+                }
                 _ => {
                     // Nearest first, ties in child order; the others wait on
                     // the stack, the farthest pushed first.
