@@ -20,7 +20,7 @@ pub struct Polygon {
     /// The vertices projected to (U, V) by dropping `dropped`, computed once.
     projected: Vec<DVec2>,
     /// For many-sided polygons, which edges can cross the axis at a given V.
-    bands: Option<EdgeBands>,
+    bands: Option<Box<EdgeBands>>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -117,7 +117,7 @@ impl Polygon {
         let dropped = Axis::dominant(plane.normal);
         let projected: Vec<DVec2> = vertices.iter().map(|v| dropped.project(*v)).collect();
         Ok(Self {
-            bands: EdgeBands::new(&projected),
+            bands: EdgeBands::new(&projected).map(Box::new),
             vertices,
             plane,
             dropped,
