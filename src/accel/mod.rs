@@ -173,25 +173,27 @@ impl Accel {
                 }
                 _ => {
                     // Nearest first, ties in child order; the others wait on
-                    // the stack, the farthest pushed first.
-                    let mut met = [(0.0, 0); WIDTH];
-                    let mut count = 0;
-                    for (i, &t) in entry.iter().enumerate() {
+                    // the stack, the farthest pushed first. An entry is at
+                    // least t_min >= 0, and a non-negative f64 orders as its
+                    // bits do: with the child in the two lowest bits (the
+                    // entry rounded down, which keeps the pruning safe) a
+                    // sorting network of compare-and-swap needs no branches.
+                    let mut keys = [u64::MAX; WIDTH];
+                    for (i, (key, t)) in keys.iter_mut().zip(entry).enumerate() {
                         if mask & 1 << i != 0 {
-                            // Insertion by entry: a later child goes after an equal one.
-                            let mut at = count;
-                            while at > 0 && met[at - 1].0 > t {
-                                met[at] = met[at - 1];
-                                at -= 1;
-                            }
-                            met[at] = (t, i);
-                            count += 1;
+                            *key = (t.to_bits() & !3) | i as u64;
                         }
                     }
-                    for &(t, i) in met[1..count].iter().rev() {
-                        stack.push((node.children[i], t));
+                    for (x, y) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
+                        let (low, high) = (keys[x].min(keys[y]), keys[x].max(keys[y]));
+                        keys[x] = low;
+                        keys[y] = high;
                     }
-                    Some(node.children[met[0].1])
+                    let count = mask.count_ones() as usize;
+                    for &key in keys[1..count].iter().rev() {
+                        stack.push((node.children[(key & 3) as usize], f64::from_bits(key & !3)));
+                    }
+                    Some(node.children[(keys[0] & 3) as usize])
                 }
             };
             loop {
