@@ -132,7 +132,9 @@ impl Accel {
 
     /// Visits every leaf whose box meets the ray between `t_min` and `t_max`,
     /// the children of a node nearest first when `NEAREST_FIRST`, else in
-    /// tree order; `leaf` returns the new `t_max` or stops the walk.
+    /// tree order; `leaf` returns the new `t_max` or stops the walk. Every
+    /// query's range starts at `EPS`: `t_min` must not be negative, or the
+    /// ordering below would round entries up rather than down.
     #[inline]
     fn walk<const NEAREST_FIRST: bool>(
         &self,
@@ -145,6 +147,7 @@ impl Accel {
         if self.nodes.is_empty() {
             return;
         }
+        debug_assert!(t_min >= 0.0, "walks start in front of the ray: {t_min}");
         let boxes = BoxTest::new(ray);
         // The children met are entered nearest first; the others wait with
         // their entry distances, and are skipped once a hit closer than their
