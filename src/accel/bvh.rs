@@ -148,7 +148,7 @@ fn largest_coordinate(bounds: &Aabb) -> f64 {
     }
 }
 
-fn surface_area(bounds: &Aabb) -> f64 {
+pub(super) fn surface_area(bounds: &Aabb) -> f64 {
     let e = bounds.max - bounds.min;
     2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
 }

@@ -48,8 +48,8 @@ pub struct Candidate {
 /// The queries take the same object list it was built from.
 #[derive(Clone, Default)]
 pub struct Accel {
-    /// The hierarchy, up to four child boxes per node, the root's node
-    /// first; empty when no object is bounded.
+    /// The hierarchy, up to four child boxes per node, the walk's start
+    /// first (`node::collapse`); empty when no object is bounded.
     nodes: Vec<Node>,
     /// The objects of the leaves: a leaf holds `objects[offset..offset + count]`.
     objects: Vec<u32>,

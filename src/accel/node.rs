@@ -12,7 +12,7 @@
 
 use glam::DVec3;
 
-use super::bvh::BuildNode;
+use super::bvh::{BuildNode, surface_area};
 use super::lanes::Lanes;
 use crate::math::Ray;
 use crate::shapes::Aabb;
@@ -127,7 +127,9 @@ fn place(tree: &[BuildNode], index: usize, nodes: &mut Vec<Node>) -> Child {
             .iter()
             .enumerate()
             .filter(|&(_, &i)| !tree[i].is_leaf())
-            .max_by(|&(_, &i), &(_, &j)| area(&tree[i].bounds).total_cmp(&area(&tree[j].bounds)));
+            .max_by(|&(_, &i), &(_, &j)| {
+                surface_area(&tree[i].bounds).total_cmp(&surface_area(&tree[j].bounds))
+            });
         let Some((at, &i)) = widest else { break };
         under.splice(at..=at, [i + 1, tree[i].offset as usize]);
     }
@@ -139,11 +141,6 @@ fn place(tree: &[BuildNode], index: usize, nodes: &mut Vec<Node>) -> Child {
         nodes[at].children[slot] = child;
     }
     Child::node(at)
-}
-
-fn area(b: &Aabb) -> f64 {
-    let e = b.max - b.min;
-    e.x * e.y + e.y * e.z + e.z * e.x
 }
 
 /// A ray prepared once for many box tests: per axis its origin and inverse
