@@ -55,10 +55,9 @@ impl Child {
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
 pub(super) struct Node {
-    /// Per axis, the children's least coordinates: children 0 and 1, then 2 and 3.
-    min: [[Lanes; 2]; 3],
-    /// Per axis, the children's greatest coordinates.
-    max: [[Lanes; 2]; 3],
+    /// The children's least coordinates (`corners[0]`) and greatest
+    /// (`corners[1]`), per axis: children 0 and 1, then 2 and 3.
+    corners: [[[Lanes; 2]; 3]; 2],
     pub children: [Child; WIDTH],
     /// How many children are present: the boxes a visit tests, for the cost.
     pub arity: u32,
@@ -75,8 +74,10 @@ impl Node {
             [0, 1].map(|half| Lanes::new([0, 1].map(|i| corner(&all[2 * half + i])[axis])))
         };
         Node {
-            min: [0, 1, 2].map(|axis| lanes(|b| b.min, axis)),
-            max: [0, 1, 2].map(|axis| lanes(|b| b.max, axis)),
+            corners: [
+                [0, 1, 2].map(|axis| lanes(|b| b.min, axis)),
+                [0, 1, 2].map(|axis| lanes(|b| b.max, axis)),
+            ],
             children: placed,
             arity: children.len() as u32,
         }
@@ -86,7 +87,7 @@ impl Node {
     #[cfg(test)]
     pub fn bounds(&self, i: usize) -> Aabb {
         let corner = |l: &[[Lanes; 2]; 3]| DVec3::from(l.map(|v| v[i / 2].to_array()[i % 2]));
-        Aabb::new(corner(&self.min), corner(&self.max))
+        Aabb::new(corner(&self.corners[0]), corner(&self.corners[1]))
     }
 }
 
@@ -149,7 +150,10 @@ fn place(tree: &[BuildNode], index: usize, nodes: &mut Vec<Node>) -> Child {
 pub(super) struct BoxTest {
     origin: [Lanes; 3],
     inverse: [Lanes; 3],
-    negative: [bool; 3],
+    /// Per axis, whether the ray runs towards decreasing coordinates, and so
+    /// meets a box's greatest corner first. Used as an index into the
+    /// corners, not in a branch or a conditional move per box.
+    downwards: [bool; 3],
 }
 
 impl BoxTest {
@@ -167,7 +171,7 @@ impl BoxTest {
                 Lanes::splat(inverse[2]),
             ],
             // 1 / -0 = -inf: a ray with a -0 component counts as running downwards.
-            negative: inverse.map(f64::is_sign_negative),
+            downwards: inverse.map(f64::is_sign_negative),
         }
     }
 
@@ -181,11 +185,9 @@ impl BoxTest {
             let mut low = Lanes::splat(t_min);
             let mut high = Lanes::splat(t_max);
             for axis in 0..3 {
-                let (near, far) = if self.negative[axis] {
-                    (node.max[axis][half], node.min[axis][half])
-                } else {
-                    (node.min[axis][half], node.max[axis][half])
-                };
+                let downwards = self.downwards[axis];
+                let near = node.corners[usize::from(downwards)][axis][half];
+                let far = node.corners[usize::from(!downwards)][axis][half];
                 let t_near = near.sub(self.origin[axis]).mul(self.inverse[axis]);
                 let t_far = far.sub(self.origin[axis]).mul(self.inverse[axis]);
                 // A NaN (a ray along a face) keeps the bound: the second operand.
