@@ -186,6 +186,11 @@ fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
 
 fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     let started = Instant::now();
+    if args.threads.is_none() {
+        // Start the worker threads now, so that they are up by the time
+        // the scene is parsed rather than when tracing begins.
+        rayon::spawn(|| {});
+    }
     let scene = load_scene(Some(&args.scene), args.size)?;
     let prepared = started.elapsed().as_secs_f64();
     let progress = progress_bar(scene.height);
