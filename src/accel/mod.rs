@@ -10,11 +10,17 @@
 //! every object in file order (`brute`, kept as the oracle): the same nearest
 //! hit to the bit, the same crossings (in another order). Only the cost, the
 //! nodes visited and primitives tested that the debugger shows, differs.
+//!
+//! Each query is compiled twice: for any x86-64, testing a node's boxes with
+//! SSE2, and for CPUs with AVX2, with AVX (`wide`); the second runs where
+//! the CPU allows. Both give the same answers at the same cost.
 
 pub mod brute;
 mod bvh;
 mod lanes;
 mod node;
+#[cfg(target_arch = "x86_64")]
+mod wide;
 
 use std::fmt;
 use std::ops::ControlFlow;
@@ -25,7 +31,7 @@ use serde::Serialize;
 use crate::math::{Interval, Ray};
 use crate::scene::Object;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
-use node::{BoxTest, Child, Node, WIDTH};
+use node::{BoxTesting, Child, Node, WIDTH};
 
 /// What one query tested: the price of a ray, shown to students.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -75,6 +81,37 @@ impl Accel {
         range: Interval,
         cost: &mut Cost,
     ) -> Option<Candidate> {
+        #[cfg(target_arch = "x86_64")]
+        if wide::available() {
+            // SAFETY: the CPU has the features `closest_wide` is compiled for.
+            return unsafe { self.closest_wide(objects, ray, range, cost) };
+        }
+        self.closest_with::<node::BoxTest>(objects, ray, range, cost)
+    }
+
+    /// `closest` compiled for CPUs with AVX2 and its companions (the
+    /// features `wide::available` checks), with the AVX box test.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt,sse3,ssse3,sse4.1,sse4.2")]
+    unsafe fn closest_wide(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        range: Interval,
+        cost: &mut Cost,
+    ) -> Option<Candidate> {
+        self.closest_with::<wide::BoxTest>(objects, ray, range, cost)
+    }
+
+    /// The query itself, for either box test.
+    #[inline(always)]
+    fn closest_with<B: BoxTesting>(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        range: Interval,
+        cost: &mut Cost,
+    ) -> Option<Candidate> {
         let mut nearest = Nearest {
             objects,
             ray,
@@ -88,7 +125,7 @@ impl Accel {
         for &object in &self.unbounded {
             nearest.test(object, cost);
         }
-        self.walk::<true>(ray, range.min, range.max, cost, |leaf, cost| {
+        self.walk::<true, B>(ray, range.min, range.max, cost, |leaf, cost| {
             for &object in leaf {
                 nearest.test(object, cost);
             }
@@ -111,6 +148,39 @@ impl Accel {
         ray: &Ray,
         range: Interval,
         cost: &mut Cost,
+        visit: impl FnMut(usize, f64) -> ControlFlow<()>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if wide::available() {
+            // SAFETY: the CPU has the features `crossings_wide` is compiled for.
+            return unsafe { self.crossings_wide(objects, ray, range, cost, visit) };
+        }
+        self.crossings_with::<node::BoxTest>(objects, ray, range, cost, visit)
+    }
+
+    /// `crossings` compiled for CPUs with AVX2 and its companions (the
+    /// features `wide::available` checks), with the AVX box test.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt,sse3,ssse3,sse4.1,sse4.2")]
+    unsafe fn crossings_wide(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        range: Interval,
+        cost: &mut Cost,
+        visit: impl FnMut(usize, f64) -> ControlFlow<()>,
+    ) {
+        self.crossings_with::<wide::BoxTest>(objects, ray, range, cost, visit)
+    }
+
+    /// The query itself, for either box test.
+    #[inline(always)]
+    fn crossings_with<B: BoxTesting>(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        range: Interval,
+        cost: &mut Cost,
         mut visit: impl FnMut(usize, f64) -> ControlFlow<()>,
     ) {
         let mut segment = |object: u32, cost: &mut Cost| {
@@ -126,7 +196,7 @@ impl Accel {
                 return;
             }
         }
-        self.walk::<false>(ray, range.min, range.max, cost, |leaf, cost| {
+        self.walk::<false, B>(ray, range.min, range.max, cost, |leaf, cost| {
             for &object in leaf {
                 segment(object, cost)?;
             }
@@ -139,8 +209,8 @@ impl Accel {
     /// tree order; `leaf` returns the new `t_max` or stops the walk. Every
     /// query's range starts at `EPS`: `t_min` must not be negative, or the
     /// ordering below would round entries up rather than down.
-    #[inline]
-    fn walk<const NEAREST_FIRST: bool>(
+    #[inline(always)]
+    fn walk<const NEAREST_FIRST: bool, B: BoxTesting>(
         &self,
         ray: &Ray,
         t_min: f64,
@@ -152,7 +222,7 @@ impl Accel {
             return;
         }
         debug_assert!(t_min >= 0.0, "walks start in front of the ray: {t_min}");
-        let boxes = BoxTest::new(ray);
+        let boxes = B::new(ray);
         // The children met are entered nearest first; the others wait with
         // their entry distances, and are skipped once a hit closer than their
         // entry is known. Not zeroed: a shadow ray visits a handful of nodes,

@@ -3,8 +3,9 @@
 //! The builder's binary tree (`bvh::BuildNode`) is collapsed into a tree of
 //! up to four children per node, whose boxes sit side by side in the node:
 //! one ray meets all four in a handful of SSE2 instructions (`lanes`, two
-//! boxes per instruction), and a walk takes half as many steps down as in the
-//! binary tree, each a single node read.
+//! boxes per instruction; `wide` does four per instruction where the CPU has
+//! AVX), and a walk takes half as many steps down as in the binary tree, each
+//! a single node read.
 //!
 //! Bounds are f64, like the tracing, so a box test answers exactly as the
 //! scalar slab test would. Nodes with f32 bounds (rounded outward) were
@@ -57,14 +58,14 @@ impl Child {
 pub(super) struct Node {
     /// The children's least coordinates (`corners[0]`) and greatest
     /// (`corners[1]`), per axis: children 0 and 1, then 2 and 3.
-    corners: [[[Lanes; 2]; 3]; 2],
+    pub(super) corners: [[[Lanes; 2]; 3]; 2],
     pub children: [Child; WIDTH],
     /// How many children are present: the boxes a visit tests, for the cost.
     pub arity: u32,
 }
 
 impl Node {
-    fn new(boxes: &[Aabb], children: &[Child]) -> Node {
+    pub(super) fn new(boxes: &[Aabb], children: &[Child]) -> Node {
         debug_assert!(boxes.len() == children.len() && children.len() <= WIDTH);
         let mut all = [Aabb::EMPTY; WIDTH];
         all[..boxes.len()].copy_from_slice(boxes);
@@ -156,9 +157,18 @@ pub(super) struct BoxTest {
     downwards: [bool; 3],
 }
 
-impl BoxTest {
-    #[inline]
-    pub fn new(ray: &Ray) -> BoxTest {
+/// A ray prepared for testing the four boxes of a node at once.
+pub(super) trait BoxTesting {
+    fn new(ray: &Ray) -> Self;
+
+    /// Where the ray enters each child's box within (t_min, t_max): bit i of
+    /// the mask is set when it meets child i's box, entering at `entry[i]`.
+    fn entries(&self, node: &Node, t_min: f64, t_max: f64) -> (u32, [f64; WIDTH]);
+}
+
+impl BoxTesting for BoxTest {
+    #[inline(always)]
+    fn new(ray: &Ray) -> BoxTest {
         // Component by component: going through arrays made the compiler
         // store whole vectors and reload halves, stalling every query.
         let (o, d) = (ray.origin, ray.direction);
@@ -175,10 +185,8 @@ impl BoxTest {
         }
     }
 
-    /// Where the ray enters each child's box within (t_min, t_max): bit i of
-    /// the mask is set when it meets child i's box, entering at `entry[i]`.
-    #[inline]
-    pub fn entries(&self, node: &Node, t_min: f64, t_max: f64) -> (u32, [f64; WIDTH]) {
+    #[inline(always)]
+    fn entries(&self, node: &Node, t_min: f64, t_max: f64) -> (u32, [f64; WIDTH]) {
         let mut mask = 0;
         let mut entry = [0.0; WIDTH];
         for half in 0..2 {
