@@ -30,6 +30,7 @@ use serde::Serialize;
 
 use crate::math::{Interval, Ray};
 use crate::scene::Object;
+use crate::shapes::{Shape, TriangleTest};
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use node::{BoxTesting, Child, Node, WIDTH};
 
@@ -61,15 +62,28 @@ pub struct Accel {
     objects: Vec<u32>,
     /// Objects without bounds (planes), in file order, tested by every query.
     unbounded: Vec<u32>,
+    /// Beside each entry of `objects`, its test when it is a triangle (a
+    /// polygon or patch of three vertices, most of the SPD's objects).
+    triangles: Vec<Option<TriangleTest>>,
 }
 
 impl Accel {
     pub fn build(objects: &[Object]) -> Accel {
         let (bvh, unbounded) = build_tree(objects);
+        let triangles = bvh
+            .objects
+            .iter()
+            .map(|&object| match &objects[object as usize].shape {
+                Shape::Polygon(polygon) => TriangleTest::of(polygon),
+                Shape::Patch(patch) => TriangleTest::of(&patch.polygon),
+                _ => None,
+            })
+            .collect();
         Accel {
             nodes: node::collapse(&bvh.nodes),
             objects: bvh.objects,
             unbounded,
+            triangles,
         }
     }
 
@@ -123,11 +137,11 @@ impl Accel {
         };
         // Planes first: a hit there shortens the ray before the walk.
         for &object in &self.unbounded {
-            nearest.test(object, cost);
+            nearest.test(object, None, cost);
         }
-        self.walk::<true, B>(ray, range.min, range.max, cost, |leaf, cost| {
-            for &object in leaf {
-                nearest.test(object, cost);
+        self.walk::<true, B>(ray, range.min, range.max, cost, |first, leaf, cost| {
+            for (&object, triangle) in leaf.iter().zip(&self.triangles[first..]) {
+                nearest.test(object, triangle.as_ref(), cost);
             }
             ControlFlow::Continue(nearest.best.t)
         });
@@ -183,22 +197,29 @@ impl Accel {
         cost: &mut Cost,
         mut visit: impl FnMut(usize, f64) -> ControlFlow<()>,
     ) {
-        let mut segment = |object: u32, cost: &mut Cost| {
+        let mut segment = |object: u32, triangle: Option<&TriangleTest>, cost: &mut Cost| {
             cost.primitives += 1;
             let object = object as usize;
+            if let Some(triangle) = triangle {
+                // A triangle crosses the segment once at most.
+                return match triangle.hit_t(ray, range) {
+                    Some(t) => visit(object, t),
+                    None => ControlFlow::Continue(()),
+                };
+            }
             for &t in objects[object].shape.roots(ray, range).as_slice() {
                 visit(object, t)?;
             }
             ControlFlow::Continue(())
         };
         for &object in &self.unbounded {
-            if segment(object, cost).is_break() {
+            if segment(object, None, cost).is_break() {
                 return;
             }
         }
-        self.walk::<false, B>(ray, range.min, range.max, cost, |leaf, cost| {
-            for &object in leaf {
-                segment(object, cost)?;
+        self.walk::<false, B>(ray, range.min, range.max, cost, |first, leaf, cost| {
+            for (&object, triangle) in leaf.iter().zip(&self.triangles[first..]) {
+                segment(object, triangle.as_ref(), cost)?;
             }
             ControlFlow::Continue(range.max)
         });
@@ -216,7 +237,7 @@ impl Accel {
         t_min: f64,
         mut t_max: f64,
         cost: &mut Cost,
-        mut leaf: impl FnMut(&[u32], &mut Cost) -> ControlFlow<(), f64>,
+        mut leaf: impl FnMut(usize, &[u32], &mut Cost) -> ControlFlow<(), f64>,
     ) {
         if self.nodes.is_empty() {
             return;
@@ -278,7 +299,7 @@ impl Accel {
                     Some(child) if child.is_leaf() => {
                         let first = child.offset as usize;
                         let run = &self.objects[first..first + usize::from(child.count)];
-                        match leaf(run, cost) {
+                        match leaf(first, run, cost) {
                             ControlFlow::Continue(max) => t_max = max,
                             ControlFlow::Break(()) => break 'walk,
                         }
@@ -338,11 +359,12 @@ struct Nearest<'a> {
 const NONE_YET: usize = usize::MAX;
 
 impl Nearest<'_> {
-    /// Tests one object. The objects come in tree order, not file order, so a
-    /// hit at exactly the best t must still win when its object comes first in
-    /// the file: for such objects the range is closed at the best t.
+    /// Tests one object, through its triangle test when it has one. The
+    /// objects come in tree order, not file order, so a hit at exactly the
+    /// best t must still win when its object comes first in the file: for
+    /// such objects the range is closed at the best t.
     #[inline]
-    fn test(&mut self, object: u32, cost: &mut Cost) {
+    fn test(&mut self, object: u32, triangle: Option<&TriangleTest>, cost: &mut Cost) {
         cost.primitives += 1;
         let object = object as usize;
         let best = self.best;
@@ -352,7 +374,11 @@ impl Nearest<'_> {
             best.t
         };
         let range = Interval::new(self.range.min, max);
-        if let Some(t) = self.objects[object].shape.intersect(self.ray, range) {
+        let hit = match triangle {
+            Some(triangle) => triangle.hit_t(self.ray, range),
+            None => self.objects[object].shape.intersect(self.ray, range),
+        };
+        if let Some(t) = hit {
             self.best = Candidate { object, t };
         }
     }

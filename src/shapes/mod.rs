@@ -15,7 +15,7 @@ use serde::Serialize;
 pub use cone::{Cone, ConeWorking};
 pub use patch::{Patch, PatchWorking};
 pub use plane::{Plane, PlaneWorking};
-pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking};
+pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking, TriangleTest};
 pub use sphere::{RootChoice, Sphere, SphereWorking};
 
 use crate::math::{Interval, Ray};
