@@ -124,7 +124,7 @@ impl TriangleTest {
     }
 
     /// `Polygon::solve(ray, range).hit_t()`.
-    #[inline]
+    #[inline(always)]
     pub fn hit_t(&self, ray: &Ray, range: Interval) -> Option<f64> {
         let t = self.plane.solve(ray, range).hit_t()?;
         let p = self.dropped.project(ray.at(t));
