@@ -30,7 +30,7 @@ use serde::Serialize;
 
 use crate::math::{Interval, Ray};
 use crate::scene::Object;
-use crate::shapes::{Shape, TriangleTest};
+use crate::shapes::{Roots, Shape, TriangleTest};
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use node::{BoxTesting, Child, Node, WIDTH};
 
@@ -197,29 +197,26 @@ impl Accel {
         cost: &mut Cost,
         mut visit: impl FnMut(usize, f64) -> ControlFlow<()>,
     ) {
-        let mut segment = |object: u32, triangle: Option<&TriangleTest>, cost: &mut Cost| {
-            cost.primitives += 1;
-            let object = object as usize;
-            if let Some(triangle) = triangle {
-                // A triangle crosses the segment once at most.
-                return match triangle.hit_t(ray, range) {
-                    Some(t) => visit(object, t),
-                    None => ControlFlow::Continue(()),
-                };
-            }
-            for &t in objects[object].shape.roots(ray, range).as_slice() {
-                visit(object, t)?;
-            }
-            ControlFlow::Continue(())
+        // Each object's crossings, in increasing t.
+        let mut cross = |object: usize, roots: Roots| {
+            roots.as_slice().iter().try_for_each(|&t| visit(object, t))
         };
         for &object in &self.unbounded {
-            if segment(object, None, cost).is_break() {
+            cost.primitives += 1;
+            let object = object as usize;
+            if cross(object, objects[object].shape.roots(ray, range)).is_break() {
                 return;
             }
         }
         self.walk::<false, B>(ray, range.min, range.max, cost, |first, leaf, cost| {
             for (&object, triangle) in leaf.iter().zip(&self.triangles[first..]) {
-                segment(object, triangle.as_ref(), cost)?;
+                cost.primitives += 1;
+                let object = object as usize;
+                let roots = match triangle {
+                    Some(triangle) => Roots::of_one(triangle.hit_t(ray, range)),
+                    None => objects[object].shape.roots(ray, range),
+                };
+                cross(object, roots)?;
             }
             ControlFlow::Continue(range.max)
         });

@@ -58,7 +58,7 @@ impl Roots {
         count: 0,
     };
 
-    fn of_one(t: Option<f64>) -> Roots {
+    pub fn of_one(t: Option<f64>) -> Roots {
         let mut roots = Roots::NONE;
         if let Some(t) = t {
             roots.push(t);
