@@ -5,10 +5,14 @@
 
 For each scene: `raystep render --stats` (whole-process wall time, its own
 prepare and trace times, rays per second by kind, peak memory) and
-../shared/bench/pov_bench.sh (wall and POV-Ray's trace time), medians of
---runs runs after one warm-up each, then POV-Ray's peak memory from one run
-under /usr/bin/time. Prints Markdown tables. Without povray on the PATH the
-POV-Ray columns say "skipped". CI does not run this.
+../shared/bench/pov_bench.sh -n 1 (wall and POV-Ray's trace time of one
+render), run in alternation, --runs times each after one warm-up each; the
+tables give medians. Alternating lets both programs meet the same state of a
+shared, noisy machine, and makes POV-Ray's trace time a median too (one
+pov_bench.sh call with -n N reports the trace time of its last run only).
+Then POV-Ray's peak memory from one run under /usr/bin/time. Prints Markdown
+tables. Without povray on the PATH the POV-Ray columns say "skipped". CI
+does not run this.
 """
 
 import argparse
@@ -27,45 +31,63 @@ SCENES = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
 RAYSTEP = os.path.join(ROOT, "target", "release", "raystep")
 
 
-def raystep_runs(scene, size, runs, out):
-    """Median wall, prepare and trace seconds, plus the last run's stats."""
-    walls, prepares, traces, stats = [], [], [], None
-    for i in range(runs + 1):
-        start = time.perf_counter()
-        result = subprocess.run(
-            [RAYSTEP, "render", scene, "-o", out, "--stats", "--size", f"{size}x{size}"],
-            check=True, capture_output=True, text=True)
-        wall = time.perf_counter() - start
-        stats = json.loads(result.stdout)
-        if i > 0:  # the first run warms the file cache
-            walls.append(wall)
-            prepares.append(stats["prepare_seconds"])
-            traces.append(stats["trace_seconds"])
-    return statistics.median(walls), statistics.median(prepares), statistics.median(traces), stats
+def raystep_run(scene, size, out):
+    """Wall, prepare and trace seconds of one run, and its stats."""
+    start = time.perf_counter()
+    result = subprocess.run(
+        [RAYSTEP, "render", scene, "-o", out, "--stats", "--size", f"{size}x{size}"],
+        check=True, capture_output=True, text=True)
+    wall = time.perf_counter() - start
+    stats = json.loads(result.stdout)
+    return wall, stats["prepare_seconds"], stats["trace_seconds"], stats
 
 
-def povray_runs(scene, size, runs):
-    """Median wall and last trace seconds from pov_bench.sh, and peak MiB."""
-    if shutil.which("povray") is None:
-        return None
+def povray_run(scene, size, keep=None):
+    """Wall and trace seconds of one pov_bench.sh run (one render, timed)."""
     bench = os.path.join(SHARED, "bench", "pov_bench.sh")
+    command = ["bash", bench, "-n", "1", "-W", str(size), "-H", str(size)]
+    if keep:
+        command += ["-k", keep]
+    result = subprocess.run(command + [scene], check=True, capture_output=True, text=True)
+    values = dict(kv.split("=", 1) for line in result.stdout.splitlines()
+                  for kv in line.split() if "=" in kv)
+    return float(values["wall_median_s"]), float(values["povray_trace_s"])
+
+
+def povray_peak_mib(keep, name, size):
+    """POV-Ray's peak memory in one more render, or None without /usr/bin/time."""
+    if not os.path.exists("/usr/bin/time"):
+        return None
+    timed = subprocess.run(
+        ["/usr/bin/time", "-f", "%M", "povray", f"+I{name}.pov", f"+O{name}.png",
+         f"+W{size}", f"+H{size}", "-A", "+FN", "-D", "-P", "-GR", "File_Gamma=1.0"],
+        cwd=keep, capture_output=True, text=True)
+    return int(timed.stderr.strip().splitlines()[-1]) / 1024
+
+
+def measure(scene, size, runs, out):
+    """Medians of `runs` runs of each program, taken in alternation (raystep,
+    POV-Ray, raystep, ...) after one warm-up run of each, so that both see
+    the machine in the same state; the trace ratio is the ratio of the two
+    trace medians."""
+    with_pov = shutil.which("povray") is not None
+    name = os.path.splitext(os.path.basename(scene))[0]
+    ours, theirs, stats, peak = [], [], None, None
     with tempfile.TemporaryDirectory() as keep:
-        result = subprocess.run(
-            ["bash", bench, "-n", str(runs), "-W", str(size), "-H", str(size), "-k", keep, scene],
-            check=True, capture_output=True, text=True)
-        values = dict(kv.split("=", 1) for line in result.stdout.splitlines()
-                      for kv in line.split() if "=" in kv)
-        wall = float(values["wall_median_s"])
-        trace = float(values["povray_trace_s"])
-        name = os.path.splitext(os.path.basename(scene))[0]
-        peak = None
-        if os.path.exists("/usr/bin/time"):
-            timed = subprocess.run(
-                ["/usr/bin/time", "-f", "%M", "povray", f"+I{name}.pov", f"+O{name}.png",
-                 f"+W{size}", f"+H{size}", "-A", "+FN", "-D", "-P", "-GR", "File_Gamma=1.0"],
-                cwd=keep, capture_output=True, text=True)
-            peak = int(timed.stderr.strip().splitlines()[-1]) / 1024
-    return wall, trace, peak
+        for i in range(runs + 1):
+            *run, stats = raystep_run(scene, size, out)
+            pov = povray_run(scene, size, keep if i == 0 else None) if with_pov else None
+            if i > 0:  # the first runs warm the file cache
+                ours.append(run)
+                theirs.append(pov)
+        if with_pov:
+            peak = povray_peak_mib(keep, name, size)
+    wall, prepare, trace = (statistics.median(column) for column in zip(*ours))
+    pov = None
+    if with_pov:
+        pov_wall, pov_trace = (statistics.median(column) for column in zip(*theirs))
+        pov = (pov_wall, pov_trace, peak)
+    return wall, prepare, trace, stats, pov
 
 
 def main():
@@ -81,15 +103,15 @@ def main():
         out = os.path.join(tmp, "out.png")
         for name in args.scenes:
             scene = os.path.join(SHARED, "spd", f"{name}.nff")
-            wall, prepare, trace, stats = raystep_runs(scene, args.size, args.runs, out)
-            pov = povray_runs(scene, args.size, args.runs)
+            wall, prepare, trace, stats, pov = measure(scene, args.size, args.runs, out)
             rays = {k: stats[k] for k in ["primary", "reflected", "transmitted", "shadow"]}
             rows.append((name, wall, prepare, trace, stats.get("peak_memory_mib"), rays, pov))
             counts.append((name, stats))
             print(f"{name}: done", file=sys.stderr)
 
     print(f"Size {args.size}x{args.size}, depth 5, one ray per pixel centre, {os.cpu_count()} threads, "
-          f"median of {args.runs} runs after a warm-up.\n")
+          f"median of {args.runs} runs of each program after a warm-up, raystep and POV-Ray "
+          f"in alternation.\n")
     print("| scene | raystep wall s | prepare s | trace s | POV-Ray wall s | POV-Ray trace s "
           "| wall ratio | trace ratio | raystep MiB | POV-Ray MiB |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
