@@ -18,6 +18,7 @@
 pub mod brute;
 mod bvh;
 mod lanes;
+mod leaf_shapes;
 mod node;
 #[cfg(target_arch = "x86_64")]
 mod wide;
@@ -30,8 +31,9 @@ use serde::Serialize;
 
 use crate::math::{Interval, Ray};
 use crate::scene::Object;
-use crate::shapes::{Roots, Shape, TriangleTest};
+use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
+use leaf_shapes::LeafShape;
 use node::{BoxTesting, Child, Node, WIDTH};
 
 /// What one query tested: the price of a ray, shown to students.
@@ -62,28 +64,23 @@ pub struct Accel {
     objects: Vec<u32>,
     /// Objects without bounds (planes), in file order, tested by every query.
     unbounded: Vec<u32>,
-    /// Beside each entry of `objects`, its test when it is a triangle (a
-    /// polygon or patch of three vertices, most of the SPD's objects).
-    triangles: Vec<Option<TriangleTest>>,
+    /// Beside each entry of `objects`, what its test reads, packed.
+    shapes: Vec<LeafShape>,
 }
 
 impl Accel {
     pub fn build(objects: &[Object]) -> Accel {
         let (bvh, unbounded) = build_tree(objects);
-        let triangles = bvh
+        let shapes = bvh
             .objects
             .iter()
-            .map(|&object| match &objects[object as usize].shape {
-                Shape::Polygon(polygon) => TriangleTest::of(polygon),
-                Shape::Patch(patch) => TriangleTest::of(&patch.polygon),
-                _ => None,
-            })
+            .map(|&object| LeafShape::of(&objects[object as usize].shape))
             .collect();
         Accel {
             nodes: node::collapse(&bvh.nodes),
             objects: bvh.objects,
             unbounded,
-            triangles,
+            shapes,
         }
     }
 
@@ -137,11 +134,11 @@ impl Accel {
         };
         // Planes first: a hit there shortens the ray before the walk.
         for &object in &self.unbounded {
-            nearest.test(object, None, cost);
+            nearest.test(object, &LeafShape::Other, cost);
         }
         self.walk::<true, B>(ray, range.min, range.max, cost, |first, leaf, cost| {
-            for (&object, triangle) in leaf.iter().zip(&self.triangles[first..]) {
-                nearest.test(object, triangle.as_ref(), cost);
+            for (&object, shape) in leaf.iter().zip(&self.shapes[first..]) {
+                nearest.test(object, shape, cost);
             }
             ControlFlow::Continue(nearest.best.t)
         });
@@ -209,14 +206,10 @@ impl Accel {
             }
         }
         self.walk::<false, B>(ray, range.min, range.max, cost, |first, leaf, cost| {
-            for (&object, triangle) in leaf.iter().zip(&self.triangles[first..]) {
+            for (&object, shape) in leaf.iter().zip(&self.shapes[first..]) {
                 cost.primitives += 1;
                 let object = object as usize;
-                let roots = match triangle {
-                    Some(triangle) => Roots::of_one(triangle.hit_t(ray, range)),
-                    None => objects[object].shape.roots(ray, range),
-                };
-                cross(object, roots)?;
+                cross(object, shape.roots(objects, object, ray, range))?;
             }
             ControlFlow::Continue(range.max)
         });
@@ -365,12 +358,12 @@ struct Nearest<'a> {
 const NONE_YET: usize = usize::MAX;
 
 impl Nearest<'_> {
-    /// Tests one object, through its triangle test when it has one. The
-    /// objects come in tree order, not file order, so a hit at exactly the
-    /// best t must still win when its object comes first in the file: for
-    /// such objects the range is closed at the best t.
+    /// Tests one object, through its packed record. The objects come in tree
+    /// order, not file order, so a hit at exactly the best t must still win
+    /// when its object comes first in the file: for such objects the range is
+    /// closed at the best t.
     #[inline]
-    fn test(&mut self, object: u32, triangle: Option<&TriangleTest>, cost: &mut Cost) {
+    fn test(&mut self, object: u32, shape: &LeafShape, cost: &mut Cost) {
         cost.primitives += 1;
         let object = object as usize;
         let best = self.best;
@@ -380,11 +373,7 @@ impl Nearest<'_> {
             best.t
         };
         let range = Interval::new(self.range.min, max);
-        let hit = match triangle {
-            Some(triangle) => triangle.hit_t(self.ray, range),
-            None => self.objects[object].shape.intersect(self.ray, range),
-        };
-        if let Some(t) = hit {
+        if let Some(t) = shape.intersect(self.objects, object, self.ray, range) {
             self.best = Candidate { object, t };
         }
     }
