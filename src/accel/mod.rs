@@ -217,7 +217,9 @@ impl Accel {
 
     /// Visits every leaf whose box meets the ray between `t_min` and `t_max`,
     /// the children of a node nearest first when `NEAREST_FIRST`, else in
-    /// tree order; `leaf` returns the new `t_max` or stops the walk. Every
+    /// tree order. `leaf` gets the leaf's first position in `objects` (and so
+    /// in `shapes`) and its objects, and returns the new `t_max` or stops
+    /// the walk. Every
     /// query's range starts at `EPS`: `t_min` must not be negative, or the
     /// ordering below would round entries up rather than down.
     #[inline(always)]
