@@ -3,8 +3,10 @@
 
     python3 benches/spd_vs_povray.py [--runs 5] [--size 512] [--scenes tetra gears ...]
 
-For each scene: `raystep render --stats` (whole-process wall time, its own
-prepare and trace times, rays per second by kind, peak memory) and
+For each scene: `raystep render --timings` (whole-process wall time, its own
+prepare and trace times of a plain render, which counts nothing, and peak
+memory; one more run with `--stats` gives the ray counts for the rays per
+second by kind) and
 ../shared/bench/pov_bench.sh -n 1 (wall and POV-Ray's trace time of one
 render), run in alternation, --runs times each after one warm-up each; the
 tables give medians. Alternating lets both programs meet the same state of a
@@ -31,11 +33,13 @@ SCENES = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
 RAYSTEP = os.path.join(ROOT, "target", "release", "raystep")
 
 
-def raystep_run(scene, size, out):
-    """Wall, prepare and trace seconds of one run, and its stats."""
+def raystep_run(scene, size, out, report="--timings"):
+    """Wall, prepare and trace seconds of one run, and what it reported:
+    timings and peak memory (`--timings`), or ray counts too (`--stats`,
+    tracing with counters, a little slower)."""
     start = time.perf_counter()
     result = subprocess.run(
-        [RAYSTEP, "render", scene, "-o", out, "--stats", "--size", f"{size}x{size}"],
+        [RAYSTEP, "render", scene, "-o", out, report, "--size", f"{size}x{size}"],
         check=True, capture_output=True, text=True)
     wall = time.perf_counter() - start
     stats = json.loads(result.stdout)
@@ -82,6 +86,8 @@ def measure(scene, size, runs, out):
                 theirs.append(pov)
         if with_pov:
             peak = povray_peak_mib(keep, name, size)
+    counted = raystep_run(scene, size, out, "--stats")[-1]
+    stats = {**counted, "peak_memory_mib": stats.get("peak_memory_mib")}
     wall, prepare, trace = (statistics.median(column) for column in zip(*ours))
     pov = None
     if with_pov:

@@ -81,8 +81,12 @@ pub struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
     /// Print ray counts and timings as one JSON object on stdout.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "timings")]
     pub stats: bool,
+    /// Print only the timings and peak memory as one JSON object on stdout:
+    /// those of a plain render, which counts nothing (what benchmarks time).
+    #[arg(long)]
+    pub timings: bool,
     /// Also write one PNG per term (ambient, diffuse, specular, reflected,
     /// transmitted, shadow, rays, cost) into this directory.
     #[arg(long, value_name = "DIR")]
@@ -211,8 +215,12 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
         let terms = with_threads(threads, || crate::terms::render_terms(&scene, &|| {}))?;
         terms.write_all(dir)?;
     }
-    if args.stats {
-        let mut json = serde_json::to_value(stats).context("cannot write stats")?;
+    if args.stats || args.timings {
+        let mut json = if args.stats {
+            serde_json::to_value(stats).context("cannot write stats")?
+        } else {
+            serde_json::json!({})
+        };
         json["width"] = scene.width.into();
         json["height"] = scene.height.into();
         json["objects"] = scene.objects.len().into();

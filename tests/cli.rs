@@ -306,3 +306,33 @@ fn stats_are_one_json_object() {
         assert!(json.get(key).is_some(), "{key} missing");
     }
 }
+
+#[test]
+fn timings_report_a_plain_render_without_counts() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/seven-rays.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let (scene, out_path) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    let render = |report: &[&str]| {
+        let mut args = vec!["render", scene, "-o", out_path, "--size", "16x12"];
+        args.extend(report);
+        raystep(&args)
+    };
+    let output = render(&["--timings"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["width"], 16);
+    assert_eq!(json["height"], 12);
+    assert!(json["trace_seconds"].as_f64().unwrap() > 0.0, "{json}");
+    // No counters ran, so none are reported.
+    assert!(
+        json.get("primary").is_none() && json.get("closest_nodes").is_none(),
+        "{json}"
+    );
+    // The same image as a render that counts.
+    let plain = std::fs::read(&out).unwrap();
+    assert!(render(&["--stats"]).status.success());
+    assert_eq!(std::fs::read(&out).unwrap(), plain);
+    // Asking for both is a usage error.
+    assert_eq!(render(&["--stats", "--timings"]).status.code(), Some(2));
+}

@@ -144,6 +144,11 @@ pub struct Scene {
     pub lights: Vec<Light>,
     pub objects: Vec<Object>,
     pub accel: Accel,
+    /// Each object's material index, side by side: read at every hit and
+    /// shadow crossing without loading the object itself (the objects of
+    /// an SPD scene fill more than a core's cache, and each such load
+    /// missed it).
+    object_materials: Vec<usize>,
 }
 
 impl Scene {
@@ -157,6 +162,7 @@ impl Scene {
         objects: Vec<Object>,
     ) -> Scene {
         let accel = Accel::build(&objects);
+        let object_materials = objects.iter().map(|o| o.material).collect();
         Scene {
             camera,
             width,
@@ -166,6 +172,7 @@ impl Scene {
             lights,
             objects,
             accel,
+            object_materials,
         }
     }
 
@@ -186,7 +193,7 @@ impl Scene {
     }
 
     pub fn material_of(&self, object: usize) -> &Material {
-        &self.materials[self.objects[object].material]
+        &self.materials[self.object_materials[object]]
     }
 }
 
