@@ -16,7 +16,7 @@ use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::exceeds;
-use crate::shapes::Shape;
+use crate::shapes::{NormalRecipe, Shape};
 
 /// The largest image side accepted; beyond it a render would take minutes and
 /// gigabytes, which is never what a teaching scene wants.
@@ -144,11 +144,12 @@ pub struct Scene {
     pub lights: Vec<Light>,
     pub objects: Vec<Object>,
     pub accel: Accel,
-    /// Each object's material index, side by side: read at every hit and
-    /// shadow crossing without loading the object itself (the objects of
-    /// an SPD scene fill more than a core's cache, and each such load
-    /// missed it).
+    /// Each object's material index and what its normal is computed from,
+    /// side by side: read at every hit (and the material at every shadow
+    /// crossing) without loading the object itself (the objects of an SPD
+    /// scene fill more than a core's cache, and each such load missed it).
     object_materials: Vec<usize>,
+    object_normals: Vec<NormalRecipe>,
 }
 
 impl Scene {
@@ -163,6 +164,7 @@ impl Scene {
     ) -> Scene {
         let accel = Accel::build(&objects);
         let object_materials = objects.iter().map(|o| o.material).collect();
+        let object_normals = objects.iter().map(|o| NormalRecipe::of(&o.shape)).collect();
         Scene {
             camera,
             width,
@@ -173,6 +175,7 @@ impl Scene {
             objects,
             accel,
             object_materials,
+            object_normals,
         }
     }
 
@@ -194,6 +197,14 @@ impl Scene {
 
     pub fn material_of(&self, object: usize) -> &Material {
         &self.materials[self.object_materials[object]]
+    }
+
+    /// `object`'s geometric normal N_g at `point` (MODEL §3).
+    #[inline]
+    pub fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {
+        self.object_normals[object]
+            .normal_at(point)
+            .unwrap_or_else(|| self.objects[object].shape.geometric_normal(point))
     }
 }
 

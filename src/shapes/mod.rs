@@ -4,6 +4,7 @@
 
 mod cone;
 mod edge_bands;
+mod normal;
 mod patch;
 mod plane;
 mod polygon;
@@ -13,6 +14,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use cone::{Cone, ConeWorking};
+pub use normal::NormalRecipe;
 pub use patch::{Patch, PatchWorking};
 pub use plane::{Plane, PlaneWorking};
 pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking, TriangleTest};

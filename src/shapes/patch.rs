@@ -1,13 +1,13 @@
 //! Polygonal patch: a polygon with a normal at every vertex. It is intersected
 //! exactly like a polygon; its normal is interpolated (MODEL §3).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use serde::Serialize;
 
 use crate::math::exceeds;
 
 use super::GeometryError;
-use super::polygon::{Polygon, PolygonWorking};
+use super::polygon::{Axis, Polygon, PolygonWorking};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
@@ -50,44 +50,64 @@ impl Patch {
         })
     }
 
-    /// The fan triangle holding `point` and the point's barycentric weights in it,
-    /// computed in the polygon's projected 2-D plane. A point on no triangle (it
-    /// can only be off by rounding) takes the triangle it is least outside of.
-    pub fn locate(&self, point: glam::DVec3) -> (usize, [f64; 3]) {
-        let projected = self.polygon.projected();
-        let p = self.polygon.dropped.project(point);
-        let mut best = (1, [1.0, 0.0, 0.0], f64::NEG_INFINITY);
-        for i in 1..projected.len() - 1 {
-            let (a, b, c) = (projected[0], projected[i], projected[i + 1]);
-            let area = (b - a).perp_dot(c - a);
-            if area == 0.0 {
-                continue;
-            }
-            let wb = (p - a).perp_dot(c - a) / area;
-            let wc = (b - a).perp_dot(p - a) / area;
-            let weights = [1.0 - wb - wc, wb, wc];
-            let worst = weights[0].min(wb).min(wc);
-            if worst >= 0.0 {
-                return (i, weights);
-            }
-            if worst > best.2 {
-                best = (i, weights, worst);
-            }
-        }
-        (best.0, best.1)
+    /// The fan triangle holding `point` and the point's barycentric weights in it.
+    pub fn locate(&self, point: DVec3) -> (usize, [f64; 3]) {
+        locate(self.polygon.projected(), self.polygon.dropped, point)
     }
 
     /// The interpolated unit normal at a point of the patch.
     pub fn normal_at(&self, point: DVec3) -> DVec3 {
-        let (i, [w0, wi, wj]) = self.locate(point);
-        let blended = w0 * self.normals[0] + wi * self.normals[i] + wj * self.normals[i + 1];
-        let length = blended.length();
-        if length > 0.0 {
-            blended / length
-        } else {
-            self.polygon.plane.normal
+        normal_at(
+            self.polygon.projected(),
+            self.polygon.dropped,
+            &self.normals,
+            self.polygon.plane.normal,
+            point,
+        )
+    }
+}
+
+/// The fan triangle holding `point` and the point's barycentric weights in it,
+/// computed in the polygon's projected 2-D plane (`projected`, the vertices
+/// with `dropped` left out). A point on no triangle (it can only be off by
+/// rounding) takes the triangle it is least outside of.
+pub(super) fn locate(projected: &[DVec2], dropped: Axis, point: DVec3) -> (usize, [f64; 3]) {
+    let p = dropped.project(point);
+    let mut best = (1, [1.0, 0.0, 0.0], f64::NEG_INFINITY);
+    for i in 1..projected.len() - 1 {
+        let (a, b, c) = (projected[0], projected[i], projected[i + 1]);
+        let area = (b - a).perp_dot(c - a);
+        if area == 0.0 {
+            continue;
+        }
+        let wb = (p - a).perp_dot(c - a) / area;
+        let wc = (b - a).perp_dot(p - a) / area;
+        let weights = [1.0 - wb - wc, wb, wc];
+        let worst = weights[0].min(wb).min(wc);
+        if worst >= 0.0 {
+            return (i, weights);
+        }
+        if worst > best.2 {
+            best = (i, weights, worst);
         }
     }
+    (best.0, best.1)
+}
+
+/// The vertex normals blended at `point` with its weights in the fan
+/// triangle holding it, normalized; `flat` (the polygon's normal) where the
+/// blend vanishes.
+pub(super) fn normal_at(
+    projected: &[DVec2],
+    dropped: Axis,
+    normals: &[DVec3],
+    flat: DVec3,
+    point: DVec3,
+) -> DVec3 {
+    let (i, [w0, wi, wj]) = locate(projected, dropped, point);
+    let blended = w0 * normals[0] + wi * normals[i] + wj * normals[i + 1];
+    let length = blended.length();
+    if length > 0.0 { blended / length } else { flat }
 }
 
 #[cfg(test)]

@@ -312,9 +312,7 @@ impl<R: Recorder> Tracer<'_, R> {
 
 fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
     let point = ray.at(candidate.t);
-    let geometric_normal = scene.objects[candidate.object]
-        .shape
-        .geometric_normal(point);
+    let geometric_normal = scene.geometric_normal(candidate.object, point);
     let entering = geometric_normal.dot(ray.direction) < 0.0;
     SurfaceHit {
         object: candidate.object,
