@@ -71,7 +71,7 @@ impl Patch {
 /// computed in the polygon's projected 2-D plane (`projected`, the vertices
 /// with `dropped` left out). A point on no triangle (it can only be off by
 /// rounding) takes the triangle it is least outside of.
-pub(super) fn locate(projected: &[DVec2], dropped: Axis, point: DVec3) -> (usize, [f64; 3]) {
+fn locate(projected: &[DVec2], dropped: Axis, point: DVec3) -> (usize, [f64; 3]) {
     let p = dropped.project(point);
     let mut best = (1, [1.0, 0.0, 0.0], f64::NEG_INFINITY);
     for i in 1..projected.len() - 1 {
