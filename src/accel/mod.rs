@@ -97,6 +97,20 @@ impl Accel {
             // SAFETY: the CPU has the features `closest_wide` is compiled for.
             return unsafe { self.closest_wide(objects, ray, range, cost) };
         }
+        self.closest_sse2(objects, ray, range, cost)
+    }
+
+    /// `closest` with the SSE2 box test. Not inlined into `closest`: its
+    /// large frame (the walk's stack) would then be set up, and its registers
+    /// saved, on every query, before the choice of copy.
+    #[inline(never)]
+    fn closest_sse2(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        range: Interval,
+        cost: &mut Cost,
+    ) -> Option<Candidate> {
         self.closest_with::<node::BoxTest>(objects, ray, range, cost)
     }
 
@@ -166,6 +180,20 @@ impl Accel {
             // SAFETY: the CPU has the features `crossings_wide` is compiled for.
             return unsafe { self.crossings_wide(objects, ray, range, cost, visit) };
         }
+        self.crossings_sse2(objects, ray, range, cost, visit)
+    }
+
+    /// `crossings` with the SSE2 box test, apart for the reason given at
+    /// `closest_sse2`.
+    #[inline(never)]
+    fn crossings_sse2(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        range: Interval,
+        cost: &mut Cost,
+        visit: impl FnMut(usize, f64) -> ControlFlow<()>,
+    ) {
         self.crossings_with::<node::BoxTest>(objects, ray, range, cost, visit)
     }
 
