@@ -70,14 +70,11 @@ pub fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
 
 /// An 8-bit channel value: clamp to [0, 1], then floor(255 c + 0.5) (MODEL §6).
 pub fn to_byte(channel: f64) -> u8 {
-    let clamped = if channel.is_nan() {
-        0.0
-    } else {
-        channel.clamp(0.0, 1.0)
-    };
-    // 255 c + 0.5 is positive, so truncating (`as`) is the floor, without
+    // The cast does the clamp: a float cast to u8 saturates (below 0 to 0,
+    // above 255 to 255, NaN to 0), and 255 c + 0.5 leaves [0.5, 255.5]
+    // exactly when c leaves [0, 1]. Within, truncating is the floor, without
     // the libm call that `floor` is on baseline x86-64.
-    (255.0 * clamped + 0.5) as u8
+    (255.0 * channel + 0.5) as u8
 }
 
 /// A colour as stored in the PNG.
@@ -101,6 +98,15 @@ mod tests {
     fn bytes_round_half_up_and_clamp() {
         assert_eq!(to_byte(-0.2), 0);
         assert_eq!(to_byte(1.7), 255);
+        // Out of range by far, and not a number: clamped like the rest.
+        assert_eq!(to_byte(-1e300), 0);
+        assert_eq!(to_byte(f64::NEG_INFINITY), 0);
+        assert_eq!(to_byte(f64::INFINITY), 255);
+        assert_eq!(to_byte(f64::NAN), 0);
+        // Just outside [0, 1]: 255 (1 + 2^-52) + 0.5 is still 255.5 -> 255;
+        // -2^-1074 (the least negative f64) gives 0.5 -> 0.
+        assert_eq!(to_byte(1.0f64.next_up()), 255);
+        assert_eq!(to_byte(-f64::from_bits(1)), 0);
         // 255 * 0.5 = 127.5, + 0.5 = 128.0 -> 128.
         assert_eq!(to_byte(0.5), 128);
         // 255 * 0.2 = 51.0 -> 51.
