@@ -31,6 +31,14 @@ impl ShadowCache {
         }
         self.blockers[light] = Some(object);
     }
+
+    /// The light reached the last point: past the edge of a shadow, its
+    /// blocker is not worth trying on the next pixels.
+    fn forget(&mut self, light: usize) {
+        if let Some(blocker) = self.blockers.get_mut(light) {
+            *blocker = None;
+        }
+    }
 }
 
 /// What a ray brings back: its colour and, if it hit, how far it went.
@@ -227,6 +235,7 @@ impl<R: Recorder> Tracer<'_, R> {
             }
         }
         let (cache, rec) = (&mut *self.cache, &mut *self.rec);
+        let mut opaque = false;
         scene.accel.crossings(
             &scene.objects,
             &ray,
@@ -239,12 +248,16 @@ impl<R: Recorder> Tracer<'_, R> {
                 rec.blocker(&Blocker { object, t, kt });
                 if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
                     cache.remember(light, object);
+                    opaque = true;
                     ControlFlow::Break(())
                 } else {
                     ControlFlow::Continue(())
                 }
             },
         );
+        if !opaque {
+            cache.forget(light);
+        }
         outcome
     }
 
@@ -341,5 +354,74 @@ fn refract(direction: DVec3, hit: &SurfaceHit, ior: f64) -> Refraction {
         k,
         tir,
         direction,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::scene::parse;
+
+    /// The shadow outcome of each light, in order.
+    #[derive(Default)]
+    struct Shadows(Vec<ShadowOutcome>);
+
+    impl Recorder for Shadows {
+        fn light(&mut self, term: &LightTerm) {
+            self.0.extend(term.shadow);
+        }
+    }
+
+    #[test]
+    fn a_row_tries_the_last_opaque_blocker_first_until_the_light_comes_back() {
+        // A floor y = 0 (a plane: tested by every query), a light at (0, 4, 0)
+        // and an opaque ball of radius 0.5 at (0, 2, 0) between them.
+        let scene = parse(
+            Path::new("test.toml"),
+            r#"[camera]
+            eye = [0, 5, 0]
+            look_at = [0, 0, 0]
+            up = [0, 0, 1]
+            [materials.white]
+            kd = 1
+            [[light]]
+            position = [0, 4, 0]
+            [[object]]
+            material = "white"
+            plane = { normal = [0, 1, 0], point = [0, 0, 0] }
+            [[object]]
+            material = "white"
+            sphere = { center = [0, 2, 0], radius = 0.5 }"#,
+        )
+        .unwrap();
+        // Rays straight down onto the floor at (x, 0, 0), traced along one row.
+        let along_a_row = |xs: &[f64]| {
+            let mut cache = ShadowCache::default();
+            xs.iter()
+                .map(|&x| {
+                    let ray = Ray::new(DVec3::new(x, 1.0, 0.0), DVec3::NEG_Y);
+                    let mut shadows = Shadows::default();
+                    trace_primary_in_row(&scene, &ray, &mut cache, &mut shadows);
+                    let shadow = shadows.0[0];
+                    (shadow.s, shadow.cost.primitives)
+                })
+                .collect::<Vec<_>>()
+        };
+        // x = 0: the shadow ray goes straight up through the ball. It tests
+        // the plane (starting on it, t = 0 is not a crossing) and the ball,
+        // met at t = 1.5: S = 0, two primitives; the ball is remembered.
+        // x = 3: towards (-3, 4, 0) / 5, the ray passes the ball's height
+        // (y 1.5 to 2.5) at x 1.875 to 1.125, outside its box: the ball is
+        // tried first and missed, then the plane: S = 1, two primitives, and
+        // the ball is forgotten.
+        // x = 3.2: likewise lit, and only the plane is tested: one primitive.
+        assert_eq!(
+            along_a_row(&[0.0, 3.0, 3.2]),
+            [(0.0, 2), (1.0, 2), (1.0, 1)]
+        );
+        // Alone, the lit points test the plane only.
+        assert_eq!(along_a_row(&[3.0]), [(1.0, 1)]);
     }
 }
