@@ -236,25 +236,26 @@ impl<R: Recorder> Tracer<'_, R> {
         }
         let (cache, rec) = (&mut *self.cache, &mut *self.rec);
         let mut opaque = false;
-        scene.accel.crossings(
-            &scene.objects,
-            &ray,
-            segment,
-            &mut outcome.cost,
-            |object, t| {
-                let kt = scene.material_of(object).kt;
-                outcome.s *= kt;
-                outcome.crossings += 1;
-                rec.blocker(&Blocker { object, t, kt });
-                if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
-                    cache.remember(light, object);
-                    opaque = true;
-                    ControlFlow::Break(())
-                } else {
-                    ControlFlow::Continue(())
-                }
-            },
-        );
+        let mut visit = |object, t| {
+            let kt = scene.material_of(object).kt;
+            outcome.s *= kt;
+            outcome.crossings += 1;
+            rec.blocker(&Blocker { object, t, kt });
+            if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
+                cache.remember(light, object);
+                opaque = true;
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        };
+        // Passed by reference: moved in by value, the closure's fields were
+        // written one at a time and at once read back two at a time to be
+        // copied, a read the CPU cannot serve from its pending writes, so it
+        // waited on every shadow ray (tree -13 %).
+        scene
+            .accel
+            .crossings(&scene.objects, &ray, segment, &mut outcome.cost, &mut visit);
         if !opaque {
             cache.forget(light);
         }
