@@ -280,7 +280,13 @@ impl Accel {
             let (mask, entry) = boxes.entries(node, t_min, t_max);
             let mut next = match mask {
                 0 => None,
-                1 | 2 | 4 | 8 => Some(node.children[mask.trailing_zeros() as usize]),
+                // One child met: one arm per child, so that the next node's
+                // address follows a predicted branch rather than the box
+                // test's result, and its load can start before the test ends.
+                1 => Some(node.children[0]),
+                2 => Some(node.children[1]),
+                4 => Some(node.children[2]),
+                8 => Some(node.children[3]),
                 _ if !NEAREST_FIRST => {
                     // The first child met goes next, the others wait.
                     let mut rest = mask & (mask - 1);
