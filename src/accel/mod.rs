@@ -303,14 +303,15 @@ impl Accel {
                 // with the child in the two lowest bits (the entry rounded
                 // down, which keeps the pruning safe) the keys compare
                 // without branches.
-                _ if (mask & (mask - 1)).count_ones() == 1 => {
-                    // Two children met (a fifth of all steps): one comparison.
-                    let key = |i: u32| (entry[i as usize].to_bits() & !3) | u64::from(i);
-                    let (a, b) = (key(mask.trailing_zeros()), key(31 - mask.leading_zeros()));
-                    let (near, far) = (a.min(b), a.max(b));
-                    stack.push((node.children[(far & 3) as usize], f64::from_bits(far & !3)));
-                    Some(node.children[(near & 3) as usize])
-                }
+                // Two children met (a fifth of all steps): one comparison,
+                // again an arm per pair, so that the next node's address
+                // follows predicted branches.
+                3 => Some(nearer_of_two(&mut stack, node, &entry, 0, 1)),
+                5 => Some(nearer_of_two(&mut stack, node, &entry, 0, 2)),
+                6 => Some(nearer_of_two(&mut stack, node, &entry, 1, 2)),
+                9 => Some(nearer_of_two(&mut stack, node, &entry, 0, 3)),
+                10 => Some(nearer_of_two(&mut stack, node, &entry, 1, 3)),
+                12 => Some(nearer_of_two(&mut stack, node, &entry, 2, 3)),
                 _ => {
                     // Three or four: a sorting network of compare-and-swap.
                     let mut keys = [u64::MAX; WIDTH];
@@ -358,6 +359,27 @@ impl Accel {
             }
         }
         cost.nodes += tested;
+    }
+}
+
+/// Of children `i` < `j` of `node`, both met, the nearer (by entry rounded
+/// down as the walk's keys are, `i` on a tie), pushing the other with its
+/// entry so rounded.
+#[inline(always)]
+fn nearer_of_two<const N: usize>(
+    stack: &mut ArrayVec<(Child, f64), N>,
+    node: &Node,
+    entry: &[f64; WIDTH],
+    i: usize,
+    j: usize,
+) -> Child {
+    let (a, b) = (entry[i].to_bits() & !3, entry[j].to_bits() & !3);
+    if a <= b {
+        stack.push((node.children[j], f64::from_bits(b)));
+        node.children[i]
+    } else {
+        stack.push((node.children[i], f64::from_bits(a)));
+        node.children[j]
     }
 }
 
