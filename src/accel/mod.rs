@@ -301,8 +301,8 @@ impl Accel {
                 // stack, the farthest pushed first. An entry is at least
                 // t_min >= 0, and a non-negative f64 orders as its bits do:
                 // with the child in the two lowest bits (the entry rounded
-                // down, which keeps the pruning safe) the keys compare
-                // without branches.
+                // down, which keeps the pruning safe) the keys compare as
+                // integers.
                 // Two children met (a fifth of all steps): one comparison,
                 // again an arm per pair, so that the next node's address
                 // follows predicted branches.

@@ -77,8 +77,11 @@ const LARGEST_FACTOR: f64 = f64::from_bits(0x7830_0000_0000_0000); // 2^900
 /// least 2^100 wherever the SSE2 test's are infinite, for every box padded
 /// by more than 2^-800 (`bvh::padded` pads every box of a scene larger
 /// than 2^-770 so): the same answers, as the box's other slabs end sooner.
-/// The origin's product is finite for every origin within 2^120 of zero;
-/// beyond, it is NaN and the slab is ignored, which only costs boxes.
+/// A ray along one of the box's faces (c = o, where the SSE2 test's 0 inf
+/// is NaN and keeps the bound) gets 0 instead, and may miss the box: the
+/// padding keeps every hit off its faces. The origin's product is finite
+/// for every origin within 2^120 of zero; beyond, it is NaN and the slab
+/// is ignored, which only costs boxes.
 #[inline(always)]
 fn slab_factor(inverse: f64, origin: f64) -> (f64, f64) {
     let factor = if inverse.abs() > LARGEST_FACTOR {
@@ -87,14 +90,12 @@ fn slab_factor(inverse: f64, origin: f64) -> (f64, f64) {
         inverse
     };
     let product = origin * factor;
-    (
-        factor,
-        if product.is_finite() {
-            product
-        } else {
-            f64::NAN
-        },
-    )
+    let product = if product.is_finite() {
+        product
+    } else {
+        f64::NAN
+    };
+    (factor, product)
 }
 
 impl BoxTesting for BoxTest {
@@ -139,7 +140,8 @@ impl BoxTesting for BoxTest {
                 let (factor, origin) = (self.factor[axis], self.origin_times_factor[axis]);
                 let t_near = _mm256_fmsub_pd(_mm256_loadu_pd(near), factor, origin);
                 let t_far = _mm256_fmsub_pd(_mm256_loadu_pd(far), factor, origin);
-                // A NaN (a ray along a face) keeps the bound: the second operand.
+                // A NaN (only where `slab_factor` gave up on the origin)
+                // keeps the bound: the second operand.
                 low = _mm256_max_pd(t_near, low);
                 high = _mm256_min_pd(t_far, high);
             }
