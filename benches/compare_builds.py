@@ -50,7 +50,7 @@ def main():
     print("|---|---:|---:|---:|---:|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.scenes:
-            scene = os.path.join(ROOT, "..", "shared", "spd", f"{name}.nff")
+            scene = os.path.join(ROOT, "scenes", "spd", f"{name}.nff")
             outs = [os.path.join(tmp, f"{which}.png") for which in ("old", "new")]
             times = ([], [])
             for run in range(args.runs + 1):

@@ -18,8 +18,8 @@ fn scene(relative: &str, size: u32) -> Option<Scene> {
 fn recorders(c: &mut Criterion) {
     for (name, relative) in [
         ("seven-rays", "scenes/seven-rays.toml"),
-        ("teapot", "../shared/spd/teapot.nff"),
-        ("gears", "../shared/spd/gears.nff"),
+        ("teapot", "scenes/spd/teapot.nff"),
+        ("gears", "scenes/spd/gears.nff"),
     ] {
         let Some(scene) = scene(relative, 128) else {
             continue;
@@ -38,8 +38,8 @@ fn recorders(c: &mut Criterion) {
 
 fn pick_pixel(c: &mut Criterion) {
     for (name, relative, x, y) in [
-        ("teapot", "../shared/spd/teapot.nff", 256, 256),
-        ("gears", "../shared/spd/gears.nff", 256, 300),
+        ("teapot", "scenes/spd/teapot.nff", 256, 256),
+        ("gears", "scenes/spd/gears.nff", 256, 300),
     ] {
         let Some(scene) = scene(relative, 512) else {
             continue;

@@ -7,7 +7,7 @@ For each scene: `raystep render --timings` (whole-process wall time, its own
 prepare and trace times of a plain render, which counts nothing, and peak
 memory; one more run with `--stats` gives the ray counts for the rays per
 second by kind) and
-../shared/bench/pov_bench.sh -n 1 (wall and POV-Ray's trace time of one
+benches/pov/pov_bench.sh -n 1 (wall and POV-Ray's trace time of one
 render), run in alternation, --runs times each after one warm-up each; the
 tables give medians. Alternating lets both programs meet the same state of a
 shared, noisy machine, and makes POV-Ray's trace time a median too (one
@@ -28,7 +28,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(ROOT, "..", "shared")
+SPD = os.path.join(ROOT, "scenes", "spd")
 SCENES = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
 RAYSTEP = os.path.join(ROOT, "target", "release", "raystep")
 
@@ -48,7 +48,7 @@ def raystep_run(scene, size, out, report="--timings"):
 
 def povray_run(scene, size, keep=None):
     """Wall and trace seconds of one pov_bench.sh run (one render, timed)."""
-    bench = os.path.join(SHARED, "bench", "pov_bench.sh")
+    bench = os.path.join(ROOT, "benches", "pov", "pov_bench.sh")
     command = ["bash", bench, "-n", "1", "-W", str(size), "-H", str(size)]
     if keep:
         command += ["-k", keep]
@@ -108,7 +108,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "out.png")
         for name in args.scenes:
-            scene = os.path.join(SHARED, "spd", f"{name}.nff")
+            scene = os.path.join(SPD, f"{name}.nff")
             wall, prepare, trace, stats, pov = measure(scene, args.size, args.runs, out)
             rays = {k: stats[k] for k in ["primary", "reflected", "transmitted", "shadow"]}
             rows.append((name, wall, prepare, trace, stats.get("peak_memory_mib"), rays, pov))

@@ -22,7 +22,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SPD = os.path.join(ROOT, "..", "shared", "spd")
+SPD = os.path.join(ROOT, "scenes", "spd")
 SCENES = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
 TRACER = os.path.join("src", "trace", "tracer.rs")
 

@@ -12,7 +12,7 @@ use raystep::scene::Object;
 use raystep::shapes::{Cone, Patch, Plane, Polygon, Shape, Sphere};
 use raystep::trace::NoRecorder;
 
-const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/spd");
+const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/spd");
 
 /// xorshift64*: a few lines, seeded, the same sequence everywhere.
 struct Rng(u64);

@@ -1,4 +1,4 @@
-//! Every SPD scene in `../shared/spd/` loads through `raystep::scene::load`,
+//! Every SPD scene in `scenes/spd/` loads through `raystep::scene::load`,
 //! with the primitive and light counts of the table in `spd/README.md`.
 
 use std::collections::BTreeMap;
@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use raystep::scene::load;
 
-const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/spd");
+const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/spd");
 
 /// One row of the README's table: spheres, polygons, patches, cylinders,
 /// cones, total objects, lights.

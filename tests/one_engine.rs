@@ -61,7 +61,7 @@ fn every_recorded_pixel_equals_the_rendered_pixel_bit_for_bit() {
 #[test]
 fn one_thread_and_all_threads_give_the_same_bytes() {
     let mut paths = example_scenes();
-    paths.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/spd/gears-small.nff"));
+    paths.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/gears-small.nff"));
     for path in paths.iter().filter(|p| p.exists()) {
         let scene = load(path).unwrap().with_size(64, 48).unwrap();
         let one = with_threads(Some(1), || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
@@ -77,7 +77,7 @@ fn the_shadow_cache_changes_no_colour_and_no_count() {
     // The render keeps the last opaque blocker per light along a row; tracing
     // each pixel on its own (a fresh cache) must give the same bytes and the
     // same ray counts. The SPD rings are full of self-shadowing.
-    let rings = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/spd/rings-small.nff");
+    let rings = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/rings-small.nff");
     let mut paths = example_scenes();
     paths.push(rings);
     for path in paths.iter().filter(|p| p.exists()) {
@@ -126,7 +126,7 @@ fn the_stats_count_the_cost_the_trees_record() {
     // segment to its end to list all blockers, while a render stops at the
     // first opaque one: the render's shadow cost is at most the tree's.
     let mut paths = example_scenes();
-    paths.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/spd/tetra-small.nff"));
+    paths.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/tetra-small.nff"));
     for path in paths.iter().filter(|p| p.exists()) {
         let scene = small(path);
         let viewport = scene.camera.viewport(scene.width, scene.height);
