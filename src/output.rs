@@ -303,3 +303,41 @@ fn remove_stale_temps(dir: &Path) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image() -> RgbImage {
+        RgbImage::new(2, 1)
+    }
+
+    #[test]
+    fn a_failure_part_way_places_nothing_and_leaves_no_temporary() {
+        let top = tempfile::tempdir().unwrap();
+        let kept = top.path().join("kept.png");
+        fs::write(&kept, b"old").unwrap();
+        let gone = top.path().join("gone");
+        fs::create_dir(&gone).unwrap();
+        let new = folder(&top.path().join("new/sub")).unwrap();
+        let targets = [
+            file(&kept).unwrap(),
+            new.file("a.png").unwrap(),
+            file(&gone.join("b.png")).unwrap(),
+        ];
+        // The third file's folder vanishes after the checks: its temporary
+        // cannot be made, after the first two were written.
+        fs::remove_dir(&gone).unwrap();
+        let result = write_all(Some(&new), targets.iter().map(|t| (t, image())));
+        let message = format!("{:#}", result.unwrap_err());
+        assert!(message.contains("gone/b.png"), "{message}");
+        assert_eq!(fs::read(&kept).unwrap(), b"old");
+        // Only what was there before: no temporary, no new folder.
+        let names: Vec<_> = fs::read_dir(top.path())
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
+        assert_eq!(names, ["kept.png"]);
+    }
+}
