@@ -74,7 +74,8 @@ pub enum InspectFormat {
 pub struct RenderArgs {
     /// Scene file (.toml or .nff).
     pub scene: PathBuf,
-    /// Output PNG file.
+    /// Output PNG file: new, or a regular file to replace (a link is
+    /// followed); never the scene, a directory or a device.
     #[arg(short, long)]
     pub output: PathBuf,
     #[command(flatten)]
@@ -90,7 +91,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub timings: bool,
     /// Also write one PNG per term (ambient, diffuse, specular, reflected,
-    /// transmitted, shadow, rays, cost) into this directory.
+    /// transmitted, shadow, rays, cost) into this directory, created if
+    /// missing; all the files are replaced together or none is.
     #[arg(long, value_name = "DIR")]
     pub terms: Option<PathBuf>,
 }
