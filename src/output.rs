@@ -112,7 +112,9 @@ pub fn folder(dir: &Path) -> Result<Folder> {
     let mut existing = dir;
     let mut missing = Vec::new();
     while !existing.as_os_str().is_empty() && fs::symlink_metadata(existing).is_err() {
-        missing.extend(existing.file_name());
+        // `new/..` cannot be resolved before `new` exists.
+        let name = existing.file_name();
+        missing.push(name.ok_or_else(|| fail("it goes through `..` below a missing folder"))?);
         existing = existing.parent().unwrap_or(Path::new(""));
     }
     if existing.as_os_str().is_empty() {

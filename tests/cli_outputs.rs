@@ -222,6 +222,12 @@ fn terms_into_something_that_is_not_a_folder_writes_nothing() {
         let message = refused(&output, &format!("into {terms}"));
         assert!(message.contains("terms is not a folder"), "{message}");
     }
+    let output = render(
+        dir.path(),
+        &["scene.toml", "-o", "out.png", "--terms", "new/../x"],
+    );
+    let message = refused(&output, "into new/../x");
+    assert!(message.contains("below a missing folder"), "{message}");
     // /proc refuses new files, even to root.
     let output = render(
         dir.path(),
