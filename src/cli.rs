@@ -8,9 +8,11 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::output::{self, Target};
 use crate::record::{RayTree, dot, explain, record_pixel, text};
-use crate::render::{render, with_threads, write_png};
+use crate::render::{render, with_threads};
 use crate::scene::{self, Scene};
+use crate::terms::Term;
 use crate::trace::{NoRecorder, RayStats};
 
 /// raystep: a step-through debugger for Whitted ray tracing.
@@ -72,7 +74,8 @@ pub enum InspectFormat {
 pub struct RenderArgs {
     /// Scene file (.toml or .nff).
     pub scene: PathBuf,
-    /// Output PNG file.
+    /// Output PNG file: new, or a regular file to replace (a link is
+    /// followed); never the scene, a directory or a device.
     #[arg(short, long)]
     pub output: PathBuf,
     #[command(flatten)]
@@ -88,7 +91,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub timings: bool,
     /// Also write one PNG per term (ambient, diffuse, specular, reflected,
-    /// transmitted, shadow, rays, cost) into this directory.
+    /// transmitted, shadow, rays, cost) into this directory, created if
+    /// missing; all the files are replaced together or none is.
     #[arg(long, value_name = "DIR")]
     pub terms: Option<PathBuf>,
 }
@@ -196,6 +200,7 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
         rayon::spawn(|| {});
     }
     let scene = load_scene(Some(&args.scene), args.size)?;
+    let outputs = Outputs::check(args)?;
     let prepared = started.elapsed().as_secs_f64();
     let progress = progress_bar(scene.height);
     let tick = || progress.inc(1);
@@ -210,11 +215,22 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     })?;
     let tracing = traced.elapsed().as_secs_f64();
     progress.finish_and_clear();
-    write_png(&args.output, &image)?;
-    if let Some(dir) = &args.terms {
-        let terms = with_threads(threads, || crate::terms::render_terms(&scene, &|| {}))?;
-        terms.write_all(dir)?;
-    }
+    let terms = match outputs.terms {
+        Some(_) => Some(with_threads(threads, || {
+            crate::terms::render_terms(&scene, &|| {})
+        })?),
+        None => None,
+    };
+    let term_images = terms.iter().flat_map(|terms| {
+        Term::ALL
+            .iter()
+            .zip(&outputs.term_files)
+            .map(|(&term, target)| (target, terms.image(term)))
+    });
+    output::write_all(
+        outputs.terms.as_ref(),
+        std::iter::once((&outputs.image, image)).chain(term_images),
+    )?;
     if args.stats || args.timings {
         let mut json = if args.stats {
             serde_json::to_value(stats).context("cannot write stats")?
@@ -234,6 +250,43 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
         emit(&format!("{json}\n"))?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Where `render` writes, checked before the render starts (see `output`).
+struct Outputs {
+    image: Target,
+    terms: Option<output::Folder>,
+    /// One per `Term::ALL`, when `--terms` is given.
+    term_files: Vec<Target>,
+}
+
+impl Outputs {
+    fn check(args: &RenderArgs) -> Result<Outputs> {
+        let image = output::file(&args.output)?;
+        let terms = args.terms.as_deref().map(output::folder).transpose()?;
+        let term_files = match &terms {
+            Some(folder) => Term::ALL
+                .iter()
+                .map(|term| folder.file(&term.file_name()))
+                .collect::<Result<_>>()?,
+            None => Vec::new(),
+        };
+        let terms_dir = args.terms.as_deref().unwrap_or(Path::new("")).display();
+        let all: Vec<_> = std::iter::once((&image, "the image (-o)".to_owned()))
+            .chain(Term::ALL.iter().zip(&term_files).map(|(term, file)| {
+                (
+                    file,
+                    format!("the {} image of --terms {terms_dir}", term.name()),
+                )
+            }))
+            .collect();
+        output::refuse_clashes(&args.scene, &all)?;
+        Ok(Outputs {
+            image,
+            terms,
+            term_files,
+        })
+    }
 }
 
 /// Writes to stdout; a reader that closed the pipe early (`| head`) is not an error.

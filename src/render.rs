@@ -2,9 +2,6 @@
 //! records, rows shared among threads. Each pixel depends only on the scene,
 //! so the bytes are the same whatever the thread count.
 
-use std::io::{BufWriter, Write};
-use std::path::Path;
-
 use anyhow::{Context, Result};
 use image::RgbImage;
 use rayon::prelude::*;
@@ -76,27 +73,4 @@ pub fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + 
             Ok(pool.install(work))
         }
     }
-}
-
-/// Writes a PNG atomically: into a temporary file beside `path`, renamed into
-/// place only when complete, so a failure leaves any existing file intact.
-pub fn write_png(path: &Path, image: &RgbImage) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let fail = || format!("cannot write {}", path.display());
-    let temp = tempfile::Builder::new()
-        .prefix(".raystep-")
-        .suffix(".png.tmp")
-        .tempfile_in(dir)
-        .with_context(fail)?;
-    {
-        let mut out = BufWriter::new(temp.as_file());
-        let encoder = image::codecs::png::PngEncoder::new(&mut out);
-        image.write_with_encoder(encoder).with_context(fail)?;
-        out.flush().with_context(fail)?;
-    }
-    temp.persist(path).map_err(|e| e.error).with_context(fail)?;
-    Ok(())
 }

@@ -2,15 +2,11 @@
 //! whole image can be read term by term, plus the shadow factor, the number
 //! of rays and the cost of the queries per pixel.
 
-use std::path::Path;
-
-use anyhow::{Context, Result};
 use image::RgbImage;
 use rayon::prelude::*;
 
 use crate::accel::Cost;
 use crate::math::{Color, Ray, to_rgb8};
-use crate::render::write_png;
 use crate::scene::Scene;
 use crate::trace::{
     ChildTerm, LightTerm, RayKind, Recorder, ShadowCache, SurfaceHit, trace_primary_in_row,
@@ -52,6 +48,11 @@ impl Term {
             Term::Rays => "rays",
             Term::Cost => "cost",
         }
+    }
+
+    /// The file `render --terms DIR` writes this view to, inside DIR.
+    pub fn file_name(self) -> String {
+        format!("{}.png", self.name())
     }
 
     /// What the view shows, for legends.
@@ -211,15 +212,6 @@ impl TermImages {
         RgbImage::from_fn(self.width, self.height, |x, y| {
             image::Rgb(self.rgb(term, (y * self.width + x) as usize, max))
         })
-    }
-
-    /// Writes `DIR/<term>.png` for every term.
-    pub fn write_all(&self, dir: &Path) -> Result<()> {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        for term in Term::ALL {
-            write_png(&dir.join(format!("{}.png", term.name())), &self.image(term))?;
-        }
-        Ok(())
     }
 }
 
