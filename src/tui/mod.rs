@@ -126,9 +126,8 @@ pub fn run(path: Option<&Path>) -> Result<ExitCode> {
     }
     let mut app = App::open(path.map(Path::to_path_buf), false).map_err(anyhow::Error::new)?;
     app.watch();
-    let result = terminal::take().and_then(|mut terminal| {
-        run_loop(&mut terminal, &mut app, &mut TerminalInput)
-    });
+    let result = terminal::take()
+        .and_then(|mut terminal| run_loop(&mut terminal, &mut app, &mut TerminalInput));
     terminal::restore();
     result.map(|()| ExitCode::SUCCESS)
 }

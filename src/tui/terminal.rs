@@ -65,7 +65,13 @@ pub fn restore() {
 /// The escape sequences that undo `take`'s: mouse reporting off, colours
 /// reset, the main screen back, the cursor shown.
 pub fn write_restore(out: &mut impl Write) -> io::Result<()> {
-    queue!(out, DisableMouseCapture, ResetColor, LeaveAlternateScreen, Show)?;
+    queue!(
+        out,
+        DisableMouseCapture,
+        ResetColor,
+        LeaveAlternateScreen,
+        Show
+    )?;
     out.flush()
 }
 
@@ -110,9 +116,11 @@ mod tests {
         write_restore(&mut bytes).unwrap();
         let text = String::from_utf8(bytes).unwrap();
         for mode in ["1049", "1000", "1002", "1003", "1006"] {
-            assert!(text.contains(&format!("\x1b[?{mode}l")), "{mode} in {text:?}");
+            assert!(
+                text.contains(&format!("\x1b[?{mode}l")),
+                "{mode} in {text:?}"
+            );
         }
         assert!(text.contains("\x1b[?25h"), "cursor shown in {text:?}");
     }
-
 }
