@@ -2,6 +2,8 @@
 //! records, rows shared among threads. Each pixel depends only on the scene,
 //! so the bytes are the same whatever the thread count.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use anyhow::{Context, Result};
 use image::RgbImage;
 use rayon::prelude::*;
@@ -39,6 +41,19 @@ pub fn render_at<R: RowRecorder>(
     height: u32,
     row_done: &(dyn Fn() + Sync),
 ) -> (RgbImage, R) {
+    render_unless(scene, (width, height), row_done, &AtomicBool::new(false))
+        .expect("a render nobody can cancel finishes")
+}
+
+/// Renders at `size` unless `cancel` is set: each row looks at the flag
+/// before it starts, so a cancelled render stops within one row per thread,
+/// and gives `None`. Uncancelled, the bytes are those of `render_at`.
+pub fn render_unless<R: RowRecorder>(
+    scene: &Scene,
+    (width, height): (u32, u32),
+    row_done: &(dyn Fn() + Sync),
+    cancel: &AtomicBool,
+) -> Option<(RgbImage, R)> {
     let viewport = scene.camera.viewport(width, height);
     let mut image = RgbImage::new(width, height);
     let recorder = image
@@ -46,6 +61,9 @@ pub fn render_at<R: RowRecorder>(
         .enumerate()
         .map(|(y, row)| {
             let mut rec = R::default();
+            if cancel.load(Ordering::Relaxed) {
+                return rec;
+            }
             let mut cache = ShadowCache::default();
             for (ray, pixel) in viewport.row(y as u32).iter().zip(row.chunks_exact_mut(3)) {
                 let color = trace_primary_in_row(scene, ray, &mut cache, &mut rec);
@@ -58,7 +76,7 @@ pub fn render_at<R: RowRecorder>(
             a.merge(b);
             a
         });
-    (image, recorder)
+    (!cancel.load(Ordering::Relaxed)).then_some((image, recorder))
 }
 
 /// Runs `work` on a pool of `threads` threads, or on all cores when `None`.

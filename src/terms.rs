@@ -2,6 +2,8 @@
 //! whole image can be read term by term, plus the shadow factor, the number
 //! of rays and the cost of the queries per pixel.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use image::RgbImage;
 use rayon::prelude::*;
 
@@ -158,12 +160,26 @@ pub struct TermImages {
 
 /// Traces every pixel with the terms recorder (the same `trace` as the render).
 pub fn render_terms(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> TermImages {
+    render_terms_unless(scene, row_done, &AtomicBool::new(false))
+        .expect("a render nobody can cancel finishes")
+}
+
+/// `render_terms` unless `cancel` is set, looked at before each row (as
+/// `render::render_unless` does); `None` when cancelled.
+pub fn render_terms_unless(
+    scene: &Scene,
+    row_done: &(dyn Fn() + Sync),
+    cancel: &AtomicBool,
+) -> Option<TermImages> {
     let viewport = scene.camera.viewport(scene.width, scene.height);
     let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
     pixels
         .par_chunks_mut(scene.width as usize)
         .enumerate()
         .for_each(|(y, row)| {
+            if cancel.load(Ordering::Relaxed) {
+                return;
+            }
             let mut cache = ShadowCache::default();
             for (ray, pixel) in viewport.row(y as u32).iter().zip(row.iter_mut()) {
                 let mut rec = TermsRecorder::default();
@@ -175,11 +191,11 @@ pub fn render_terms(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> TermImages {
             }
             row_done();
         });
-    TermImages {
+    (!cancel.load(Ordering::Relaxed)).then_some(TermImages {
         width: scene.width,
         height: scene.height,
         pixels,
-    }
+    })
 }
 
 impl TermImages {

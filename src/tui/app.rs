@@ -139,7 +139,10 @@ impl App {
     pub fn update(&mut self, action: Action) {
         self.message = None;
         match action {
-            Action::Quit => self.quit = true,
+            Action::Quit => {
+                self.quit = true;
+                self.cancel_renders();
+            }
             Action::ToggleHelp => (self.help, self.help_scroll) = (!self.help, 0),
             Action::CloseHelp => self.help = false,
             Action::ScrollHelp(delta) => {

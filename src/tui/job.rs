@@ -1,20 +1,22 @@
 //! Whole-image renders off the UI thread. One render runs at a time; a newer
-//! request waits as `pending` and replaces any older waiting one, so pressing
-//! a toggle five times costs at most two renders. Results come back over a
-//! channel tagged with their generation, and the app drops stale ones.
+//! request cancels it and waits as `pending`, replacing any older waiting
+//! one, so pressing a toggle five times costs one render and a row or so of
+//! each cancelled one. Quitting cancels the running render rather than wait
+//! for it. Results come back over a channel tagged with their generation,
+//! and the app drops stale ones.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::thread;
 use std::time::{Duration, Instant};
 
 use image::RgbImage;
 
-use crate::render::{render, render_at};
+use crate::render::render_unless;
 use crate::scene::Scene;
-use crate::terms::{TermImages, render_terms};
+use crate::terms::{TermImages, render_terms_unless};
 use crate::trace::NoRecorder;
 
 /// What to render: the image alone, or every term (which includes the image).
@@ -29,6 +31,8 @@ pub struct Request {
 pub enum Output {
     Image(RgbImage),
     Terms(TermImages),
+    /// Stopped early by a newer request or by quitting: nothing to show.
+    Cancelled,
 }
 
 pub struct Finished {
@@ -47,6 +51,8 @@ pub struct Progress {
 struct Running {
     rows_done: Arc<AtomicU32>,
     rows: u32,
+    /// Set to stop the render at its next row.
+    cancel: Arc<AtomicBool>,
 }
 
 /// Starts renders and collects their results.
@@ -74,12 +80,23 @@ impl Renderer {
         }
     }
 
-    /// Renders `request` now, or after the running render ends.
+    /// Renders `request` now, or as soon as the running render, cancelled
+    /// because this one supersedes it, has stopped.
     pub fn request(&mut self, request: Request) {
-        if self.running.is_some() {
+        if let Some(running) = &self.running {
+            running.cancel.store(true, Ordering::Relaxed);
             self.pending = Some(request);
         } else {
             self.start(request);
+        }
+    }
+
+    /// Drops the pending request and stops the running render at its next
+    /// row, without waiting for it.
+    pub fn cancel(&mut self) {
+        self.pending = None;
+        if let Some(running) = &self.running {
+            running.cancel.store(true, Ordering::Relaxed);
         }
     }
 
@@ -123,22 +140,24 @@ impl Renderer {
 
     fn start(&mut self, request: Request) {
         let rows_done = Arc::new(AtomicU32::new(0));
+        let cancel = Arc::new(AtomicBool::new(false));
         self.running = Some(Running {
             rows_done: rows_done.clone(),
             rows: request.scene.height,
+            cancel: cancel.clone(),
         });
         let sender = self.sender.clone();
         let previews = self.previews.0.clone();
         let preview = !self.sync && !request.terms;
         let job = move || {
             let started = Instant::now();
-            if preview && let Some(image) = preview_image(&request.scene) {
+            if preview && let Some(image) = preview_image(&request.scene, &cancel) {
                 let _ = previews.send(Preview {
                     generation: request.generation,
                     image,
                 });
             }
-            let output = catch_unwind(AssertUnwindSafe(|| run(&request, &rows_done)))
+            let output = catch_unwind(AssertUnwindSafe(|| run(&request, &rows_done, &cancel)))
                 .map_err(|payload| panic_message(payload.as_ref()));
             let elapsed = started.elapsed();
             let _ = sender.send(Finished {
@@ -158,6 +177,13 @@ impl Renderer {
     }
 }
 
+/// A dropped renderer (the app quit) leaves no render running behind it.
+impl Drop for Renderer {
+    fn drop(&mut self) {
+        self.cancel();
+    }
+}
+
 /// A render sent ahead of a large image, scaled up to its size.
 pub struct Preview {
     pub generation: u64,
@@ -170,8 +196,9 @@ const PREVIEW_ABOVE: u32 = 60_000;
 const PREVIEW_PIXELS: u32 = 20_000;
 
 /// The scene rendered at about terminal resolution and scaled up (nearest
-/// neighbour) to its own size, or `None` when the scene is small anyway.
-fn preview_image(scene: &Scene) -> Option<RgbImage> {
+/// neighbour) to its own size, or `None` when the scene is small anyway or
+/// the render was cancelled.
+fn preview_image(scene: &Scene, cancel: &AtomicBool) -> Option<RgbImage> {
     let (width, height) = (scene.width, scene.height);
     if width * height <= PREVIEW_ABOVE {
         return None;
@@ -180,24 +207,29 @@ fn preview_image(scene: &Scene) -> Option<RgbImage> {
         .sqrt()
         .ceil() as u32;
     let (small_w, small_h) = (width.div_ceil(step), height.div_ceil(step));
-    let small = catch_unwind(AssertUnwindSafe(|| {
-        render_at::<NoRecorder>(scene, small_w, small_h, &|| {}).0
+    let (small, _) = catch_unwind(AssertUnwindSafe(|| {
+        render_unless::<NoRecorder>(scene, (small_w, small_h), &|| {}, cancel)
     }))
-    .ok()?;
+    .ok()
+    .flatten()?;
     Some(RgbImage::from_fn(width, height, |x, y| {
         *small.get_pixel((x / step).min(small_w - 1), (y / step).min(small_h - 1))
     }))
 }
 
-fn run(request: &Request, rows_done: &AtomicU32) -> Output {
+fn run(request: &Request, rows_done: &AtomicU32, cancel: &AtomicBool) -> Output {
     let tick = || {
         rows_done.fetch_add(1, Ordering::Relaxed);
     };
-    if request.terms {
-        Output::Terms(render_terms(&request.scene, &tick))
+    let scene = &request.scene;
+    let output = if request.terms {
+        render_terms_unless(scene, &tick, cancel).map(Output::Terms)
     } else {
-        Output::Image(render::<NoRecorder>(&request.scene, &tick).0)
-    }
+        let size = (scene.width, scene.height);
+        render_unless::<NoRecorder>(scene, size, &tick, cancel)
+            .map(|(image, _)| Output::Image(image))
+    };
+    output.unwrap_or(Output::Cancelled)
 }
 
 /// A render thread's panic as a message for the status line.
@@ -226,15 +258,75 @@ mod tests {
         // = ceil(2.45) = 3, so the preview traces 134 x 100 and each of its
         // pixels fills a 3 x 3 block.
         let scene = seven_rays(400, 300);
-        let preview = preview_image(&scene).unwrap();
+        let preview = preview_image(&scene, &AtomicBool::new(false)).unwrap();
         assert_eq!(preview.dimensions(), (400, 300));
         assert_eq!(preview.get_pixel(0, 0), preview.get_pixel(2, 2));
-        let small = render_at::<NoRecorder>(&scene, 134, 100, &|| {}).0;
+        let small = crate::render::render_at::<NoRecorder>(&scene, 134, 100, &|| {}).0;
         assert_eq!(preview.get_pixel(123, 77), small.get_pixel(41, 25));
     }
 
     #[test]
+    fn a_cancelled_render_stops_within_a_row_per_thread() {
+        // Four threads; the fifth finished row sets the flag. Each of the
+        // other three may be inside a row then and finishes it; every row
+        // after looks at the flag first. So at most 5 + 3 = 8 of 2000 rows.
+        let scene = seven_rays(200, 2000);
+        let rows = AtomicU32::new(0);
+        let cancel = AtomicBool::new(false);
+        let tick = || {
+            if rows.fetch_add(1, Ordering::Relaxed) + 1 == 5 {
+                cancel.store(true, Ordering::Relaxed);
+            }
+        };
+        let result = crate::render::with_threads(Some(4), || {
+            render_unless::<NoRecorder>(&scene, (200, 2000), &tick, &cancel)
+        })
+        .unwrap();
+        assert!(result.is_none());
+        let traced = rows.load(Ordering::Relaxed);
+        assert!((5..=8).contains(&traced), "{traced} rows traced");
+    }
+
+    #[test]
+    fn a_term_render_cancelled_before_it_starts_traces_nothing() {
+        let rows = AtomicU32::new(0);
+        let tick = || {
+            rows.fetch_add(1, Ordering::Relaxed);
+        };
+        let result = render_terms_unless(&seven_rays(161, 121), &tick, &AtomicBool::new(true));
+        assert!(result.is_none());
+        assert_eq!(rows.load(Ordering::Relaxed), 0);
+    }
+
+    #[test]
+    fn a_newer_request_cancels_the_running_render() {
+        // 4000 x 3000 pixels take seconds; the newer small one, milliseconds.
+        let mut renderer = Renderer::new(false);
+        let request = |generation, scene| Request {
+            generation,
+            scene: Arc::new(scene),
+            terms: false,
+        };
+        renderer.request(request(1, seven_rays(4000, 3000)));
+        let deadline = Instant::now() + Duration::from_secs(30);
+        while renderer.progress().is_some_and(|p| p.rows_done == 0) {
+            assert!(Instant::now() < deadline, "the big render never started");
+            thread::sleep(Duration::from_millis(5));
+        }
+        renderer.request(request(2, seven_rays(161, 121)));
+        let first = renderer.wait().unwrap();
+        assert_eq!(first.generation, 1);
+        assert!(matches!(first.output, Ok(Output::Cancelled)));
+        let second = renderer.wait().unwrap();
+        assert_eq!(second.generation, 2);
+        let Ok(Output::Image(image)) = second.output else {
+            panic!("the newer render did not finish");
+        };
+        assert_eq!(image.dimensions(), (161, 121));
+    }
+
+    #[test]
     fn small_images_need_no_preview() {
-        assert!(preview_image(&seven_rays(161, 121)).is_none());
+        assert!(preview_image(&seven_rays(161, 121), &AtomicBool::new(false)).is_none());
     }
 }

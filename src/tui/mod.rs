@@ -24,18 +24,18 @@ mod renders;
 pub mod source;
 pub mod stepper;
 pub mod steps_view;
+mod terminal;
 pub mod tree_view;
 pub mod ui;
 
 use std::collections::VecDeque;
-use std::io::{self, IsTerminal, stdout};
+use std::io::{self, IsTerminal};
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::Duration;
 
-use anyhow::{Context, Result, bail};
-use crossterm::event::{DisableMouseCapture, EnableMouseCapture, Event};
-use crossterm::execute;
+use anyhow::{Result, bail};
+use crossterm::event::Event;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
@@ -126,26 +126,8 @@ pub fn run(path: Option<&Path>) -> Result<ExitCode> {
     }
     let mut app = App::open(path.map(Path::to_path_buf), false).map_err(anyhow::Error::new)?;
     app.watch();
-    let mut terminal = ratatui::try_init().context("cannot set up the terminal")?;
-    install_mouse_panic_hook();
-    let result = execute!(stdout(), EnableMouseCapture)
-        .context("cannot capture the mouse")
-        .and_then(|()| run_loop(&mut terminal, &mut app, &mut TerminalInput));
-    let _ = execute!(stdout(), DisableMouseCapture);
-    ratatui::restore();
+    let result = terminal::take()
+        .and_then(|mut terminal| run_loop(&mut terminal, &mut app, &mut TerminalInput));
+    terminal::restore();
     result.map(|()| ExitCode::SUCCESS)
-}
-
-/// On a panic of the UI thread, turns mouse capture off before ratatui's
-/// hook restores the terminal. Render threads catch their own panics and
-/// report them in the status line, so they leave the terminal alone.
-fn install_mouse_panic_hook() {
-    let ui_thread = std::thread::current().id();
-    let restore_and_report = std::panic::take_hook();
-    std::panic::set_hook(Box::new(move |info| {
-        if std::thread::current().id() == ui_thread {
-            let _ = execute!(stdout(), DisableMouseCapture);
-            restore_and_report(info);
-        }
-    }));
 }

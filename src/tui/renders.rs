@@ -25,6 +25,11 @@ impl App {
         }
     }
 
+    /// Stops every render at once (on quit: nothing waits for them).
+    pub(super) fn cancel_renders(&mut self) {
+        self.renderer.cancel();
+    }
+
     /// Renders the scene as it is now, as a new generation.
     pub(super) fn request_render(&mut self) {
         self.generation += 1;
@@ -57,7 +62,9 @@ impl App {
     }
 
     fn install(&mut self, finished: Finished) {
-        if finished.generation != self.generation {
+        if finished.generation != self.generation
+            || matches!(finished.output, Ok(Output::Cancelled))
+        {
             return;
         }
         self.render_time = Some(finished.elapsed);
@@ -70,7 +77,49 @@ impl App {
                 self.terms = Some(terms);
                 self.terms_generation = Some(finished.generation);
             }
+            Ok(Output::Cancelled) => {} // dropped above
             Err(message) => self.message = Some(message),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::VecDeque;
+    use std::time::{Duration, Instant};
+
+    use ratatui::Terminal;
+    use ratatui::backend::TestBackend;
+
+    use super::*;
+    use crate::tui::{Action, Switch, run_loop};
+
+    #[test]
+    fn quitting_cancels_a_long_render_instead_of_waiting_for_it() {
+        // 4000 x 3000 = 12 million pixels: seconds of work on this machine,
+        // against a row (4000 pixels, about a millisecond) once cancelled.
+        let mut app = App::open(None, false).unwrap();
+        app.file_scene = app.file_scene.with_size(4000, 3000).unwrap();
+        app.update(Action::Toggle(Switch::Shadows));
+        let deadline = Instant::now() + Duration::from_secs(30);
+        while !app
+            .progress()
+            .is_some_and(|p| p.rows == 3000 && p.rows_done > 0)
+        {
+            assert!(Instant::now() < deadline, "the big render never started");
+            app.collect_renders();
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
+        // No scripted events: the loop is asked to quit at once.
+        run_loop(&mut terminal, &mut app, &mut VecDeque::new()).unwrap();
+        let quit = Instant::now();
+        let finished = app.renderer.wait().expect("the big render was running");
+        assert!(matches!(finished.output, Ok(Output::Cancelled)));
+        assert!(
+            quit.elapsed() < Duration::from_secs(5),
+            "{:?}",
+            quit.elapsed()
+        );
     }
 }

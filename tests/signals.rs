@@ -1,0 +1,230 @@
+//! The debugger gives the terminal back on SIGTERM, SIGHUP, SIGINT and
+//! SIGQUIT, as it does on quit: the real binary runs in a pseudo-terminal,
+//! is signalled once its first screen is up, and then the pty's modes and
+//! the bytes it wrote are checked.
+#![cfg(unix)]
+
+use std::fs::File;
+use std::io::{Read, Write};
+use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
+use std::os::unix::process::CommandExt;
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// Generous: the machine running the tests may be busy building.
+const PATIENCE: Duration = Duration::from_secs(30);
+
+/// Each private mode the debugger sets, as (set, reset) sequences: the
+/// alternate screen, mouse reporting (crossterm's four modes) and the cursor,
+/// which ratatui hides while drawing.
+const MODES: [(&str, &str); 6] = [
+    ("\x1b[?1049h", "\x1b[?1049l"),
+    ("\x1b[?1000h", "\x1b[?1000l"),
+    ("\x1b[?1002h", "\x1b[?1002l"),
+    ("\x1b[?1003h", "\x1b[?1003l"),
+    ("\x1b[?1006h", "\x1b[?1006l"),
+    ("\x1b[?25l", "\x1b[?25h"),
+];
+
+/// The debugger in a fresh 120 x 40 pseudo-terminal, with what it wrote so far.
+struct Session {
+    child: Child,
+    /// Our end of the terminal's side: its modes are the ones the shell gets back.
+    tty: OwnedFd,
+    /// The pty's other side, where typed keys go in.
+    keyboard: File,
+    output: Arc<Mutex<Vec<u8>>>,
+}
+
+impl Session {
+    fn start(args: &[&str]) -> Session {
+        let (master, tty) = open_pty(120, 40);
+        let stdio = || Stdio::from(tty.try_clone().unwrap());
+        let mut command = Command::new(env!("CARGO_BIN_EXE_raystep"));
+        command
+            .args(args)
+            .stdin(stdio())
+            .stdout(stdio())
+            .stderr(stdio());
+        // SAFETY: only async-signal-safe calls between fork and exec. The
+        // child leads a new session whose controlling terminal is the pty,
+        // as under a terminal emulator.
+        unsafe {
+            command.pre_exec(|| {
+                libc::setsid();
+                libc::ioctl(0, libc::TIOCSCTTY, 0);
+                Ok(())
+            });
+        }
+        let child = command.spawn().expect("the debugger starts");
+        let output = Arc::new(Mutex::new(Vec::new()));
+        let sink = output.clone();
+        let mut master = File::from(master);
+        let keyboard = master.try_clone().unwrap();
+        // Drains the pty so the debugger never blocks writing; ends with EIO
+        // once every handle on the terminal's side is closed.
+        std::thread::spawn(move || {
+            let mut buffer = [0; 4096];
+            while let Ok(n @ 1..) = master.read(&mut buffer) {
+                sink.lock().unwrap().extend_from_slice(&buffer[..n]);
+            }
+        });
+        Session {
+            child,
+            tty,
+            keyboard,
+            output,
+        }
+    }
+
+    fn text(&self) -> String {
+        String::from_utf8_lossy(&self.output.lock().unwrap()).into_owned()
+    }
+
+    /// Polls until `done` holds for what was written; panics after `PATIENCE`.
+    fn wait_for(&self, what: &str, done: impl Fn(&str) -> bool) {
+        let deadline = Instant::now() + PATIENCE;
+        while !done(&self.text()) {
+            assert!(Instant::now() < deadline, "no {what} in {:?}", self.text());
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+
+    fn wait_for_exit(&mut self) -> ExitStatus {
+        let deadline = Instant::now() + PATIENCE;
+        loop {
+            if let Some(status) = self.child.try_wait().unwrap() {
+                return status;
+            }
+            assert!(Instant::now() < deadline, "the debugger did not exit");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+
+    /// (canonical input, echo) on the terminal.
+    fn cooked_and_echo(&self) -> (bool, bool) {
+        let mut modes: libc::termios = unsafe { std::mem::zeroed() };
+        // SAFETY: `tty` is an open terminal and `modes` a valid termios.
+        assert_eq!(
+            unsafe { libc::tcgetattr(self.tty.as_raw_fd(), &mut modes) },
+            0
+        );
+        (
+            modes.c_lflag & libc::ICANON != 0,
+            modes.c_lflag & libc::ECHO != 0,
+        )
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn open_pty(columns: u16, rows: u16) -> (OwnedFd, OwnedFd) {
+    let size = libc::winsize {
+        ws_row: rows,
+        ws_col: columns,
+        ws_xpixel: 0,
+        ws_ypixel: 0,
+    };
+    let (mut master, mut tty) = (-1, -1);
+    // SAFETY: valid out-pointers; on success both descriptors are ours.
+    let status = unsafe {
+        libc::openpty(
+            &mut master,
+            &mut tty,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            &size,
+        )
+    };
+    assert_eq!(status, 0, "cannot open a pseudo-terminal");
+    unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(tty)) }
+}
+
+/// Every mode set was reset after it was last set.
+fn all_modes_reset(text: &str) -> bool {
+    MODES
+        .iter()
+        .all(|(set, reset)| text.rfind(reset) > text.rfind(set))
+}
+
+/// Starts the debugger, waits for its first screen, sends `signal`, and
+/// checks the exit code and the terminal it leaves.
+fn signal_restores_the_terminal(signal: i32, args: &[&str]) {
+    let mut session = Session::start(args);
+    // The status line's key hints come with the first frame.
+    session.wait_for("first screen", |text| {
+        text.contains("\x1b[?1006h") && text.contains("help")
+    });
+    assert_eq!(
+        session.cooked_and_echo(),
+        (false, false),
+        "raw while running"
+    );
+    assert!(MODES.iter().all(|(set, _)| session.text().contains(set)));
+
+    let sent = Instant::now();
+    // SAFETY: a plain kill(2) of our own child.
+    assert_eq!(unsafe { libc::kill(session.child.id() as i32, signal) }, 0);
+    let status = session.wait_for_exit();
+    let took = sent.elapsed();
+
+    assert_eq!(status.code(), Some(128 + signal), "{status:?}");
+    assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
+    session.wait_for("restore of every mode", all_modes_reset);
+    eprintln!("signal {signal}: exit {took:?} after it was sent");
+    // The signal thread restores and exits at once, whatever the UI is doing.
+    assert!(took < Duration::from_secs(3), "exit took {took:?}");
+}
+
+#[test]
+fn sigterm_restores_the_terminal() {
+    signal_restores_the_terminal(libc::SIGTERM, &[]);
+}
+
+#[test]
+fn sighup_restores_the_terminal() {
+    signal_restores_the_terminal(libc::SIGHUP, &[]);
+}
+
+#[test]
+fn sigint_from_outside_restores_the_terminal() {
+    // Ctrl+C in raw mode is a key (quit); `kill -INT` is the signal.
+    signal_restores_the_terminal(libc::SIGINT, &[]);
+}
+
+#[test]
+fn sigquit_restores_the_terminal() {
+    signal_restores_the_terminal(libc::SIGQUIT, &[]);
+}
+
+#[test]
+fn a_signal_during_a_long_render_restores_the_terminal_at_once() {
+    // 4000 x 3000 pixels of the built-in scene: seconds of rendering, under
+    // way when the first screen is up; the exit must not wait for it.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = raystep::cli::DEFAULT_SCENE
+        .replace("width = 161", "width = 4000")
+        .replace("height = 121", "height = 3000");
+    let path = dir.path().join("big.toml");
+    std::fs::write(&path, scene).unwrap();
+    signal_restores_the_terminal(libc::SIGTERM, &[path.to_str().unwrap()]);
+}
+
+#[test]
+fn quit_restores_the_terminal_too() {
+    let mut session = Session::start(&[]);
+    session.wait_for("first screen", |text| {
+        text.contains("\x1b[?1006h") && text.contains("help")
+    });
+    session.keyboard.write_all(b"q").unwrap();
+    let status = session.wait_for_exit();
+    assert_eq!(status.code(), Some(0), "{status:?}");
+    assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
+    session.wait_for("restore of every mode", all_modes_reset);
+}
