@@ -352,8 +352,12 @@ fn error_bad_vertex_counts() {
 #[test]
 fn error_geometry_at_the_keyword() {
     let (line, column, message) = error_of(&format!("{VIEW}s 0 0 0 1\n s 1 1 1 0\n"));
-    assert_eq!((line, column), (9, 2));
-    assert_eq!(message, "sphere 1: sphere radius must be > 0, got 0");
+    // A zero radius is out of range, at the number itself (line 9, column 10).
+    assert_eq!((line, column), (9, 10));
+    assert_eq!(
+        message,
+        "the sphere's radius must be between 0.001 and 10000 in absolute value, got `0`"
+    );
     let (line, column, message) = error_of(&format!("{VIEW}p 3\n0 0 0\n1 0 0\n2 0 0\n"));
     assert_eq!((line, column), (8, 1));
     assert!(
@@ -383,12 +387,13 @@ fn error_geometry_at_the_keyword() {
 #[test]
 fn error_transmitting_material_without_ior() {
     let (line, column, message) =
-        error_of(&format!("{VIEW}f 1 1 1 0 0 0 0 -1\nf 1 1 1 0 0 0 0.8 0\n"));
-    // The second `f` (index 1): its ior `0` is on line 9, column 19.
+        error_of(&format!("{VIEW}f 1 1 1 0 0 0 0 0\nf 1 1 1 0 0 0 0.8 0\n"));
+    // The first `f` is opaque: ior 0 is the SPD's "none". The second (index
+    // 1) transmits: its ior `0` is on line 9, column 19.
     assert_eq!((line, column), (9, 19));
     assert_eq!(
         message,
-        "f 1: a transmitting material (T = 0.8) needs an index of refraction > 0, got 0"
+        "f 1: the material's index of refraction must be between 0.1 and 10, got `0`"
     );
 }
 
@@ -396,7 +401,10 @@ fn error_transmitting_material_without_ior() {
 fn error_negative_coefficients() {
     let (line, column, message) = error_of(&format!("{VIEW}f 1 1 1 0.5 -0.5 3 0 0\n"));
     assert_eq!((line, column), (8, 13));
-    assert_eq!(message, "the material's Ks must be >= 0, got `-0.5`");
+    assert_eq!(
+        message,
+        "the material's Ks must be between 0 and 100, got `-0.5`"
+    );
     let (line, column, message) = error_of(&format!("{VIEW}f 1 1 1 0.5 0.5 3 1.5 1.5\n"));
     assert_eq!((line, column), (8, 19));
     assert_eq!(
@@ -405,7 +413,10 @@ fn error_negative_coefficients() {
     );
     let (line, column, message) = error_of(&format!("{VIEW}l 0 0 0 1 1 -1\n"));
     assert_eq!((line, column), (8, 13));
-    assert_eq!(message, "the light's colour (blue) must be >= 0, got `-1`");
+    assert_eq!(
+        message,
+        "the light's colour (blue) must be between 0 and 1e6, got `-1`"
+    );
 }
 
 #[test]
