@@ -228,6 +228,16 @@ fn vectors_have_exactly_three_elements() {
 }
 
 #[test]
+fn fov_error_points_at_the_fov() {
+    let (line, column, message) = error_of("look_at = [0, 1, 0]", "look_at = [0, 1, 0]\nfov = 180");
+    assert_eq!((line, column), (4, 7));
+    assert_eq!(
+        message,
+        "fov must be between 0 and 180 degrees (exclusive), got 180"
+    );
+}
+
+#[test]
 fn degenerate_camera_is_refused() {
     let (line, _, message) = error_of("eye = [0, 1, 6]", "eye = [0, 1, 0]");
     assert_eq!(line, 1);

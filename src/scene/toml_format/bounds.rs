@@ -2,11 +2,11 @@
 //! refused at its own line and column with its key, before anything is built.
 
 use super::{FileDef, MaterialDef, Number, ObjectDef, SettingsDef, Source, Vec3};
-use crate::scene::SceneError;
 use crate::scene::limits::{
     ATTENUATION, Bounds, COEFFICIENT, COLOR, COORDINATE, IOR, SHININESS, SIZE, TRANSMISSION,
     check_cone_length, check_cone_radius, show,
 };
+use crate::scene::{SceneError, check_fov};
 
 /// Checks the whole file; the first number out of range is the error.
 pub(super) fn file(source: &Source, file: &FileDef) -> Result<(), SceneError> {
@@ -14,6 +14,9 @@ pub(super) fn file(source: &Source, file: &FileDef) -> Result<(), SceneError> {
     vector(source, "camera.eye", &camera.eye, COORDINATE)?;
     vector(source, "camera.look_at", &camera.look_at, COORDINATE)?;
     optional_vector(source, "camera.up", &camera.up, COORDINATE)?;
+    if let Some(fov) = &camera.fov {
+        check_fov(fov.get_ref().0).map_err(|m| source.error(fov.span(), m))?;
+    }
     settings(source, &file.settings)?;
     for (name, def) in &file.materials {
         material(source, &format!("materials.{name}"), def.get_ref())?;
