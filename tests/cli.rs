@@ -97,7 +97,11 @@ fn unknown_material_is_named() {
 #[test]
 fn degenerate_geometry_is_refused() {
     let cases = [
-        ("radius = 1 }", "radius = -1 }", "radius must be > 0"),
+        (
+            "radius = 1 }",
+            "radius = -1 }",
+            "sphere.radius` must be between 0.001 and 10000",
+        ),
         (
             "sphere = { center = [0, 0, 0], radius = 1 }",
             "polygon = { vertices = [[0, 0, 0], [1, 0, 0]] }",

@@ -2,6 +2,7 @@
 //! named objects, whatever file format it was read from.
 
 mod error;
+pub mod limits;
 pub mod nff;
 pub mod toml_format;
 

@@ -48,8 +48,9 @@ use super::{
     check_image_size,
 };
 use crate::camera::Camera;
-use crate::math::exceeds;
 use crate::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
+
+mod bounds;
 
 /// A number that must be finite: TOML allows `nan` and `inf`, scenes do not.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,14 +69,65 @@ impl<'de> Deserialize<'de> for Finite {
     }
 }
 
-type Vec3 = [Finite; 3];
+/// A finite number and where it is written, so that a range check can point at it.
+type Number = Spanned<Finite>;
 
-fn vec3(v: Vec3) -> DVec3 {
-    DVec3::new(v[0].0, v[1].0, v[2].0)
+fn number(n: &Number) -> f64 {
+    n.get_ref().0
 }
 
-fn triple(v: Vec3) -> [f64; 3] {
-    [v[0].0, v[1].0, v[2].0]
+/// Exactly three finite numbers, each with its place: a fourth element or a
+/// missing third is an error, never dropped or defaulted.
+#[derive(Clone, Debug)]
+struct Vec3([Number; 3]);
+
+impl<'de> Deserialize<'de> for Vec3 {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_seq(Vec3Visitor)
+    }
+}
+
+struct Vec3Visitor;
+
+impl<'de> serde::de::Visitor<'de> for Vec3Visitor {
+    type Value = Vec3;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("an array of three numbers")
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec3, A::Error> {
+        let mut values = Vec::with_capacity(3);
+        while values.len() < 3 {
+            match seq.next_element::<Number>()? {
+                Some(value) => values.push(value),
+                None => return Err(wrong_length(values.len())),
+            }
+        }
+        // Count the extra elements, whatever they are, to say how many there were.
+        let mut length = 3;
+        while seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
+            length += 1;
+        }
+        match <[Number; 3]>::try_from(values) {
+            Ok(values) if length == 3 => Ok(Vec3(values)),
+            _ => Err(wrong_length(length)),
+        }
+    }
+}
+
+fn wrong_length<E: serde::de::Error>(length: usize) -> E {
+    E::custom(format!(
+        "expected an array of three numbers (x, y, z or red, green, blue), got {length}"
+    ))
+}
+
+fn vec3(v: &Vec3) -> DVec3 {
+    DVec3::new(number(&v.0[0]), number(&v.0[1]), number(&v.0[2]))
+}
+
+fn triple(v: &Vec3) -> [f64; 3] {
+    vec3(v).to_array()
 }
 
 #[derive(Deserialize)]
@@ -99,7 +151,7 @@ struct CameraDef {
     eye: Vec3,
     look_at: Vec3,
     up: Option<Vec3>,
-    fov: Option<Finite>,
+    fov: Option<Number>,
 }
 
 #[derive(Deserialize)]
@@ -124,12 +176,12 @@ struct SettingsDef {
 #[serde(deny_unknown_fields)]
 struct MaterialDef {
     color: Option<Vec3>,
-    kd: Option<Finite>,
-    ks: Option<Finite>,
-    n: Option<Finite>,
-    kt: Option<Finite>,
-    ior: Option<Finite>,
-    ka: Option<Finite>,
+    kd: Option<Number>,
+    ks: Option<Number>,
+    n: Option<Number>,
+    kt: Option<Number>,
+    ior: Option<Number>,
+    ka: Option<Number>,
     specular: Option<SpecularModel>,
 }
 
@@ -158,7 +210,7 @@ struct ObjectDef {
 #[serde(deny_unknown_fields)]
 struct SphereDef {
     center: Vec3,
-    radius: Finite,
+    radius: Number,
 }
 
 #[derive(Deserialize)]
@@ -186,16 +238,16 @@ struct PatchDef {
 struct CylinderDef {
     base: Vec3,
     apex: Vec3,
-    radius: Finite,
+    radius: Number,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ConeDef {
     base: Vec3,
-    base_radius: Finite,
+    base_radius: Number,
     apex: Vec3,
-    apex_radius: Finite,
+    apex_radius: Number,
 }
 
 /// The default image size when a file has no `[image]` table.
@@ -226,6 +278,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
             None => SceneError::plain(format!("{}: {message}", path.display())),
         }
     })?;
+    bounds::file(&source, &file)?;
     let camera = camera(&source, &file.camera)?;
     let (width, height) = match &file.image {
         Some(image) => {
@@ -238,14 +291,14 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     let settings = settings(&source, &file.settings)?;
     let mut materials = Vec::new();
     for (name, def) in &file.materials {
-        materials.push(material(&source, name, def)?);
+        materials.push(material(name, def.get_ref()));
     }
     let lights = file
         .lights
         .iter()
         .enumerate()
-        .map(|(i, def)| light(&source, i, def))
-        .collect::<Result<Vec<_>, _>>()?;
+        .map(|(i, def)| light(i, def.get_ref()))
+        .collect();
     let mut objects: Vec<Object> = Vec::with_capacity(file.objects.len());
     for def in &file.objects {
         let object = object(&source, objects.len(), def, &materials)?;
@@ -272,10 +325,10 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
 fn camera(source: &Source, def: &Spanned<CameraDef>) -> Result<Camera, SceneError> {
     let c = def.get_ref();
     let camera = Camera {
-        eye: vec3(c.eye),
-        look_at: vec3(c.look_at),
-        up: c.up.map_or(DVec3::Y, vec3),
-        fov: c.fov.map_or(DEFAULT_FOV, |f| f.0),
+        eye: vec3(&c.eye),
+        look_at: vec3(&c.look_at),
+        up: c.up.as_ref().map_or(DVec3::Y, vec3),
+        fov: c.fov.as_ref().map_or(DEFAULT_FOV, number),
     };
     check_camera(&camera).map_err(|m| source.error(def.span(), m))?;
     Ok(camera)
@@ -297,76 +350,43 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
         None => defaults.max_depth,
     };
     Ok(Settings {
-        background: def.background.map_or(defaults.background, vec3),
-        ambient: def.ambient.map_or(defaults.ambient, vec3),
+        background: def.background.as_ref().map_or(defaults.background, vec3),
+        ambient: def.ambient.as_ref().map_or(defaults.ambient, vec3),
         light_attenuation: def
             .light_attenuation
+            .as_ref()
             .map_or(defaults.light_attenuation, triple),
-        ray_attenuation: def.ray_attenuation.map_or(defaults.ray_attenuation, triple),
+        ray_attenuation: def
+            .ray_attenuation
+            .as_ref()
+            .map_or(defaults.ray_attenuation, triple),
         max_depth,
         specular: def.specular.unwrap_or_default(),
         switches: defaults.switches,
     })
 }
 
-fn material(
-    source: &Source,
-    name: &str,
-    def: &Spanned<MaterialDef>,
-) -> Result<Material, SceneError> {
-    let m = def.get_ref();
-    let material = Material {
+fn material(name: &str, m: &MaterialDef) -> Material {
+    Material {
         name: name.to_string(),
-        color: m.color.map_or(DVec3::ONE, vec3),
-        kd: m.kd.map_or(1.0, |v| v.0),
-        ks: m.ks.map_or(0.0, |v| v.0),
-        shininess: m.n.map_or(20.0, |v| v.0),
-        kt: m.kt.map_or(0.0, |v| v.0),
-        ior: m.ior.map_or(1.0, |v| v.0),
-        ka: m.ka.map_or(1.0, |v| v.0),
+        color: m.color.as_ref().map_or(DVec3::ONE, vec3),
+        kd: m.kd.as_ref().map_or(1.0, number),
+        ks: m.ks.as_ref().map_or(0.0, number),
+        shininess: m.n.as_ref().map_or(20.0, number),
+        kt: m.kt.as_ref().map_or(0.0, number),
+        ior: m.ior.as_ref().map_or(1.0, number),
+        ka: m.ka.as_ref().map_or(1.0, number),
         specular: m.specular,
-    };
-    let fail = |what: String| Err(source.error(def.span(), format!("material `{name}`: {what}")));
-    if material.color.min_element() < 0.0 {
-        return fail(format!(
-            "color components must be >= 0, got {}",
-            material.color
-        ));
     }
-    for (key, value) in [
-        ("kd", material.kd),
-        ("ks", material.ks),
-        ("n", material.shininess),
-        ("kt", material.kt),
-        ("ka", material.ka),
-    ] {
-        if value < 0.0 {
-            return fail(format!("{key} must be >= 0, got {value}"));
-        }
-    }
-    if material.kt > 1.0 {
-        return fail(format!("kt must be at most 1, got {}", material.kt));
-    }
-    if !exceeds(material.ior, 0.0) {
-        return fail(format!("ior must be > 0, got {}", material.ior));
-    }
-    Ok(material)
 }
 
-fn light(source: &Source, index: usize, def: &Spanned<LightDef>) -> Result<Light, SceneError> {
-    let l = def.get_ref();
-    let color = l.color.map_or(DVec3::ONE, vec3);
-    if color.min_element() < 0.0 {
-        return Err(source.error(
-            def.span(),
-            format!("light color components must be >= 0, got {color}"),
-        ));
-    }
-    Ok(Light {
+fn light(index: usize, l: &LightDef) -> Light {
+    let color = l.color.as_ref().map_or(DVec3::ONE, vec3);
+    Light {
         name: l.name.clone().unwrap_or_else(|| format!("light {index}")),
-        position: vec3(l.position),
+        position: vec3(&l.position),
         color,
-    })
+    }
 }
 
 fn object(
@@ -415,19 +435,19 @@ fn object(
 /// The object's one shape and where it is written, or `None` when there is
 /// not exactly one.
 fn shape(o: &ObjectDef) -> Option<(Result<Shape, GeometryError>, Range<usize>)> {
-    let points = |v: &[Vec3]| v.iter().copied().map(vec3).collect::<Vec<_>>();
+    let points = |v: &[Vec3]| v.iter().map(vec3).collect::<Vec<_>>();
     let mut shapes = Vec::new();
     if let Some(s) = &o.sphere {
         let d = s.get_ref();
         shapes.push((
-            Sphere::new(vec3(d.center), d.radius.0).map(Shape::Sphere),
+            Sphere::new(vec3(&d.center), number(&d.radius)).map(Shape::Sphere),
             s.span(),
         ));
     }
     if let Some(s) = &o.plane {
         let d = s.get_ref();
         shapes.push((
-            Plane::new(vec3(d.normal), vec3(d.point)).map(Shape::Plane),
+            Plane::new(vec3(&d.normal), vec3(&d.point)).map(Shape::Plane),
             s.span(),
         ));
     }
@@ -447,13 +467,24 @@ fn shape(o: &ObjectDef) -> Option<(Result<Shape, GeometryError>, Range<usize>)> 
     if let Some(s) = &o.cylinder {
         let d = s.get_ref();
         shapes.push((
-            Cone::new(vec3(d.base), d.radius.0, vec3(d.apex), d.radius.0).map(Shape::Cone),
+            Cone::new(
+                vec3(&d.base),
+                number(&d.radius),
+                vec3(&d.apex),
+                number(&d.radius),
+            )
+            .map(Shape::Cone),
             s.span(),
         ));
     }
     if let Some(s) = &o.cone {
         let d = s.get_ref();
-        let cone = Cone::new(vec3(d.base), d.base_radius.0, vec3(d.apex), d.apex_radius.0);
+        let cone = Cone::new(
+            vec3(&d.base),
+            number(&d.base_radius),
+            vec3(&d.apex),
+            number(&d.apex_radius),
+        );
         shapes.push((cone.map(Shape::Cone), s.span()));
     }
     if shapes.len() == 1 {

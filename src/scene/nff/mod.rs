@@ -16,6 +16,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
+use super::limits::{COLOR, COORDINATE, SIZE, check_cone_length};
 use super::{Light, Material, Object, Scene, SceneError, Settings, check_camera, check_image_size};
 use crate::camera::Camera;
 use crate::math::Color;
@@ -45,14 +46,14 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
                 }
                 scene.view = Some(parser.view(keyword)?);
             }
-            "b" => scene.background = parser.vec3(RGB, |c| format!("the background's {c}"))?,
+            "b" => {
+                scene.background = parser.vec3(RGB, COLOR, |c| format!("the background's {c}"))?
+            }
             "l" => {
-                let position = parser.vec3(XYZ, |c| format!("the light's position ({c})"))?;
+                let position =
+                    parser.vec3(XYZ, COORDINATE, |c| format!("the light's position ({c})"))?;
                 let color = if parser.peek().is_some_and(|t| t.text.parse::<f64>().is_ok()) {
-                    let red = parser.non_negative(|| "the light's colour (red)".into())?;
-                    let green = parser.non_negative(|| "the light's colour (green)".into())?;
-                    let blue = parser.non_negative(|| "the light's colour (blue)".into())?;
-                    Some(Color::new(red, green, blue))
+                    Some(parser.vec3(RGB, COLOR, |c| format!("the light's colour ({c})"))?)
                 } else {
                     None
                 };
@@ -65,29 +66,35 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
                 scene.current_material = Some(scene.materials.len() - 1);
             }
             "s" => {
-                let center = parser.vec3(XYZ, |c| format!("the sphere's centre ({c})"))?;
-                let radius = parser.number(|| "the sphere's radius".into())?;
-                let shape = Sphere::new(center, radius.abs()).map(Shape::Sphere);
+                let center =
+                    parser.vec3(XYZ, COORDINATE, |c| format!("the sphere's centre ({c})"))?;
+                let radius = parser.radius(SIZE, false, || "the sphere's radius".into())?;
+                let shape = Sphere::new(center, radius).map(Shape::Sphere);
                 scene.add(&parser, &keyword, "sphere", shape)?;
             }
             "c" => {
-                let base = parser.vec3(XYZ, |c| format!("the cone's base ({c})"))?;
-                let base_radius = parser.number(|| "the cone's base radius".into())?.abs();
-                let apex = parser.vec3(XYZ, |c| format!("the cone's apex ({c})"))?;
-                let apex_radius = parser.number(|| "the cone's apex radius".into())?.abs();
+                let base = parser.vec3(XYZ, COORDINATE, |c| format!("the cone's base ({c})"))?;
+                let base_radius = parser.radius(SIZE, true, || "the cone's base radius".into())?;
+                let apex = parser.vec3(XYZ, COORDINATE, |c| format!("the cone's apex ({c})"))?;
+                let apex_radius = parser.radius(SIZE, true, || "the cone's apex radius".into())?;
                 let kind = if base_radius == apex_radius {
                     "cylinder"
                 } else {
                     "cone"
                 };
-                let shape = Cone::new(base, base_radius, apex, apex_radius).map(Shape::Cone);
+                let shape = check_cone_length(base, apex)
+                    .map_err(GeometryError)
+                    .and_then(|()| Cone::new(base, base_radius, apex, apex_radius))
+                    .map(Shape::Cone);
                 scene.add(&parser, &keyword, kind, shape)?;
             }
             "p" => {
                 let count = parser.count("the polygon's vertex count")?;
                 let mut vertices = Vec::with_capacity(count.min(MAX_PREALLOCATED_VERTICES));
                 for i in 0..count {
-                    vertices.push(parser.vec3(XYZ, |c| format!("the polygon's vertex {i} ({c})"))?);
+                    vertices.push(parser.vec3(XYZ, COORDINATE, |c| {
+                        format!("the polygon's vertex {i} ({c})")
+                    })?);
                 }
                 let shape = Polygon::new(vertices).map(Shape::Polygon);
                 scene.add(&parser, &keyword, "polygon", shape)?;
@@ -97,8 +104,14 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
                 let mut vertices = Vec::with_capacity(count.min(MAX_PREALLOCATED_VERTICES));
                 let mut normals = Vec::with_capacity(count.min(MAX_PREALLOCATED_VERTICES));
                 for i in 0..count {
-                    vertices.push(parser.vec3(XYZ, |c| format!("the patch's vertex {i} ({c})"))?);
-                    normals.push(parser.vec3(XYZ, |c| format!("the patch's normal {i} ({c})"))?);
+                    vertices.push(
+                        parser
+                            .vec3(XYZ, COORDINATE, |c| format!("the patch's vertex {i} ({c})"))?,
+                    );
+                    normals.push(
+                        parser
+                            .vec3(XYZ, COORDINATE, |c| format!("the patch's normal {i} ({c})"))?,
+                    );
                 }
                 let shape = Patch::new(vertices, normals).map(Shape::Patch);
                 scene.add(&parser, &keyword, "patch", shape)?;

@@ -352,8 +352,12 @@ fn error_bad_vertex_counts() {
 #[test]
 fn error_geometry_at_the_keyword() {
     let (line, column, message) = error_of(&format!("{VIEW}s 0 0 0 1\n s 1 1 1 0\n"));
-    assert_eq!((line, column), (9, 2));
-    assert_eq!(message, "sphere 1: sphere radius must be > 0, got 0");
+    // A zero radius is out of range, at the number itself (line 9, column 10).
+    assert_eq!((line, column), (9, 10));
+    assert_eq!(
+        message,
+        "the sphere's radius must be between 0.001 and 10000 in absolute value, got `0`"
+    );
     let (line, column, message) = error_of(&format!("{VIEW}p 3\n0 0 0\n1 0 0\n2 0 0\n"));
     assert_eq!((line, column), (8, 1));
     assert!(
@@ -383,12 +387,13 @@ fn error_geometry_at_the_keyword() {
 #[test]
 fn error_transmitting_material_without_ior() {
     let (line, column, message) =
-        error_of(&format!("{VIEW}f 1 1 1 0 0 0 0 -1\nf 1 1 1 0 0 0 0.8 0\n"));
-    // The second `f` (index 1): its ior `0` is on line 9, column 19.
+        error_of(&format!("{VIEW}f 1 1 1 0 0 0 0 0\nf 1 1 1 0 0 0 0.8 0\n"));
+    // The first `f` is opaque: ior 0 is the SPD's "none". The second (index
+    // 1) transmits: its ior `0` is on line 9, column 19.
     assert_eq!((line, column), (9, 19));
     assert_eq!(
         message,
-        "f 1: a transmitting material (T = 0.8) needs an index of refraction > 0, got 0"
+        "f 1: the material's index of refraction must be between 0.1 and 10, got `0`"
     );
 }
 
@@ -396,7 +401,10 @@ fn error_transmitting_material_without_ior() {
 fn error_negative_coefficients() {
     let (line, column, message) = error_of(&format!("{VIEW}f 1 1 1 0.5 -0.5 3 0 0\n"));
     assert_eq!((line, column), (8, 13));
-    assert_eq!(message, "the material's Ks must be >= 0, got `-0.5`");
+    assert_eq!(
+        message,
+        "the material's Ks must be between 0 and 100, got `-0.5`"
+    );
     let (line, column, message) = error_of(&format!("{VIEW}f 1 1 1 0.5 0.5 3 1.5 1.5\n"));
     assert_eq!((line, column), (8, 19));
     assert_eq!(
@@ -405,7 +413,10 @@ fn error_negative_coefficients() {
     );
     let (line, column, message) = error_of(&format!("{VIEW}l 0 0 0 1 1 -1\n"));
     assert_eq!((line, column), (8, 13));
-    assert_eq!(message, "the light's colour (blue) must be >= 0, got `-1`");
+    assert_eq!(
+        message,
+        "the light's colour (blue) must be between 0 and 1e6, got `-1`"
+    );
 }
 
 #[test]
@@ -537,4 +548,103 @@ mod properties {
             let _ = parse_str(&words.join(" "));
         }
     }
+}
+
+/// Issue 13, section 2: numbers out of their range (`scene::limits`) gave NaN
+/// or infinity; each is refused at its token.
+#[test]
+fn error_ior_out_of_range() {
+    // T = 0.8 with ior 1e-300: eta = 1e300 on entering, k = 1 - inf * 0 = NaN.
+    for bad in ["1e-300", "1e300", "-1.5", "0"] {
+        let (line, column, message) = error_of(&format!("{VIEW}f 1 1 1 0 0 0 0.8 {bad}\n"));
+        assert_eq!((line, column), (8, 19), "{bad}");
+        assert_eq!(
+            message,
+            format!(
+                "f 0: the material's index of refraction must be between 0.1 and 10, got `{bad}`"
+            )
+        );
+    }
+    // Opaque: the SPD's ior 0 is stored as air's; any other value is an index.
+    let scene = parse_str(&format!("{VIEW}f 1 1 1 1 0 0 0 0\nf 1 1 1 1 0 0 0 2\n")).unwrap();
+    assert_eq!((scene.materials[0].ior, scene.materials[1].ior), (1.0, 2.0));
+    let (line, column, message) = error_of(&format!("{VIEW}f 1 1 1 1 0 0 0 -1\n"));
+    assert_eq!((line, column), (8, 17));
+    assert_eq!(
+        message,
+        "f 0: the material's index of refraction must be between 0.1 and 10 (or be 0 where T = 0), got `-1`"
+    );
+}
+
+#[test]
+fn error_huge_numbers() {
+    let cases = [
+        // (entity, line, column, message); VIEW fills lines 1 to 7.
+        (
+            "f 1e308 1 1 1 0 0 0 0",
+            (8, 3),
+            "the material's colour (red) must be between 0 and 1e6, got `1e308`",
+        ),
+        (
+            "f 1 1 1 1 0 1e300 0 0",
+            (8, 13),
+            "the material's Shine must be between 0 and 1e6, got `1e300`",
+        ),
+        (
+            "f 1 1 1 1e300 0 0 0 0",
+            (8, 9),
+            "the material's Kd must be between 0 and 100, got `1e300`",
+        ),
+        (
+            "l 0 1e200 0",
+            (8, 5),
+            "the light's position (y) must be between -10000 and 10000, got `1e200`",
+        ),
+        (
+            "l 0 10 0 1 1e308 1",
+            (8, 12),
+            "the light's colour (green) must be between 0 and 1e6, got `1e308`",
+        ),
+        (
+            "s 0 0 0 -1e300",
+            (8, 9),
+            "the sphere's radius must be between 0.001 and 10000 in absolute value, got `-1e300`",
+        ),
+        (
+            "c -1e308 0 0 1 1e308 0 0 1",
+            (8, 3),
+            "the cone's base (x) must be between -10000 and 10000, got `-1e308`",
+        ),
+        (
+            "c 0 0 0 1 0 1 0 1e-5",
+            (8, 17),
+            "the cone's apex radius must be between 0.001 and 10000 in absolute value (or be 0), got `1e-5`",
+        ),
+        (
+            "p 3\n0 0 0\n1 0 0\n0 1e9 0",
+            (11, 3),
+            "the polygon's vertex 2 (y) must be between -10000 and 10000, got `1e9`",
+        ),
+    ];
+    for (entity, at, message) in cases {
+        let (line, column, got) = error_of(&format!("{VIEW}{entity}\n"));
+        assert_eq!(((line, column), got.as_str()), (at, message), "{entity}");
+    }
+    // Ends 1e4 apart on each axis, so sqrt(3) 1e4 apart: longer than any size.
+    let (line, column, message) = error_of(&format!("{VIEW}c 0 0 0 1 1e4 1e4 1e4 1\n"));
+    assert_eq!((line, column), (8, 1));
+    assert!(
+        message.starts_with("cylinder 0: the distance between the ends is 17320.5"),
+        "{message}"
+    );
+}
+
+#[test]
+fn error_negative_background() {
+    let (line, column, message) = error_of(&format!("{VIEW}b 0.1 -0.1 0.1\n"));
+    assert_eq!((line, column), (8, 7));
+    assert_eq!(
+        message,
+        "the background's green must be between 0 and 1e6, got `-0.1`"
+    );
 }

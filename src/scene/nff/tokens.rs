@@ -7,6 +7,7 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::*;
+use crate::scene::limits::{Bounds, COEFFICIENT, COLOR, COORDINATE, IOR, SHININESS, TRANSMISSION};
 
 /// One whitespace-separated word of the file and where it starts.
 #[derive(Clone, Copy, Debug)]
@@ -115,27 +116,57 @@ impl<'a> Parser<'a> {
         Ok(self.number_token(what)?.0)
     }
 
-    /// A finite number >= 0 (colours and material coefficients).
-    pub(super) fn non_negative(&mut self, what: impl Fn() -> String) -> Result<f64, SceneError> {
+    /// A number within `bounds` (MODEL §4, `limits`).
+    pub(super) fn bounded(
+        &mut self,
+        bounds: Bounds,
+        what: impl Fn() -> String,
+    ) -> Result<f64, SceneError> {
         let (value, token) = self.number_token(&what)?;
-        if value < 0.0 {
-            return Err(self.error(
+        bounds.check(value).map_err(|reason| {
+            self.error(
                 token.span(),
-                format!("{} must be >= 0, got `{}`", what(), token.text),
-            ));
-        }
+                format!("{} {reason}, got `{}`", what(), token.text),
+            )
+        })?;
         Ok(value)
     }
 
-    /// Three numbers; `what` names each by its component name.
+    /// A number whose absolute value is 0 (when `zero` allows it) or within
+    /// `bounds`: NFF radii, negative for "inside visible".
+    pub(super) fn radius(
+        &mut self,
+        bounds: Bounds,
+        zero: bool,
+        what: impl Fn() -> String,
+    ) -> Result<f64, SceneError> {
+        let (value, token) = self.number_token(&what)?;
+        let magnitude = value.abs();
+        if (zero && magnitude == 0.0) || bounds.check(magnitude).is_ok() {
+            return Ok(magnitude);
+        }
+        let reason = bounds.check(magnitude).unwrap_err();
+        let zero = if zero { " (or be 0)" } else { "" };
+        Err(self.error(
+            token.span(),
+            format!(
+                "{} {reason} in absolute value{zero}, got `{}`",
+                what(),
+                token.text
+            ),
+        ))
+    }
+
+    /// Three numbers within `bounds`; `what` names each by its component name.
     pub(super) fn vec3(
         &mut self,
         names: [&str; 3],
+        bounds: Bounds,
         what: impl Fn(&str) -> String,
     ) -> Result<DVec3, SceneError> {
-        let x = self.number(|| what(names[0]))?;
-        let y = self.number(|| what(names[1]))?;
-        let z = self.number(|| what(names[2]))?;
+        let x = self.bounded(bounds, || what(names[0]))?;
+        let y = self.bounded(bounds, || what(names[1]))?;
+        let z = self.bounded(bounds, || what(names[2]))?;
         Ok(DVec3::new(x, y, z))
     }
 
@@ -198,10 +229,18 @@ impl<'a> Parser<'a> {
             self.next();
             match token.text {
                 "from" => {
-                    view.from = Some(self.vec3(XYZ, |c| format!("the viewpoint's `from` ({c})"))?)
+                    view.from = Some(
+                        self.vec3(XYZ, COORDINATE, |c| format!("the viewpoint's `from` ({c})"))?,
+                    )
                 }
-                "at" => view.at = Some(self.vec3(XYZ, |c| format!("the viewpoint's `at` ({c})"))?),
-                "up" => view.up = Some(self.vec3(XYZ, |c| format!("the viewpoint's `up` ({c})"))?),
+                "at" => {
+                    view.at =
+                        Some(self.vec3(XYZ, COORDINATE, |c| format!("the viewpoint's `at` ({c})"))?)
+                }
+                "up" => {
+                    view.up =
+                        Some(self.vec3(XYZ, COORDINATE, |c| format!("the viewpoint's `up` ({c})"))?)
+                }
                 "angle" => {
                     let (angle, token) = self.number_token(|| "the viewpoint's `angle`".into())?;
                     if angle <= 0.0 || angle >= 180.0 {
@@ -229,50 +268,46 @@ impl<'a> Parser<'a> {
 
     /// `f r g b Kd Ks Shine T ior`, the `index`-th `f` line.
     pub(super) fn material(&mut self, index: usize) -> Result<Material, SceneError> {
-        let red = self.non_negative(|| "the material's colour (red)".into())?;
-        let green = self.non_negative(|| "the material's colour (green)".into())?;
-        let blue = self.non_negative(|| "the material's colour (blue)".into())?;
-        let color = Color::new(red, green, blue);
-        let kd = self.non_negative(|| "the material's Kd".into())?;
-        let ks = self.non_negative(|| "the material's Ks".into())?;
-        let shininess = self.non_negative(|| "the material's Shine".into())?;
-        let (kt, kt_token) = self.number_token(|| "the material's T".into())?;
-        if !(0.0..=1.0).contains(&kt) {
-            return Err(self.error(
-                kt_token.span(),
-                format!(
-                    "the material's T must be between 0 and 1, got `{}`",
-                    kt_token.text
-                ),
-            ));
-        }
+        let color = self.vec3(RGB, COLOR, |c| format!("the material's colour ({c})"))?;
+        let kd = self.bounded(COEFFICIENT, || "the material's Kd".into())?;
+        let ks = self.bounded(COEFFICIENT, || "the material's Ks".into())?;
+        let shininess = self.bounded(SHININESS, || "the material's Shine".into())?;
+        let kt = self.bounded(TRANSMISSION, || "the material's T".into())?;
         let (ior, ior_token) = self.number_token(|| "the material's index of refraction".into())?;
-        let ior = if kt > 0.0 {
-            if ior <= 0.0 {
-                return Err(self.error(
-                    ior_token.span(),
-                    format!(
-                        "f {index}: a transmitting material (T = {kt}) needs an index of refraction > 0, got {ior}"
-                    ),
-                ));
-            }
-            ior
-        } else if ior <= 0.0 {
-            // Opaque: the SPD writes ior 0, which means nothing; store air's.
-            1.0
-        } else {
-            ior
-        };
-        Ok(Material {
-            name: format!("f {index}"),
-            color,
-            kd,
-            ks,
-            shininess,
-            kt,
-            ior,
-            ka: 1.0,
-            specular: None,
-        })
+        // The SPD writes ior 0 for opaque materials, where it is never used
+        // (MODEL §5): stored as air's. Any other value must be an index.
+        if kt == 0.0 && ior == 0.0 {
+            return Ok(material(index, color, [kd, ks, shininess, kt], 1.0));
+        }
+        IOR.check(ior).map_err(|reason| {
+            let opaque = if kt == 0.0 {
+                " (or be 0 where T = 0)"
+            } else {
+                ""
+            };
+            self.error(
+                ior_token.span(),
+                format!(
+                    "f {index}: the material's index of refraction {reason}{opaque}, got `{}`",
+                    ior_token.text
+                ),
+            )
+        })?;
+        Ok(material(index, color, [kd, ks, shininess, kt], ior))
+    }
+}
+
+/// The `index`-th `f` line's material, from its numbers.
+fn material(index: usize, color: Color, [kd, ks, shininess, kt]: [f64; 4], ior: f64) -> Material {
+    Material {
+        name: format!("f {index}"),
+        color,
+        kd,
+        ks,
+        shininess,
+        kt,
+        ior,
+        ka: 1.0,
+        specular: None,
     }
 }
