@@ -4,6 +4,7 @@
 mod error;
 pub mod nff;
 pub mod toml_format;
+mod toml_sections;
 
 use std::path::Path;
 
