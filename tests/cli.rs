@@ -382,4 +382,18 @@ fn arrays_nested_100000_deep_are_refused_with_line_and_column() {
     );
     let message = render_fails("deep.toml", deep);
     assert_bounded(&message, "deep.toml:4:85:");
+    // Inline tables: "a = " then "{ b = " (6 characters) per level; the
+    // 81st `{` is at column 4 + 80 * 6 + 1 = 485.
+    let head = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[materials.m]\n";
+    let message = render_fails("inline.toml", format!("{head}a = {}\n", "{ b = ".repeat(100_000)));
+    assert_bounded(&message, "inline.toml:5:485:");
+    // Inside an object, read as its own section: after "sphere = " the
+    // 81st `[` is at column 9 + 81 = 90 of line 7.
+    let object = format!("[[object]]\nmaterial = \"m\"\nsphere = {}\n", "[".repeat(100_000));
+    let message = render_fails("object.toml", format!("{head}{object}"));
+    assert_bounded(&message, "object.toml:7:90:");
+    // A dotted key of a million parts in a header on line 5, from column 2.
+    let key = vec!["a"; 1_000_000].join(".");
+    let message = render_fails("key.toml", format!("{head}[{key}]\n"));
+    assert_bounded(&message, "key.toml:5:2: a dotted key of 81 or more parts");
 }

@@ -257,7 +257,17 @@ enum ObjectDefs {
 /// Reads everything but the objects, and the objects too when the file could
 /// not be cut into sections (`toml_sections`).
 fn read_file(source: &Source) -> Result<(FileDef, ObjectDefs), SceneError> {
-    if let Some(sections) = toml_sections::split(source.text)
+    let split = toml_sections::split(source.text).map_err(|span| {
+        source.error(
+            span,
+            format!(
+                "a dotted key of {} or more parts: the TOML reader takes at most {}",
+                toml_sections::MAX_KEY_PARTS,
+                toml_sections::MAX_KEY_PARTS - 1
+            ),
+        )
+    })?;
+    if let Some(sections) = split
         && !sections.objects.is_empty()
     {
         let file: FileDef = source.read(&sections.rest)?;

@@ -28,9 +28,16 @@ pub struct Sections {
     pub objects: Vec<Range<usize>>,
 }
 
-/// Cuts `text` into sections, or `None` when the cut could change its meaning.
-pub fn split(text: &str) -> Option<Sections> {
-    let mut tokens = Source::new(text).lex();
+/// The TOML reader refuses dotted keys of this many parts (its recursion
+/// limit) without saying where they are; `split` finds them.
+pub const MAX_KEY_PARTS: usize = 81;
+
+/// Cuts `text` into sections, or `Ok(None)` when the cut could change its
+/// meaning. `Err` is the span of a dotted key of `MAX_KEY_PARTS` or more parts.
+pub fn split(text: &str) -> Result<Option<Sections>, Range<usize>> {
+    let mut keys = KeyParts::default();
+    let mut tokens = Source::new(text).lex().inspect(|t| keys.see(t));
+    let mut cut = true;
     let mut objects: Vec<Range<usize>> = Vec::new();
     // The start of the object section being read, if one is.
     let mut open: Option<usize> = None;
@@ -53,8 +60,8 @@ pub fn split(text: &str) -> Option<Sections> {
                     Header::InsideObject if open.is_some() => {}
                     // A sub-table of an object after other tables, or
                     // anything spelt so that we cannot tell.
-                    Header::InsideObject if !objects.is_empty() => return None,
-                    Header::Unclear => return None,
+                    Header::InsideObject if !objects.is_empty() => cut = false,
+                    Header::Unclear => cut = false,
                     Header::InsideObject | Header::Other => {
                         objects.extend(open.take().map(|s| s..start));
                     }
@@ -71,6 +78,13 @@ pub fn split(text: &str) -> Option<Sections> {
             _ => line_start = false,
         }
     }
+    drop(tokens);
+    if let Some(span) = keys.too_many {
+        return Err(span);
+    }
+    if !cut {
+        return Ok(None);
+    }
     objects.extend(open.map(|s| s..text.len()));
     let mut rest = text.as_bytes().to_vec();
     for range in &objects {
@@ -78,7 +92,41 @@ pub fn split(text: &str) -> Option<Sections> {
     }
     // Whole sections, which start and end on token boundaries, became ASCII.
     let rest = String::from_utf8(rest).expect("blanking whole sections keeps UTF-8");
-    Some(Sections { rest, objects })
+    Ok(Some(Sections { rest, objects }))
+}
+
+/// Counts the parts of each dotted key as its tokens go by. Floats and dates
+/// lex as at most a few dotted parts too; only keys can be long and valid.
+#[derive(Default)]
+struct KeyParts {
+    parts: usize,
+    after_dot: bool,
+    start: usize,
+    too_many: Option<Range<usize>>,
+}
+
+impl KeyParts {
+    fn see(&mut self, token: &Token) {
+        match token.kind() {
+            TokenKind::Whitespace => {}
+            TokenKind::Dot => self.after_dot = self.parts > 0,
+            TokenKind::Atom | TokenKind::BasicString | TokenKind::LiteralString => {
+                if !self.after_dot {
+                    self.parts = 0;
+                    self.start = token.span().start();
+                }
+                self.parts += 1;
+                self.after_dot = false;
+                if self.parts == MAX_KEY_PARTS && self.too_many.is_none() {
+                    self.too_many = Some(self.start..token.span().end());
+                }
+            }
+            _ => {
+                self.parts = 0;
+                self.after_dot = false;
+            }
+        }
+    }
 }
 
 /// What a table header names, as far as splitting is concerned.
@@ -102,36 +150,39 @@ fn read_header(
     tokens: &mut impl Iterator<Item = Token>,
 ) -> (Header, bool) {
     let mut array = false;
-    let mut keys: Vec<&str> = Vec::new();
+    // The first key and how many there are (a header line may be megabytes).
+    let mut first: Option<&str> = None;
+    let mut keys = 0usize;
     let mut previous_end = open.span().end();
     let mut closed = false;
     for token in tokens.by_ref() {
         let raw = &text[token.span().start()..token.span().end()];
         match token.kind() {
-            TokenKind::Newline => return (classify(array, &keys), true),
-            TokenKind::LeftSquareBracket if keys.is_empty() && !array => {
+            TokenKind::Newline => return (classify(array, first, keys), true),
+            TokenKind::LeftSquareBracket if keys == 0 && !array => {
                 array = token.span().start() == previous_end;
             }
             TokenKind::RightSquareBracket => closed = true,
             TokenKind::Atom | TokenKind::BasicString | TokenKind::LiteralString if !closed => {
-                keys.push(raw)
+                first.get_or_insert(raw);
+                keys += 1;
             }
             _ => {}
         }
         previous_end = token.span().end();
     }
-    (classify(array, &keys), false)
+    (classify(array, first, keys), false)
 }
 
-fn classify(array: bool, keys: &[&str]) -> Header {
-    let Some(first) = keys.first() else {
+fn classify(array: bool, first: Option<&str>, keys: usize) -> Header {
+    let Some(first) = first else {
         return Header::Other;
     };
     if first.starts_with('"') && first.contains('\\') {
         return Header::Unclear;
     }
-    let is_object = matches!(*first, "object" | "\"object\"" | "'object'");
-    match (is_object, array, keys.len()) {
+    let is_object = matches!(first, "object" | "\"object\"" | "'object'");
+    match (is_object, array, keys) {
         (true, true, 1) => Header::ObjectItem,
         (true, _, _) => Header::InsideObject,
         (false, _, _) => Header::Other,
@@ -143,7 +194,7 @@ mod tests {
     use super::*;
 
     fn cut(text: &str) -> Vec<&str> {
-        let sections = split(text).expect("splits");
+        let sections = split(text).unwrap().expect("splits");
         assert_eq!(sections.rest.len(), text.len());
         sections.objects.iter().map(|r| &text[r.clone()]).collect()
     }
@@ -160,7 +211,7 @@ mod tests {
                 "[[object]]\nb = 2\n"
             ]
         );
-        let rest = split(text).unwrap().rest;
+        let rest = split(text).unwrap().unwrap().rest;
         assert!(rest.starts_with("[camera]\nfov = 1\n   "));
         assert!(rest.contains(" [[light]]\nposition = [0, 0, 0]\n  "));
         assert!(!rest.contains("object"));
@@ -179,7 +230,18 @@ mod tests {
     #[test]
     fn sub_tables_of_an_object_after_other_tables_are_not_cut() {
         // Valid TOML: `[object.sphere]` extends the object before `[x]`.
-        assert!(split("[[object]]\n[x]\n[object.sphere]\n").is_none());
-        assert!(split("[[\"obj\\u0065ct\"]]\n").is_none());
+        assert!(split("[[object]]\n[x]\n[object.sphere]\n").unwrap().is_none());
+        assert!(split("[[\"obj\\u0065ct\"]]\n").unwrap().is_none());
+    }
+
+    #[test]
+    fn dotted_keys_of_81_parts_are_found() {
+        // "a" and 80 ".a": 81 parts, the first at byte 4 of "[x]\n", the
+        // 81st ending at 4 + 81 + 80 = 165. 80 parts (which the TOML reader
+        // takes), or floats, pass.
+        let key = |parts: usize| vec!["a"; parts].join(".");
+        assert_eq!(split(&format!("[x]\n{} = 1\n", key(81))).err(), Some(4..165));
+        assert_eq!(split(&format!("[{}]\n", key(100))).err(), Some(1..162));
+        assert!(split(&format!("{} = [1.5, 2.5]\n", key(80))).is_ok());
     }
 }
