@@ -10,7 +10,7 @@ const HEAD: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n\
 [materials.a]\nkd = 1\n[materials.b]\nkd = 0.5\n";
 
 fn fails(text: &str) -> String {
-    let error: SceneError = parse(Path::new("s.toml"), text).err().expect("an error");
+    let error: SceneError = parse(Path::new("s.toml"), text).expect_err("an error");
     error.to_string()
 }
 
@@ -46,7 +46,9 @@ fn sections_read_the_scene_the_whole_file_describes() {
 fn an_error_in_a_later_section_names_the_files_line_and_column() {
     // HEAD is 7 lines; each object 3 more: the third object's sphere is on
     // line 7 + 3 * 3 = 16; the error points at its table, after "sphere = ".
-    let sphere = |r: &str| format!("[[object]]\nmaterial = \"a\"\nsphere = {{ center = [0, 0, 0], radius = {r} }}\n");
+    let sphere = |r: &str| {
+        format!("[[object]]\nmaterial = \"a\"\nsphere = {{ center = [0, 0, 0], radius = {r} }}\n")
+    };
     let text = format!("{HEAD}{}{}{}", sphere("1"), sphere("2"), sphere("-1"));
     let message = fails(&text);
     assert!(message.starts_with("s.toml:16:10: "), "{message}");
@@ -62,7 +64,9 @@ fn an_error_in_a_later_section_names_the_files_line_and_column() {
 #[test]
 fn a_given_name_may_not_repeat_any_earlier_name() {
     let named = |name: &str| {
-        format!("[[object]]\nname = \"{name}\"\nmaterial = \"a\"\nsphere = {{ center = [0, 0, 0], radius = 1 }}\n")
+        format!(
+            "[[object]]\nname = \"{name}\"\nmaterial = \"a\"\nsphere = {{ center = [0, 0, 0], radius = 1 }}\n"
+        )
     };
     let unnamed = "[[object]]\nmaterial = \"a\"\nsphere = { center = [0, 0, 0], radius = 1 }\n";
     // The unnamed sphere at index 0 is "sphere 0": the name on line 12 clashes.
@@ -89,5 +93,8 @@ fn objects_written_both_as_an_array_and_as_tables_are_refused() {
     // The whole file is read then, and TOML's own message points at the
     // first `[[object]]` (line 9, after "[[").
     let message = fails(&text);
-    assert!(message.starts_with("s.toml:9:3: duplicate key"), "{message}");
+    assert!(
+        message.starts_with("s.toml:9:3: duplicate key"),
+        "{message}"
+    );
 }

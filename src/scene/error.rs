@@ -63,8 +63,11 @@ impl SceneError {
         let line = text[..start].matches('\n').count() + 1;
         let column = text[line_start..start].chars().count() + 1;
         let end = floor_boundary(text, span.end.clamp(start, line_end));
-        let (excerpt, excerpt_column, width) =
-            excerpt(&text[line_start..line_end], start - line_start, end - line_start);
+        let (excerpt, excerpt_column, width) = excerpt(
+            &text[line_start..line_end],
+            start - line_start,
+            end - line_start,
+        );
         Self {
             message: bounded(message.into(), MAX_MESSAGE_CHARS),
             location: Some(SourceLocation {

@@ -346,14 +346,14 @@ fn objects<'a>(
     for def in defs {
         let (source, def) = def?;
         let object = object(&source, objects.len(), &def, materials)?;
-        if let Some(name) = &def.get_ref().name {
-            if !given_names.insert(object.name.clone()) || is_default_name(&objects, &object.name)
-            {
-                return Err(source.error(
-                    name.span(),
-                    format!("object name `{}` is used twice", object.name),
-                ));
-            }
+        let used = |name: &str| is_default_name(&objects, name);
+        if let Some(name) = &def.get_ref().name
+            && (!given_names.insert(object.name.clone()) || used(&object.name))
+        {
+            return Err(source.error(
+                name.span(),
+                format!("object name `{}` is used twice", object.name),
+            ));
         }
         objects.push(object);
     }

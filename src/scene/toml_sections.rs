@@ -230,7 +230,11 @@ mod tests {
     #[test]
     fn sub_tables_of_an_object_after_other_tables_are_not_cut() {
         // Valid TOML: `[object.sphere]` extends the object before `[x]`.
-        assert!(split("[[object]]\n[x]\n[object.sphere]\n").unwrap().is_none());
+        assert!(
+            split("[[object]]\n[x]\n[object.sphere]\n")
+                .unwrap()
+                .is_none()
+        );
         assert!(split("[[\"obj\\u0065ct\"]]\n").unwrap().is_none());
     }
 
@@ -240,7 +244,10 @@ mod tests {
         // 81st ending at 4 + 81 + 80 = 165. 80 parts (which the TOML reader
         // takes), or floats, pass.
         let key = |parts: usize| vec!["a"; parts].join(".");
-        assert_eq!(split(&format!("[x]\n{} = 1\n", key(81))).err(), Some(4..165));
+        assert_eq!(
+            split(&format!("[x]\n{} = 1\n", key(81))).err(),
+            Some(4..165)
+        );
         assert_eq!(split(&format!("[{}]\n", key(100))).err(), Some(1..162));
         assert!(split(&format!("{} = [1.5, 2.5]\n", key(80))).is_ok());
     }
