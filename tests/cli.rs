@@ -359,6 +359,7 @@ fn an_error_on_a_line_of_megabytes_prints_a_bounded_excerpt() {
     // A type error whose message quotes the 3 MB string itself.
     let message = render_fails("b.toml", &format!("{HEAD}fov = \"{long}\"\n"));
     assert_bounded(&message, "b.toml:4:7: invalid type: string");
+    assert!(message.contains("xxx\", expected f64"), "{message}");
     // NFF: the radius "xxx..." is line 8's fifth word, after "s 0 0 0 " (column 9).
     let nff = format!(
         "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 8 6\ns 0 0 0 {long}\n"

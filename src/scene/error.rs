@@ -120,13 +120,25 @@ fn excerpt(line: &str, start: usize, end: usize) -> (String, usize, usize) {
     (shown, column, width)
 }
 
-/// `text` cut to at most `max` characters, with `…` where it was cut.
-fn bounded(mut text: String, max: usize) -> String {
-    if let Some((cut, _)) = text.char_indices().nth(max) {
-        text.truncate(cut);
-        text.push(ELLIPSIS);
+/// `text` cut to at most `max` characters, with `…` where it was cut. The cut
+/// is near the end, so that what follows a long quoted value ("…, expected
+/// f64") is kept.
+fn bounded(text: String, max: usize) -> String {
+    let tail = max / 4;
+    let Some((head_end, _)) = text.char_indices().nth(max - tail) else {
+        return text;
+    };
+    let Some((tail_start, _)) = text.char_indices().nth_back(tail - 1) else {
+        return text;
+    };
+    if tail_start <= head_end {
+        return text;
     }
-    text
+    let mut cut = String::with_capacity(max + ELLIPSIS.len_utf8() * 4);
+    cut.push_str(&text[..head_end]);
+    cut.push(ELLIPSIS);
+    cut.push_str(&text[tail_start..]);
+    cut
 }
 
 /// The largest character boundary of `text` at or before `index`.
@@ -216,12 +228,16 @@ mod tests {
 
     #[test]
     fn long_messages_are_cut_and_spans_inside_a_character_do_not_panic() {
-        let error = SceneError::at(Path::new("s"), "ab\u{e9}c", 3..4, "m".repeat(10_000));
+        let long = format!("value `{}` is wrong", "m".repeat(10_000));
+        let error = SceneError::at(Path::new("s"), "ab\u{e9}c", 3..4, long);
         let at = error.location.as_ref().unwrap();
         // Byte 3 is inside 'é' (bytes 2..4): the error moves back to it, column 3.
         assert_eq!((at.column, at.width), (3, 1));
+        // The first 300 characters ("value `" and 293 'm'), '…', the last 100
+        // (90 'm' and "` is wrong").
+        let expected = format!("value `{}…{}` is wrong", "m".repeat(293), "m".repeat(90));
+        assert_eq!(error.message, expected);
         assert_eq!(error.message.chars().count(), MAX_MESSAGE_CHARS + 1);
-        assert!(error.message.ends_with('…'));
         let plain = SceneError::plain("p".repeat(10_000));
         assert_eq!(plain.message.chars().count(), MAX_MESSAGE_CHARS + 1);
     }
