@@ -274,8 +274,8 @@ fn read_file(source: &Source) -> Result<(FileDef, ObjectDefs), SceneError> {
         if file.objects.is_none() {
             return Ok((file, ObjectDefs::Sections(sections.objects)));
         }
-        // `object` is also written some other way: the whole file's reader
-        // reports the clash.
+        // `object` is also written some other way: read the whole file at
+        // once, so that its reader judges (and reports) the clash.
     }
     let mut file: FileDef = source.read(source.text)?;
     let objects = file.objects.take().unwrap_or_default();
