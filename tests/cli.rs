@@ -16,7 +16,7 @@ fn stderr(output: &Output) -> String {
 }
 
 /// A scene file in a fresh temporary directory.
-fn scene_file(dir: &tempfile::TempDir, name: &str, text: &str) -> PathBuf {
+fn scene_file(dir: &tempfile::TempDir, name: &str, text: impl AsRef<[u8]>) -> PathBuf {
     let path = dir.path().join(name);
     std::fs::write(&path, text).unwrap();
     path
@@ -27,6 +27,11 @@ const GOOD: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[image]\nwid
 
 /// Runs `render` on a scene text and returns the failure's stderr, checking the exit code.
 fn render_fails(name: &str, text: &str) -> String {
+    render_fails_bytes(name, text.as_bytes())
+}
+
+/// `render_fails` for a file that need not be UTF-8.
+fn render_fails_bytes(name: &str, text: &[u8]) -> String {
     let dir = tempfile::tempdir().unwrap();
     let path = scene_file(&dir, name, text);
     let out = dir.path().join("out.png");
@@ -339,4 +344,80 @@ fn timings_report_a_plain_render_without_counts() {
     assert_eq!(std::fs::read(&out).unwrap(), plain);
     // Asking for both is a usage error.
     assert_eq!(render(&["--stats", "--timings"]).status.code(), Some(2));
+}
+
+/// Asserts that a failure's whole output stays small and names `place`.
+fn assert_bounded(message: &str, place: &str) {
+    assert!(message.len() < 2000, "{} bytes of stderr", message.len());
+    assert!(message.contains(place), "names {place}: {message}");
+}
+
+#[test]
+fn an_error_on_a_line_of_megabytes_prints_a_bounded_excerpt() {
+    const HEAD: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n";
+    let long = "x".repeat(3_000_000);
+    // TOML's own syntax error: the value after "fov = " starts at column 7.
+    let message = render_fails("a.toml", &format!("{HEAD}fov = 3 {long}\n"));
+    assert_bounded(&message, "a.toml:4:7:");
+    assert!(message.contains("4 | fov = 3 xxx"), "{message}");
+    // A type error whose message quotes the 3 MB string itself.
+    let message = render_fails("b.toml", &format!("{HEAD}fov = \"{long}\"\n"));
+    assert_bounded(&message, "b.toml:4:7: invalid type: string");
+    assert!(message.contains("xxx\", expected f64"), "{message}");
+    // NFF: the radius "xxx..." is line 8's fifth word, after "s 0 0 0 " (column 9).
+    let nff = format!(
+        "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 8 6\ns 0 0 0 {long}\n"
+    );
+    let message = render_fails("c.nff", &nff);
+    assert_bounded(
+        &message,
+        "c.nff:8:9: expected a number for the sphere's radius",
+    );
+}
+
+#[test]
+fn invalid_utf8_names_line_and_column() {
+    // Byte 0xFF after "look_at = [0, " (14 characters): line 3, column 15.
+    let toml = b"[camera]\neye = [0, 0, 5]\nlook_at = [0, \xff, 0]\n";
+    let message = render_fails_bytes("u.toml", toml);
+    assert_bounded(&message, "u.toml:3:15: invalid UTF-8 (byte 0xFF)");
+    assert!(
+        message.contains("3 | look_at = [0, \u{fffd}, 0]"),
+        "{message}"
+    );
+    // In NFF after "at 0 " (5 characters): line 3, column 6.
+    let message = render_fails_bytes("u.nff", b"v\nfrom 0 0 5\nat 0 \xff 0\n");
+    assert_bounded(&message, "u.nff:3:6: invalid UTF-8 (byte 0xFF)");
+}
+
+#[test]
+fn arrays_nested_100000_deep_are_refused_with_line_and_column() {
+    // The TOML reader allows 80 levels: the 81st `[`, after "a = " and 80
+    // others, is at column 4 + 81 = 85 of line 4.
+    let deep = format!(
+        "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\na = {}\n",
+        "[".repeat(100_000)
+    );
+    let message = render_fails("deep.toml", &deep);
+    assert_bounded(&message, "deep.toml:4:85:");
+    // Inline tables: "a = " then "{ b = " (6 characters) per level; the
+    // 81st `{` is at column 4 + 80 * 6 + 1 = 485.
+    let head = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[materials.m]\n";
+    let message = render_fails(
+        "inline.toml",
+        &format!("{head}a = {}\n", "{ b = ".repeat(100_000)),
+    );
+    assert_bounded(&message, "inline.toml:5:485:");
+    // Inside an object, read as its own section: after "sphere = " the
+    // 81st `[` is at column 9 + 81 = 90 of line 7.
+    let object = format!(
+        "[[object]]\nmaterial = \"m\"\nsphere = {}\n",
+        "[".repeat(100_000)
+    );
+    let message = render_fails("object.toml", &format!("{head}{object}"));
+    assert_bounded(&message, "object.toml:7:90:");
+    // A dotted key of a million parts in a header on line 5, from column 2.
+    let key = vec!["a"; 1_000_000].join(".");
+    let message = render_fails("key.toml", &format!("{head}[{key}]\n"));
+    assert_bounded(&message, "key.toml:5:2: a dotted key of 81 or more parts");
 }

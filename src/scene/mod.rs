@@ -5,6 +5,7 @@ mod error;
 pub mod limits;
 pub mod nff;
 pub mod toml_format;
+mod toml_sections;
 
 use std::path::Path;
 
@@ -211,9 +212,35 @@ impl Scene {
 
 /// Reads a scene file, choosing the format by extension (`.nff`, else TOML).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
+    let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;
     parse(path, &text)
+}
+
+/// Where a file stops being UTF-8 text: the first bad byte's line and column,
+/// with the line shown with U+FFFD in place of its bad bytes.
+fn invalid_utf8(path: &Path, bytes: &[u8]) -> SceneError {
+    let Err(e) = std::str::from_utf8(bytes) else {
+        unreachable!("called only on bytes that are not UTF-8")
+    };
+    let bad = e.valid_up_to();
+    let line_end = bytes[bad..]
+        .iter()
+        .position(|&b| b == b'\n')
+        .map_or(bytes.len(), |i| bad + i);
+    // The valid prefix is unchanged by the lossy conversion, so `bad` is
+    // where the first U+FFFD starts.
+    let text = String::from_utf8_lossy(&bytes[..line_end]);
+    SceneError::at(
+        path,
+        &text,
+        bad..bad + char::REPLACEMENT_CHARACTER.len_utf8(),
+        format!(
+            "invalid UTF-8 (byte 0x{:02X}): scene files must be UTF-8 text",
+            bytes[bad]
+        ),
+    )
 }
 
 /// Parses scene text; `path` names it in messages and picks the format.

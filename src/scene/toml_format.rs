@@ -34,7 +34,7 @@
 //! sphere = { center = [0, 1, 0], radius = 1 }
 //! ```
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashSet};
 use std::fmt;
 use std::ops::Range;
 use std::path::Path;
@@ -43,6 +43,7 @@ use glam::DVec3;
 use serde::Deserialize;
 use toml::Spanned;
 
+use super::toml_sections;
 use super::{
     Light, Material, Object, Scene, SceneError, Settings, SpecularModel, check_camera,
     check_image_size,
@@ -141,7 +142,17 @@ struct FileDef {
     materials: BTreeMap<String, Spanned<MaterialDef>>,
     #[serde(default, rename = "light")]
     lights: Vec<Spanned<LightDef>>,
+    /// `None` when the file has no objects or they were cut out to be read
+    /// one by one (`toml_sections`).
     #[serde(default, rename = "object")]
+    objects: Option<Vec<Spanned<ObjectDef>>>,
+}
+
+/// One `[[object]]` section read on its own.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectSectionDef {
+    #[serde(rename = "object")]
     objects: Vec<Spanned<ObjectDef>>,
 }
 
@@ -258,26 +269,78 @@ pub const DEFAULT_FOV: f64 = 45.0;
 pub const MAX_DEPTH_LIMIT: u32 = 64;
 
 /// Collects the file's context so that every check can point into it.
+#[derive(Clone, Copy)]
 struct Source<'a> {
     path: &'a Path,
     text: &'a str,
+    /// Where the part being read starts in `text`: spans are relative to it.
+    offset: usize,
 }
 
 impl Source<'_> {
     fn error(&self, span: Range<usize>, message: impl fmt::Display) -> SceneError {
+        let span = span.start + self.offset..span.end + self.offset;
         SceneError::at(self.path, self.text, span, message.to_string())
+    }
+
+    /// The same file, reading the part that starts at `offset`.
+    fn at(self, offset: usize) -> Self {
+        Self { offset, ..self }
+    }
+
+    /// Deserializes `part`, which starts at `self.offset` in the file.
+    fn read<'de, T: Deserialize<'de>>(&self, part: &'de str) -> Result<T, SceneError> {
+        toml::from_str(part).map_err(|e| {
+            let message = e.message().trim_end().to_string();
+            match e.span() {
+                Some(span) => self.error(span, message),
+                None => SceneError::plain(format!("{}: {message}", self.path.display())),
+            }
+        })
     }
 }
 
-pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
-    let source = Source { path, text };
-    let file: FileDef = toml::from_str(text).map_err(|e| {
-        let message = e.message().trim_end().to_string();
-        match e.span() {
-            Some(span) => source.error(span, message),
-            None => SceneError::plain(format!("{}: {message}", path.display())),
-        }
+/// The file's objects: read with the rest, or still to be read section by section.
+enum ObjectDefs {
+    Read(Vec<Spanned<ObjectDef>>),
+    Sections(Vec<Range<usize>>),
+}
+
+/// Reads everything but the objects, and the objects too when the file could
+/// not be cut into sections (`toml_sections`).
+fn read_file(source: &Source) -> Result<(FileDef, ObjectDefs), SceneError> {
+    let split = toml_sections::split(source.text).map_err(|span| {
+        source.error(
+            span,
+            format!(
+                "a dotted key of {} or more parts: the TOML reader takes at most {}",
+                toml_sections::MAX_KEY_PARTS,
+                toml_sections::MAX_KEY_PARTS - 1
+            ),
+        )
     })?;
+    if let Some(sections) = split
+        && !sections.objects.is_empty()
+    {
+        let file: FileDef = source.read(&sections.rest)?;
+        if file.objects.is_none() {
+            return Ok((file, ObjectDefs::Sections(sections.objects)));
+        }
+        // `object` is also written some other way: read the whole file at
+        // once, so that its reader judges (and reports) the clash.
+    }
+    let mut file: FileDef = source.read(source.text)?;
+    let objects = file.objects.take().unwrap_or_default();
+    Ok((file, ObjectDefs::Read(objects)))
+}
+
+pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+    let source = Source {
+        path,
+        text,
+        offset: 0,
+    };
+    let (file, object_defs) = read_file(&source)?;
     bounds::file(&source, &file)?;
     let camera = camera(&source, &file.camera)?;
     let (width, height) = match &file.image {
@@ -299,19 +362,23 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
         .enumerate()
         .map(|(i, def)| light(i, def.get_ref()))
         .collect();
-    let mut objects: Vec<Object> = Vec::with_capacity(file.objects.len());
-    for def in &file.objects {
-        let object = object(&source, objects.len(), def, &materials)?;
-        if let Some(name) = &def.get_ref().name
-            && objects.iter().any(|o| o.name == object.name)
-        {
-            return Err(source.error(
-                name.span(),
-                format!("object name `{}` is used twice", object.name),
-            ));
+    let objects = match object_defs {
+        ObjectDefs::Read(defs) => {
+            let defs = defs.into_iter().map(|def| Ok((source, def)));
+            objects(defs, &materials)?
         }
-        objects.push(object);
-    }
+        ObjectDefs::Sections(ranges) => {
+            let defs = ranges.into_iter().map(|range| {
+                let part = source.at(range.start);
+                let section: ObjectSectionDef = part.read(&text[range])?;
+                let [def] = <[_; 1]>::try_from(section.objects).map_err(|_| {
+                    part.error(0..0, "internal error: an object section holds one object")
+                })?;
+                Ok((part, def))
+            });
+            objects(defs, &materials)?
+        }
+    };
     Ok(Scene::new(
         camera,
         (width, height),
@@ -320,6 +387,41 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
         lights,
         objects,
     ))
+}
+
+/// Builds the objects in file order, refusing a name used twice.
+fn objects<'a>(
+    defs: impl ExactSizeIterator<Item = Result<(Source<'a>, Spanned<ObjectDef>), SceneError>>,
+    materials: &[Material],
+) -> Result<Vec<Object>, SceneError> {
+    let mut objects: Vec<Object> = Vec::with_capacity(defs.len());
+    let mut given_names = HashSet::new();
+    for def in defs {
+        let (source, def) = def?;
+        let key = format!("object[{}]", objects.len());
+        bounds::object(&source, &key, def.get_ref())?;
+        let object = object(&source, objects.len(), &def, materials)?;
+        let used = |name: &str| is_default_name(&objects, name);
+        if let Some(name) = &def.get_ref().name
+            && (!given_names.insert(object.name.clone()) || used(&object.name))
+        {
+            return Err(source.error(
+                name.span(),
+                format!("object name `{}` is used twice", object.name),
+            ));
+        }
+        objects.push(object);
+    }
+    Ok(objects)
+}
+
+/// Whether `name` is the default name of one of `objects`, "sphere 3" for
+/// an unnamed sphere at index 3 (named objects are in the set of given names).
+fn is_default_name(objects: &[Object], name: &str) -> bool {
+    name.rsplit_once(' ')
+        .and_then(|(_, index)| index.parse::<usize>().ok())
+        .and_then(|index| objects.get(index))
+        .is_some_and(|o| o.name == name)
 }
 
 fn camera(source: &Source, def: &Spanned<CameraDef>) -> Result<Camera, SceneError> {

@@ -8,7 +8,8 @@ use crate::scene::limits::{
 };
 use crate::scene::{SceneError, check_fov};
 
-/// Checks the whole file; the first number out of range is the error.
+/// Checks everything but the objects, which `object` checks one at a time as
+/// they are read; the first number out of range is the error.
 pub(super) fn file(source: &Source, file: &FileDef) -> Result<(), SceneError> {
     let camera = file.camera.get_ref();
     vector(source, "camera.eye", &camera.eye, COORDINATE)?;
@@ -30,9 +31,6 @@ pub(super) fn file(source: &Source, file: &FileDef) -> Result<(), SceneError> {
             COORDINATE,
         )?;
         optional_vector(source, &format!("light[{i}].color"), &light.color, COLOR)?;
-    }
-    for (i, def) in file.objects.iter().enumerate() {
-        object(source, &format!("object[{i}]"), def.get_ref())?;
     }
     Ok(())
 }
@@ -63,7 +61,7 @@ fn material(source: &Source, key: &str, m: &MaterialDef) -> Result<(), SceneErro
     Ok(())
 }
 
-fn object(source: &Source, key: &str, o: &ObjectDef) -> Result<(), SceneError> {
+pub(super) fn object(source: &Source, key: &str, o: &ObjectDef) -> Result<(), SceneError> {
     if let Some(s) = &o.sphere {
         let (key, d) = (format!("{key}.sphere"), s.get_ref());
         vector(source, &format!("{key}.center"), &d.center, COORDINATE)?;
