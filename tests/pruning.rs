@@ -330,3 +330,43 @@ fn a_light_within_eps_of_the_point_adds_nothing_and_casts_no_shadow_ray() {
         explain(&tree).contains("light 1: sits on the point (distance 5.000e-5 < EPS = 0.0001)")
     );
 }
+
+#[test]
+fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
+    use raystep::record::EventKind;
+    use raystep::tui::{details, steps_view};
+    // The mirrors of ks = 0.1: the third reflection, from ray r2, is not cast.
+    let scene = mirrors(0.1, "");
+    let tree = bounce(&scene);
+    let at = tree
+        .events
+        .iter()
+        .position(|e| matches!(e.kind, EventKind::NotCast(_)))
+        .expect("a not_cast event");
+    // It comes after r2's own terms and before r2 is done.
+    assert_eq!(tree.events[at].node, 2);
+    assert!(matches!(
+        tree.events[at + 1].kind,
+        EventKind::RayDone { .. }
+    ));
+    let line = "reflected ray not cast: accumulated weight 0.001 < min_weight 1/512";
+    let (text, _) = steps_view::describe(&tree, &scene, &tree.events[at]);
+    assert_eq!(text, format!("r2: {line}"));
+    let (lines, marked) = details::text_lines(&tree, 2, Some(at));
+    let marked: Vec<&str> = marked.iter().map(|&i| lines[i].as_str()).collect();
+    assert_eq!(marked, [line]);
+}
+
+#[test]
+fn the_debugger_opens_lossless_glass_planes_at_depth_64() {
+    // ks = kt = 1, max_depth 64, the default budget: the debugger renders the
+    // image and records the centre pixel, 4096 rays, and does not grow.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("lossless.toml");
+    let text = GLASS_PLANES
+        .replace("ks = 0.5", "ks = 1")
+        .replace("kt = 0.5", "kt = 1");
+    std::fs::write(&path, text).unwrap();
+    let app = raystep::tui::App::open(Some(path), true).unwrap();
+    assert_eq!(app.tree.nodes.len(), 4096);
+}
