@@ -182,14 +182,7 @@ impl<R: Recorder> Tracer<'_, R> {
         let settings = &self.scene.settings;
         let offset = light.position - hit.point;
         let distance = offset.length();
-        // A light within EPS of the point has no usable direction (at 0, L and
-        // N·L are NaN) and no shadow segment: it adds nothing (MODEL §4).
-        let at_point = distance < EPS;
-        let to_light = if at_point {
-            DVec3::ZERO
-        } else {
-            offset / distance
-        };
+        let to_light = offset / distance;
         let n_dot_l = hit.normal.dot(to_light);
         let mut term = LightTerm {
             light: index,
@@ -197,7 +190,7 @@ impl<R: Recorder> Tracer<'_, R> {
             distance,
             n_dot_l,
             faces_away: n_dot_l <= 0.0,
-            at_point,
+            at_point: false,
             shadow: None,
             f_att: attenuation(settings.light_attenuation, distance),
             specular_model: material.specular.unwrap_or(settings.specular),
@@ -205,6 +198,11 @@ impl<R: Recorder> Tracer<'_, R> {
             diffuse: Color::ZERO,
             specular: Color::ZERO,
         };
+        // A light within EPS of the point has no usable direction (at 0, L and
+        // N·L are NaN) and no shadow segment: it adds nothing (MODEL §4).
+        if distance < EPS {
+            return at_point(term);
+        }
         if term.faces_away {
             return term;
         }
@@ -331,21 +329,28 @@ impl<R: Recorder> Tracer<'_, R> {
         color
     }
 
-    /// The rule that keeps a secondary ray of accumulated weight `path_weight`
-    /// from being cast, if any (MODEL §5): the weight cutoff, then the budget.
-    fn prune_rule(&self, path_weight: f64) -> Option<PruneRule> {
+    /// Records a secondary ray that MODEL §5's rules keep from being cast:
+    /// the weight cutoff if it applies, else the budget. Out of the way of
+    /// the rays that are cast.
+    #[cold]
+    #[inline(never)]
+    fn not_cast(&mut self, kind: RayKind, weight: f64, path_weight: f64) {
         let settings = &self.scene.settings;
-        if path_weight < settings.min_weight {
-            Some(PruneRule::MinWeight {
+        let rule = if path_weight < settings.min_weight {
+            PruneRule::MinWeight {
                 min_weight: settings.min_weight,
-            })
-        } else if self.rays >= settings.max_rays {
-            Some(PruneRule::MaxRays {
-                max_rays: settings.max_rays,
-            })
+            }
         } else {
-            None
-        }
+            PruneRule::MaxRays {
+                max_rays: settings.max_rays,
+            }
+        };
+        self.rec.not_cast(&NotCast {
+            kind,
+            weight,
+            path_weight,
+            rule,
+        });
     }
 
     /// Traces a secondary ray (kind, direction, weight) from the hit of a ray
@@ -358,13 +363,9 @@ impl<R: Recorder> Tracer<'_, R> {
         (depth, parent_weight): (u32, f64),
     ) -> Color {
         let path_weight = parent_weight * weight;
-        if let Some(rule) = self.prune_rule(path_weight) {
-            self.rec.not_cast(&NotCast {
-                kind,
-                weight,
-                path_weight,
-                rule,
-            });
+        let settings = &self.scene.settings;
+        if path_weight < settings.min_weight || self.rays >= settings.max_rays {
+            self.not_cast(kind, weight, path_weight);
             return Color::ZERO;
         }
         let ray = Ray::new(hit.point, direction);
@@ -382,6 +383,19 @@ impl<R: Recorder> Tracer<'_, R> {
             contribution,
         });
         contribution
+    }
+}
+
+/// A light within EPS of the point, recorded like one that faces away, with
+/// L = 0 and N·L = 0 in place of what the division by ~0 gave.
+#[cold]
+fn at_point(term: LightTerm) -> LightTerm {
+    LightTerm {
+        to_light: DVec3::ZERO,
+        n_dot_l: 0.0,
+        faces_away: true,
+        at_point: true,
+        ..term
     }
 }
 
