@@ -230,8 +230,7 @@ fn nff_scenes_have_no_weight_cutoff() {
 fn settings_error(line: &str) -> String {
     let text = format!("[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[settings]\n{line}\n");
     parse(Path::new("bad.toml"), &text)
-        .err()
-        .expect("refused")
+        .expect_err("refused")
         .to_string()
 }
 
