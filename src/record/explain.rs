@@ -3,11 +3,11 @@
 
 use std::fmt::Write;
 
-use super::text::{color, kind_name, num};
+use super::text::{color, fraction, kind_name, not_cast_line, num};
 use super::tree::{LightRecord, NodeId, RayTree};
-use crate::math::{Color, to_rgb8};
+use crate::math::{Color, EPS, to_rgb8};
 use crate::shapes::Working;
-use crate::trace::RayKind;
+use crate::trace::{PruneRule, RayKind};
 
 /// The brightness used to compare terms: the sum of the three channels.
 fn weight(c: Color) -> f64 {
@@ -64,6 +64,7 @@ pub fn explain(tree: &RayTree) -> String {
     for child in tree.children(0) {
         write_child(&mut out, tree, child);
     }
+    write_not_cast(&mut out, tree);
     if tree.max_depth.is_some_and(|max| root.depth >= max) {
         let _ = writeln!(
             out,
@@ -106,6 +107,14 @@ fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
 }
 
 fn light_fate(light: &LightRecord) -> String {
+    if light.at_point {
+        return format!(
+            "{}: sits on the point (distance {} < EPS = {}), so it has no direction; it adds nothing and no shadow ray is cast.",
+            light.light,
+            num(light.distance),
+            num(EPS)
+        );
+    }
     if light.faces_away {
         return format!(
             "{}: behind the surface (N·L = {}), so it cannot light this point; no shadow ray is cast.",
@@ -193,6 +202,48 @@ fn write_child(out: &mut String, tree: &RayTree, id: NodeId) {
         num(child.attenuation),
         color(child.contribution)
     );
+}
+
+/// The primary ray's secondary rays that were not cast, and how many were
+/// not cast deeper in the tree, by rule (MODEL §5).
+fn write_not_cast(out: &mut String, tree: &RayTree) {
+    for ray in &tree.root().not_cast {
+        let _ = writeln!(
+            out,
+            "The {}; it adds nothing.",
+            not_cast_line(ray).replacen(" not cast:", " is not cast:", 1)
+        );
+    }
+    let deeper = tree.nodes[1..].iter().flat_map(|n| &n.not_cast);
+    let (mut light, mut budget) = (None, None);
+    let (mut lighter, mut over) = (0, 0);
+    for ray in deeper {
+        match ray.rule {
+            PruneRule::MinWeight { min_weight } => {
+                lighter += 1;
+                light = Some(min_weight);
+            }
+            PruneRule::MaxRays { max_rays } => {
+                over += 1;
+                budget = Some(max_rays);
+            }
+        }
+    }
+    if let Some(min_weight) = light {
+        let _ = writeln!(
+            out,
+            "Deeper in the tree {lighter} secondary ray(s) were not cast: their accumulated \
+             weight was below min_weight {}.",
+            fraction(min_weight)
+        );
+    }
+    if let Some(max_rays) = budget {
+        let _ = writeln!(
+            out,
+            "Deeper in the tree {over} secondary ray(s) were not cast: the pixel's tree had \
+             reached max_rays = {max_rays} rays."
+        );
+    }
 }
 
 /// Polygons the primary ray went past although it met their plane within

@@ -8,7 +8,10 @@ mod tree;
 
 pub use explain::explain;
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
-pub use text::{color, dot, kind_name, light_lines, node_lines, num, text, vector, working_lines};
+pub use text::{
+    color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line, num, text, vector,
+    working_lines,
+};
 pub use tree::{
     BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,
     ShadowRecord,

@@ -7,7 +7,7 @@ use crate::math::{Color, Interval, Ray};
 use crate::scene::Scene;
 use crate::shapes::Shape;
 use crate::trace::{
-    Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel,
+    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel,
 };
 
 use super::tree::{
@@ -100,6 +100,7 @@ impl Recorder for TreeRecorder<'_> {
             tir: false,
             reflected: None,
             transmitted: None,
+            not_cast: Vec::new(),
             color: Color::ZERO,
             contribution: Color::ZERO,
         });
@@ -210,6 +211,7 @@ impl Recorder for TreeRecorder<'_> {
             distance: term.distance,
             n_dot_l: term.n_dot_l,
             faces_away: term.faces_away,
+            at_point: term.at_point,
             shadow,
             f_att: term.f_att,
             specular_model: term.specular_model,
@@ -220,6 +222,7 @@ impl Recorder for TreeRecorder<'_> {
         self.push_event(EventKind::Light {
             light: term.light,
             faces_away: term.faces_away,
+            at_point: term.at_point,
             s,
             diffuse: term.diffuse,
             specular: term.specular,
@@ -250,6 +253,11 @@ impl Recorder for TreeRecorder<'_> {
             kind: term.kind,
             contribution: term.contribution,
         });
+    }
+
+    fn not_cast(&mut self, ray: &NotCast) {
+        self.node().not_cast.push(*ray);
+        self.push_event(EventKind::NotCast(*ray));
     }
 
     fn ray_done(&mut self, color: Color) {

@@ -6,10 +6,11 @@ use std::fmt::Write;
 use glam::DVec3;
 
 use super::tree::{LightRecord, Node, NodeId, RayTree};
+use crate::math::EPS;
 use crate::math::to_rgb8;
 use crate::scene::SpecularModel;
 use crate::shapes::{ConeWorking, PolygonWorking, RootChoice, Working};
-use crate::trace::RayKind;
+use crate::trace::{NotCast, PruneRule, RayKind};
 
 /// A number with at most four decimals and no trailing zeros.
 pub fn num(x: f64) -> String {
@@ -28,6 +29,31 @@ pub fn vector(v: DVec3) -> String {
 /// A colour with three decimals per channel.
 pub fn color(c: DVec3) -> String {
     format!("({:.3}, {:.3}, {:.3})", c.x, c.y, c.z)
+}
+
+/// A cutoff such as 1/512 as a fraction when it is one, else as `num` writes it.
+pub fn fraction(x: f64) -> String {
+    let inverse = 1.0 / x;
+    if x > 0.0 && inverse.fract() == 0.0 && inverse <= 1e6 {
+        format!("1/{inverse}")
+    } else {
+        num(x)
+    }
+}
+
+/// A secondary ray a rule kept from being cast, and the rule, in one line.
+pub fn not_cast_line(ray: &NotCast) -> String {
+    let kind = kind_name(ray.kind);
+    match ray.rule {
+        PruneRule::MinWeight { min_weight } => format!(
+            "{kind} ray not cast: accumulated weight {} < min_weight {}",
+            num(ray.path_weight),
+            fraction(min_weight)
+        ),
+        PruneRule::MaxRays { max_rays } => {
+            format!("{kind} ray not cast: the pixel's tree already has max_rays = {max_rays} rays")
+        }
+    }
 }
 
 pub fn kind_name(kind: RayKind) -> &'static str {
@@ -158,6 +184,14 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
 
 /// What one light did at a hit, in one or two lines.
 pub fn light_lines(light: &LightRecord) -> Vec<String> {
+    if light.at_point {
+        return vec![format!(
+            "light {}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
+            light.light,
+            num(light.distance),
+            num(EPS)
+        )];
+    }
     if light.faces_away {
         return vec![format!(
             "light {}: faces away (N·L = {}), no shadow ray, adds nothing",
@@ -272,6 +306,7 @@ pub fn node_lines(tree: &RayTree, id: NodeId) -> Vec<String> {
             num(r.k)
         ));
     }
+    lines.extend(node.not_cast.iter().map(not_cast_line));
     if node.reflected.is_none()
         && node.transmitted.is_none()
         && tree.max_depth.is_some_and(|m| node.depth >= m)
@@ -396,6 +431,7 @@ pub fn dot(tree: &RayTree) -> String {
         }
         for (i, light) in node.lights.iter().enumerate() {
             let fate = match &light.shadow {
+                _ if light.at_point => "at the point".to_string(),
                 _ if light.faces_away => "faces away".to_string(),
                 None => "unshadowed".to_string(),
                 Some(s) => format!("S = {}", num(s.s)),
@@ -410,6 +446,17 @@ pub fn dot(tree: &RayTree) -> String {
                 out,
                 "  n{id} -> n{id}l{i} [style={style}, label=\"shadow\"];"
             );
+        }
+        for (i, ray) in node.not_cast.iter().enumerate() {
+            let (kind, why) = not_cast_line(ray)
+                .split_once(": ")
+                .map(|(k, w)| (k.to_string(), w.to_string()))
+                .unwrap_or_default();
+            let _ = writeln!(
+                out,
+                "  n{id}p{i} [shape=box, style=dashed, label=\"{kind}\\n{why}\"];"
+            );
+            let _ = writeln!(out, "  n{id} -> n{id}p{i} [style=dotted];");
         }
     }
     out.push_str("}\n");

@@ -9,7 +9,7 @@ use crate::accel::Cost;
 use crate::math::Color;
 use crate::scene::SpecularModel;
 use crate::shapes::Working;
-use crate::trace::{RayKind, Refraction};
+use crate::trace::{NotCast, RayKind, Refraction};
 
 pub type NodeId = usize;
 
@@ -38,6 +38,9 @@ pub struct Node {
     pub tir: bool,
     pub reflected: Option<NodeId>,
     pub transmitted: Option<NodeId>,
+    /// Secondary rays a rule kept from being cast (MODEL §5); absent when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub not_cast: Vec<NotCast>,
     /// The colour this ray returns, the sum of its stored terms.
     pub color: Color,
     /// weight * attenuation * color: what it adds to its parent.
@@ -77,6 +80,9 @@ pub struct LightRecord {
     pub distance: f64,
     pub n_dot_l: f64,
     pub faces_away: bool,
+    /// The light is within EPS of the point (MODEL §4); absent when not.
+    #[serde(skip_serializing_if = "is_false")]
+    pub at_point: bool,
     pub shadow: Option<ShadowRecord>,
     pub f_att: f64,
     pub specular_model: SpecularModel,
@@ -144,6 +150,8 @@ pub enum EventKind {
     Light {
         light: usize,
         faces_away: bool,
+        #[serde(skip_serializing_if = "is_false")]
+        at_point: bool,
         s: Option<f64>,
         diffuse: Color,
         specular: Color,
@@ -156,9 +164,15 @@ pub enum EventKind {
         kind: RayKind,
         contribution: Color,
     },
+    /// A secondary ray a rule kept from being cast.
+    NotCast(NotCast),
     RayDone {
         color: Color,
     },
+}
+
+fn is_false(value: &bool) -> bool {
+    !value
 }
 
 /// A pixel's recording: the tree (node 0 is the primary ray) and its events.

@@ -26,6 +26,14 @@ pub const MAX_IMAGE_SIDE: u32 = 16_384;
 /// The largest number of pixels accepted (a 8192 x 8192 image).
 pub const MAX_IMAGE_PIXELS: u64 = 8192 * 8192;
 
+/// Below half an 8-bit step, like POV-Ray's adc_bailout (1/255): a ray worth
+/// less than this changes a pixel by at most about half a step per unit of colour.
+pub const DEFAULT_MIN_WEIGHT: f64 = 1.0 / 512.0;
+/// Rays per pixel tree by default: a full binary tree of depth 12 has 4095.
+pub const DEFAULT_MAX_RAYS: u32 = 4096;
+/// The largest `max_rays` accepted: bounds a pixel's time and recording.
+pub const MAX_RAYS_LIMIT: u32 = 65_536;
+
 /// Blinn's N·H (the default) or Phong's R·V for the specular term (MODEL §1, §4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -68,6 +76,12 @@ pub struct Settings {
     pub ray_attenuation: [f64; 3],
     /// The primary ray has depth 1; hits at depth < max_depth spawn secondary rays.
     pub max_depth: u32,
+    /// A secondary ray whose accumulated weight (the product of the weights
+    /// from the primary ray down) is below this is not cast (MODEL §5).
+    pub min_weight: f64,
+    /// The most rays (primary, reflected, transmitted) one pixel's tree may
+    /// hold; further secondary rays are not cast (MODEL §5).
+    pub max_rays: u32,
     pub specular: SpecularModel,
     pub switches: Switches,
 }
@@ -80,6 +94,8 @@ impl Default for Settings {
             light_attenuation: [1.0, 0.0, 0.0],
             ray_attenuation: [1.0, 0.0, 0.0],
             max_depth: 5,
+            min_weight: DEFAULT_MIN_WEIGHT,
+            max_rays: DEFAULT_MAX_RAYS,
             specular: SpecularModel::Blinn,
             switches: Switches::default(),
         }

@@ -45,8 +45,8 @@ use toml::Spanned;
 
 use super::toml_sections;
 use super::{
-    Light, Material, Object, Scene, SceneError, Settings, SpecularModel, check_camera,
-    check_image_size,
+    Light, MAX_RAYS_LIMIT, Material, Object, Scene, SceneError, Settings, SpecularModel,
+    check_camera, check_image_size,
 };
 use crate::camera::Camera;
 use crate::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
@@ -180,6 +180,8 @@ struct SettingsDef {
     light_attenuation: Option<Vec3>,
     ray_attenuation: Option<Vec3>,
     max_depth: Option<Spanned<u32>>,
+    min_weight: Option<Spanned<Finite>>,
+    max_rays: Option<Spanned<u32>>,
     specular: Option<SpecularModel>,
 }
 
@@ -463,9 +465,43 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
             .as_ref()
             .map_or(defaults.ray_attenuation, triple),
         max_depth,
+        min_weight: min_weight(source, def)?,
+        max_rays: max_rays(source, def)?,
         specular: def.specular.unwrap_or_default(),
         switches: defaults.switches,
     })
+}
+
+/// `min_weight`, a weight cutoff between 0 (none) and 1 (MODEL §5).
+fn min_weight(source: &Source, def: &SettingsDef) -> Result<f64, SceneError> {
+    let Some(value) = &def.min_weight else {
+        return Ok(Settings::default().min_weight);
+    };
+    let weight = value.get_ref().0;
+    if (0.0..=1.0).contains(&weight) {
+        Ok(weight)
+    } else {
+        Err(source.error(
+            value.span(),
+            format!("min_weight must be between 0 and 1, got {weight}"),
+        ))
+    }
+}
+
+/// `max_rays`, the per-pixel ray budget, from 1 to `MAX_RAYS_LIMIT` (MODEL §5).
+fn max_rays(source: &Source, def: &SettingsDef) -> Result<u32, SceneError> {
+    let Some(value) = &def.max_rays else {
+        return Ok(Settings::default().max_rays);
+    };
+    let rays = *value.get_ref();
+    if (1..=MAX_RAYS_LIMIT).contains(&rays) {
+        Ok(rays)
+    } else {
+        Err(source.error(
+            value.span(),
+            format!("max_rays must be between 1 and {MAX_RAYS_LIMIT}, got {rays}"),
+        ))
+    }
 }
 
 fn material(name: &str, m: &MaterialDef) -> Material {

@@ -6,8 +6,8 @@ mod stats;
 mod tracer;
 
 pub use recorder::{
-    Blocker, ChildTerm, LightTerm, NoRecorder, RayKind, Recorder, Refraction, ShadowOutcome,
-    SurfaceHit,
+    Blocker, ChildTerm, LightTerm, NoRecorder, NotCast, PruneRule, RayKind, Recorder, Refraction,
+    ShadowOutcome, SurfaceHit,
 };
 pub use stats::RayStats;
 pub use tracer::{ShadowCache, Traced, trace, trace_pixel, trace_primary_in_row};

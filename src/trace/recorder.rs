@@ -60,6 +60,9 @@ pub struct LightTerm {
     pub n_dot_l: f64,
     /// N·L <= 0: no shadow ray, no contribution.
     pub faces_away: bool,
+    /// The light is closer to the point than EPS: L is undefined, so it is
+    /// recorded as L = 0, N·L = 0, facing away (MODEL §4).
+    pub at_point: bool,
     /// The shadow ray's result; `None` when none was cast (faces away, or shadows off).
     pub shadow: Option<ShadowOutcome>,
     pub f_att: f64,
@@ -98,10 +101,32 @@ pub struct ChildTerm {
     pub contribution: Color,
 }
 
+/// Why a secondary ray was not cast (MODEL §5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "rule", rename_all = "snake_case")]
+pub enum PruneRule {
+    /// Its accumulated weight is below the scene's `min_weight`.
+    MinWeight { min_weight: f64 },
+    /// The pixel's tree already holds `max_rays` rays.
+    MaxRays { max_rays: u32 },
+}
+
+/// A secondary ray that was not cast, and why.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct NotCast {
+    pub kind: RayKind,
+    /// The factor it would have been scaled by in its parent (k_s, k_t, k_s + k_t).
+    pub weight: f64,
+    /// The product of the weights from the primary ray down, this one included.
+    pub path_weight: f64,
+    #[serde(flatten)]
+    pub rule: PruneRule,
+}
+
 /// Callbacks in execution order. For one ray: `ray_cast`, then `hit` or `miss`;
 /// after a hit `ambient`, per light `shadow_cast` and its `blocker`s then
-/// `light`, then `refraction`, each child's whole subtree followed by `child`;
-/// last `ray_done`.
+/// `light`, then `refraction`, each child's whole subtree followed by `child`
+/// (or, for a child that is not cast, `not_cast`); last `ray_done`.
 pub trait Recorder {
     /// When true, shadow queries report every blocker instead of stopping at
     /// the first opaque one. S is the same either way.
@@ -125,6 +150,8 @@ pub trait Recorder {
     fn refraction(&mut self, _refraction: &Refraction) {}
     #[inline]
     fn child(&mut self, _term: &ChildTerm) {}
+    #[inline]
+    fn not_cast(&mut self, _ray: &NotCast) {}
     #[inline]
     fn ray_done(&mut self, _color: Color) {}
 }

@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use super::recorder::{LightTerm, RayKind, Recorder, SurfaceHit};
+use super::recorder::{LightTerm, NotCast, RayKind, Recorder, SurfaceHit};
 use crate::accel::Cost;
 use crate::math::{Color, Ray};
 
@@ -13,6 +13,8 @@ pub struct RayStats {
     /// Reflected rays, TIR included.
     pub reflected: u64,
     pub transmitted: u64,
+    /// Secondary rays not cast: below `min_weight` or over `max_rays`.
+    pub not_cast: u64,
     /// Shadow rays cast (lights facing away cast none).
     pub shadow: u64,
     /// Shadow rays with at least one crossing, transparent or not.
@@ -36,6 +38,7 @@ impl RayStats {
         self.primary_hit += other.primary_hit;
         self.reflected += other.reflected;
         self.transmitted += other.transmitted;
+        self.not_cast += other.not_cast;
         self.shadow += other.shadow;
         self.shadow_blocked += other.shadow_blocked;
         self.shadow_opaque += other.shadow_opaque;
@@ -75,6 +78,11 @@ impl Recorder for RayStats {
     #[inline]
     fn miss(&mut self, _background: Color, cost: Cost) {
         self.closest(cost);
+    }
+
+    #[inline]
+    fn not_cast(&mut self, _ray: &NotCast) {
+        self.not_cast += 1;
     }
 
     #[inline]

@@ -7,7 +7,8 @@ use std::ops::ControlFlow;
 use glam::DVec3;
 
 use super::recorder::{
-    Blocker, ChildTerm, LightTerm, RayKind, Recorder, Refraction, ShadowOutcome, SurfaceHit,
+    Blocker, ChildTerm, LightTerm, NotCast, PruneRule, RayKind, Recorder, Refraction,
+    ShadowOutcome, SurfaceHit,
 };
 use crate::accel::{Candidate, Cost};
 use crate::camera::Viewport;
@@ -69,13 +70,14 @@ pub fn trace_primary_in_row<R: Recorder>(
     cache: &mut ShadowCache,
     rec: &mut R,
 ) -> Color {
-    Tracer { scene, cache, rec }
-        .trace(ray, RayKind::Primary, 1, 1.0)
+    Tracer::new(scene, cache, rec)
+        .trace(ray, RayKind::Primary, 1, 1.0, 1.0)
         .color
 }
 
-/// Traces one ray of depth `depth` (the primary ray has depth 1). `weight` is
-/// the factor its colour will be scaled by in its parent, passed on for the record.
+/// Traces one ray of depth `depth` (the primary ray has depth 1) as the root
+/// of its own tree. `weight` is the factor its colour will be scaled by in its
+/// parent, passed on for the record; it also starts the accumulated weight.
 pub fn trace<R: Recorder>(
     scene: &Scene,
     ray: &Ray,
@@ -85,19 +87,42 @@ pub fn trace<R: Recorder>(
     rec: &mut R,
 ) -> Traced {
     let cache = &mut ShadowCache::default();
-    Tracer { scene, cache, rec }.trace(ray, kind, depth, weight)
+    Tracer::new(scene, cache, rec).trace(ray, kind, depth, weight, weight)
 }
 
-/// One trace in progress: the scene, the row's shadow cache and the recorder.
+/// One pixel's trace in progress: the scene, the row's shadow cache, the
+/// recorder, and how many rays the pixel's tree holds so far.
 struct Tracer<'a, R> {
     scene: &'a Scene,
     cache: &'a mut ShadowCache,
     rec: &'a mut R,
+    rays: u32,
+}
+
+impl<'a, R: Recorder> Tracer<'a, R> {
+    fn new(scene: &'a Scene, cache: &'a mut ShadowCache, rec: &'a mut R) -> Self {
+        Self {
+            scene,
+            cache,
+            rec,
+            rays: 0,
+        }
+    }
 }
 
 impl<R: Recorder> Tracer<'_, R> {
-    fn trace(&mut self, ray: &Ray, kind: RayKind, depth: u32, weight: f64) -> Traced {
+    /// `path_weight` is the ray's accumulated weight: the product of the
+    /// weights from the primary ray (1) down to this ray.
+    fn trace(
+        &mut self,
+        ray: &Ray,
+        kind: RayKind,
+        depth: u32,
+        weight: f64,
+        path_weight: f64,
+    ) -> Traced {
         let scene = self.scene;
+        self.rays += 1;
         self.rec.ray_cast(kind, depth, ray, weight);
         let mut cost = Cost::default();
         let found = scene
@@ -114,7 +139,7 @@ impl<R: Recorder> Tracer<'_, R> {
         };
         let hit = surface_hit(scene, ray, candidate);
         self.rec.hit(&hit, cost);
-        let color = self.shade(ray, &hit, depth);
+        let color = self.shade(ray, &hit, depth, path_weight);
         self.rec.ray_done(color);
         Traced {
             color,
@@ -123,7 +148,7 @@ impl<R: Recorder> Tracer<'_, R> {
     }
 
     /// I = ambient + sum_i (diffuse_i + specular_i) + reflected + transmitted.
-    fn shade(&mut self, ray: &Ray, hit: &SurfaceHit, depth: u32) -> Color {
+    fn shade(&mut self, ray: &Ray, hit: &SurfaceHit, depth: u32, path_weight: f64) -> Color {
         let scene = self.scene;
         let settings = &scene.settings;
         let material = scene.material_of(hit.object);
@@ -141,7 +166,7 @@ impl<R: Recorder> Tracer<'_, R> {
             color += term.diffuse + term.specular;
         }
         if depth < settings.max_depth {
-            color = self.secondary_rays(ray, hit, material, depth, color);
+            color = self.secondary_rays(ray, hit, material, (depth, path_weight), color);
         }
         color
     }
@@ -165,6 +190,7 @@ impl<R: Recorder> Tracer<'_, R> {
             distance,
             n_dot_l,
             faces_away: n_dot_l <= 0.0,
+            at_point: false,
             shadow: None,
             f_att: attenuation(settings.light_attenuation, distance),
             specular_model: material.specular.unwrap_or(settings.specular),
@@ -172,6 +198,11 @@ impl<R: Recorder> Tracer<'_, R> {
             diffuse: Color::ZERO,
             specular: Color::ZERO,
         };
+        // A light within EPS of the point has no usable direction (at 0, L and
+        // N·L are NaN) and no shadow segment: it adds nothing (MODEL §4).
+        if distance < EPS {
+            return at_point(term);
+        }
         if term.faces_away {
             return term;
         }
@@ -269,7 +300,7 @@ impl<R: Recorder> Tracer<'_, R> {
         ray: &Ray,
         hit: &SurfaceHit,
         material: &Material,
-        depth: u32,
+        parent: (u32, f64),
         local: Color,
     ) -> Color {
         let switches = self.scene.settings.switches;
@@ -288,26 +319,57 @@ impl<R: Recorder> Tracer<'_, R> {
         let mut color = local;
         if reflected_weight > 0.0 {
             let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
-            color += self.trace_child(hit, RayKind::Reflected, direction, reflected_weight, depth);
+            let child = (RayKind::Reflected, direction, reflected_weight);
+            color += self.trace_child(hit, child, parent);
         }
         if let Some(direction) = refraction.and_then(|r| r.direction) {
-            color += self.trace_child(hit, RayKind::Transmitted, direction, material.kt, depth);
+            let child = (RayKind::Transmitted, direction, material.kt);
+            color += self.trace_child(hit, child, parent);
         }
         color
     }
 
-    /// Traces a secondary ray from the hit and scales what it returns by its
-    /// weight and its distance attenuation.
+    /// Records a secondary ray that MODEL §5's rules keep from being cast:
+    /// the weight cutoff if it applies, else the budget. Out of the way of
+    /// the rays that are cast.
+    #[cold]
+    #[inline(never)]
+    fn not_cast(&mut self, kind: RayKind, weight: f64, path_weight: f64) {
+        let settings = &self.scene.settings;
+        let rule = if path_weight < settings.min_weight {
+            PruneRule::MinWeight {
+                min_weight: settings.min_weight,
+            }
+        } else {
+            PruneRule::MaxRays {
+                max_rays: settings.max_rays,
+            }
+        };
+        self.rec.not_cast(&NotCast {
+            kind,
+            weight,
+            path_weight,
+            rule,
+        });
+    }
+
+    /// Traces a secondary ray (kind, direction, weight) from the hit of a ray
+    /// of (depth, accumulated weight) `parent`, and scales what it returns by
+    /// its weight and its distance attenuation; a ray a rule prunes adds nothing.
     fn trace_child(
         &mut self,
         hit: &SurfaceHit,
-        kind: RayKind,
-        direction: DVec3,
-        weight: f64,
-        depth: u32,
+        (kind, direction, weight): (RayKind, DVec3, f64),
+        (depth, parent_weight): (u32, f64),
     ) -> Color {
+        let path_weight = parent_weight * weight;
+        let settings = &self.scene.settings;
+        if path_weight < settings.min_weight || self.rays >= settings.max_rays {
+            self.not_cast(kind, weight, path_weight);
+            return Color::ZERO;
+        }
         let ray = Ray::new(hit.point, direction);
-        let traced = self.trace(&ray, kind, depth + 1, weight);
+        let traced = self.trace(&ray, kind, depth + 1, weight, path_weight);
         let attenuation = traced
             .distance
             .map_or(1.0, |t| attenuation(self.scene.settings.ray_attenuation, t));
@@ -321,6 +383,19 @@ impl<R: Recorder> Tracer<'_, R> {
             contribution,
         });
         contribution
+    }
+}
+
+/// A light within EPS of the point, recorded like one that faces away, with
+/// L = 0 and N·L = 0 in place of what the division by ~0 gave.
+#[cold]
+fn at_point(term: LightTerm) -> LightTerm {
+    LightTerm {
+        to_light: DVec3::ZERO,
+        n_dot_l: 0.0,
+        faces_away: true,
+        at_point: true,
+        ..term
     }
 }
 

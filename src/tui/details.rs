@@ -78,6 +78,7 @@ fn marked_lines(tree: &RayTree, lines: &[String], kind: &EventKind) -> Vec<usize
         EventKind::ChildReturned { child, .. } => lines
             .iter()
             .position(|l| l.contains(&format!(" ray r{child} adds "))),
+        EventKind::NotCast(ray) => start(&format!("{} ray not cast", kind_name(ray.kind)), 0),
         EventKind::RayDone { .. } => start("colour ", 0),
     };
     let Some(first) = first else {

@@ -5,7 +5,7 @@ use ratatui::style::{Color as TermColor, Style};
 use ratatui::text::{Line, Span};
 
 use crate::math::Color;
-use crate::record::{Event, EventKind, RayTree, color, kind_name, num};
+use crate::record::{Event, EventKind, RayTree, color, kind_name, not_cast_line, num};
 use crate::scene::Scene;
 
 use super::app::App;
@@ -72,6 +72,17 @@ pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option
         ),
         EventKind::Light {
             light,
+            at_point: true,
+            ..
+        } => (
+            format!(
+                "{ray}: {} is at the point: adds nothing",
+                light_name(scene, *light)
+            ),
+            None,
+        ),
+        EventKind::Light {
+            light,
             faces_away: true,
             ..
         } => (
@@ -119,6 +130,7 @@ pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option
             ),
             Some(*contribution),
         ),
+        EventKind::NotCast(not_cast) => (format!("{ray}: {}", not_cast_line(not_cast)), None),
         EventKind::RayDone { color: c } => (format!("{ray}: done, colour {}", color(*c)), Some(*c)),
     }
 }

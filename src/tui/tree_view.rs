@@ -139,6 +139,9 @@ pub fn light_label(name: &str) -> String {
 
 fn light_text(light: &LightRecord) -> String {
     let name = light_label(&light.light);
+    if light.at_point {
+        return format!("{name}: at the point");
+    }
     if light.faces_away {
         return format!("{name}: faces away");
     }

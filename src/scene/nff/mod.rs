@@ -266,6 +266,9 @@ impl Builder {
         let settings = Settings {
             background: self.background,
             ambient: grey,
+            // SPD's convention: depth 5 and no weight cutoff, so ray counts
+            // stay comparable with the published ones.
+            min_weight: 0.0,
             ..Settings::default()
         };
         Ok(Scene::new(
