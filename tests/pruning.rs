@@ -239,11 +239,11 @@ fn out_of_range_cutoffs_and_budgets_are_refused_with_their_place() {
     for (line, message) in [
         (
             "min_weight = -0.1",
-            "min_weight must be between 0 and 1, got -0.1",
+            "`settings.min_weight` must be between 0 and 1, got -0.1",
         ),
         (
             "min_weight = 1.5",
-            "min_weight must be between 0 and 1, got 1.5",
+            "`settings.min_weight` must be between 0 and 1, got 1.5",
         ),
         (
             "max_rays = 0",

@@ -36,6 +36,8 @@ pub const SHININESS: Bounds = Bounds::new(0.0, 1e6);
 pub const IOR: Bounds = Bounds::new(0.1, 10.0);
 /// The attenuation coefficients (c1, c2, c3) and (a1, a2, a3).
 pub const ATTENUATION: Bounds = Bounds::new(0.0, 1e6);
+/// `min_weight`, the cutoff of a ray's accumulated weight (MODEL §5).
+pub const WEIGHT: Bounds = Bounds::new(0.0, 1.0);
 
 impl Bounds {
     pub const fn new(min: f64, max: f64) -> Self {

@@ -465,27 +465,11 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
             .as_ref()
             .map_or(defaults.ray_attenuation, triple),
         max_depth,
-        min_weight: min_weight(source, def)?,
+        min_weight: def.min_weight.as_ref().map_or(defaults.min_weight, number),
         max_rays: max_rays(source, def)?,
         specular: def.specular.unwrap_or_default(),
         switches: defaults.switches,
     })
-}
-
-/// `min_weight`, a weight cutoff between 0 (none) and 1 (MODEL §5).
-fn min_weight(source: &Source, def: &SettingsDef) -> Result<f64, SceneError> {
-    let Some(value) = &def.min_weight else {
-        return Ok(Settings::default().min_weight);
-    };
-    let weight = value.get_ref().0;
-    if (0.0..=1.0).contains(&weight) {
-        Ok(weight)
-    } else {
-        Err(source.error(
-            value.span(),
-            format!("min_weight must be between 0 and 1, got {weight}"),
-        ))
-    }
 }
 
 /// `max_rays`, the per-pixel ray budget, from 1 to `MAX_RAYS_LIMIT` (MODEL §5).

@@ -4,7 +4,7 @@
 use super::{FileDef, MaterialDef, Number, ObjectDef, SettingsDef, Source, Vec3};
 use crate::scene::limits::{
     ATTENUATION, Bounds, COEFFICIENT, COLOR, COORDINATE, IOR, SHININESS, SIZE, TRANSMISSION,
-    check_cone_length, check_cone_radius, show,
+    WEIGHT, check_cone_length, check_cone_radius, show,
 };
 use crate::scene::{SceneError, check_fov};
 
@@ -41,7 +41,11 @@ fn settings(source: &Source, s: &SettingsDef) -> Result<(), SceneError> {
     let light = &s.light_attenuation;
     optional_vector(source, "settings.light_attenuation", light, ATTENUATION)?;
     let ray = &s.ray_attenuation;
-    optional_vector(source, "settings.ray_attenuation", ray, ATTENUATION)
+    optional_vector(source, "settings.ray_attenuation", ray, ATTENUATION)?;
+    if let Some(weight) = &s.min_weight {
+        number(source, "settings.min_weight", weight, WEIGHT)?;
+    }
+    Ok(())
 }
 
 fn material(source: &Source, key: &str, m: &MaterialDef) -> Result<(), SceneError> {
