@@ -336,3 +336,42 @@ fn timings_report_a_plain_render_without_counts() {
     // Asking for both is a usage error.
     assert_eq!(render(&["--stats", "--timings"]).status.code(), Some(2));
 }
+
+/// serde_json prints NaN as `null`; `inspect --format json` must refuse such
+/// a recording instead. The scene puts the light exactly at the hit point of
+/// the only pixel's ray (L = normalize(0)): until the light-at-hit-point rule
+/// lands that is NaN and the command fails naming it; after, the JSON prints
+/// with a numeric colour. Either way no `null` stands for a number.
+#[test]
+fn json_output_never_hides_a_non_finite_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene_file(
+        &dir,
+        "lit.toml",
+        "[camera]\neye = [0, 5, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\n\
+         [image]\nwidth = 1\nheight = 1\n[materials.m]\nkd = 1\n\
+         [[light]]\nposition = [0, 0, 0]\n\
+         [[object]]\nmaterial = \"m\"\nplane = { normal = [0, 1, 0], point = [0, 0, 0] }\n",
+    );
+    let output = raystep(&[
+        "inspect",
+        path.to_str().unwrap(),
+        "--pixel",
+        "0,0",
+        "--format",
+        "json",
+    ]);
+    if output.status.success() {
+        let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+        assert!(json["color"].as_array().unwrap().iter().all(|c| c.is_f64()));
+        assert!(json["tree"]["lights"][0]["n_dot_l"].is_f64());
+    } else {
+        let message = stderr(&output);
+        assert!(output.stdout.is_empty());
+        assert!(
+            message.contains("cannot write the recording as JSON")
+                && message.contains("is NaN, not a finite number"),
+            "{message}"
+        );
+    }
+}
