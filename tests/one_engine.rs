@@ -14,6 +14,7 @@ fn example_scenes() -> Vec<PathBuf> {
     let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
+        .filter(|p| p.is_file())
         .collect();
     paths.sort();
     assert!(paths.len() >= 7, "the example scenes are there");
