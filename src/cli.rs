@@ -177,10 +177,19 @@ fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
     let tree = record(&args.pixel)?;
     match args.format {
         InspectFormat::Text => emit(&text(&tree))?,
-        InspectFormat::Json => emit(&format!(
-            "{}\n",
-            serde_json::to_string_pretty(&tree.to_json())?
-        ))?,
+        InspectFormat::Json => {
+            // serde_json would print a NaN or an infinity as `null`: refuse instead.
+            tree.check_finite().map_err(|e| {
+                anyhow::anyhow!(
+                    "pixel {:?}: cannot write the recording as JSON: {e}",
+                    tree.pixel
+                )
+            })?;
+            emit(&format!(
+                "{}\n",
+                serde_json::to_string_pretty(&tree.to_json())?
+            ))?
+        }
         InspectFormat::Dot => emit(&dot(&tree))?,
     }
     Ok(ExitCode::SUCCESS)

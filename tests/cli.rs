@@ -421,3 +421,37 @@ fn arrays_nested_100000_deep_are_refused_with_line_and_column() {
     let message = render_fails("key.toml", &format!("{head}[{key}]\n"));
     assert_bounded(&message, "key.toml:5:2: a dotted key of 81 or more parts");
 }
+
+/// serde_json prints NaN as `null`. The scene puts the light exactly at the
+/// hit point of the only pixel's ray, where L = normalize(0) used to be NaN
+/// and was printed as `null`: now a number stands wherever a number belongs.
+#[test]
+fn json_output_never_hides_a_non_finite_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = scene_file(
+        &dir,
+        "lit.toml",
+        "[camera]\neye = [0, 5, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\n\
+         [image]\nwidth = 1\nheight = 1\n[materials.m]\nkd = 1\n\
+         [[light]]\nposition = [0, 0, 0]\n\
+         [[object]]\nmaterial = \"m\"\nplane = { normal = [0, 1, 0], point = [0, 0, 0] }\n",
+    );
+    let output = raystep(&[
+        "inspect",
+        path.to_str().unwrap(),
+        "--pixel",
+        "0,0",
+        "--format",
+        "json",
+    ]);
+    // The light sits exactly at the hit point: MODEL §4 says it adds
+    // nothing and is recorded with N·L = 0 and `at_point`, so the JSON has
+    // numbers only (a NaN would be refused by `check_finite`, unit-tested
+    // in src/record/finite.rs, never written as null).
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert!(json["color"].as_array().unwrap().iter().all(|c| c.is_f64()));
+    let light = &json["tree"]["lights"][0];
+    assert_eq!(light["n_dot_l"].as_f64(), Some(0.0));
+    assert_eq!(light["at_point"].as_bool(), Some(true));
+}

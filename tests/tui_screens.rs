@@ -81,7 +81,7 @@ fn snapshot_wide_side_view() {
 
 /// Timings for the report: `cargo test --release --test tui -- --ignored --nocapture`.
 #[test]
-#[ignore = "a measurement, not a check; needs scenes/spd/teapot.nff"]
+#[ignore = "a measurement, not a check"]
 fn measure_pick_and_render_on_the_teapot() {
     let path = PathBuf::from("scenes/spd/teapot.nff");
     if !path.exists() {

@@ -2,11 +2,13 @@
 //! event list, and their text, JSON and Graphviz forms.
 
 mod explain;
+mod finite;
 mod recorder;
 mod text;
 mod tree;
 
 pub use explain::explain;
+pub use finite::{NonFinite, check_finite};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use text::{
     color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line, num, text, vector,

@@ -213,6 +213,14 @@ impl RayTree {
         if node.hit.is_none() { node.color } else { sum }
     }
 
+    /// Ok if every number of the recording is finite; else names the first
+    /// that is not. JSON writes NaN and infinity as `null`, so the JSON
+    /// output calls this first rather than hide them.
+    pub fn check_finite(&self) -> Result<(), super::NonFinite> {
+        super::check_finite("nodes", &self.nodes)?;
+        super::check_finite("events", &self.events)
+    }
+
     /// The tree as nested JSON, children inside their parents, with the events.
     pub fn to_json(&self) -> Value {
         serde_json::json!({

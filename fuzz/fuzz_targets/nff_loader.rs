@@ -1,0 +1,14 @@
+#![no_main]
+//! The NFF loader on arbitrary text: a scene or an error, never a panic,
+//! and the error prints (its excerpt slices the text by byte offsets).
+
+use std::path::Path;
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let text = String::from_utf8_lossy(data);
+    if let Err(error) = raystep::scene::parse(Path::new("fuzz.nff"), &text) {
+        let _ = error.to_string();
+    }
+});

@@ -1,0 +1,18 @@
+#!/bin/sh
+# Fills corpus/<target>/ with the example scenes, comment lines stripped so
+# that they fit in -max_len=4096. Run from fuzz/: ./seed.sh
+set -e
+cd "$(dirname "$0")"
+mkdir -p corpus/toml_loader corpus/nff_loader corpus/trace_pixel
+for f in ../scenes/*.toml; do
+    name=$(basename "$f" .toml)
+    grep -v '^#' "$f" > "corpus/toml_loader/$name"
+    # trace_pixel: first byte even = TOML (and picks pixel (x, y) from bits 1-4).
+    { printf 'J'; cat "corpus/toml_loader/$name"; } > "corpus/trace_pixel/toml-$name"
+done
+for f in ../scenes/spd/*-small.nff; do
+    name=$(basename "$f" .nff)
+    grep -v '^#' "$f" > "corpus/nff_loader/$name"
+    # First byte odd = NFF.
+    { printf 'K'; cat "corpus/nff_loader/$name"; } > "corpus/trace_pixel/nff-$name"
+done
