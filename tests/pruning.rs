@@ -351,8 +351,12 @@ fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
     let line = "reflected ray not cast: accumulated weight 0.001 < min_weight 1/512";
     let (text, _) = steps_view::describe(&tree, &scene, &tree.events[at]);
     assert_eq!(text, format!("r2: {line}"));
-    let (lines, marked) = details::text_lines(&tree, 2, Some(at));
-    let marked: Vec<&str> = marked.iter().map(|&i| lines[i].as_str()).collect();
+    let about = details::marked(&tree, 2, Some(at));
+    let marked: Vec<String> = details::ray_lines(&tree, 2)
+        .iter()
+        .filter(|l| l.about == about)
+        .map(|l| l.to_string())
+        .collect();
     assert_eq!(marked, [line]);
 }
 

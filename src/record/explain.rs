@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use super::text::{color, fraction, kind_name, not_cast_line, num};
+use super::text::{color, fraction, kind_name, not_cast_reason, num};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS, to_rgb8};
 use crate::shapes::Working;
@@ -210,8 +210,9 @@ fn write_not_cast(out: &mut String, tree: &RayTree) {
     for ray in &tree.root().not_cast {
         let _ = writeln!(
             out,
-            "The {}; it adds nothing.",
-            not_cast_line(ray).replacen(" not cast:", " is not cast:", 1)
+            "The {} ray is not cast: {}; it adds nothing.",
+            kind_name(ray.kind),
+            not_cast_reason(ray)
         );
     }
     let deeper = tree.nodes[1..].iter().flat_map(|n| &n.not_cast);

@@ -3,16 +3,18 @@
 
 mod explain;
 mod finite;
+mod lines;
 mod recorder;
 mod text;
 mod tree;
 
 pub use explain::explain;
 pub use finite::{NonFinite, check_finite};
+pub use lines::{About, Line, Piece};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use text::{
-    color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line, num, text, vector,
-    working_lines,
+    Children, color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line,
+    not_cast_reason, num, text, vector, working_lines,
 };
 pub use tree::{
     BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,

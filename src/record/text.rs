@@ -5,7 +5,8 @@ use std::fmt::Write;
 
 use glam::DVec3;
 
-use super::tree::{LightRecord, Node, NodeId, RayTree};
+use super::lines::{About, Line};
+use super::tree::{HitRecord, LightRecord, Node, NodeId, RayTree};
 use crate::math::EPS;
 use crate::math::to_rgb8;
 use crate::scene::SpecularModel;
@@ -43,15 +44,23 @@ pub fn fraction(x: f64) -> String {
 
 /// A secondary ray a rule kept from being cast, and the rule, in one line.
 pub fn not_cast_line(ray: &NotCast) -> String {
-    let kind = kind_name(ray.kind);
+    format!(
+        "{} ray not cast: {}",
+        kind_name(ray.kind),
+        not_cast_reason(ray)
+    )
+}
+
+/// Why a rule kept a secondary ray from being cast.
+pub fn not_cast_reason(ray: &NotCast) -> String {
     match ray.rule {
         PruneRule::MinWeight { min_weight } => format!(
-            "{kind} ray not cast: accumulated weight {} < min_weight {}",
+            "accumulated weight {} < min_weight {}",
             num(ray.path_weight),
             fraction(min_weight)
         ),
         PruneRule::MaxRays { max_rays } => {
-            format!("{kind} ray not cast: the pixel's tree already has max_rays = {max_rays} rays")
+            format!("the pixel's tree already has max_rays = {max_rays} rays")
         }
     }
 }
@@ -182,21 +191,28 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
     lines
 }
 
-/// What one light did at a hit, in one or two lines.
-pub fn light_lines(light: &LightRecord) -> Vec<String> {
+/// What one light did at a hit, in one or three lines.
+pub fn light_lines(light: &LightRecord) -> Vec<Line> {
+    let about = Some(About::Light(light.light_index));
     if light.at_point {
-        return vec![format!(
-            "light {}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
-            light.light,
-            num(light.distance),
-            num(EPS)
+        return vec![Line::text(
+            about,
+            format!(
+                "light {}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
+                light.light,
+                num(light.distance),
+                num(EPS)
+            ),
         )];
     }
     if light.faces_away {
-        return vec![format!(
-            "light {}: faces away (N·L = {}), no shadow ray, adds nothing",
-            light.light,
-            num(light.n_dot_l)
+        return vec![Line::text(
+            about,
+            format!(
+                "light {}: faces away (N·L = {}), no shadow ray, adds nothing",
+                light.light,
+                num(light.n_dot_l)
+            ),
         )];
     }
     let shadow = match &light.shadow {
@@ -216,120 +232,193 @@ pub fn light_lines(light: &LightRecord) -> Vec<String> {
         SpecularModel::Phong => "R·V",
     };
     vec![
-        format!(
-            "light {}: N·L = {}, {shadow}",
-            light.light,
-            num(light.n_dot_l)
+        Line::text(
+            about,
+            format!(
+                "light {}: N·L = {}, {shadow}",
+                light.light,
+                num(light.n_dot_l)
+            ),
         ),
-        format!(
-            "  f_att = {}, {cosine} = {}",
-            num(light.f_att),
-            num(light.specular_cosine)
+        Line::text(
+            about,
+            format!(
+                "  f_att = {}, {cosine} = {}",
+                num(light.f_att),
+                num(light.specular_cosine)
+            ),
         ),
-        format!(
-            "  diffuse {} specular {}",
-            color(light.diffuse),
-            color(light.specular)
-        ),
+        Line::text(about, "  diffuse ")
+            .color(light.diffuse)
+            .then(" specular ")
+            .color(light.specular),
     ]
 }
 
-/// The lines describing one node (not its children).
-pub fn node_lines(tree: &RayTree, id: NodeId) -> Vec<String> {
+/// Whether a ray's lines list its child rays: the debugger does, the text
+/// tree prints them as branches below instead.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Children {
+    Listed,
+    Omitted,
+}
+
+/// The lines describing one node: how it was cast, what it met, its terms
+/// and its colour.
+pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
     let node = &tree.nodes[id];
-    let mut lines = vec![format!(
-        "from {} along {}",
-        vector(node.origin),
-        vector(node.direction)
+    let mut lines = vec![Line::text(
+        Some(About::Cast),
+        format!(
+            "from {} along {}",
+            vector(node.origin),
+            vector(node.direction)
+        ),
     )];
     for near in &node.near_misses {
-        lines.push(format!(
-            "passed by {} (#{}):",
-            near.object, near.object_index
+        lines.push(Line::text(
+            None,
+            format!("passed by {} (#{}):", near.object, near.object_index),
         ));
-        lines.extend(
-            working_lines(&near.working)
-                .into_iter()
-                .map(|l| format!("  {l}")),
-        );
+        lines.extend(indented(None, working_lines(&near.working)));
     }
     let Some(hit) = &node.hit else {
-        lines.push(format!(
-            "missed everything ({} primitives tested): background {}",
-            node.cost.primitives,
-            color(node.color)
-        ));
+        lines.push(
+            Line::text(
+                Some(About::Miss),
+                format!(
+                    "missed everything ({} primitives tested): background ",
+                    node.cost.primitives
+                ),
+            )
+            .color(node.color),
+        );
         return lines;
     };
-    lines.push(format!(
-        "hit {} ({} #{}, material {}) at t = {}, {}",
-        hit.object,
-        hit.kind,
-        hit.object_index,
-        hit.material,
-        num(hit.t),
-        if hit.entering {
-            "front side"
-        } else {
-            "back side (normal flipped)"
-        }
-    ));
-    lines.push(format!("  point {}", vector(hit.point)));
-    lines.push(format!(
-        "  N_g {} N {}",
-        vector(hit.normal),
-        vector(hit.shading_normal)
-    ));
-    lines.extend(
-        working_lines(&hit.working)
-            .into_iter()
-            .map(|l| format!("  {l}")),
-    );
-    lines.push(format!(
-        "  tested {} nodes, {} primitives",
-        node.cost.nodes, node.cost.primitives
-    ));
-    lines.push(format!("ambient {}", color(node.ambient)));
+    lines.extend(hit_lines(node, hit));
+    lines.push(Line::text(Some(About::Ambient), "ambient ").color(node.ambient));
     for light in &node.lights {
         lines.extend(light_lines(light));
     }
+    lines.extend(secondary_lines(tree, id));
+    if children == Children::Listed {
+        lines.extend(tree.children(id).map(|c| child_line(tree, c)));
+    }
+    lines.push(
+        Line::text(Some(About::Colour), "colour ")
+            .color(node.color)
+            .then(" = sum of the terms above and below"),
+    );
+    if node.kind != RayKind::Primary {
+        lines.push(
+            Line::text(
+                None,
+                format!(
+                    "adds {} x {} (attenuation) x ",
+                    num(node.weight),
+                    num(node.attenuation)
+                ),
+            )
+            .color(node.color)
+            .then(" = ")
+            .color(node.contribution),
+        );
+    }
+    lines
+}
+
+fn indented(about: Option<About>, lines: Vec<String>) -> impl Iterator<Item = Line> {
+    lines
+        .into_iter()
+        .map(move |l| Line::text(about, format!("  {l}")))
+}
+
+/// The hit, where, its normals, the intersection working and its cost.
+fn hit_lines(node: &Node, hit: &HitRecord) -> Vec<Line> {
+    let about = Some(About::Hit);
+    let side = if hit.entering {
+        "front side"
+    } else {
+        "back side (normal flipped)"
+    };
+    let mut lines = vec![
+        Line::text(
+            about,
+            format!(
+                "hit {} ({} #{}, material {}) at t = {}, {side}",
+                hit.object,
+                hit.kind,
+                hit.object_index,
+                hit.material,
+                num(hit.t)
+            ),
+        ),
+        Line::text(about, format!("  point {}", vector(hit.point))),
+        Line::text(
+            about,
+            format!(
+                "  N_g {} N {}",
+                vector(hit.normal),
+                vector(hit.shading_normal)
+            ),
+        ),
+    ];
+    lines.extend(indented(about, working_lines(&hit.working)));
+    lines.push(Line::text(
+        about,
+        format!(
+            "  tested {} nodes, {} primitives",
+            node.cost.nodes, node.cost.primitives
+        ),
+    ));
+    lines
+}
+
+/// Refraction, the rays a rule kept from being cast, and the depth limit.
+fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
+    let node = &tree.nodes[id];
+    let mut lines = Vec::new();
     if let Some(r) = &node.refraction {
         let outcome = if r.tir {
             "total internal reflection: kt goes to the reflected ray"
         } else {
             "transmitted"
         };
-        lines.push(format!(
-            "refraction: cos_i = {}, eta = {}, k = {}: {outcome}",
-            num(r.cos_i),
-            num(r.eta),
-            num(r.k)
+        lines.push(Line::text(
+            Some(About::Refraction),
+            format!(
+                "refraction: cos_i = {}, eta = {}, k = {}: {outcome}",
+                num(r.cos_i),
+                num(r.eta),
+                num(r.k)
+            ),
         ));
     }
-    lines.extend(node.not_cast.iter().map(not_cast_line));
+    lines.extend(
+        node.not_cast
+            .iter()
+            .map(|ray| Line::text(Some(About::NotCast(ray.kind)), not_cast_line(ray))),
+    );
     if node.reflected.is_none()
         && node.transmitted.is_none()
         && tree.max_depth.is_some_and(|m| node.depth >= m)
     {
-        lines.push(format!(
-            "no secondary rays: depth {} is max_depth",
-            node.depth
-        ));
-    }
-    lines.push(format!(
-        "colour {} = sum of the terms above and below",
-        color(node.color)
-    ));
-    if node.kind != RayKind::Primary {
-        lines.push(format!(
-            "adds {} x {} (attenuation) x {} = {}",
-            num(node.weight),
-            num(node.attenuation),
-            color(node.color),
-            color(node.contribution)
+        lines.push(Line::text(
+            None,
+            format!("no secondary rays: depth {} is max_depth", node.depth),
         ));
     }
     lines
+}
+
+/// What a child ray adds, as its parent lists it.
+fn child_line(tree: &RayTree, child: NodeId) -> Line {
+    let node = &tree.nodes[child];
+    Line::text(
+        Some(About::Child(child)),
+        format!("{} ray r{child} adds ", kind_name(node.kind)),
+    )
+    .color(node.contribution)
 }
 
 fn header(node: &Node) -> String {
@@ -385,8 +474,8 @@ fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str) {
     let children: Vec<NodeId> = tree.children(id).collect();
     let body = if children.is_empty() { "  " } else { "│ " };
     let room = WIDTH.saturating_sub(prefix.chars().count() + 2);
-    for line in node_lines(tree, id) {
-        for part in wrap(&line, room) {
+    for line in node_lines(tree, id, Children::Omitted) {
+        for part in wrap(&line.to_string(), room) {
             let _ = writeln!(out, "{prefix}{body}{part}");
         }
     }
@@ -448,10 +537,8 @@ pub fn dot(tree: &RayTree) -> String {
             );
         }
         for (i, ray) in node.not_cast.iter().enumerate() {
-            let (kind, why) = not_cast_line(ray)
-                .split_once(": ")
-                .map(|(k, w)| (k.to_string(), w.to_string()))
-                .unwrap_or_default();
+            let kind = format!("{} ray not cast", kind_name(ray.kind));
+            let why = not_cast_reason(ray);
             let _ = writeln!(
                 out,
                 "  n{id}p{i} [shape=box, style=dashed, label=\"{kind}\\n{why}\"];"

@@ -1,12 +1,16 @@
 //! The details pane: the lines `raystep inspect` prints for the selected ray
 //! (the intersection working and every term), a swatch after every colour,
-//! and the lines of the current event highlighted.
+//! and the lines of the current event highlighted. The lines come typed from
+//! `record`: the highlight follows their `About`, the swatches their colour
+//! pieces; no text is read back.
 
-use glam::DVec3;
 use ratatui::style::{Color as TermColor, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use crate::record::{EventKind, NodeId, RayTree, color, kind_name, node_lines, num};
+use crate::math::Color;
+use crate::record::{
+    self, About, Children, NodeId, Piece, RayTree, color, kind_name, node_lines, num,
+};
 
 use super::app::App;
 use super::layout::Pane;
@@ -16,134 +20,64 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::widgets::Paragraph;
 
-/// The text lines of a ray, and which of them the event `at` is about.
-pub fn text_lines(tree: &RayTree, id: NodeId, at: Option<usize>) -> (Vec<String>, Vec<usize>) {
+/// A ray's lines as the pane lists them: a header, then what `inspect`
+/// prints, with the child rays listed before the colour they add to.
+pub fn ray_lines(tree: &RayTree, id: NodeId) -> Vec<record::Line> {
     let node = &tree.nodes[id];
     let mut header = format!("r{id}: {} ray, depth {}", kind_name(node.kind), node.depth);
     if node.parent.is_some() {
         header.push_str(&format!(", weight {}", num(node.weight)));
     }
-    let mut lines = vec![header];
-    let mut body = node_lines(tree, id);
-    let children: Vec<String> = tree
-        .children(id)
-        .map(|c| {
-            let child = &tree.nodes[c];
-            format!(
-                "{} ray r{c} adds {}",
-                kind_name(child.kind),
-                color(child.contribution)
-            )
-        })
-        .collect();
-    let colour_line = body
-        .iter()
-        .position(|l| l.starts_with("colour "))
-        .unwrap_or(body.len());
-    body.splice(colour_line..colour_line, children);
-    lines.extend(body);
-    let event = at.and_then(|i| tree.events.get(i)).filter(|e| e.node == id);
-    let marked = event.map_or(Vec::new(), |e| marked_lines(tree, &lines, &e.kind));
-    (lines, marked)
+    let mut lines = vec![record::Line::text(None, header)];
+    lines.extend(node_lines(tree, id, Children::Listed));
+    lines
 }
 
-/// The lines an event is about: a line, with its indented continuation.
-fn marked_lines(tree: &RayTree, lines: &[String], kind: &EventKind) -> Vec<usize> {
-    let start = |prefix: &str, nth: usize| {
-        lines
-            .iter()
-            .enumerate()
-            .filter(|(_, l)| l.starts_with(prefix))
-            .nth(nth)
-            .map(|(i, _)| i)
-    };
-    let first = match kind {
-        EventKind::RayCast { .. } => start("from ", 0),
-        EventKind::Hit { .. } => start("hit ", 0),
-        EventKind::Miss { .. } => start("missed ", 0),
-        EventKind::Ambient { .. } => start("ambient ", 0),
-        EventKind::ShadowCast { light }
-        | EventKind::Blocker { light, .. }
-        | EventKind::Light { light, .. } => {
-            let node = lines_node(tree, lines);
-            let nth = node.and_then(|n| {
-                tree.nodes[n]
-                    .lights
-                    .iter()
-                    .position(|l| l.light_index == *light)
-            });
-            nth.and_then(|n| start("light ", n))
-        }
-        EventKind::Refraction { .. } => start("refraction", 0),
-        EventKind::ChildReturned { child, .. } => lines
-            .iter()
-            .position(|l| l.contains(&format!(" ray r{child} adds "))),
-        EventKind::NotCast(ray) => start(&format!("{} ray not cast", kind_name(ray.kind)), 0),
-        EventKind::RayDone { .. } => start("colour ", 0),
-    };
-    let Some(first) = first else {
-        return Vec::new();
-    };
-    let rest = lines[first + 1..]
-        .iter()
-        .take_while(|l| l.starts_with("  "))
-        .count();
-    (first..=first + rest).collect()
+/// What event `at` is about, when it is one of ray `id`'s events.
+pub fn marked(tree: &RayTree, id: NodeId, at: Option<usize>) -> Option<About> {
+    let event = at
+        .and_then(|i| tree.events.get(i))
+        .filter(|e| e.node == id)?;
+    Some(About::of(tree, event))
 }
 
-/// The node whose lines these are, from the header `rN: ...`.
-fn lines_node(tree: &RayTree, lines: &[String]) -> Option<NodeId> {
-    let id: NodeId = lines
-        .first()?
-        .strip_prefix('r')?
-        .split(':')
-        .next()?
-        .parse()
-        .ok()?;
-    (id < tree.nodes.len()).then_some(id)
-}
-
-/// `(r, g, b)` with three decimals each, as `record::color` writes colours.
-fn parse_color(token: &str) -> Option<DVec3> {
-    let inner = token
-        .strip_prefix('(')?
-        .trim_end_matches([',', ':'])
-        .strip_suffix(')')?;
-    let parts: Vec<&str> = inner.split(", ").collect();
-    let three_decimals = |p: &&str| p.split_once('.').is_some_and(|(_, d)| d.len() == 3);
-    if parts.len() != 3 || !parts.iter().all(three_decimals) {
-        return None;
-    }
-    let v: Vec<f64> = parts.iter().filter_map(|p| p.parse().ok()).collect();
-    (v.len() == 3).then(|| DVec3::new(v[0], v[1], v[2]))
-}
-
-/// Words, keeping a parenthesised group such as a colour in one piece.
-fn tokens(text: &str) -> Vec<String> {
-    let mut tokens: Vec<String> = Vec::new();
-    let mut open = false;
-    for word in text.split(' ') {
-        match tokens.last_mut() {
-            Some(last) if open => {
-                last.push(' ');
-                last.push_str(word);
+/// Words, keeping a parenthesised group such as a vector in one piece; a
+/// word holding a colour piece carries that colour, for a swatch after it.
+fn tokens(line: &record::Line) -> Vec<(String, Option<Color>)> {
+    let mut tokens = vec![(String::new(), None)];
+    let mut open = 0;
+    for piece in &line.pieces {
+        let text = match piece {
+            Piece::Text(text) => text,
+            Piece::Color(c) => {
+                let last = tokens.last_mut().expect("never empty");
+                last.0.push_str(&color(*c));
+                last.1 = Some(*c);
+                continue;
             }
-            _ => tokens.push(word.to_string()),
+        };
+        for ch in text.chars() {
+            if ch == ' ' && open <= 0 {
+                tokens.push((String::new(), None));
+                open = 0;
+                continue;
+            }
+            open += i32::from(ch == '(') - i32::from(ch == ')');
+            let last = tokens.last_mut().expect("never empty");
+            last.0.push(ch);
         }
-        let last = tokens.last().map_or("", |s| s.as_str());
-        open = last.matches('(').count() > last.matches(')').count();
     }
     tokens
 }
 
-/// One text line wrapped to `width`, with swatches, continuation indented.
-fn wrap(text: &str, width: usize, style: Style) -> Vec<Line<'static>> {
+/// One line wrapped to `width`, with swatches, continuation indented.
+fn wrap(line: &record::Line, width: usize, style: Style) -> Vec<Line<'static>> {
+    let text = line.to_string();
     let indent = text.len() - text.trim_start().len() + 4;
     let mut lines = Vec::new();
     let mut spans: Vec<Span<'static>> = Vec::new();
     let mut used = 0;
-    for (i, token) in tokens(text).into_iter().enumerate() {
-        let swatch_color = parse_color(&token);
+    for (i, (token, swatch_color)) in tokens(line).into_iter().enumerate() {
         let len = token.chars().count() + if swatch_color.is_some() { 3 } else { 0 };
         if i > 0 && used + 1 + len > width && used > indent {
             lines.push(Line::from(std::mem::take(&mut spans)).style(style));
@@ -171,11 +105,11 @@ pub fn lines(
     at: Option<usize>,
     width: usize,
 ) -> (Vec<Line<'static>>, Option<usize>) {
-    let (text, marked) = text_lines(tree, id, at);
+    let about = marked(tree, id, at);
     let mut out = Vec::new();
     let mut first_marked = None;
-    for (i, line) in text.iter().enumerate() {
-        let style = if marked.contains(&i) {
+    for (i, line) in ray_lines(tree, id).iter().enumerate() {
+        let style = if about.is_some() && line.about == about {
             first_marked.get_or_insert(out.len());
             Style::new()
                 .fg(TermColor::Yellow)
