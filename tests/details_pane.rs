@@ -110,10 +110,7 @@ fn highlighted(buffer: &Buffer) -> Vec<String> {
             .collect();
         let yellow = |c: &&&ratatui::buffer::Cell| c.fg == Color::Yellow;
         if !cells.is_empty() && cells.iter().all(|c| yellow(&c)) {
-            assert!(
-                cells.iter().all(|c| c.modifier == Modifier::BOLD),
-                "{text}"
-            );
+            assert!(cells.iter().all(|c| c.modifier == Modifier::BOLD), "{text}");
             rows.push(text);
         } else {
             assert!(!cells.iter().any(|c| yellow(&c)), "part yellow: {text}");
@@ -150,7 +147,11 @@ fn a_blocker_and_its_light_highlight_the_lights_three_lines() {
     let mut app = app_at(12, 20);
     // A light that is not facing away gets three lines: N·L and S (here with
     // the blocker), f_att and the cosine, then the diffuse and specular terms.
-    let lamp = ["light lamp: N·L = ", "  f_att = 1, N·H = ", "  diffuse (0.000"];
+    let lamp = [
+        "light lamp: N·L = ",
+        "  f_att = 1, N·H = ",
+        "  diffuse (0.000",
+    ];
     let blocker = event(&app, 0, |k| matches!(k, EventKind::Blocker { .. }));
     let buffer = pane(&mut app, blocker);
     assert_rows(&highlighted(&buffer), &lamp);
@@ -196,7 +197,9 @@ fn the_primary_ray_lists_its_child_and_highlights_it_returning() {
     let buffer = pane(&mut app, returned);
     let rows = highlighted(&buffer);
     assert_rows(&rows, &["reflected ray r1 adds (0.070, 0.140, 0.210)"]);
-    let y = (1..HEIGHT - 1).find(|&y| row(&buffer, y) == rows[0]).unwrap();
+    let y = (1..HEIGHT - 1)
+        .find(|&y| row(&buffer, y) == rows[0])
+        .unwrap();
     assert_eq!(swatches(&buffer, y), [rgb(DVec3::new(0.07, 0.14, 0.21))]);
     // Done: the colour line, not the child line above it.
     let done = event(&app, 0, |k| matches!(k, EventKind::RayDone { .. }));

@@ -148,3 +148,23 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         area,
     );
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_colour_pieces_get_swatches() {
+        // A vector with three decimals a number reads like a colour, but it
+        // is text: only the colour piece carries a colour.
+        let c = Color::new(0.5, 0.25, 1.0);
+        let line = record::Line::text(None, "from (0.125, 0.375, 0.625) adds ")
+            .color(c)
+            .then(" = x");
+        let words = |w: &[&str]| w.iter().map(|w| (w.to_string(), None)).collect::<Vec<_>>();
+        let mut expected = words(&["from", "(0.125, 0.375, 0.625)", "adds"]);
+        expected.push(("(0.500, 0.250, 1.000)".into(), Some(c)));
+        expected.extend(words(&["=", "x"]));
+        assert_eq!(tokens(&line), expected);
+    }
+}
