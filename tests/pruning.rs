@@ -85,6 +85,10 @@ fn the_third_reflection_between_mirrors_of_ks_one_tenth_is_not_cast() {
     assert!(
         text(&tree).contains("reflected ray not cast: accumulated weight 0.001 < min_weight 1/512")
     );
+    // Graphviz puts the ray and the reason on two lines of one box.
+    assert!(raystep::record::dot(&tree).contains(
+        "n2p0 [shape=box, style=dashed, label=\"reflected ray not cast\\naccumulated weight 0.001 < min_weight 1/512\"];"
+    ));
 }
 
 #[test]
