@@ -1,4 +1,4 @@
-//! The `?` overlay: every key, from the same table the key handling uses.
+//! The `?` overlay: every row of `keymap::KEYMAP`, the table the key handling uses.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -6,21 +6,21 @@ use ratatui::style::Stylize;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph};
 
-use super::event::KEYS;
+use super::keymap::KEYMAP;
 
 const KEY_WIDTH: usize = 22;
 
 pub fn lines() -> Vec<Line<'static>> {
     let mut lines = Vec::new();
-    for (group, keys) in KEYS {
+    for (group, rows) in KEYMAP {
         if !lines.is_empty() {
             lines.push(Line::raw(""));
         }
         lines.push(Line::from(Span::raw(*group).bold().underlined()));
-        for (key, what) in *keys {
+        for row in *rows {
             lines.push(Line::from(vec![
-                Span::raw(format!("  {key:<KEY_WIDTH$}")).cyan().bold(),
-                Span::raw(*what),
+                Span::raw(format!("  {:<KEY_WIDTH$}", row.keys())).cyan().bold(),
+                Span::raw(row.what),
             ]));
         }
     }

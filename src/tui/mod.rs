@@ -15,6 +15,7 @@ pub mod details;
 pub mod diagram;
 pub mod event;
 mod help;
+pub mod keymap;
 mod image_pane;
 pub mod image_view;
 pub mod job;
