@@ -56,3 +56,36 @@ pub fn draw(frame: &mut Frame, area: Rect, scroll: u16) {
     frame.render_widget(Clear, rect);
     frame.render_widget(Paragraph::new(lines).block(block).scroll((scroll, 0)), rect);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::keymap;
+
+    fn text() -> Vec<String> {
+        let line = |l: &Line| l.spans.iter().map(|s| s.content.as_ref()).collect();
+        lines().iter().map(line).collect()
+    }
+
+    #[test]
+    fn the_help_lists_every_row_of_the_key_table() {
+        let text = text();
+        for row in keymap::rows() {
+            let want = format!("  {:<KEY_WIDTH$}{}", row.keys(), row.what);
+            assert!(text.contains(&want), "{want:?} missing from the help");
+        }
+        for (group, _) in keymap::KEYMAP {
+            assert!(text.iter().any(|l| l == group), "{group}");
+        }
+        // 5 titles, 4 blank lines between groups, one line per row.
+        assert_eq!(text.len(), 5 + 4 + keymap::rows().count());
+    }
+
+    #[test]
+    fn the_help_shows_the_keys_the_old_help_left_out() {
+        let text = text().join("\n");
+        for key in ["PageUp PageDown", "g Home e End", "Enter Space", "Ctrl+C", "mouse wheel"] {
+            assert!(text.contains(key), "{key}");
+        }
+    }
+}

@@ -433,3 +433,76 @@ pub fn hints() -> Vec<Hint> {
     hints.sort_by_key(|h| h.rank);
     hints
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(keys: &str) -> &'static Binding {
+        rows().find(|r| r.keys() == keys).unwrap_or_else(|| {
+            let all: Vec<String> = rows().map(Binding::keys).collect();
+            panic!("no row {keys:?} in {all:?}")
+        })
+    }
+
+    #[test]
+    fn labels_name_every_input_once() {
+        // By hand from the rows: four arrows collapse to `arrows`, Shift+h
+        // and H are one key, both wheel directions are one wheel.
+        row("arrows h j k l");
+        row("Shift+arrows H J K L");
+        row("+ = - _");
+        row("Tab Shift+Tab");
+        row("Enter Space");
+        row("PageUp PageDown");
+        row("g Home e End");
+        row("mouse wheel");
+        row("Ctrl+C");
+        row("Up Down k j");
+        row("any other key");
+    }
+
+    #[test]
+    fn no_two_rows_claim_the_same_input_at_once() {
+        let inputs: Vec<(Context, Input)> = rows()
+            .flat_map(|r| r.inputs.iter().map(move |&(i, _)| (r.context, i)))
+            .collect();
+        for (n, &(ca, a)) in inputs.iter().enumerate() {
+            for &(cb, b) in &inputs[n + 1..] {
+                let together = [false, true].iter().any(|&h| ca.applies(h) && cb.applies(h));
+                // Ctrl+x and Shift+x would tie for a key with both held.
+                let tie = match (a, b) {
+                    (Input::Ctrl(x), Input::Shift(y)) | (Input::Shift(x), Input::Ctrl(y)) => x == y,
+                    _ => a == b,
+                };
+                assert!(!(together && tie), "{a:?} ({ca:?}) and {b:?} ({cb:?})");
+            }
+        }
+    }
+
+    #[test]
+    fn every_hint_names_keys_of_its_row() {
+        for row in rows() {
+            let Some(hint) = row.hint else { continue };
+            let keys = row.keys();
+            for key in hint.keys.split([' ', '/']) {
+                assert!(keys.split(' ').any(|k| k == key), "{key} not in {keys}");
+            }
+        }
+        let order: Vec<&str> = hints().iter().map(|h| h.keys).collect();
+        assert_eq!(order, ["?", "q", "arrows", "Tab", "n/p", "b", "s r t a", "v"]);
+    }
+
+    #[test]
+    fn the_most_specific_input_wins() {
+        let key = |code, mods| KeyEvent::new(code, mods);
+        let ctrl_c = key(KeyCode::Char('c'), KeyModifiers::CONTROL);
+        // Ctrl+C beats the help's "any other key".
+        assert_eq!(key_command(&ctrl_c, true), Some(act(Action::Quit)));
+        let shift_h = key(KeyCode::Char('h'), KeyModifiers::SHIFT);
+        assert_eq!(key_command(&shift_h, false), Some(act(Action::Move(-10, 0))));
+        let ctrl_h = key(KeyCode::Char('h'), KeyModifiers::CONTROL);
+        assert_eq!(key_command(&ctrl_h, false), Some(Command::Arrow(-1, 0)));
+        assert_eq!(key_command(&key(KeyCode::F(5), KeyModifiers::NONE), false), None);
+    }
+}
