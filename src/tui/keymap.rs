@@ -154,7 +154,7 @@ const PIXEL_AND_VIEW: &[Binding] = &[
             (key('-'), act(Action::ZoomOut)),
             (key('_'), act(Action::ZoomOut)),
         ],
-        what: "zoom in / out (down to one pixel per half cell)",
+        what: "zoom in (+ =) / out (- _), down to one pixel per half cell",
         ..ROW
     },
     Binding {
