@@ -26,7 +26,9 @@ fn readme_scene_example_is_valid() {
 fn readme_key_rows() -> Vec<String> {
     let readme =
         std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
-    let start = readme.find("| keys | what they do |").expect("the key table");
+    let start = readme
+        .find("| keys | what they do |")
+        .expect("the key table");
     readme[start..]
         .lines()
         .skip(2)
@@ -41,7 +43,11 @@ fn readme_key_rows() -> Vec<String> {
 #[test]
 fn readme_key_table_lists_every_row_of_the_keymap() {
     let table: Vec<String> = raystep::tui::keymap::rows().map(|r| r.keys()).collect();
-    assert_eq!(readme_key_rows(), table, "README's keys, in the help's order");
+    assert_eq!(
+        readme_key_rows(),
+        table,
+        "README's keys, in the help's order"
+    );
     // Spot check by hand: the keys the README used to leave out.
     for keys in ["PageUp PageDown", "g Home e End", "Enter Space", "Ctrl+C"] {
         assert!(table.iter().any(|k| k == keys), "{keys}");

@@ -212,7 +212,10 @@ mod tests {
                 }
             }
         }
-        assert!(handled > 40 * 5, "the oracle answers for many keys: {handled}");
+        assert!(
+            handled > 40 * 5,
+            "the oracle answers for many keys: {handled}"
+        );
     }
 
     #[test]
@@ -229,6 +232,10 @@ mod tests {
             }
         }
         let click = keymap::mouse_command(Input::Click, true);
-        assert_eq!(click, Some(Command::Click), "a click picks, help open or not");
+        assert_eq!(
+            click,
+            Some(Command::Click),
+            "a click picks, help open or not"
+        );
     }
 }

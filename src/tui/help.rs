@@ -19,7 +19,9 @@ pub fn lines() -> Vec<Line<'static>> {
         lines.push(Line::from(Span::raw(*group).bold().underlined()));
         for row in *rows {
             lines.push(Line::from(vec![
-                Span::raw(format!("  {:<KEY_WIDTH$}", row.keys())).cyan().bold(),
+                Span::raw(format!("  {:<KEY_WIDTH$}", row.keys()))
+                    .cyan()
+                    .bold(),
                 Span::raw(row.what),
             ]));
         }
@@ -84,7 +86,13 @@ mod tests {
     #[test]
     fn the_help_shows_the_keys_the_old_help_left_out() {
         let text = text().join("\n");
-        for key in ["PageUp PageDown", "g Home e End", "Enter Space", "Ctrl+C", "mouse wheel"] {
+        for key in [
+            "PageUp PageDown",
+            "g Home e End",
+            "Enter Space",
+            "Ctrl+C",
+            "mouse wheel",
+        ] {
             assert!(text.contains(key), "{key}");
         }
     }

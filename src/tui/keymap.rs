@@ -269,7 +269,10 @@ const TOGGLES: &[Binding] = &[
         ..ROW
     },
     Binding {
-        inputs: &[(key('['), act(Action::Depth(-1))), (key(']'), act(Action::Depth(1)))],
+        inputs: &[
+            (key('['), act(Action::Depth(-1))),
+            (key(']'), act(Action::Depth(1))),
+        ],
         what: "max depth down / up",
         ..ROW
     },
@@ -469,7 +472,9 @@ mod tests {
             .collect();
         for (n, &(ca, a)) in inputs.iter().enumerate() {
             for &(cb, b) in &inputs[n + 1..] {
-                let together = [false, true].iter().any(|&h| ca.applies(h) && cb.applies(h));
+                let together = [false, true]
+                    .iter()
+                    .any(|&h| ca.applies(h) && cb.applies(h));
                 // Ctrl+x and Shift+x would tie for a key with both held.
                 let tie = match (a, b) {
                     (Input::Ctrl(x), Input::Shift(y)) | (Input::Shift(x), Input::Ctrl(y)) => x == y,
@@ -490,7 +495,10 @@ mod tests {
             }
         }
         let order: Vec<&str> = hints().iter().map(|h| h.keys).collect();
-        assert_eq!(order, ["?", "q", "arrows", "Tab", "n/p", "b", "s r t a", "v"]);
+        assert_eq!(
+            order,
+            ["?", "q", "arrows", "Tab", "n/p", "b", "s r t a", "v"]
+        );
     }
 
     #[test]
@@ -500,9 +508,15 @@ mod tests {
         // Ctrl+C beats the help's "any other key".
         assert_eq!(key_command(&ctrl_c, true), Some(act(Action::Quit)));
         let shift_h = key(KeyCode::Char('h'), KeyModifiers::SHIFT);
-        assert_eq!(key_command(&shift_h, false), Some(act(Action::Move(-10, 0))));
+        assert_eq!(
+            key_command(&shift_h, false),
+            Some(act(Action::Move(-10, 0)))
+        );
         let ctrl_h = key(KeyCode::Char('h'), KeyModifiers::CONTROL);
         assert_eq!(key_command(&ctrl_h, false), Some(Command::Arrow(-1, 0)));
-        assert_eq!(key_command(&key(KeyCode::F(5), KeyModifiers::NONE), false), None);
+        assert_eq!(
+            key_command(&key(KeyCode::F(5), KeyModifiers::NONE), false),
+            None
+        );
     }
 }
