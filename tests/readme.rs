@@ -1,4 +1,5 @@
-//! README must match the code: the scene example parses and renders, the key table lists every row of the keymap. Docs cannot go stale.
+//! README must match the code: the scene example parses and renders, and
+//! the key table lists every row of the keymap. Docs cannot go stale.
 
 use std::path::Path;
 
