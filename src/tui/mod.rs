@@ -2,7 +2,8 @@
 //! the trace event by event, and flip the model's terms on and off.
 //!
 //! The structure follows ratatui's event-driven template: state in
-//! `app.rs`, terminal events turned into `Action`s in `event.rs`,
+//! `app.rs`, terminal events turned into `Action`s in `event.rs` by the one
+//! key table in `keymap.rs` (which the help and status line also read),
 //! `App::update` the only place state changes, `ui::draw` only reading it.
 //! The main loop is generic over the ratatui `Backend`, so tests drive the
 //! real app on a `TestBackend`. Whole-image renders run on a background
@@ -18,6 +19,7 @@ mod help;
 mod image_pane;
 pub mod image_view;
 pub mod job;
+pub mod keymap;
 pub mod layout;
 pub mod projection;
 mod renders;

@@ -9,7 +9,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use super::app::{App, View};
 use super::layout::{MIN_HEIGHT, MIN_WIDTH, Pane, too_small};
-use super::{details, diagram, help, image_pane, steps_view, tree_view};
+use super::{details, diagram, help, image_pane, keymap, steps_view, tree_view};
 
 pub fn draw(frame: &mut Frame, app: &App) {
     let area = frame.area();
@@ -175,18 +175,9 @@ fn status(app: &App) -> Line<'static> {
         );
     }
     spans.push(Span::raw(" "));
-    for (keys, what) in [
-        ("?", "help"),
-        ("q", "quit"),
-        ("arrows", "pixel"),
-        ("Tab", "pane"),
-        ("n/p", "step"),
-        ("b", "blocked shadow"),
-        ("s r t a", "toggles"),
-        ("v", "view"),
-    ] {
-        spans.push(Span::raw(keys).bold().cyan());
-        spans.push(Span::raw(format!(" {what}  ")));
+    for hint in keymap::hints() {
+        spans.push(Span::raw(hint.keys).bold().cyan());
+        spans.push(Span::raw(format!(" {}  ", hint.what)));
     }
     Line::from(spans)
 }
