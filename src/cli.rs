@@ -127,16 +127,9 @@ pub fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
     ))
 }
 
-/// The scene shown when none is named: the seven-rays scene.
-pub const DEFAULT_SCENE_NAME: &str = "seven-rays.toml (built in)";
-pub const DEFAULT_SCENE: &str = include_str!("../scenes/seven-rays.toml");
-
 /// Loads a scene (or the built-in one) and applies `--size`.
 pub fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
-    let scene = match path {
-        Some(path) => scene::load(path)?,
-        None => scene::parse(Path::new(DEFAULT_SCENE_NAME), DEFAULT_SCENE)?,
-    };
+    let scene = scene::builtin::load_file_or_builtin(path)?;
     Ok(match size.size {
         Some((w, h)) => scene.with_size(w, h)?,
         None => scene,

@@ -208,7 +208,7 @@ fn a_signal_during_a_long_render_restores_the_terminal_at_once() {
     // 4000 x 3000 pixels of the built-in scene: seconds of rendering, under
     // way when the first screen is up; the exit must not wait for it.
     let dir = tempfile::tempdir().unwrap();
-    let scene = raystep::cli::DEFAULT_SCENE
+    let scene = raystep::scene::builtin::TEXT
         .replace("width = 161", "width = 4000")
         .replace("height = 121", "height = 3000");
     let path = dir.path().join("big.toml");

@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 
 use super::{Candidate, Cost};
 use crate::math::{Interval, Ray};
-use crate::scene::Object;
+use crate::object::Object;
 
 /// The nearest hit in `range`; on equal distances the first object in file order.
 pub fn closest(

@@ -5,7 +5,7 @@
 //! numbers, so the answers are the same to the bit.
 
 use crate::math::{Interval, Ray};
-use crate::scene::Object;
+use crate::object::Object;
 use crate::shapes::{Roots, Shape, Sphere, TriangleTest};
 
 #[derive(Clone, Debug)]

@@ -32,7 +32,7 @@ use arrayvec::ArrayVec;
 use serde::Serialize;
 
 use crate::math::{Interval, Ray};
-use crate::scene::Object;
+use crate::object::Object;
 use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;

@@ -162,7 +162,7 @@ mod tests {
     use super::super::{Accel, Cost};
     use super::*;
     use crate::math::{EPS, Interval};
-    use crate::scene::Object;
+    use crate::object::Object;
     use crate::shapes::{Aabb, Polygon, Shape, Sphere};
 
     #[target_feature(enable = "avx,fma")]

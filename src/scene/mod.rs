@@ -1,6 +1,7 @@
 //! The scene as the tracer sees it: camera, settings, materials, lights and
 //! named objects, whatever file format it was read from.
 
+pub mod builtin;
 mod error;
 pub mod limits;
 pub mod nff;
@@ -18,7 +19,8 @@ use crate::accel::Accel;
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::exceeds;
-use crate::shapes::{NormalRecipe, Shape};
+pub use crate::object::Object;
+use crate::shapes::NormalRecipe;
 
 /// The largest image side accepted; beyond it a render would take minutes and
 /// gigabytes, which is never what a teaching scene wants.
@@ -141,14 +143,6 @@ pub struct Light {
     pub position: DVec3,
     /// I_p.
     pub color: Color,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct Object {
-    pub name: String,
-    pub shape: Shape,
-    /// Index into `Scene::materials`.
-    pub material: usize,
 }
 
 /// A scene ready to trace: validated, with its acceleration structure built.

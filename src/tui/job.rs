@@ -247,8 +247,7 @@ mod tests {
     use super::*;
 
     fn seven_rays(width: u32, height: u32) -> Scene {
-        let text = crate::cli::DEFAULT_SCENE;
-        let scene = crate::scene::parse(std::path::Path::new("seven-rays.toml"), text).unwrap();
+        let scene = crate::scene::builtin::load_file_or_builtin(None).unwrap();
         scene.with_size(width, height).unwrap()
     }
 

@@ -6,8 +6,8 @@ use std::sync::mpsc::{Receiver, channel};
 
 use notify::{EventKind, RecursiveMode, Watcher as _};
 
-use crate::cli::{DEFAULT_SCENE, DEFAULT_SCENE_NAME};
-use crate::scene::{self, Scene, SceneError, Settings};
+use crate::scene::builtin::{self, load_file_or_builtin};
+use crate::scene::{Scene, SceneError, Settings};
 
 /// The scene file, or `None` for the built-in scene.
 #[derive(Clone, Debug)]
@@ -20,15 +20,12 @@ impl SceneSource {
     pub fn name(&self) -> String {
         match &self.path {
             Some(path) => path.display().to_string(),
-            None => DEFAULT_SCENE_NAME.to_string(),
+            None => builtin::NAME.to_string(),
         }
     }
 
     pub fn load(&self) -> Result<Scene, SceneError> {
-        match &self.path {
-            Some(path) => scene::load(path),
-            None => scene::parse(Path::new(DEFAULT_SCENE_NAME), DEFAULT_SCENE),
-        }
+        load_file_or_builtin(self.path.as_deref())
     }
 }
 

@@ -1,0 +1,138 @@
+//! The crate's layout: no import circle between the top-level modules of
+//! src/ (issue 14). A circle means neither module can be read, tested or
+//! moved without the other; the shared thing belongs in the lower one.
+//!
+//! Module A depends on B when any file of A names `crate::B` (in a `use`,
+//! a path or a doc link). This reads the source, not the compiler's view,
+//! so it errs towards seeing a dependency where a doc link names one.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+type Graph = BTreeMap<String, BTreeSet<String>>;
+
+/// Every `.rs` file under `path` (or `path` itself when it is a file).
+fn rust_files(path: &Path) -> Vec<PathBuf> {
+    if path.is_file() {
+        return vec![path.to_path_buf()];
+    }
+    let mut files = Vec::new();
+    for entry in fs::read_dir(path).unwrap() {
+        files.extend(rust_files(&entry.unwrap().path()));
+    }
+    files.retain(|f| f.extension().is_some_and(|e| e == "rs"));
+    files
+}
+
+/// The modules named right after each `crate::` in `text`, including each
+/// head of a `crate::{a, b::c}` group.
+fn crate_references(text: &str) -> BTreeSet<String> {
+    let ident = |s: &str| -> String {
+        s.trim_start()
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let mut names = BTreeSet::new();
+    for (at, _) in text.match_indices("crate::") {
+        let rest = &text[at + "crate::".len()..];
+        let Some(group) = rest.strip_prefix('{') else {
+            names.insert(ident(rest));
+            continue;
+        };
+        let (mut depth, mut start) = (0, 0);
+        for (i, c) in group.char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' if depth == 0 => {
+                    names.insert(ident(&group[start..]));
+                    break;
+                }
+                '}' => depth -= 1,
+                ',' if depth == 0 => {
+                    names.insert(ident(&group[start..]));
+                    start = i + 1;
+                }
+                _ => {}
+            }
+        }
+    }
+    names
+}
+
+/// Top-level module -> the other top-level modules it names.
+fn module_graph(src: &Path) -> Graph {
+    let mut modules: BTreeMap<String, PathBuf> = BTreeMap::new();
+    for entry in fs::read_dir(src).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let is_module = path.is_dir() || path.extension().is_some_and(|e| e == "rs");
+        if is_module && name != "lib" && name != "main" {
+            modules.insert(name, path);
+        }
+    }
+    let mut graph = Graph::new();
+    for (name, path) in &modules {
+        let mut uses = BTreeSet::new();
+        for file in rust_files(path) {
+            uses.extend(crate_references(&fs::read_to_string(&file).unwrap()));
+        }
+        uses.retain(|used| used != name && modules.contains_key(used));
+        graph.insert(name.clone(), uses);
+    }
+    graph
+}
+
+/// One circle through `start`, as the path back to it, if there is one.
+fn circle_through(graph: &Graph, start: &str) -> Option<Vec<String>> {
+    let mut seen = BTreeSet::new();
+    let mut stack = vec![vec![start.to_string()]];
+    while let Some(path) = stack.pop() {
+        for next in &graph[path.last().unwrap()] {
+            let mut longer = path.clone();
+            longer.push(next.clone());
+            if next == start {
+                return Some(longer);
+            }
+            if seen.insert(next.clone()) {
+                stack.push(longer);
+            }
+        }
+    }
+    None
+}
+
+fn circles(graph: &Graph) -> Vec<String> {
+    graph
+        .keys()
+        .filter_map(|m| circle_through(graph, m))
+        .map(|c| c.join(" -> "))
+        .collect()
+}
+
+#[test]
+fn no_import_circle_between_top_level_modules() {
+    let graph = module_graph(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
+    assert!(graph.contains_key("scene") && graph.contains_key("accel"));
+    let found = circles(&graph);
+    assert!(
+        found.is_empty(),
+        "import circles in src/: {found:#?}\ngraph: {graph:#?}"
+    );
+}
+
+#[test]
+fn the_reader_sees_paths_groups_and_circles() {
+    let text = "use crate::a::B;\nuse crate::{b, c::{D, E}};\nlet x = crate::d::f();";
+    let names: Vec<_> = crate_references(text).into_iter().collect();
+    assert_eq!(names, ["a", "b", "c", "d"]);
+    // a -> b -> c -> a is a circle; d -> a alone is not on one.
+    let graph: Graph = [("a", "b"), ("b", "c"), ("c", "a"), ("d", "a")]
+        .into_iter()
+        .map(|(from, to)| (from.to_string(), BTreeSet::from([to.to_string()])))
+        .collect();
+    assert_eq!(circle_through(&graph, "a").unwrap(), ["a", "b", "c", "a"]);
+    assert_eq!(circle_through(&graph, "d"), None);
+    assert_eq!(circles(&graph).len(), 3);
+}
