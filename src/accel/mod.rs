@@ -22,6 +22,7 @@ mod bvh;
 mod lanes;
 mod leaf_shapes;
 mod node;
+mod shadow;
 #[cfg(target_arch = "x86_64")]
 mod wide;
 
@@ -37,6 +38,7 @@ use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;
 use node::{BoxTesting, Child, Node, WIDTH};
+pub use shadow::ShadowCache;
 
 /// What one query tested: the price of a ray, shown to students.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
