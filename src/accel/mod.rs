@@ -19,9 +19,11 @@
 
 pub mod brute;
 mod bvh;
+mod edge_bands;
 mod lanes;
 mod leaf_shapes;
 mod node;
+mod normals;
 mod shadow;
 #[cfg(target_arch = "x86_64")]
 mod wide;
@@ -38,6 +40,7 @@ use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;
 use node::{BoxTesting, Child, Node, WIDTH};
+pub use normals::NormalRecipe;
 pub use shadow::ShadowCache;
 
 /// What one query tested: the price of a ray, shown to students.

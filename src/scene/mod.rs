@@ -14,11 +14,11 @@ use serde::Serialize;
 
 pub use error::{SceneError, SourceLocation};
 
-use crate::accel::Accel;
+use crate::accel::{Accel, NormalRecipe};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::exceeds;
-use crate::shapes::{NormalRecipe, Shape};
+use crate::shapes::Shape;
 
 /// The largest image side accepted; beyond it a render would take minutes and
 /// gigabytes, which is never what a teaching scene wants.
