@@ -24,6 +24,7 @@ mod lanes;
 mod leaf_shapes;
 mod node;
 mod normals;
+mod rows;
 mod shadow;
 #[cfg(target_arch = "x86_64")]
 mod wide;
