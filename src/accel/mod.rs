@@ -16,6 +16,14 @@
 //! where the CPU allows. Both give the same answers; the same costs too,
 //! except where a ray grazes a box within rounding (none of the 10^8 box
 //! tests of the seven SPD scenes does).
+//!
+//! Beside the hierarchy live the render's other speed-ups, so that `shapes`
+//! and `trace` read as the lecture; each gives the plain code's answers to
+//! the bit, and its tests compare it with the plain code: the leaves'
+//! packed shape records (`leaf_shapes`, with `edge_bands` for many-sided
+//! polygons), the shadow query that tries a row's last blocker first
+//! (`shadow`), the objects' materials and normal recipes side by side
+//! (`object_tables`, `normals`), and a row's primary rays at once (`rows`).
 
 pub mod brute;
 mod bvh;
@@ -24,6 +32,7 @@ mod lanes;
 mod leaf_shapes;
 mod node;
 mod normals;
+mod object_tables;
 mod rows;
 mod shadow;
 #[cfg(target_arch = "x86_64")]
@@ -41,7 +50,7 @@ use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;
 use node::{BoxTesting, Child, Node, WIDTH};
-pub use normals::NormalRecipe;
+pub use object_tables::ObjectTables;
 pub use shadow::ShadowCache;
 
 /// What one query tested: the price of a ray, shown to students.
