@@ -83,6 +83,9 @@ pub struct Accel {
     unbounded: Vec<u32>,
     /// Beside each entry of `objects`, what its test reads, packed.
     shapes: Vec<LeafShape>,
+    /// Each object's position in `objects` (and `shapes`), `u32::MAX` for
+    /// the unbounded: the shadow query tests a remembered blocker by its record.
+    positions: Vec<u32>,
 }
 
 impl Accel {
@@ -93,11 +96,16 @@ impl Accel {
             .iter()
             .map(|&object| LeafShape::of(&objects[object as usize].shape))
             .collect();
+        let mut positions = vec![u32::MAX; objects.len()];
+        for (position, &object) in bvh.objects.iter().enumerate() {
+            positions[object as usize] = position as u32;
+        }
         Accel {
             nodes: node::collapse(&bvh.nodes),
             objects: bvh.objects,
             unbounded,
             shapes,
+            positions,
         }
     }
 

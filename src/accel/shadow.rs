@@ -62,7 +62,11 @@ impl Accel {
         };
         if let Some(object) = cache.blocker(light) {
             cost.primitives += 1;
-            if let Some(&t) = objects[object].shape.roots(ray, range).as_slice().first() {
+            let roots = match self.positions[object] {
+                u32::MAX => objects[object].shape.roots(ray, range),
+                position => self.shapes[position as usize].roots(objects, object, ray, range),
+            };
+            if let Some(&t) = roots.as_slice().first() {
                 // It was opaque when remembered, so `visit` breaks again.
                 let _ = visit(object, t);
                 return;
