@@ -16,15 +16,16 @@ pub struct Camera {
 }
 
 /// The camera's orthonormal frame for one image size, computed once per render.
+/// A render takes a row's rays at once (`accel::rows`).
 #[derive(Clone, Copy, Debug)]
 pub struct Viewport {
-    eye: DVec3,
-    forward: DVec3,
-    right: DVec3,
-    true_up: DVec3,
-    half_height: f64,
-    width: u32,
-    height: u32,
+    pub(crate) eye: DVec3,
+    pub(crate) forward: DVec3,
+    pub(crate) right: DVec3,
+    pub(crate) true_up: DVec3,
+    pub(crate) half_height: f64,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
 }
 
 impl Camera {
@@ -45,42 +46,6 @@ impl Camera {
 }
 
 impl Viewport {
-    /// The primary rays of row y, left to right. A render computes a row's
-    /// rays before tracing any: their square roots and divisions then run
-    /// back to back instead of each holding up the start of its pixel (an
-    /// empty scene renders in about a third less time).
-    ///
-    /// The arithmetic is `primary_ray`'s, operation for operation, written
-    /// over short arrays of pixels so that the compiler works on two pixels
-    /// per instruction; the rays are the same to the bit (a test checks).
-    /// An empty 512 x 512 scene traces in 4.8 ms instead of 6.7 (one thread).
-    pub fn row(&self, y: u32) -> Vec<Ray> {
-        const LANES: usize = 8;
-        let (w, h) = (self.width as f64, self.height as f64);
-        let s = self.half_height;
-        let py = (1.0 - 2.0 * (y as f64 + 0.5) / h) * s;
-        let up = py * self.true_up;
-        let mut rays = Vec::with_capacity(self.width as usize);
-        for first in (0..self.width).step_by(LANES) {
-            let mut d = [[0.0; LANES]; 3];
-            let mut length = [0.0; LANES];
-            for i in 0..LANES {
-                let px = (2.0 * ((first + i as u32) as f64 + 0.5) / w - 1.0) * s * (w / h);
-                for (axis, d) in d.iter_mut().enumerate() {
-                    d[i] = self.forward[axis] + px * self.right[axis] + up[axis];
-                }
-                length[i] = (d[0][i] * d[0][i] + d[1][i] * d[1][i] + d[2][i] * d[2][i]).sqrt();
-            }
-            let count = (self.width - first).min(LANES as u32) as usize;
-            for i in 0..count {
-                let recip = 1.0 / length[i];
-                let direction = DVec3::new(d[0][i] * recip, d[1][i] * recip, d[2][i] * recip);
-                rays.push(Ray::new(self.eye, direction));
-            }
-        }
-        rays
-    }
-
     /// The primary ray through the centre of pixel (x, y); x to the right and
     /// y downward, both from 0.
     pub fn primary_ray(&self, x: u32, y: u32) -> Ray {
@@ -96,30 +61,6 @@ impl Viewport {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_row_of_rays_is_the_rays_one_by_one_to_the_bit() {
-        let camera = Camera {
-            eye: DVec3::new(1.0, 2.0, 3.0),
-            look_at: DVec3::new(-0.3, 0.7, 0.1),
-            up: DVec3::new(0.1, 0.0, 1.0),
-            fov: 37.0,
-        };
-        // Widths around the chunk of eight, and odd heights.
-        for (width, height) in [(1, 1), (7, 5), (8, 3), (9, 9), (513, 17)] {
-            let viewport = camera.viewport(width, height);
-            for y in 0..height {
-                let row = viewport.row(y);
-                assert_eq!(row.len(), width as usize);
-                for (x, ray) in (0..width).zip(&row) {
-                    let one = viewport.primary_ray(x, y);
-                    let bits = |r: &Ray| r.direction.to_array().map(f64::to_bits);
-                    assert_eq!(bits(ray), bits(&one), "{width}x{height} ({x}, {y})");
-                    assert_eq!(ray.origin, one.origin);
-                }
-            }
-        }
-    }
 
     #[test]
     fn centre_pixel_of_an_odd_image_looks_straight_ahead() {

@@ -8,9 +8,10 @@ use anyhow::{Context, Result};
 use image::RgbImage;
 use rayon::prelude::*;
 
+use crate::accel::ShadowCache;
 use crate::math::to_rgb8;
 use crate::scene::Scene;
-use crate::trace::{NoRecorder, RayStats, Recorder, ShadowCache, trace_primary_in_row};
+use crate::trace::{NoRecorder, RayStats, Recorder, trace_primary_in_row};
 
 /// A recorder that can follow a whole render: one per row, summed at the end.
 pub trait RowRecorder: Recorder + Default + Send {

@@ -7,12 +7,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use image::RgbImage;
 use rayon::prelude::*;
 
-use crate::accel::Cost;
+use crate::accel::{Cost, ShadowCache};
 use crate::math::{Color, Ray, to_rgb8};
 use crate::scene::Scene;
-use crate::trace::{
-    ChildTerm, LightTerm, RayKind, Recorder, ShadowCache, SurfaceHit, trace_primary_in_row,
-};
+use crate::trace::{ChildTerm, LightTerm, RayKind, Recorder, SurfaceHit, trace_primary_in_row};
 
 /// One view of the per-pixel terms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]

@@ -3,8 +3,9 @@
 //! moved without the other; the shared thing belongs in the lower one.
 //!
 //! Module A depends on B when any file of A names `crate::B` (in a `use`,
-//! a path or a doc link). This reads the source, not the compiler's view,
-//! so it errs towards seeing a dependency where a doc link names one.
+//! a path or a doc link) outside its unit tests. This reads the source, not
+//! the compiler's view, so it errs towards seeing a dependency where a doc
+//! link names one.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -76,7 +77,11 @@ fn module_graph(src: &Path) -> Graph {
     for (name, path) in &modules {
         let mut uses = BTreeSet::new();
         for file in rust_files(path) {
-            uses.extend(crate_references(&fs::read_to_string(&file).unwrap()));
+            let text = fs::read_to_string(&file).unwrap();
+            // A file's unit tests (its `#[cfg(test)]` module, last by custom)
+            // may build a whole scene: they are not the library's layout.
+            let library = text.split("#[cfg(test)]").next().unwrap_or_default();
+            uses.extend(crate_references(library));
         }
         uses.retain(|used| used != name && modules.contains_key(used));
         graph.insert(name.clone(), uses);

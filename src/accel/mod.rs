@@ -16,12 +16,25 @@
 //! where the CPU allows. Both give the same answers; the same costs too,
 //! except where a ray grazes a box within rounding (none of the 10^8 box
 //! tests of the seven SPD scenes does).
+//!
+//! Beside the hierarchy live the render's other speed-ups, so that `shapes`
+//! and `trace` read as the lecture; each gives the plain code's answers to
+//! the bit, and its tests compare it with the plain code: the leaves'
+//! packed shape records (`leaf_shapes`, with `edge_bands` for many-sided
+//! polygons), the shadow query that tries a row's last blocker first
+//! (`shadow`), the objects' materials and normal recipes side by side
+//! (`object_tables`, `normals`), and a row's primary rays at once (`rows`).
 
 pub mod brute;
 mod bvh;
+mod edge_bands;
 mod lanes;
 mod leaf_shapes;
 mod node;
+mod normals;
+mod object_tables;
+mod rows;
+mod shadow;
 #[cfg(target_arch = "x86_64")]
 mod wide;
 
@@ -37,6 +50,8 @@ use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;
 use node::{BoxTesting, Child, Node, WIDTH};
+pub use object_tables::ObjectTables;
+pub use shadow::ShadowCache;
 
 /// What one query tested: the price of a ray, shown to students.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -68,6 +83,9 @@ pub struct Accel {
     unbounded: Vec<u32>,
     /// Beside each entry of `objects`, what its test reads, packed.
     shapes: Vec<LeafShape>,
+    /// Each object's position in `objects` (and `shapes`), `u32::MAX` for
+    /// the unbounded: the shadow query tests a remembered blocker by its record.
+    positions: Vec<u32>,
 }
 
 impl Accel {
@@ -78,11 +96,16 @@ impl Accel {
             .iter()
             .map(|&object| LeafShape::of(&objects[object as usize].shape))
             .collect();
+        let mut positions = vec![u32::MAX; objects.len()];
+        for (position, &object) in bvh.objects.iter().enumerate() {
+            positions[object as usize] = position as u32;
+        }
         Accel {
             nodes: node::collapse(&bvh.nodes),
             objects: bvh.objects,
             unbounded,
             shapes,
+            positions,
         }
     }
 

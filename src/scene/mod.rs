@@ -15,12 +15,11 @@ use serde::Serialize;
 
 pub use error::{SceneError, SourceLocation};
 
-use crate::accel::Accel;
+use crate::accel::{Accel, ObjectTables};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::exceeds;
 pub use crate::object::Object;
-use crate::shapes::NormalRecipe;
 
 /// The largest image side accepted; beyond it a render would take minutes and
 /// gigabytes, which is never what a teaching scene wants.
@@ -156,12 +155,8 @@ pub struct Scene {
     pub lights: Vec<Light>,
     pub objects: Vec<Object>,
     pub accel: Accel,
-    /// Each object's material index and what its normal is computed from,
-    /// side by side: read at every hit (and the material at every shadow
-    /// crossing) without loading the object itself (the objects of an SPD
-    /// scene fill more than a core's cache, and each such load missed it).
-    object_materials: Vec<usize>,
-    object_normals: Vec<NormalRecipe>,
+    /// Each object's material and normal recipe, read without the object.
+    tables: ObjectTables,
 }
 
 impl Scene {
@@ -175,8 +170,7 @@ impl Scene {
         objects: Vec<Object>,
     ) -> Scene {
         let accel = Accel::build(&objects);
-        let object_materials = objects.iter().map(|o| o.material).collect();
-        let object_normals = objects.iter().map(|o| NormalRecipe::of(&o.shape)).collect();
+        let tables = ObjectTables::build(&objects);
         Scene {
             camera,
             width,
@@ -186,8 +180,7 @@ impl Scene {
             lights,
             objects,
             accel,
-            object_materials,
-            object_normals,
+            tables,
         }
     }
 
@@ -208,15 +201,13 @@ impl Scene {
     }
 
     pub fn material_of(&self, object: usize) -> &Material {
-        &self.materials[self.object_materials[object]]
+        &self.materials[self.tables.material(object)]
     }
 
     /// `object`'s geometric normal N_g at `point` (MODEL §3).
     #[inline]
     pub fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {
-        self.object_normals[object]
-            .normal_at(point)
-            .unwrap_or_else(|| self.objects[object].shape.geometric_normal(point))
+        self.tables.geometric_normal(&self.objects, object, point)
     }
 }
 

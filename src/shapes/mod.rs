@@ -3,8 +3,6 @@
 //! place a shadow segment crosses it, and the lecture's working for one ray.
 
 mod cone;
-mod edge_bands;
-mod normal;
 mod patch;
 mod plane;
 mod polygon;
@@ -14,10 +12,9 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use cone::{Cone, ConeWorking};
-pub use normal::NormalRecipe;
-pub use patch::{Patch, PatchWorking};
+pub use patch::{Patch, PatchWorking, blended_normal};
 pub use plane::{Plane, PlaneWorking};
-pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking, TriangleTest};
+pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking, count_crossings, crosses};
 pub use sphere::{RootChoice, Sphere, SphereWorking};
 
 use crate::math::{Interval, Ray};

@@ -57,7 +57,7 @@ impl Patch {
 
     /// The interpolated unit normal at a point of the patch.
     pub fn normal_at(&self, point: DVec3) -> DVec3 {
-        normal_at(
+        blended_normal(
             self.polygon.projected(),
             self.polygon.dropped,
             &self.normals,
@@ -97,7 +97,7 @@ fn locate(projected: &[DVec2], dropped: Axis, point: DVec3) -> (usize, [f64; 3])
 /// The vertex normals blended at `point` with its weights in the fan
 /// triangle holding it, normalized; `flat` (the polygon's normal) where the
 /// blend vanishes.
-pub(super) fn normal_at(
+pub fn blended_normal(
     projected: &[DVec2],
     dropped: Axis,
     normals: &[DVec3],

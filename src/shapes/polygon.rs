@@ -6,7 +6,6 @@
 use glam::{DVec2, DVec3};
 use serde::Serialize;
 
-use super::edge_bands::EdgeBands;
 use super::plane::{Plane, PlaneWorking};
 use super::{Aabb, GeometryError, Roots};
 use crate::math::{Interval, Ray, exceeds};
@@ -19,8 +18,6 @@ pub struct Polygon {
     pub dropped: Axis,
     /// The vertices projected to (U, V) by dropping `dropped`, computed once.
     projected: Vec<DVec2>,
-    /// For many-sided polygons, which edges can cross the axis at a given V.
-    bands: Option<Box<EdgeBands>>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -84,13 +81,13 @@ impl Axis {
 
 /// Whether the edge from a to b (relative to the point) crosses the +U axis.
 #[inline]
-fn crosses(a: DVec2, b: DVec2) -> bool {
+pub fn crosses(a: DVec2, b: DVec2) -> bool {
     (a.y >= 0.0) != (b.y >= 0.0) && a.x - a.y * (b.x - a.x) / (b.y - a.y) > 0.0
 }
 
 /// How many edges of the projected polygon cross the +U axis from `p`.
 #[inline]
-fn count_crossings(projected: &[DVec2], p: DVec2) -> u32 {
+pub fn count_crossings(projected: &[DVec2], p: DVec2) -> u32 {
     let mut crossings = 0;
     let mut a = projected[projected.len() - 1] - p;
     for vertex in projected {
@@ -99,37 +96,6 @@ fn count_crossings(projected: &[DVec2], p: DVec2) -> u32 {
         a = b;
     }
     crossings
-}
-
-/// A three-vertex polygon's test with everything it reads in one place: the
-/// BVH keeps these beside its leaves, so a leaf's triangles are tested from
-/// neighbouring memory instead of through each object's own allocations.
-/// It runs the same steps on the same numbers as `Polygon::solve`, so it
-/// answers the same to the bit (a test checks).
-#[derive(Clone, Debug)]
-pub struct TriangleTest {
-    plane: Plane,
-    dropped: Axis,
-    projected: [DVec2; 3],
-}
-
-impl TriangleTest {
-    /// The test of a polygon that is a triangle.
-    pub fn of(polygon: &Polygon) -> Option<TriangleTest> {
-        Some(TriangleTest {
-            plane: polygon.plane.clone(),
-            dropped: polygon.dropped,
-            projected: polygon.projected.as_slice().try_into().ok()?,
-        })
-    }
-
-    /// `Polygon::solve(ray, range).hit_t()`.
-    #[inline(always)]
-    pub fn hit_t(&self, ray: &Ray, range: Interval) -> Option<f64> {
-        let t = self.plane.solve(ray, range).hit_t()?;
-        let p = self.dropped.project(ray.at(t));
-        (count_crossings(&self.projected, p) % 2 == 1).then_some(t)
-    }
 }
 
 impl Polygon {
@@ -161,7 +127,6 @@ impl Polygon {
         let dropped = Axis::dominant(plane.normal);
         let projected: Vec<DVec2> = vertices.iter().map(|v| dropped.project(*v)).collect();
         Ok(Self {
-            bands: EdgeBands::new(&projected).map(Box::new),
             vertices,
             plane,
             dropped,
@@ -181,18 +146,10 @@ impl Polygon {
 
     /// Counts the edges that cross the +U axis once the point is moved to the
     /// origin. A vertex with V >= 0 is above the axis, so a vertex lying on it
-    /// is counted once. Many-sided polygons look only at the edges of the
-    /// point's band, which are all that can cross.
+    /// is counted once.
     pub fn crossing_test(&self, point: DVec3) -> CrossingTest {
         let p = self.dropped.project(point);
-        let crossings = match &self.bands {
-            Some(bands) => bands
-                .edges_near(p.y)
-                .iter()
-                .map(|&edge| self.edge_crosses(edge as usize, p))
-                .sum(),
-            None => self.crossings_of_every_edge(p),
-        };
+        let crossings = count_crossings(&self.projected, p);
         CrossingTest {
             dropped_axis: self.dropped,
             projected_point: [p.x, p.y],
@@ -201,18 +158,7 @@ impl Polygon {
         }
     }
 
-    fn crossings_of_every_edge(&self, p: DVec2) -> u32 {
-        count_crossings(&self.projected, p)
-    }
-
-    /// Whether edge i, from vertex i - 1 to vertex i, crosses the +U axis from `p`.
-    fn edge_crosses(&self, i: usize, p: DVec2) -> u32 {
-        let n = self.projected.len();
-        let a = self.projected[(i + n - 1) % n] - p;
-        u32::from(crosses(a, self.projected[i] - p))
-    }
-
-    pub(super) fn projected(&self) -> &[DVec2] {
+    pub(crate) fn projected(&self) -> &[DVec2] {
         &self.projected
     }
 
@@ -312,104 +258,6 @@ mod tests {
             .crossing
             .unwrap();
         assert_eq!((test.crossings, test.inside), (2, false));
-    }
-
-    #[test]
-    fn many_sided_polygon_counts_as_if_every_edge_were_tested() {
-        // A gear outline like the SPD's: 36 teeth, 144 vertices, concave.
-        let vertices: Vec<DVec3> = (0..144)
-            .map(|i| {
-                let angle = (i / 2) as f64 * std::f64::consts::TAU / 72.0;
-                let r = if (i + 1) % 4 < 2 { 1.0 } else { 0.8 };
-                DVec3::new(r * angle.cos(), r * angle.sin(), 0.0)
-            })
-            .collect();
-        let gear = Polygon::new(vertices.clone()).unwrap();
-        assert!(gear.bands.is_some());
-        // The centre: one crossing to its right (the rim at U = 1 or 0.8): inside.
-        let centre = gear.crossing_test(DVec3::ZERO);
-        assert_eq!((centre.crossings, centre.inside), (1, true));
-        // Left of everything on V = 0.1: both sides of the rim, outside.
-        assert_eq!(gear.crossing_test(DVec3::new(-2.0, 0.1, 0.0)).crossings, 2);
-        // A sweep, and every vertex's own V, where ties decide.
-        let mut points: Vec<DVec3> = (0..4000)
-            .map(|i| {
-                let f = i as f64;
-                DVec3::new(
-                    (f * 0.618).fract() * 2.4 - 1.2,
-                    (f * 0.414).fract() * 2.4 - 1.2,
-                    0.0,
-                )
-            })
-            .collect();
-        points.extend(vertices.iter().map(|v| DVec3::new(0.3 * v.x, v.y, 0.0)));
-        for point in points {
-            let p = Axis::Z.project(point);
-            assert_eq!(
-                gear.crossing_test(point).crossings,
-                gear.crossings_of_every_edge(p),
-                "{point}"
-            );
-        }
-    }
-
-    #[test]
-    fn the_triangle_test_answers_as_the_polygon_does_to_the_bit() {
-        // Rays from a grid of origins through a grid of targets, some on the
-        // triangles' vertices and edges, so that ties and the V >= 0 rule
-        // are exercised as well as clear hits and misses.
-        let triangles = [
-            polygon(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]),
-            polygon(&[[2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 4.0]]),
-            polygon(&[[0.3, -0.7, 0.2], [-0.4, 0.9, 0.5], [0.8, 0.6, -0.9]]),
-        ];
-        assert!(
-            TriangleTest::of(&polygon(&[
-                [0.0; 3],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0]
-            ]))
-            .is_none()
-        );
-        let (mut hits, mut misses) = (0, 0);
-        for triangle in &triangles {
-            let test = TriangleTest::of(triangle).unwrap();
-            for i in 0..=20 {
-                for j in 0..=20 {
-                    let target = DVec3::new(i as f64 / 10.0 - 0.5, j as f64 / 10.0 - 0.5, 0.25);
-                    for origin in [DVec3::new(0.1, 0.2, 3.0), DVec3::new(-2.0, 0.5, -1.0)] {
-                        let ray = Ray::new(origin, target - origin);
-                        for range in [Interval::in_front(), Interval::new(1e-4, 0.9)] {
-                            let expected = triangle.solve(&ray, range).hit_t();
-                            let got = test.hit_t(&ray, range);
-                            assert_eq!(
-                                got.map(f64::to_bits),
-                                expected.map(f64::to_bits),
-                                "{ray:?}"
-                            );
-                            if expected.is_some() {
-                                hits += 1;
-                            } else {
-                                misses += 1;
-                            }
-                        }
-                    }
-                }
-            }
-            // Through each vertex and each edge's midpoint exactly.
-            let v = &triangle.vertices;
-            for point in [v[0], v[1], v[2], (v[0] + v[1]) / 2.0, (v[1] + v[2]) / 2.0] {
-                let ray = Ray::new(
-                    point + DVec3::new(0.3, 0.1, 2.0),
-                    -DVec3::new(0.3, 0.1, 2.0),
-                );
-                let expected = triangle.solve(&ray, Interval::in_front()).hit_t();
-                let got = test.hit_t(&ray, Interval::in_front());
-                assert_eq!(got.map(f64::to_bits), expected.map(f64::to_bits), "{ray:?}");
-            }
-        }
-        assert!(hits > 200 && misses > 200, "{hits} hits, {misses} misses");
     }
 
     #[test]

@@ -10,37 +10,10 @@ use super::recorder::{
     Blocker, ChildTerm, LightTerm, NotCast, PruneRule, RayKind, Recorder, Refraction,
     ShadowOutcome, SurfaceHit,
 };
-use crate::accel::{Candidate, Cost};
+use crate::accel::{Candidate, Cost, ShadowCache};
 use crate::camera::Viewport;
 use crate::math::{Color, EPS, Interval, Ray, attenuation};
 use crate::scene::{Light, Material, Scene, SpecularModel};
-
-/// The last opaque blocker found for each light, kept along a row of pixels.
-#[derive(Clone, Debug, Default)]
-pub struct ShadowCache {
-    blockers: Vec<Option<usize>>,
-}
-
-impl ShadowCache {
-    fn blocker(&self, light: usize) -> Option<usize> {
-        self.blockers.get(light).copied().flatten()
-    }
-
-    fn remember(&mut self, light: usize, object: usize) {
-        if self.blockers.len() <= light {
-            self.blockers.resize(light + 1, None);
-        }
-        self.blockers[light] = Some(object);
-    }
-
-    /// The light reached the last point: past the edge of a shadow, its
-    /// blocker is not worth trying on the next pixels.
-    fn forget(&mut self, light: usize) {
-        if let Some(blocker) = self.blockers.get_mut(light) {
-            *blocker = None;
-        }
-    }
-}
 
 /// What a ray brings back: its colour and, if it hit, how far it went.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -228,7 +201,9 @@ impl<R: Recorder> Tracer<'_, R> {
         term
     }
 
-    /// S_i: the product of k_t over every crossing of the segment to the light.
+    /// S_i: the product of k_t over every crossing of the segment to the
+    /// light; an opaque crossing settles S_i = 0 and ends the walk, unless
+    /// the recorder lists every blocker.
     fn shadow_ray(
         &mut self,
         point: DVec3,
@@ -244,52 +219,31 @@ impl<R: Recorder> Tracer<'_, R> {
             crossings: 0,
             cost: Cost::default(),
         };
-        let segment = Interval::new(EPS, distance);
-        // The opaque object that blocked this light last time is tried first: in a
-        // shadow, neighbouring points are usually blocked by the same object. S = 0
-        // either way, so only the cost changes. A recording lists every blocker
-        // and so always walks the whole segment.
-        if !R::RECORDS_ALL_BLOCKERS
-            && let Some(object) = self.cache.blocker(light)
-        {
-            outcome.cost.primitives += 1;
-            if let Some(&t) = scene.objects[object]
-                .shape
-                .roots(&ray, segment)
-                .as_slice()
-                .first()
-            {
-                outcome.s = 0.0;
-                outcome.crossings = 1;
-                self.rec.blocker(&Blocker { object, t, kt: 0.0 });
-                return outcome;
-            }
-        }
-        let (cache, rec) = (&mut *self.cache, &mut *self.rec);
-        let mut opaque = false;
+        let rec = &mut *self.rec;
         let mut visit = |object, t| {
             let kt = scene.material_of(object).kt;
             outcome.s *= kt;
             outcome.crossings += 1;
             rec.blocker(&Blocker { object, t, kt });
             if kt == 0.0 && !R::RECORDS_ALL_BLOCKERS {
-                cache.remember(light, object);
-                opaque = true;
                 ControlFlow::Break(())
             } else {
                 ControlFlow::Continue(())
             }
         };
-        // Passed by reference: moved in by value, the closure's fields were
-        // written one at a time and at once read back two at a time to be
-        // copied, a read the CPU cannot serve from its pending writes, so it
-        // waited on every shadow ray (tree -13 %).
-        scene
-            .accel
-            .crossings(&scene.objects, &ray, segment, &mut outcome.cost, &mut visit);
-        if !opaque {
-            cache.forget(light);
-        }
+        // The row's cache only makes the query cheaper; a recording walks
+        // the whole segment.
+        let cache = (!R::RECORDS_ALL_BLOCKERS).then_some(&mut *self.cache);
+        let segment = Interval::new(EPS, distance);
+        scene.accel.shadow_crossings(
+            &scene.objects,
+            &ray,
+            segment,
+            light,
+            cache,
+            &mut outcome.cost,
+            &mut visit,
+        );
         outcome
     }
 
@@ -430,74 +384,5 @@ fn refract(direction: DVec3, hit: &SurfaceHit, ior: f64) -> Refraction {
         k,
         tir,
         direction,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use std::path::Path;
-
-    use super::*;
-    use crate::scene::parse;
-
-    /// The shadow outcome of each light, in order.
-    #[derive(Default)]
-    struct Shadows(Vec<ShadowOutcome>);
-
-    impl Recorder for Shadows {
-        fn light(&mut self, term: &LightTerm) {
-            self.0.extend(term.shadow);
-        }
-    }
-
-    #[test]
-    fn a_row_tries_the_last_opaque_blocker_first_until_the_light_comes_back() {
-        // A floor y = 0 (a plane: tested by every query), a light at (0, 4, 0)
-        // and an opaque ball of radius 0.5 at (0, 2, 0) between them.
-        let scene = parse(
-            Path::new("test.toml"),
-            r#"[camera]
-            eye = [0, 5, 0]
-            look_at = [0, 0, 0]
-            up = [0, 0, 1]
-            [materials.white]
-            kd = 1
-            [[light]]
-            position = [0, 4, 0]
-            [[object]]
-            material = "white"
-            plane = { normal = [0, 1, 0], point = [0, 0, 0] }
-            [[object]]
-            material = "white"
-            sphere = { center = [0, 2, 0], radius = 0.5 }"#,
-        )
-        .unwrap();
-        // Rays straight down onto the floor at (x, 0, 0), traced along one row.
-        let along_a_row = |xs: &[f64]| {
-            let mut cache = ShadowCache::default();
-            xs.iter()
-                .map(|&x| {
-                    let ray = Ray::new(DVec3::new(x, 1.0, 0.0), DVec3::NEG_Y);
-                    let mut shadows = Shadows::default();
-                    trace_primary_in_row(&scene, &ray, &mut cache, &mut shadows);
-                    let shadow = shadows.0[0];
-                    (shadow.s, shadow.cost.primitives)
-                })
-                .collect::<Vec<_>>()
-        };
-        // x = 0: the shadow ray goes straight up through the ball. It tests
-        // the plane (starting on it, t = 0 is not a crossing) and the ball,
-        // met at t = 1.5: S = 0, two primitives; the ball is remembered.
-        // x = 3: towards (-3, 4, 0) / 5, the ray passes the ball's height
-        // (y 1.5 to 2.5) at x 1.875 to 1.125, outside its box: the ball is
-        // tried first and missed, then the plane: S = 1, two primitives, and
-        // the ball is forgotten.
-        // x = 3.2: likewise lit, and only the plane is tested: one primitive.
-        assert_eq!(
-            along_a_row(&[0.0, 3.0, 3.2]),
-            [(0.0, 2), (1.0, 2), (1.0, 1)]
-        );
-        // Alone, the lit points test the plane only.
-        assert_eq!(along_a_row(&[3.0]), [(1.0, 1)]);
     }
 }

@@ -9,8 +9,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::polygon::Axis;
-use super::{Shape, Sphere, patch};
+use crate::shapes::{Axis, Shape, Sphere, blended_normal};
 
 #[derive(Clone, Debug)]
 pub enum NormalRecipe {
@@ -63,7 +62,7 @@ impl NormalRecipe {
         match self {
             NormalRecipe::Flat(normal) => Some(*normal),
             NormalRecipe::Sphere(s) => Some(s.normal_at(point)),
-            NormalRecipe::SmoothTriangle(t) => Some(patch::normal_at(
+            NormalRecipe::SmoothTriangle(t) => Some(blended_normal(
                 &t.projected,
                 t.dropped,
                 &t.normals,

@@ -10,6 +10,8 @@
 
 use glam::DVec2;
 
+use crate::shapes::crosses;
+
 /// Polygons with fewer vertices are tested over all their edges.
 pub(super) const MIN_VERTICES: usize = 16;
 /// About this many edges per band on average.
@@ -99,11 +101,29 @@ impl EdgeBands {
         }
         &self.edges[self.starts[k] as usize..self.starts[k + 1] as usize]
     }
+
+    /// `shapes::count_crossings(projected, p)`, the crossing test's count,
+    /// from the edges near p's V only; `projected` is what the bands were
+    /// made of.
+    pub fn crossings(&self, projected: &[DVec2], p: DVec2) -> u32 {
+        let n = projected.len();
+        let edge_crosses = |i: usize| {
+            let a = projected[(i + n - 1) % n] - p;
+            u32::from(crosses(a, projected[i] - p))
+        };
+        self.edges_near(p.y)
+            .iter()
+            .map(|&edge| edge_crosses(edge as usize))
+            .sum()
+    }
 }
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
+    use crate::shapes::{Axis, Polygon};
 
     /// A star of `n` points around the origin, radii alternating 1 and 0.4.
     fn star(n: usize) -> Vec<DVec2> {
@@ -171,5 +191,43 @@ mod tests {
         assert!(bands.edges_near(high.next_up()).is_empty());
         assert!(!bands.edges_near(high).is_empty());
         assert!(bands.edges_near(f64::NAN).is_empty());
+    }
+
+    #[test]
+    fn many_sided_polygon_counts_as_if_every_edge_were_tested() {
+        // A gear outline like the SPD's: 36 teeth, 144 vertices, concave.
+        let vertices: Vec<DVec3> = (0..144)
+            .map(|i| {
+                let angle = (i / 2) as f64 * std::f64::consts::TAU / 72.0;
+                let r = if (i + 1) % 4 < 2 { 1.0 } else { 0.8 };
+                DVec3::new(r * angle.cos(), r * angle.sin(), 0.0)
+            })
+            .collect();
+        let gear = Polygon::new(vertices.clone()).unwrap();
+        let bands = EdgeBands::new(gear.projected()).unwrap();
+        let banded = |point: DVec3| bands.crossings(gear.projected(), Axis::Z.project(point));
+        // The centre: one crossing to its right (the rim at U = 1 or 0.8): inside.
+        assert_eq!(banded(DVec3::ZERO), 1);
+        // Left of everything on V = 0.1: both sides of the rim, outside.
+        assert_eq!(banded(DVec3::new(-2.0, 0.1, 0.0)), 2);
+        // A sweep, and every vertex's own V, where ties decide.
+        let mut points: Vec<DVec3> = (0..4000)
+            .map(|i| {
+                let f = i as f64;
+                DVec3::new(
+                    (f * 0.618).fract() * 2.4 - 1.2,
+                    (f * 0.414).fract() * 2.4 - 1.2,
+                    0.0,
+                )
+            })
+            .collect();
+        points.extend(vertices.iter().map(|v| DVec3::new(0.3 * v.x, v.y, 0.0)));
+        for point in points {
+            assert_eq!(
+                banded(point),
+                gear.crossing_test(point).crossings,
+                "{point}"
+            );
+        }
     }
 }
