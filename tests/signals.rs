@@ -178,8 +178,9 @@ fn signal_restores_the_terminal(signal: i32, args: &[&str]) {
     assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
     session.wait_for("restore of every mode", all_modes_reset);
     eprintln!("signal {signal}: exit {took:?} after it was sent");
-    // The signal thread restores and exits at once, whatever the UI is doing.
-    assert!(took < Duration::from_secs(3), "exit took {took:?}");
+    // The signal thread restores and exits at once, whatever the UI is doing
+    // (5 to 50 ms here); the bound is generous for a machine busy building.
+    assert!(took < Duration::from_secs(8), "exit took {took:?}");
 }
 
 #[test]
@@ -205,12 +206,13 @@ fn sigquit_restores_the_terminal() {
 
 #[test]
 fn a_signal_during_a_long_render_restores_the_terminal_at_once() {
-    // 4000 x 3000 pixels of the built-in scene: seconds of rendering, under
-    // way when the first screen is up; the exit must not wait for it.
+    // 8000 x 6000 pixels of the built-in scene: about 20 s of rendering on
+    // two cores, under way when the first screen is up; the exit must not
+    // wait for it (the bound below leaves room for a loaded machine).
     let dir = tempfile::tempdir().unwrap();
     let scene = raystep::scene::builtin::TEXT
-        .replace("width = 161", "width = 4000")
-        .replace("height = 121", "height = 3000");
+        .replace("width = 161", "width = 8000")
+        .replace("height = 121", "height = 6000");
     let path = dir.path().join("big.toml");
     std::fs::write(&path, scene).unwrap();
     signal_restores_the_terminal(libc::SIGTERM, &[path.to_str().unwrap()]);
