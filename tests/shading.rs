@@ -192,7 +192,7 @@ fn total_internal_reflection_moves_kt_to_the_reflected_ray() {
     assert!((refraction.cos_i - 0.19f64.sqrt()).abs() < 1e-12);
     assert_eq!(refraction.eta, 1.5);
     assert!((refraction.k + 0.8225).abs() < 1e-12);
-    assert!(root.tir && refraction.direction.is_none());
+    assert!(root.tir() && refraction.direction.is_none());
     assert!(root.transmitted.is_none());
     let reflected = &tree.nodes[root.reflected.unwrap()];
     assert_eq!(reflected.weight, 1.0);

@@ -54,7 +54,7 @@ pub fn explain(tree: &RayTree) -> String {
             "  the scene has no lights: only ambient light and secondary rays add colour."
         );
     }
-    if root.tir {
+    if root.tir() {
         let _ = writeln!(
             out,
             "Total internal reflection: the ray is inside a denser medium at too shallow an angle, \

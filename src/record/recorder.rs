@@ -97,7 +97,6 @@ impl Recorder for TreeRecorder<'_> {
             ambient: Color::ZERO,
             lights: Vec::new(),
             refraction: None,
-            tir: false,
             reflected: None,
             transmitted: None,
             not_cast: Vec::new(),
@@ -232,7 +231,6 @@ impl Recorder for TreeRecorder<'_> {
     fn refraction(&mut self, refraction: &Refraction) {
         let node = self.node();
         node.refraction = Some(*refraction);
-        node.tir = refraction.tir;
         self.push_event(EventKind::Refraction {
             tir: refraction.tir,
         });

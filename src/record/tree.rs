@@ -35,7 +35,6 @@ pub struct Node {
     pub ambient: Color,
     pub lights: Vec<LightRecord>,
     pub refraction: Option<Refraction>,
-    pub tir: bool,
     pub reflected: Option<NodeId>,
     pub transmitted: Option<NodeId>,
     /// Secondary rays a rule kept from being cast (MODEL §5); absent when none.
@@ -45,6 +44,13 @@ pub struct Node {
     pub color: Color,
     /// weight * attenuation * color: what it adds to its parent.
     pub contribution: Color,
+}
+
+impl Node {
+    /// Whether the ray's refraction was total internal reflection.
+    pub fn tir(&self) -> bool {
+        self.refraction.is_some_and(|r| r.tir)
+    }
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -238,6 +244,8 @@ impl RayTree {
         value["reflected"] = node.reflected.map_or(Value::Null, |c| self.node_json(c));
         value["transmitted"] = node.transmitted.map_or(Value::Null, |c| self.node_json(c));
         value["id"] = id.into();
+        // Derived, not stored: the JSON keeps its `tir` key beside `refraction`.
+        value["tir"] = node.tir().into();
         value
     }
 }

@@ -18,13 +18,6 @@ impl App {
         self.renderer.progress()
     }
 
-    /// Blocks until every requested render is in (benchmarks and tests).
-    pub fn wait_for_renders(&mut self) {
-        while let Some(finished) = self.renderer.wait() {
-            self.install(finished);
-        }
-    }
-
     /// Stops every render at once (on quit: nothing waits for them).
     pub(super) fn cancel_renders(&mut self) {
         self.renderer.cancel();
