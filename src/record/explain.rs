@@ -65,7 +65,7 @@ pub fn explain(tree: &RayTree) -> String {
         write_child(&mut out, tree, child);
     }
     write_not_cast(&mut out, tree);
-    if tree.max_depth.is_some_and(|max| root.depth >= max) {
+    if root.depth >= tree.max_depth {
         let _ = writeln!(
             out,
             "No secondary rays: max_depth is 1, so the primary ray spawns none."

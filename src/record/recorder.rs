@@ -56,7 +56,7 @@ impl<'a> TreeRecorder<'a> {
     pub fn into_tree(self, pixel: (u32, u32)) -> RayTree {
         RayTree {
             pixel,
-            max_depth: Some(self.scene.settings.max_depth),
+            max_depth: self.scene.settings.max_depth,
             nodes: self.nodes,
             events: self.events,
         }

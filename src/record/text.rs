@@ -401,7 +401,7 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
     );
     if node.reflected.is_none()
         && node.transmitted.is_none()
-        && tree.max_depth.is_some_and(|m| node.depth >= m)
+        && node.depth >= tree.max_depth
     {
         lines.push(Line::text(
             None,

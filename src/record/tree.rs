@@ -186,7 +186,7 @@ fn is_false(value: &bool) -> bool {
 pub struct RayTree {
     pub pixel: (u32, u32),
     /// The scene's max_depth when recorded.
-    pub max_depth: Option<u32>,
+    pub max_depth: u32,
     pub nodes: Vec<Node>,
     pub events: Vec<Event>,
 }
