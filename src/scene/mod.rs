@@ -204,6 +204,11 @@ impl Scene {
         &self.materials[self.tables.material(object)]
     }
 
+    /// An object's name for messages, "?" for an index the scene lacks.
+    pub fn object_name(&self, object: usize) -> &str {
+        self.objects.get(object).map_or("?", |o| o.name.as_str())
+    }
+
     /// `object`'s geometric normal N_g at `point` (MODEL §3).
     #[inline]
     pub fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {

@@ -107,7 +107,7 @@ impl App {
             None => {
                 let what = match breakpoint {
                     Breakpoint::BlockedShadow => "blocked shadow ray".to_string(),
-                    Breakpoint::HitObject(object) => format!("hit on {}", self.object_name(object)),
+                    Breakpoint::HitObject(object) => format!("hit on {}", self.scene.object_name(object)),
                     Breakpoint::Tir => "total internal reflection".to_string(),
                 };
                 self.message = Some(format!(
@@ -116,13 +116,6 @@ impl App {
                 ));
             }
         }
-    }
-
-    fn object_name(&self, object: usize) -> &str {
-        self.scene
-            .objects
-            .get(object)
-            .map_or("?", |o| o.name.as_str())
     }
 
     /// The object breakpoint: the chosen one, else the selected ray's object.
@@ -159,7 +152,7 @@ impl App {
         if let Some(object) = self.break_object {
             self.message = Some(format!(
                 "x runs to the next hit on {}",
-                self.object_name(object)
+                self.scene.object_name(object)
             ));
         }
     }

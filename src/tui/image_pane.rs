@@ -4,7 +4,7 @@
 
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Rect};
-use ratatui::style::{Color, Style, Stylize};
+use ratatui::style::{Color, Stylize};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
@@ -15,11 +15,8 @@ use super::app::{App, View};
 use super::controls::inner;
 use super::image_view::ImageWidget;
 use super::layout::Pane;
+use super::tree_view::rgb_swatch;
 use super::ui::pane_block;
-
-pub fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
-    Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
-}
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let (x, y) = app.cursor;

@@ -16,10 +16,6 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::widgets::Paragraph;
 
-fn object_name(scene: &Scene, object: usize) -> &str {
-    scene.objects.get(object).map_or("?", |o| o.name.as_str())
-}
-
 fn light_name(scene: &Scene, light: usize) -> String {
     light_label(scene.lights.get(light).map_or("?", |l| l.name.as_str()))
 }
@@ -46,7 +42,7 @@ pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option
         EventKind::Hit { object, t, tested } => (
             format!(
                 "{ray}: hit {} at t = {} ({} primitives tested)",
-                object_name(scene, *object),
+                scene.object_name(*object),
                 num(*t),
                 tested.primitives
             ),
@@ -64,7 +60,7 @@ pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option
         EventKind::Blocker { object, t, kt, .. } => (
             format!(
                 "{ray}: blocked by {} at t = {}, kt = {}",
-                object_name(scene, *object),
+                scene.object_name(*object),
                 num(*t),
                 num(*kt)
             ),

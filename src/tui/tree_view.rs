@@ -123,8 +123,12 @@ fn share(tree: &RayTree, part: crate::math::Color) -> String {
     }
 }
 
+/// A colour as the pixel shows it: two full blocks in its rgb8.
 pub fn swatch(color: crate::math::Color) -> Span<'static> {
-    let [r, g, b] = to_rgb8(color);
+    rgb_swatch(to_rgb8(color))
+}
+
+pub fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
     Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
 }
 
