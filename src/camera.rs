@@ -28,11 +28,33 @@ pub struct Viewport {
     pub(crate) height: u32,
 }
 
+/// The camera's orthonormal frame: where it looks, its right and its true up
+/// (`up` made perpendicular to `forward`).
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    pub forward: DVec3,
+    pub right: DVec3,
+    pub true_up: DVec3,
+}
+
 impl Camera {
-    pub fn viewport(&self, width: u32, height: u32) -> Viewport {
+    pub fn frame(&self) -> Frame {
         let forward = (self.look_at - self.eye).normalize();
         let right = forward.cross(self.up).normalize();
         let true_up = right.cross(forward);
+        Frame {
+            forward,
+            right,
+            true_up,
+        }
+    }
+
+    pub fn viewport(&self, width: u32, height: u32) -> Viewport {
+        let Frame {
+            forward,
+            right,
+            true_up,
+        } = self.frame();
         Viewport {
             eye: self.eye,
             forward,

@@ -51,11 +51,10 @@ impl Projection {
         let root = tree.root();
         let origin = root.hit.as_ref().map_or(root.origin, |h| h.point);
         let camera = &scene.camera;
-        let forward = (camera.look_at - camera.eye).normalize();
-        let camera_right = forward.cross(camera.up).normalize();
+        let frame = camera.frame();
         let (right, up) = match plane {
-            ViewPlane::Top => (camera_right, forward),
-            ViewPlane::Side => (forward, camera_right.cross(forward)),
+            ViewPlane::Top => (frame.right, frame.forward),
+            ViewPlane::Side => (frame.forward, frame.true_up),
             ViewPlane::Primary => primary_plane(root, camera.up),
         };
         Self { origin, right, up }
