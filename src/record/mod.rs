@@ -14,7 +14,7 @@ pub use lines::{About, Line, Piece};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use text::{
     Children, color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line,
-    not_cast_reason, num, text, vector, working_lines,
+    not_cast_reason, num, ray_header, text, vector, working_lines,
 };
 pub use tree::{
     BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,

@@ -399,10 +399,7 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
             .iter()
             .map(|ray| Line::text(Some(About::NotCast(ray.kind)), not_cast_line(ray))),
     );
-    if node.reflected.is_none()
-        && node.transmitted.is_none()
-        && node.depth >= tree.max_depth
-    {
+    if node.reflected.is_none() && node.transmitted.is_none() && node.depth >= tree.max_depth {
         lines.push(Line::text(
             None,
             format!("no secondary rays: depth {} is max_depth", node.depth),
@@ -421,7 +418,9 @@ fn child_line(tree: &RayTree, child: NodeId) -> Line {
     .color(node.contribution)
 }
 
-fn header(node: &Node) -> String {
+/// "reflected ray, depth 1, weight 0.5": a ray's first line (no weight for
+/// the primary ray), in the text form and the details pane.
+pub fn ray_header(node: &Node) -> String {
     let mut text = format!("{} ray, depth {}", kind_name(node.kind), node.depth);
     if node.kind != RayKind::Primary {
         let _ = write!(text, ", weight {}", num(node.weight));
@@ -470,7 +469,7 @@ pub fn text(tree: &RayTree) -> String {
 }
 
 fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str) {
-    let _ = writeln!(out, "{}", header(&tree.nodes[id]));
+    let _ = writeln!(out, "{}", ray_header(&tree.nodes[id]));
     let children: Vec<NodeId> = tree.children(id).collect();
     let body = if children.is_empty() { "  " } else { "│ " };
     let room = WIDTH.saturating_sub(prefix.chars().count() + 2);

@@ -107,7 +107,9 @@ impl App {
             None => {
                 let what = match breakpoint {
                     Breakpoint::BlockedShadow => "blocked shadow ray".to_string(),
-                    Breakpoint::HitObject(object) => format!("hit on {}", self.scene.object_name(object)),
+                    Breakpoint::HitObject(object) => {
+                        format!("hit on {}", self.scene.object_name(object))
+                    }
                     Breakpoint::Tir => "total internal reflection".to_string(),
                 };
                 self.message = Some(format!(

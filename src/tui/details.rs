@@ -8,9 +8,7 @@ use ratatui::style::{Color as TermColor, Modifier, Style};
 use ratatui::text::{Line, Span};
 
 use crate::math::Color;
-use crate::record::{
-    self, About, Children, NodeId, Piece, RayTree, color, kind_name, node_lines, num,
-};
+use crate::record::{self, About, Children, NodeId, Piece, RayTree, color, kind_name, node_lines};
 
 use super::app::App;
 use super::layout::Pane;
@@ -23,11 +21,7 @@ use ratatui::widgets::Paragraph;
 /// A ray's lines as the pane lists them: a header, then what `inspect`
 /// prints, with the child rays listed before the colour they add to.
 pub fn ray_lines(tree: &RayTree, id: NodeId) -> Vec<record::Line> {
-    let node = &tree.nodes[id];
-    let mut header = format!("r{id}: {} ray, depth {}", kind_name(node.kind), node.depth);
-    if node.parent.is_some() {
-        header.push_str(&format!(", weight {}", num(node.weight)));
-    }
+    let header = format!("r{id}: {}", record::ray_header(&tree.nodes[id]));
     let mut lines = vec![record::Line::text(None, header)];
     lines.extend(node_lines(tree, id, Children::Listed));
     lines
