@@ -12,7 +12,7 @@ use crate::output::{self, Target};
 use crate::record::{RayTree, dot, explain, record_pixel, text};
 use crate::render::{render, with_threads};
 use crate::scene::{self, Scene};
-use crate::terms::Term;
+use crate::terms::{Term, TermImages, render_terms};
 use crate::trace::{NoRecorder, RayStats};
 
 /// raystep: a step-through debugger for Whitted ray tracing.
@@ -194,6 +194,31 @@ fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The image, its stats when `stats`, and the term images when `terms`. The
+/// terms pass gives the image too (the same trace), so `--terms` traces once;
+/// only with `--stats` as well is there a second pass, as the terms recorder
+/// counts no stats.
+fn trace(
+    scene: &Scene,
+    stats: bool,
+    terms: bool,
+    tick: &(dyn Fn() + Sync),
+) -> (image::RgbImage, RayStats, Option<TermImages>) {
+    if stats {
+        let (image, stats) = render::<RayStats>(scene, tick);
+        (image, stats, terms.then(|| render_terms(scene, &|| {})))
+    } else if terms {
+        let terms = render_terms(scene, tick);
+        (terms.color_image(), RayStats::default(), Some(terms))
+    } else {
+        (
+            render::<NoRecorder>(scene, tick).0,
+            RayStats::default(),
+            None,
+        )
+    }
+}
+
 fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     let started = Instant::now();
     if args.threads.is_none() {
@@ -208,21 +233,11 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     let tick = || progress.inc(1);
     let threads = args.threads.map(usize::from);
     let traced = Instant::now();
-    let (image, stats) = with_threads(threads, || {
-        if args.stats {
-            render::<RayStats>(&scene, &tick)
-        } else {
-            (render::<NoRecorder>(&scene, &tick).0, RayStats::default())
-        }
-    })?;
+    let want_terms = outputs.terms.is_some();
+    let (image, stats, terms) =
+        with_threads(threads, || trace(&scene, args.stats, want_terms, &tick))?;
     let tracing = traced.elapsed().as_secs_f64();
     progress.finish_and_clear();
-    let terms = match outputs.terms {
-        Some(_) => Some(with_threads(threads, || {
-            crate::terms::render_terms(&scene, &|| {})
-        })?),
-        None => None,
-    };
     let term_images = terms.iter().flat_map(|terms| {
         Term::ALL
             .iter()

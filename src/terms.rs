@@ -221,6 +221,13 @@ impl TermImages {
         }
     }
 
+    /// The rendered image: each pixel's colour, as the plain render writes it.
+    pub fn color_image(&self) -> RgbImage {
+        RgbImage::from_fn(self.width, self.height, |x, y| {
+            image::Rgb(to_rgb8(self.pixels[(y * self.width + x) as usize].color))
+        })
+    }
+
     pub fn image(&self, term: Term) -> RgbImage {
         let max = self.max_count(term);
         RgbImage::from_fn(self.width, self.height, |x, y| {

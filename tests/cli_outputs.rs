@@ -292,3 +292,34 @@ fn a_stale_temporary_is_removed_and_a_live_one_kept() {
     );
     drop(held);
 }
+
+#[test]
+fn terms_give_the_plain_render_s_image_and_the_same_terms_with_stats() {
+    // `--terms` alone takes the image from the terms pass; with `--stats`
+    // the image comes from the counting render. Glass has every term
+    // (reflected and transmitted rays, shadows), so all three must agree byte
+    // for byte with the plain render.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/glass.toml");
+    let size = ["--size", "40x30", "--threads", "2"];
+    for (out, extra) in [
+        ("plain.png", &[][..]),
+        ("terms.png", &["--terms", "t"][..]),
+        ("stats.png", &["--terms", "s", "--stats"][..]),
+    ] {
+        let args = [&[scene, "-o", out][..], &size[..], extra].concat();
+        let output = render(dir.path(), &args);
+        assert!(output.status.success(), "{out}: {output:?}");
+    }
+    let read = |name: &str| fs::read(dir.path().join(name)).unwrap();
+    assert_eq!(read("terms.png"), read("plain.png"));
+    assert_eq!(read("stats.png"), read("plain.png"));
+    for term in names(&dir.path().join("t")) {
+        assert_eq!(
+            read(&format!("t/{term}")),
+            read(&format!("s/{term}")),
+            "{term}"
+        );
+    }
+    assert_eq!(names(&dir.path().join("t")).len(), 8);
+}

@@ -1,10 +1,6 @@
 //! The app's side of background renders: asking for one, following its
 //! progress, and installing what comes back (only the latest generation).
 
-use image::RgbImage;
-
-use crate::math::to_rgb8;
-
 use super::app::{App, View};
 use super::job::{Finished, Output, Progress, Request};
 
@@ -64,9 +60,7 @@ impl App {
         match finished.output {
             Ok(Output::Image(image)) => self.image = Some(image),
             Ok(Output::Terms(terms)) => {
-                self.image = Some(RgbImage::from_fn(terms.width, terms.height, |x, y| {
-                    image::Rgb(to_rgb8(terms.pixels[(y * terms.width + x) as usize].color))
-                }));
+                self.image = Some(terms.color_image());
                 self.terms = Some(terms);
                 self.terms_generation = Some(finished.generation);
             }
