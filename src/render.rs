@@ -9,7 +9,7 @@ use image::RgbImage;
 use rayon::prelude::*;
 
 use crate::accel::ShadowCache;
-use crate::math::to_rgb8;
+use crate::math::{Ray, to_rgb8};
 use crate::scene::Scene;
 use crate::trace::{NoRecorder, RayStats, Recorder, trace_primary_in_row};
 
@@ -55,10 +55,36 @@ pub fn render_unless<R: RowRecorder>(
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
 ) -> Option<(RgbImage, R)> {
-    let viewport = scene.camera.viewport(width, height);
     let mut image = RgbImage::new(width, height);
-    let recorder = image
-        .par_chunks_mut(3 * width as usize)
+    let (pixels, _) = image.as_chunks_mut::<3>();
+    let recorder = trace_rows(
+        scene,
+        (width, height),
+        pixels,
+        row_done,
+        cancel,
+        |ray, cache, rec, pixel| {
+            *pixel = to_rgb8(trace_primary_in_row(scene, ray, cache, rec));
+        },
+    )?;
+    Some((image, recorder))
+}
+
+/// The one row loop of whole images: `pixels` (`width` a row) shared among
+/// threads by rows, each row's primary rays handed to `pixel` with the row's
+/// shadow cache and recorder, the recorders summed. Each row looks at `cancel`
+/// before it starts; `None` when it was set.
+pub(crate) fn trace_rows<T: Send, R: RowRecorder>(
+    scene: &Scene,
+    (width, height): (u32, u32),
+    pixels: &mut [T],
+    row_done: &(dyn Fn() + Sync),
+    cancel: &AtomicBool,
+    pixel: impl Fn(&Ray, &mut ShadowCache, &mut R, &mut T) + Sync,
+) -> Option<R> {
+    let viewport = scene.camera.viewport(width, height);
+    let recorder = pixels
+        .par_chunks_mut(width as usize)
         .enumerate()
         .map(|(y, row)| {
             let mut rec = R::default();
@@ -66,9 +92,8 @@ pub fn render_unless<R: RowRecorder>(
                 return rec;
             }
             let mut cache = ShadowCache::default();
-            for (ray, pixel) in viewport.row(y as u32).iter().zip(row.chunks_exact_mut(3)) {
-                let color = trace_primary_in_row(scene, ray, &mut cache, &mut rec);
-                pixel.copy_from_slice(&to_rgb8(color));
+            for (ray, out) in viewport.row(y as u32).iter().zip(row) {
+                pixel(ray, &mut cache, &mut rec, out);
             }
             row_done();
             rec
@@ -77,7 +102,7 @@ pub fn render_unless<R: RowRecorder>(
             a.merge(b);
             a
         });
-    (!cancel.load(Ordering::Relaxed)).then_some((image, recorder))
+    (!cancel.load(Ordering::Relaxed)).then_some(recorder)
 }
 
 /// Runs `work` on a pool of `threads` threads, or on all cores when `None`.

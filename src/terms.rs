@@ -2,15 +2,17 @@
 //! whole image can be read term by term, plus the shadow factor, the number
 //! of rays and the cost of the queries per pixel.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
-use rayon::prelude::*;
 
-use crate::accel::{Cost, ShadowCache};
+use crate::accel::Cost;
 use crate::math::{Color, Ray, to_rgb8};
+use crate::render::trace_rows;
 use crate::scene::Scene;
-use crate::trace::{ChildTerm, LightTerm, RayKind, Recorder, SurfaceHit, trace_primary_in_row};
+use crate::trace::{
+    ChildTerm, LightTerm, NoRecorder, RayKind, Recorder, SurfaceHit, trace_primary_in_row,
+};
 
 /// One view of the per-pixel terms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
@@ -169,27 +171,25 @@ pub fn render_terms_unless(
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
 ) -> Option<TermImages> {
-    let viewport = scene.camera.viewport(scene.width, scene.height);
+    let size = (scene.width, scene.height);
     let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
-    pixels
-        .par_chunks_mut(scene.width as usize)
-        .enumerate()
-        .for_each(|(y, row)| {
-            if cancel.load(Ordering::Relaxed) {
-                return;
-            }
-            let mut cache = ShadowCache::default();
-            for (ray, pixel) in viewport.row(y as u32).iter().zip(row.iter_mut()) {
-                let mut rec = TermsRecorder::default();
-                let color = trace_primary_in_row(scene, ray, &mut cache, &mut rec);
-                rec.terms.color = color;
-                rec.terms.shadow =
-                    (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);
-                *pixel = rec.terms;
-            }
-            row_done();
-        });
-    (!cancel.load(Ordering::Relaxed)).then_some(TermImages {
+    // Each pixel has its own terms recorder; the row's recorder is unused.
+    trace_rows::<_, NoRecorder>(
+        scene,
+        size,
+        &mut pixels,
+        row_done,
+        cancel,
+        |ray, cache, _, pixel| {
+            let mut rec = TermsRecorder::default();
+            let color = trace_primary_in_row(scene, ray, cache, &mut rec);
+            rec.terms.color = color;
+            rec.terms.shadow =
+                (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);
+            *pixel = rec.terms;
+        },
+    )?;
+    Some(TermImages {
         width: scene.width,
         height: scene.height,
         pixels,
