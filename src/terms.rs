@@ -15,7 +15,7 @@ use crate::trace::{
 };
 
 /// One view of the per-pixel terms.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Term {
     Ambient,
     Diffuse,
