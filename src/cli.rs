@@ -194,28 +194,32 @@ fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The image, its stats when `stats`, and the term images when `terms`. The
-/// terms pass gives the image too (the same trace), so `--terms` traces once;
-/// only with `--stats` as well is there a second pass, as the terms recorder
-/// counts no stats.
+/// The image, its stats when `stats`, and the term images when `terms`: one
+/// trace, as the terms pass gives the image (and the stats) too.
 fn trace(
     scene: &Scene,
     stats: bool,
     terms: bool,
     tick: &(dyn Fn() + Sync),
 ) -> (image::RgbImage, RayStats, Option<TermImages>) {
-    if stats {
-        let (image, stats) = render::<RayStats>(scene, tick);
-        (image, stats, terms.then(|| render_terms(scene, &|| {})))
-    } else if terms {
-        let terms = render_terms(scene, tick);
-        (terms.color_image(), RayStats::default(), Some(terms))
-    } else {
-        (
+    match (stats, terms) {
+        (true, true) => {
+            let (terms, stats) = render_terms::<RayStats>(scene, tick);
+            (terms.color_image(), stats, Some(terms))
+        }
+        (false, true) => {
+            let (terms, _) = render_terms::<NoRecorder>(scene, tick);
+            (terms.color_image(), RayStats::default(), Some(terms))
+        }
+        (true, false) => {
+            let (image, stats) = render::<RayStats>(scene, tick);
+            (image, stats, None)
+        }
+        (false, false) => (
             render::<NoRecorder>(scene, tick).0,
             RayStats::default(),
             None,
-        )
+        ),
     }
 }
 

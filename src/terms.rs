@@ -8,10 +8,11 @@ use image::RgbImage;
 
 use crate::accel::Cost;
 use crate::math::{Color, Ray, to_rgb8};
-use crate::render::trace_rows;
+use crate::render::{RowRecorder, trace_rows};
 use crate::scene::Scene;
 use crate::trace::{
-    ChildTerm, LightTerm, NoRecorder, RayKind, Recorder, SurfaceHit, trace_primary_in_row,
+    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit,
+    trace_primary_in_row,
 };
 
 /// One view of the per-pixel terms.
@@ -158,42 +159,99 @@ pub struct TermImages {
     pub pixels: Vec<PixelTerms>,
 }
 
-/// Traces every pixel with the terms recorder (the same `trace` as the render).
-pub fn render_terms(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> TermImages {
+/// Traces every pixel with the terms recorder (the same `trace` as the
+/// render), and `R` (`RayStats` for `--stats`) follows the same trace.
+pub fn render_terms<R: RowRecorder>(
+    scene: &Scene,
+    row_done: &(dyn Fn() + Sync),
+) -> (TermImages, R) {
     render_terms_unless(scene, row_done, &AtomicBool::new(false))
         .expect("a render nobody can cancel finishes")
 }
 
 /// `render_terms` unless `cancel` is set, looked at before each row (as
 /// `render::render_unless` does); `None` when cancelled.
-pub fn render_terms_unless(
+pub fn render_terms_unless<R: RowRecorder>(
     scene: &Scene,
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
-) -> Option<TermImages> {
+) -> Option<(TermImages, R)> {
     let size = (scene.width, scene.height);
     let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
-    // Each pixel has its own terms recorder; the row's recorder is unused.
-    trace_rows::<_, NoRecorder>(
+    // Each pixel has its own terms recorder; the row's recorder sees it all.
+    let counts = trace_rows::<_, R>(
         scene,
         size,
         &mut pixels,
         row_done,
         cancel,
-        |ray, cache, _, pixel| {
+        |ray, cache, counts, pixel| {
             let mut rec = TermsRecorder::default();
-            let color = trace_primary_in_row(scene, ray, cache, &mut rec);
+            let color = trace_primary_in_row(scene, ray, cache, &mut Both(counts, &mut rec));
             rec.terms.color = color;
             rec.terms.shadow =
                 (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);
             *pixel = rec.terms;
         },
     )?;
-    Some(TermImages {
+    let images = TermImages {
         width: scene.width,
         height: scene.height,
         pixels,
-    })
+    };
+    Some((images, counts))
+}
+
+/// Two recorders following one trace, each told every callback.
+struct Both<'a, A, B>(&'a mut A, &'a mut B);
+
+impl<A: Recorder, B: Recorder> Recorder for Both<'_, A, B> {
+    const RECORDS_ALL_BLOCKERS: bool = A::RECORDS_ALL_BLOCKERS || B::RECORDS_ALL_BLOCKERS;
+
+    fn ray_cast(&mut self, kind: RayKind, depth: u32, ray: &Ray, weight: f64) {
+        self.0.ray_cast(kind, depth, ray, weight);
+        self.1.ray_cast(kind, depth, ray, weight);
+    }
+    fn hit(&mut self, hit: &SurfaceHit, cost: Cost) {
+        self.0.hit(hit, cost);
+        self.1.hit(hit, cost);
+    }
+    fn miss(&mut self, background: Color, cost: Cost) {
+        self.0.miss(background, cost);
+        self.1.miss(background, cost);
+    }
+    fn ambient(&mut self, term: Color) {
+        self.0.ambient(term);
+        self.1.ambient(term);
+    }
+    fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: f64) {
+        self.0.shadow_cast(light, ray, distance);
+        self.1.shadow_cast(light, ray, distance);
+    }
+    fn blocker(&mut self, blocker: &Blocker) {
+        self.0.blocker(blocker);
+        self.1.blocker(blocker);
+    }
+    fn light(&mut self, term: &LightTerm) {
+        self.0.light(term);
+        self.1.light(term);
+    }
+    fn refraction(&mut self, refraction: &Refraction) {
+        self.0.refraction(refraction);
+        self.1.refraction(refraction);
+    }
+    fn child(&mut self, term: &ChildTerm) {
+        self.0.child(term);
+        self.1.child(term);
+    }
+    fn not_cast(&mut self, ray: &NotCast) {
+        self.0.not_cast(ray);
+        self.1.not_cast(ray);
+    }
+    fn ray_done(&mut self, color: Color) {
+        self.0.ray_done(color);
+        self.1.ray_done(color);
+    }
 }
 
 impl TermImages {

@@ -223,7 +223,8 @@ fn run(request: &Request, rows_done: &AtomicU32, cancel: &AtomicBool) -> Output 
     };
     let scene = &request.scene;
     let output = if request.terms {
-        render_terms_unless(scene, &tick, cancel).map(Output::Terms)
+        render_terms_unless::<NoRecorder>(scene, &tick, cancel)
+            .map(|(terms, _)| Output::Terms(terms))
     } else {
         let size = (scene.width, scene.height);
         render_unless::<NoRecorder>(scene, size, &tick, cancel)
@@ -292,7 +293,8 @@ mod tests {
         let tick = || {
             rows.fetch_add(1, Ordering::Relaxed);
         };
-        let result = render_terms_unless(&seven_rays(161, 121), &tick, &AtomicBool::new(true));
+        let result =
+            render_terms_unless::<NoRecorder>(&seven_rays(161, 121), &tick, &AtomicBool::new(true));
         assert!(result.is_none());
         assert_eq!(rows.load(Ordering::Relaxed), 0);
     }
