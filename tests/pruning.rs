@@ -3,29 +3,20 @@
 //! Regression tests for issue 13: a valid scene must neither hang nor exhaust
 //! memory.
 
+mod support;
+
 use std::path::Path;
 use std::process::Command;
 
 use glam::DVec3;
-use raystep::math::Ray;
-use raystep::record::{RayTree, TreeRecorder, explain, record_pixel, text};
+use raystep::record::{RayTree, explain, record_pixel, text};
 use raystep::render::render;
 use raystep::scene::{Scene, parse};
-use raystep::trace::{NotCast, PruneRule, RayKind, RayStats, trace};
+use raystep::trace::{NotCast, PruneRule, RayKind, RayStats};
+
+use support::{record, scene};
 
 const GLASS_PLANES: &str = include_str!("scenes/three-glass-planes.toml");
-
-fn scene(text: &str) -> Scene {
-    parse(Path::new("test.toml"), text).unwrap()
-}
-
-/// The tree of one primary ray from `origin` along `direction`.
-fn record(scene: &Scene, origin: [f64; 3], direction: [f64; 3]) -> RayTree {
-    let ray = Ray::new(DVec3::from_array(origin), DVec3::from_array(direction));
-    let mut recorder = TreeRecorder::new(scene);
-    trace(scene, &ray, RayKind::Primary, 1, 1.0, &mut recorder);
-    recorder.into_tree((0, 0))
-}
 
 /// Two facing mirrors z = -1 and z = 1 of reflectance `ks`, with `settings`
 /// lines added to `[settings]`; no lights.

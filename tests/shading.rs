@@ -1,23 +1,11 @@
 //! The illumination model against values derived by hand (MODEL §4-§6).
 
-use std::path::Path;
+mod support;
 
 use glam::DVec3;
-use raystep::math::Ray;
-use raystep::record::{RayTree, TreeRecorder};
-use raystep::scene::{Scene, parse};
-use raystep::trace::{RayKind, trace};
+use raystep::scene::Scene;
 
-fn scene(text: &str) -> Scene {
-    parse(Path::new("test.toml"), text).unwrap()
-}
-
-fn record(scene: &Scene, origin: [f64; 3], direction: [f64; 3]) -> RayTree {
-    let ray = Ray::new(DVec3::from_array(origin), DVec3::from_array(direction));
-    let mut recorder = TreeRecorder::new(scene);
-    trace(scene, &ray, RayKind::Primary, 1, 1.0, &mut recorder);
-    recorder.into_tree((0, 0))
-}
+use support::{record, scene};
 
 fn close(a: DVec3, b: [f64; 3]) -> bool {
     (a - DVec3::from_array(b)).abs().max_element() < 1e-12
