@@ -27,10 +27,10 @@ fn recorders(c: &mut Criterion) {
         let mut group = c.benchmark_group(format!("render 128x128 {name}"));
         group.sample_size(20);
         group.bench_function("recording off (NoRecorder)", |b| {
-            b.iter(|| render::<NoRecorder>(&scene, &|| {}))
+            b.iter(|| render::<NoRecorder>(&scene, &scene.settings, &|| {}))
         });
         group.bench_function("ray counts on (RayStats)", |b| {
-            b.iter(|| render::<RayStats>(&scene, &|| {}))
+            b.iter(|| render::<RayStats>(&scene, &scene.settings, &|| {}))
         });
         group.finish();
     }
@@ -45,7 +45,7 @@ fn pick_pixel(c: &mut Criterion) {
             continue;
         };
         c.bench_function(&format!("record one pixel {name}"), |b| {
-            b.iter(|| record_pixel(&scene, x, y))
+            b.iter(|| record_pixel(&scene, &scene.settings, x, y))
         });
     }
 }

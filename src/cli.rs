@@ -163,7 +163,7 @@ fn record(args: &PixelArgs) -> Result<RayTree> {
             scene.height
         );
     }
-    Ok(record_pixel(&scene, x, y))
+    Ok(record_pixel(&scene, &scene.settings, x, y))
 }
 
 fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
@@ -196,7 +196,7 @@ fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
 
 /// The image, its stats when `stats`, and the term images when `terms`: one
 /// trace, as the terms pass gives the image (and the stats) too.
-fn trace(
+fn trace_image(
     scene: &Scene,
     stats: bool,
     terms: bool,
@@ -204,19 +204,19 @@ fn trace(
 ) -> (image::RgbImage, RayStats, Option<TermImages>) {
     match (stats, terms) {
         (true, true) => {
-            let (terms, stats) = render_terms::<RayStats>(scene, tick);
+            let (terms, stats) = render_terms::<RayStats>(scene, &scene.settings, tick);
             (terms.color_image(), stats, Some(terms))
         }
         (false, true) => {
-            let (terms, _) = render_terms::<NoRecorder>(scene, tick);
+            let (terms, _) = render_terms::<NoRecorder>(scene, &scene.settings, tick);
             (terms.color_image(), RayStats::default(), Some(terms))
         }
         (true, false) => {
-            let (image, stats) = render::<RayStats>(scene, tick);
+            let (image, stats) = render::<RayStats>(scene, &scene.settings, tick);
             (image, stats, None)
         }
         (false, false) => (
-            render::<NoRecorder>(scene, tick).0,
+            render::<NoRecorder>(scene, &scene.settings, tick).0,
             RayStats::default(),
             None,
         ),
@@ -238,8 +238,9 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     let threads = args.threads.map(usize::from);
     let traced = Instant::now();
     let want_terms = outputs.terms.is_some();
-    let (image, stats, terms) =
-        with_threads(threads, || trace(&scene, args.stats, want_terms, &tick))?;
+    let (image, stats, terms) = with_threads(threads, || {
+        trace_image(&scene, args.stats, want_terms, &tick)
+    })?;
     let tracing = traced.elapsed().as_secs_f64();
     progress.finish_and_clear();
     let term_images = terms.iter().flat_map(|terms| {

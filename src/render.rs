@@ -10,8 +10,8 @@ use rayon::prelude::*;
 
 use crate::accel::ShadowCache;
 use crate::math::{Ray, to_rgb8};
-use crate::scene::Scene;
-use crate::trace::{NoRecorder, RayStats, Recorder, trace_primary_in_row};
+use crate::scene::{Scene, Settings};
+use crate::trace::{NoRecorder, RayStats, Recorder, trace_in_row};
 
 /// A recorder that can follow a whole render: one per row, summed at the end.
 pub trait RowRecorder: Recorder + Default + Send {
@@ -28,21 +28,25 @@ impl RowRecorder for RayStats {
     }
 }
 
-/// Renders the scene at its size. `row_done` is called once per finished row
-/// (from any thread), for progress display.
-pub fn render<R: RowRecorder>(scene: &Scene, row_done: &(dyn Fn() + Sync)) -> (RgbImage, R) {
-    render_at(scene, scene.width, scene.height, row_done)
+/// Renders the scene at its size, traced with `settings`. `row_done` is
+/// called once per finished row (from any thread), for progress display.
+pub fn render<R: RowRecorder>(
+    scene: &Scene,
+    settings: &Settings,
+    row_done: &(dyn Fn() + Sync),
+) -> (RgbImage, R) {
+    render_at(scene, settings, (scene.width, scene.height), row_done)
 }
 
 /// Renders the scene at another size with the same field of view (a quick
 /// preview; its pixels are not the scene's own).
 pub fn render_at<R: RowRecorder>(
     scene: &Scene,
-    width: u32,
-    height: u32,
+    settings: &Settings,
+    size: (u32, u32),
     row_done: &(dyn Fn() + Sync),
 ) -> (RgbImage, R) {
-    render_unless(scene, (width, height), row_done, &AtomicBool::new(false))
+    render_unless(scene, settings, size, row_done, &AtomicBool::new(false))
         .expect("a render nobody can cancel finishes")
 }
 
@@ -51,6 +55,7 @@ pub fn render_at<R: RowRecorder>(
 /// and gives `None`. Uncancelled, the bytes are those of `render_at`.
 pub fn render_unless<R: RowRecorder>(
     scene: &Scene,
+    settings: &Settings,
     (width, height): (u32, u32),
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
@@ -64,7 +69,7 @@ pub fn render_unless<R: RowRecorder>(
         row_done,
         cancel,
         |ray, cache, rec, pixel| {
-            *pixel = to_rgb8(trace_primary_in_row(scene, ray, cache, rec));
+            *pixel = to_rgb8(trace_in_row(scene, settings, ray, cache, rec));
         },
     )?;
     Some((image, recorder))

@@ -9,10 +9,9 @@ use image::RgbImage;
 use crate::accel::Cost;
 use crate::math::{Color, Ray, to_rgb8};
 use crate::render::{RowRecorder, trace_rows};
-use crate::scene::Scene;
+use crate::scene::{Scene, Settings};
 use crate::trace::{
-    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit,
-    trace_primary_in_row,
+    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace_in_row,
 };
 
 /// One view of the per-pixel terms.
@@ -163,9 +162,10 @@ pub struct TermImages {
 /// render), and `R` (`RayStats` for `--stats`) follows the same trace.
 pub fn render_terms<R: RowRecorder>(
     scene: &Scene,
+    settings: &Settings,
     row_done: &(dyn Fn() + Sync),
 ) -> (TermImages, R) {
-    render_terms_unless(scene, row_done, &AtomicBool::new(false))
+    render_terms_unless(scene, settings, row_done, &AtomicBool::new(false))
         .expect("a render nobody can cancel finishes")
 }
 
@@ -173,6 +173,7 @@ pub fn render_terms<R: RowRecorder>(
 /// `render::render_unless` does); `None` when cancelled.
 pub fn render_terms_unless<R: RowRecorder>(
     scene: &Scene,
+    settings: &Settings,
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
 ) -> Option<(TermImages, R)> {
@@ -187,7 +188,7 @@ pub fn render_terms_unless<R: RowRecorder>(
         cancel,
         |ray, cache, counts, pixel| {
             let mut rec = TermsRecorder::default();
-            let color = trace_primary_in_row(scene, ray, cache, &mut Both(counts, &mut rec));
+            let color = trace_in_row(scene, settings, ray, cache, &mut Both(counts, &mut rec));
             rec.terms.color = color;
             rec.terms.shadow =
                 (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);

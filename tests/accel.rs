@@ -541,7 +541,12 @@ fn timings() {
         let start = Instant::now();
         for y in 0..256 {
             for x in 0..256 {
-                let color = raystep::trace::trace_pixel(&scene, &viewport, x, y, &mut NoRecorder);
+                let color = raystep::trace::trace(
+                    &scene,
+                    &scene.settings,
+                    &viewport.primary_ray(x, y),
+                    &mut NoRecorder,
+                );
                 std::hint::black_box(color);
             }
         }

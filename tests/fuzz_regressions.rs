@@ -26,7 +26,7 @@ fn load_and_trace(name: &str, text: &str) {
     };
     for y in 0..scene.height {
         for x in 0..scene.width {
-            let tree = record_pixel(&scene, x, y);
+            let tree = record_pixel(&scene, &scene.settings, x, y);
             assert!(
                 tree.color().is_finite(),
                 "pixel ({x}, {y}) is {}",

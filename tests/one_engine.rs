@@ -7,7 +7,7 @@ use raystep::math::to_rgb8;
 use raystep::record::record_pixel;
 use raystep::render::{render, with_threads};
 use raystep::scene::{Scene, load};
-use raystep::trace::{NoRecorder, RayStats, trace_pixel};
+use raystep::trace::{NoRecorder, RayStats, trace};
 
 fn example_scenes() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
@@ -29,12 +29,17 @@ fn small(path: &Path) -> Scene {
 fn every_recorded_pixel_equals_the_rendered_pixel_bit_for_bit() {
     for path in example_scenes() {
         let scene = small(&path);
-        let (image, _) = render::<NoRecorder>(&scene, &|| {});
+        let (image, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
         let viewport = scene.camera.viewport(scene.width, scene.height);
         for y in 0..scene.height {
             for x in 0..scene.width {
-                let tree = record_pixel(&scene, x, y);
-                let plain = trace_pixel(&scene, &viewport, x, y, &mut NoRecorder);
+                let tree = record_pixel(&scene, &scene.settings, x, y);
+                let plain = trace(
+                    &scene,
+                    &scene.settings,
+                    &viewport.primary_ray(x, y),
+                    &mut NoRecorder,
+                );
                 assert_eq!(
                     tree.color().to_array().map(f64::to_bits),
                     plain.to_array().map(f64::to_bits)
@@ -65,9 +70,18 @@ fn one_thread_and_all_threads_give_the_same_bytes() {
     paths.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/gears-small.nff"));
     for path in paths.iter().filter(|p| p.exists()) {
         let scene = load(path).unwrap().with_size(64, 48).unwrap();
-        let one = with_threads(Some(1), || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
-        let all = with_threads(None, || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
-        let three = with_threads(Some(3), || render::<NoRecorder>(&scene, &|| {}).0).unwrap();
+        let one = with_threads(Some(1), || {
+            render::<NoRecorder>(&scene, &scene.settings, &|| {}).0
+        })
+        .unwrap();
+        let all = with_threads(None, || {
+            render::<NoRecorder>(&scene, &scene.settings, &|| {}).0
+        })
+        .unwrap();
+        let three = with_threads(Some(3), || {
+            render::<NoRecorder>(&scene, &scene.settings, &|| {}).0
+        })
+        .unwrap();
         assert_eq!(one.as_raw(), all.as_raw(), "{}", path.display());
         assert_eq!(one.as_raw(), three.as_raw(), "{}", path.display());
     }
@@ -83,13 +97,18 @@ fn the_shadow_cache_changes_no_colour_and_no_count() {
     paths.push(rings);
     for path in paths.iter().filter(|p| p.exists()) {
         let scene = load(path).unwrap().with_size(48, 36).unwrap();
-        let (image, stats) = render::<RayStats>(&scene, &|| {});
+        let (image, stats) = render::<RayStats>(&scene, &scene.settings, &|| {});
         let viewport = scene.camera.viewport(scene.width, scene.height);
         let mut alone = RayStats::default();
         for y in 0..scene.height {
             for x in 0..scene.width {
                 let mut pixel = RayStats::default();
-                let color = trace_pixel(&scene, &viewport, x, y, &mut pixel);
+                let color = trace(
+                    &scene,
+                    &scene.settings,
+                    &viewport.primary_ray(x, y),
+                    &mut pixel,
+                );
                 alone.add(&pixel);
                 assert_eq!(
                     to_rgb8(color),
@@ -135,8 +154,13 @@ fn the_stats_count_the_cost_the_trees_record() {
         let mut stats = RayStats::default();
         for y in 0..scene.height {
             for x in 0..scene.width {
-                trace_pixel(&scene, &viewport, x, y, &mut stats);
-                let tree = record_pixel(&scene, x, y);
+                trace(
+                    &scene,
+                    &scene.settings,
+                    &viewport.primary_ray(x, y),
+                    &mut stats,
+                );
+                let tree = record_pixel(&scene, &scene.settings, x, y);
                 for node in &tree.nodes {
                     closest.0 += u64::from(node.cost.nodes);
                     closest.1 += u64::from(node.cost.primitives);

@@ -140,7 +140,7 @@ fn every_pixel_of_lossless_glass_planes_holds_exactly_max_rays_rays() {
     // before depth 64, so every tree fills its budget of 10: 32 x 24 pixels
     // x 10 rays = 7680 primary, reflected and transmitted rays.
     let scene = lossless_glass_planes(Some(10));
-    let (_, stats) = render::<RayStats>(&scene, &|| {});
+    let (_, stats) = render::<RayStats>(&scene, &scene.settings, &|| {});
     assert_eq!(stats.primary, 768);
     assert_eq!(stats.primary + stats.reflected + stats.transmitted, 7680);
     assert!(stats.not_cast > 0);
@@ -150,7 +150,8 @@ fn every_pixel_of_lossless_glass_planes_holds_exactly_max_rays_rays() {
 fn the_default_budget_bounds_a_lossless_tree() {
     // The full tree would hold far more than 4096 rays (it branches at
     // every hit for 64 levels): the recording holds exactly the default 4096.
-    let tree = record_pixel(&lossless_glass_planes(None), 16, 12);
+    let scene = lossless_glass_planes(None);
+    let tree = record_pixel(&scene, &scene.settings, 16, 12);
     assert_eq!(tree.nodes.len(), 4096);
 }
 
@@ -159,11 +160,11 @@ fn the_three_glass_planes_render_with_a_bounded_tree() {
     // Half the weight goes each way: 0.5^9 = 1/512 is still cast, 0.5^10 is
     // not, so no ray is deeper than 10 and a tree holds at most 2^10 - 1.
     let scene = scene(GLASS_PLANES);
-    let (_, stats) = render::<RayStats>(&scene, &|| {});
+    let (_, stats) = render::<RayStats>(&scene, &scene.settings, &|| {});
     let rays = stats.primary + stats.reflected + stats.transmitted;
     assert!(rays <= 768 * 1023, "{rays} rays");
     assert!(stats.not_cast > 0);
-    let tree = record_pixel(&scene, 16, 12);
+    let tree = record_pixel(&scene, &scene.settings, 16, 12);
     assert!(tree.nodes.iter().all(|n| n.depth <= 10));
 }
 

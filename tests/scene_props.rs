@@ -408,7 +408,7 @@ fn misplaced_null(value: &Value, path: &str) -> Option<String> {
 /// Records a few pixels and checks every number of each recording.
 fn check_traces(scene: &Scene, text: &str) {
     for (x, y) in [(0, 0), (7, 5), (4, 3), (2, 4)] {
-        let tree = record_pixel(scene, x, y);
+        let tree = record_pixel(scene, &scene.settings, x, y);
         let color = tree.color();
         assert!(color.is_finite(), "pixel ({x}, {y}) is {color}\n{text}");
         if let Err(error) = tree.check_finite() {

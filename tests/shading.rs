@@ -39,7 +39,7 @@ fn one_light_head_on() {
     // diffuse  = 1 * (1, .5, .25) * 0.8 * 1  = (0.8, 0.4, 0.2)
     // specular = 1 * 0.5 * 1^10              = (0.5, 0.5, 0.5)
     // sum = (1.4, 0.95, 0.725) -> bytes (255, floor(242.75) = 242, floor(185.375) = 185).
-    let tree = raystep::record::record_pixel(&s, 0, 0);
+    let tree = raystep::record::record_pixel(&s, &s.settings, 0, 0);
     let root = tree.root();
     assert_eq!(root.hit.as_ref().unwrap().t, 4.0);
     assert!(close(root.ambient, [0.1, 0.05, 0.025]));

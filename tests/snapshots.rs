@@ -51,7 +51,7 @@ fn settings() -> insta::Settings {
 fn scene_pixels() {
     insta::glob!("../scenes", "*.toml", |path| {
         let scene = scene_at(path, Some((32, 24)));
-        let (image, _) = render::<NoRecorder>(&scene, &|| {});
+        let (image, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
         let mut text = String::new();
         for row in image.rows() {
             let line: Vec<String> = row
@@ -127,7 +127,7 @@ const PIXELS: &[(&str, u32, u32, &str)] = &[
 fn chosen_pixels() {
     for &(file, x, y, why) in PIXELS {
         let scene = scene_at(&scene_path(file), None);
-        let tree = record_pixel(&scene, x, y);
+        let tree = record_pixel(&scene, &scene.settings, x, y);
         let name = format!("{}_{x}_{y}", file.trim_end_matches(".toml"));
         let mut json = rounded(tree.to_json());
         let events = json.as_object_mut().unwrap().remove("events").unwrap();

@@ -67,7 +67,7 @@ fn picking_a_pixel_shows_exactly_what_inspect_records() {
     let mut app = app();
     for (x, y) in [(0, 0), (80, 82), (123, 45), (160, 120)] {
         app.update(Action::Pick(x, y));
-        let expected = record_pixel(&app.scene, x, y);
+        let expected = record_pixel(&app.scene, &app.settings, x, y);
         assert_eq!(app.tree.pixel, (x, y));
         assert_eq!(app.tree.color(), expected.color());
         assert_eq!(app.tree.events.len(), expected.events.len());
@@ -219,7 +219,7 @@ fn tir_breakpoint_stops_at_total_internal_reflection() {
     let tir_pixel = (0..scene.height)
         .flat_map(|y| (0..scene.width).map(move |x| (x, y)))
         .find(|&(x, y)| {
-            record_pixel(&scene, x, y)
+            record_pixel(&scene, &scene.settings, x, y)
                 .events
                 .iter()
                 .any(|e| matches!(e.kind, EventKind::Refraction { tir: true }))
@@ -255,7 +255,7 @@ fn toggles_change_settings_and_render_again() {
     app.update(Action::Pick(80, 82));
     let before = app.image.as_ref().unwrap().get_pixel(80, 82).0;
     chars(&mut app, "s");
-    assert!(!app.scene.settings.switches.shadows);
+    assert!(!app.settings.switches.shadows);
     assert!(
         app.tree.root().lights[0].shadow.is_none(),
         "no shadow rays when shadows are off"
@@ -267,37 +267,37 @@ fn toggles_change_settings_and_render_again() {
     );
     assert_eq!(after, to_rgb8(app.tree.color()));
     chars(&mut app, "s");
-    assert!(app.scene.settings.switches.shadows);
+    assert!(app.settings.switches.shadows);
     assert_eq!(app.image.as_ref().unwrap().get_pixel(80, 82).0, before);
 
     app.update(Action::Pick(80, 60));
     chars(&mut app, "r");
-    assert!(!app.scene.settings.switches.reflection);
+    assert!(!app.settings.switches.reflection);
     assert!(app.tree.root().reflected.is_none());
     chars(&mut app, "t");
-    assert!(!app.scene.settings.switches.transmission);
+    assert!(!app.settings.switches.transmission);
     assert_eq!(app.tree.nodes.len(), 1);
     chars(&mut app, "a");
-    assert!(!app.scene.settings.switches.ambient);
+    assert!(!app.settings.switches.ambient);
     assert_eq!(app.tree.root().ambient, glam::DVec3::ZERO);
     chars(&mut app, "m");
-    assert_eq!(app.scene.settings.specular, SpecularModel::Phong);
+    assert_eq!(app.settings.specular, SpecularModel::Phong);
     chars(&mut app, "m");
-    assert_eq!(app.scene.settings.specular, SpecularModel::Blinn);
+    assert_eq!(app.settings.specular, SpecularModel::Blinn);
 }
 
 #[test]
 fn max_depth_stays_within_its_bounds() {
     let mut app = app();
-    assert_eq!(app.scene.settings.max_depth, 3);
+    assert_eq!(app.settings.max_depth, 3);
     chars(&mut app, "[[[[");
-    assert_eq!(app.scene.settings.max_depth, 1);
+    assert_eq!(app.settings.max_depth, 1);
     assert_eq!(app.tree.nodes.len(), 1, "depth 1: the primary ray only");
     assert!(app.message.as_deref().unwrap_or("").contains("stays 1"));
     for _ in 0..40 {
         chars(&mut app, "]");
     }
-    assert_eq!(app.scene.settings.max_depth, tui::app::MAX_DEPTH);
+    assert_eq!(app.settings.max_depth, tui::app::MAX_DEPTH);
     assert!(
         app.tree
             .nodes
@@ -466,12 +466,9 @@ fn reload_applies_an_edit_and_keeps_the_pixel() {
     edit(&path, "max_depth = 3", "max_depth = 2");
     app.update(Action::Reload);
     assert_eq!(app.cursor, (80, 82));
-    assert_eq!(
-        app.scene.settings.max_depth, 2,
-        "the file changed max_depth"
-    );
+    assert_eq!(app.settings.max_depth, 2, "the file changed max_depth");
     assert!(
-        !app.scene.settings.switches.shadows,
+        !app.settings.switches.shadows,
         "the toggle survives the reload"
     );
     assert!(app.error.is_none());
@@ -508,11 +505,11 @@ fn the_watcher_reloads_on_save() {
     std::thread::sleep(Duration::from_millis(100));
     edit(&path, "max_depth = 3", "max_depth = 4");
     let started = Instant::now();
-    while app.scene.settings.max_depth != 4 && started.elapsed() < Duration::from_secs(10) {
+    while app.settings.max_depth != 4 && started.elapsed() < Duration::from_secs(10) {
         app.tick();
         std::thread::sleep(Duration::from_millis(20));
     }
-    assert_eq!(app.scene.settings.max_depth, 4, "reloaded within 10 s");
+    assert_eq!(app.settings.max_depth, 4, "reloaded within 10 s");
 }
 
 #[test]

@@ -42,7 +42,7 @@ fuzz_target!(|data: &[u8]| {
         scene.settings.max_depth = scene.settings.max_depth.min(clamp);
     }
     let (x, y) = (u32::from(selector >> 1) % SIDE, u32::from(selector >> 3) % SIDE);
-    let tree = record_pixel(&scene, x, y);
+    let tree = record_pixel(&scene, &scene.settings, x, y);
     let color = tree.color();
     assert!(color.is_finite(), "pixel ({x}, {y}) is {color}");
     if let Err(error) = tree.check_finite() {

@@ -4,10 +4,10 @@
 
 use crate::accel::Cost;
 use crate::math::{Color, Interval, Ray};
-use crate::scene::Scene;
+use crate::scene::{Scene, Settings};
 use crate::shapes::Shape;
 use crate::trace::{
-    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace_pixel,
+    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace,
 };
 
 use super::tree::{
@@ -22,6 +22,8 @@ pub const NEAR_MISS_SCENE_LIMIT: usize = 2000;
 /// Builds a `RayTree` from the tracer's callbacks.
 pub struct TreeRecorder<'a> {
     scene: &'a Scene,
+    /// The settings' depth limit, kept in the tree for its readers.
+    max_depth: u32,
     nodes: Vec<Node>,
     events: Vec<Event>,
     /// The node of the ray being traced, innermost last.
@@ -32,18 +34,23 @@ pub struct TreeRecorder<'a> {
     shadow_ray: Option<(usize, Ray, f64)>,
 }
 
-/// Records pixel (x, y): the same `trace_pixel` call the render makes.
-pub fn record_pixel(scene: &Scene, x: u32, y: u32) -> RayTree {
-    let viewport = scene.camera.viewport(scene.width, scene.height);
-    let mut recorder = TreeRecorder::new(scene);
-    trace_pixel(scene, &viewport, x, y, &mut recorder);
+/// Records pixel (x, y) of `scene` traced with `settings`: the same `trace`
+/// of the same primary ray the render makes.
+pub fn record_pixel(scene: &Scene, settings: &Settings, x: u32, y: u32) -> RayTree {
+    let ray = scene
+        .camera
+        .viewport(scene.width, scene.height)
+        .primary_ray(x, y);
+    let mut recorder = TreeRecorder::new(scene, settings);
+    trace(scene, settings, &ray, &mut recorder);
     recorder.into_tree((x, y))
 }
 
 impl<'a> TreeRecorder<'a> {
-    pub fn new(scene: &'a Scene) -> Self {
+    pub fn new(scene: &'a Scene, settings: &Settings) -> Self {
         Self {
             scene,
+            max_depth: settings.max_depth,
             nodes: Vec::new(),
             events: Vec::new(),
             stack: Vec::new(),
@@ -56,7 +63,7 @@ impl<'a> TreeRecorder<'a> {
     pub fn into_tree(self, pixel: (u32, u32)) -> RayTree {
         RayTree {
             pixel,
-            max_depth: self.scene.settings.max_depth,
+            max_depth: self.max_depth,
             nodes: self.nodes,
             events: self.events,
         }

@@ -65,8 +65,10 @@ impl Default for Switches {
     }
 }
 
-/// Scene-wide constants of the illumination model.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+/// Scene-wide constants of the illumination model. The scene carries its
+/// file's; the tracer takes the ones to use beside the scene, so the
+/// debugger's toggles never copy the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Settings {
     pub background: Color,
     /// I_a.
@@ -181,14 +183,6 @@ impl Scene {
             objects,
             accel,
             tables,
-        }
-    }
-
-    /// The same scene traced with other settings (the debugger's toggles).
-    pub fn with_settings(&self, settings: Settings) -> Scene {
-        Scene {
-            settings,
-            ..self.clone()
         }
     }
 

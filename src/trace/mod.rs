@@ -10,4 +10,4 @@ pub use recorder::{
     ShadowOutcome, SurfaceHit,
 };
 pub use stats::RayStats;
-pub use tracer::{Traced, trace, trace_pixel, trace_primary_in_row};
+pub use tracer::{trace, trace_in_row};

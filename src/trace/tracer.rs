@@ -11,76 +11,49 @@ use super::recorder::{
     ShadowOutcome, SurfaceHit,
 };
 use crate::accel::{Candidate, Cost, ShadowCache};
-use crate::camera::Viewport;
 use crate::math::{Color, EPS, Interval, Ray, attenuation};
-use crate::scene::{Light, Material, Scene, SpecularModel};
+use crate::scene::{Light, Material, Scene, Settings, SpecularModel};
 
 /// What a ray brings back: its colour and, if it hit, how far it went.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Traced {
-    pub color: Color,
-    pub distance: Option<f64>,
+struct Traced {
+    color: Color,
+    distance: Option<f64>,
 }
 
-/// The colour of pixel (x, y), unclamped: the colour of its primary ray.
-pub fn trace_pixel<R: Recorder>(
-    scene: &Scene,
-    viewport: &Viewport,
-    x: u32,
-    y: u32,
-    rec: &mut R,
-) -> Color {
-    let ray = viewport.primary_ray(x, y);
-    trace_primary_in_row(scene, &ray, &mut ShadowCache::default(), rec)
+/// The colour, unclamped, that the primary ray `ray` brings back from
+/// `scene` traced with `settings` (the scene's own, or the debugger's).
+pub fn trace<R: Recorder>(scene: &Scene, settings: &Settings, ray: &Ray, rec: &mut R) -> Color {
+    trace_in_row(scene, settings, ray, &mut ShadowCache::default(), rec)
 }
 
-/// `trace_pixel` for a render that goes along a row with one shadow cache,
-/// given the pixel's primary ray: the colour is the same, only the shadow
-/// queries get cheaper.
-pub fn trace_primary_in_row<R: Recorder>(
+/// `trace` for a render that goes along a row with one shadow cache: the
+/// colour is the same, only the shadow queries get cheaper.
+pub fn trace_in_row<R: Recorder>(
     scene: &Scene,
+    settings: &Settings,
     ray: &Ray,
     cache: &mut ShadowCache,
     rec: &mut R,
 ) -> Color {
-    Tracer::new(scene, cache, rec)
-        .trace(ray, RayKind::Primary, 1, 1.0, 1.0)
-        .color
+    let mut tracer = Tracer {
+        scene,
+        settings,
+        cache,
+        rec,
+        rays: 0,
+    };
+    tracer.trace(ray, RayKind::Primary, 1, 1.0, 1.0).color
 }
 
-/// Traces one ray of depth `depth` (the primary ray has depth 1) as the root
-/// of its own tree. `weight` is the factor its colour will be scaled by in its
-/// parent, passed on for the record; it also starts the accumulated weight.
-pub fn trace<R: Recorder>(
-    scene: &Scene,
-    ray: &Ray,
-    kind: RayKind,
-    depth: u32,
-    weight: f64,
-    rec: &mut R,
-) -> Traced {
-    let cache = &mut ShadowCache::default();
-    Tracer::new(scene, cache, rec).trace(ray, kind, depth, weight, weight)
-}
-
-/// One pixel's trace in progress: the scene, the row's shadow cache, the
-/// recorder, and how many rays the pixel's tree holds so far.
+/// One pixel's trace in progress: the scene and its settings, the row's
+/// shadow cache, the recorder, and how many rays the pixel's tree holds so far.
 struct Tracer<'a, R> {
     scene: &'a Scene,
+    settings: &'a Settings,
     cache: &'a mut ShadowCache,
     rec: &'a mut R,
     rays: u32,
-}
-
-impl<'a, R: Recorder> Tracer<'a, R> {
-    fn new(scene: &'a Scene, cache: &'a mut ShadowCache, rec: &'a mut R) -> Self {
-        Self {
-            scene,
-            cache,
-            rec,
-            rays: 0,
-        }
-    }
 }
 
 impl<R: Recorder> Tracer<'_, R> {
@@ -102,7 +75,7 @@ impl<R: Recorder> Tracer<'_, R> {
             .accel
             .closest(&scene.objects, ray, Interval::in_front(), &mut cost);
         let Some(candidate) = found else {
-            let background = scene.settings.background;
+            let background = self.settings.background;
             self.rec.miss(background, cost);
             self.rec.ray_done(background);
             return Traced {
@@ -123,7 +96,7 @@ impl<R: Recorder> Tracer<'_, R> {
     /// I = ambient + sum_i (diffuse_i + specular_i) + reflected + transmitted.
     fn shade(&mut self, ray: &Ray, hit: &SurfaceHit, depth: u32, path_weight: f64) -> Color {
         let scene = self.scene;
-        let settings = &scene.settings;
+        let settings = self.settings;
         let material = scene.material_of(hit.object);
         let ambient = if settings.switches.ambient {
             settings.ambient * material.color * material.ka
@@ -152,7 +125,7 @@ impl<R: Recorder> Tracer<'_, R> {
         index: usize,
         light: &Light,
     ) -> LightTerm {
-        let settings = &self.scene.settings;
+        let settings = self.settings;
         let offset = light.position - hit.point;
         let distance = offset.length();
         let to_light = offset / distance;
@@ -257,7 +230,7 @@ impl<R: Recorder> Tracer<'_, R> {
         parent: (u32, f64),
         local: Color,
     ) -> Color {
-        let switches = self.scene.settings.switches;
+        let switches = self.settings.switches;
         let refraction = (material.kt > 0.0 && switches.transmission)
             .then(|| refract(ray.direction, hit, material.ior));
         if let Some(refraction) = &refraction {
@@ -289,7 +262,7 @@ impl<R: Recorder> Tracer<'_, R> {
     #[cold]
     #[inline(never)]
     fn not_cast(&mut self, kind: RayKind, weight: f64, path_weight: f64) {
-        let settings = &self.scene.settings;
+        let settings = self.settings;
         let rule = if path_weight < settings.min_weight {
             PruneRule::MinWeight {
                 min_weight: settings.min_weight,
@@ -317,7 +290,7 @@ impl<R: Recorder> Tracer<'_, R> {
         (depth, parent_weight): (u32, f64),
     ) -> Color {
         let path_weight = parent_weight * weight;
-        let settings = &self.scene.settings;
+        let settings = self.settings;
         if path_weight < settings.min_weight || self.rays >= settings.max_rays {
             self.not_cast(kind, weight, path_weight);
             return Color::ZERO;
@@ -326,7 +299,7 @@ impl<R: Recorder> Tracer<'_, R> {
         let traced = self.trace(&ray, kind, depth + 1, weight, path_weight);
         let attenuation = traced
             .distance
-            .map_or(1.0, |t| attenuation(self.scene.settings.ray_attenuation, t));
+            .map_or(1.0, |t| attenuation(self.settings.ray_attenuation, t));
         let contribution = traced.color * (weight * attenuation);
         self.rec.child(&ChildTerm {
             kind,

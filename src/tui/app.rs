@@ -31,11 +31,11 @@ const RELOAD_DELAY: Duration = Duration::from_millis(150);
 
 pub struct App {
     pub source: SceneSource,
-    /// The last good file's scene, with the file's own settings.
-    pub(super) file_scene: Scene,
-    pub(super) file_settings: Settings,
-    /// The scene traced: the file's scene with the user's settings.
+    /// The last good file's scene, with the file's own settings; shared with
+    /// the render thread, never copied.
     pub scene: Arc<Scene>,
+    /// The settings traced: the file's, with the user's toggles.
+    pub settings: Settings,
     /// The selected pixel, in the scene image's coordinates.
     pub cursor: (u32, u32),
     pub tree: RayTree,
@@ -78,16 +78,14 @@ impl App {
     /// before `update` returns, so tests see deterministic screens.
     pub fn open(path: Option<PathBuf>, sync: bool) -> Result<App, SceneError> {
         let source = SceneSource { path };
-        let file_scene = source.load()?;
-        let file_settings = file_scene.settings.clone();
-        let scene = build(&file_scene, &file_settings);
+        let scene = Arc::new(source.load()?);
+        let settings = scene.settings;
         let cursor = (scene.width / 2, scene.height / 2);
-        let tree = record_pixel(&scene, cursor.0, cursor.1);
+        let tree = record_pixel(&scene, &settings, cursor.0, cursor.1);
         let mut app = App {
             source,
-            file_scene,
-            file_settings,
             scene,
+            settings,
             cursor,
             tree,
             current: 0,
@@ -196,7 +194,7 @@ impl App {
     }
 
     pub fn phong(&self) -> bool {
-        self.scene.settings.specular == SpecularModel::Phong
+        self.settings.specular == SpecularModel::Phong
     }
 
     /// The node the tree and details show: the current event's ray.
@@ -227,7 +225,7 @@ impl App {
             self.cursor.1.min(self.scene.height - 1),
         );
         let started = Instant::now();
-        self.tree = record_pixel(&self.scene, self.cursor.0, self.cursor.1);
+        self.tree = record_pixel(&self.scene, &self.settings, self.cursor.0, self.cursor.1);
         self.pick_time = started.elapsed();
         self.current = self.current.min(self.tree.events.len().saturating_sub(1));
         self.collapsed.clear();
@@ -241,9 +239,9 @@ impl App {
         self.retrace();
     }
 
-    /// Rebuilds the scene with new settings and renders it again.
+    /// Traces the scene with new settings: the pixel, then the image.
     pub(super) fn apply_settings(&mut self, settings: Settings) {
-        self.scene = build(&self.file_scene, &settings);
+        self.settings = settings;
         self.retrace();
         self.request_render();
     }
@@ -252,13 +250,9 @@ impl App {
     pub fn reload(&mut self) {
         match self.source.load() {
             Ok(file_scene) => {
-                let settings = merge_settings(
-                    &self.file_settings,
-                    &file_scene.settings,
-                    &self.scene.settings,
-                );
-                self.file_settings = file_scene.settings.clone();
-                self.file_scene = file_scene;
+                let settings =
+                    merge_settings(&self.scene.settings, &file_scene.settings, &self.settings);
+                self.scene = Arc::new(file_scene);
                 self.error = None;
                 self.apply_settings(settings);
                 self.message = Some(format!("reloaded {}", self.source.name()));
@@ -270,9 +264,4 @@ impl App {
             }
         }
     }
-}
-
-/// The file's scene traced with the user's `settings`.
-fn build(file_scene: &Scene, settings: &Settings) -> Arc<Scene> {
-    Arc::new(file_scene.with_settings(settings.clone()))
 }

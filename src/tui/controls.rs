@@ -196,7 +196,7 @@ impl App {
     }
 
     pub(super) fn toggle(&mut self, switch: Switch) {
-        let mut settings = self.scene.settings.clone();
+        let mut settings = self.settings;
         let (flag, name) = match switch {
             Switch::Shadows => (&mut settings.switches.shadows, "shadows"),
             Switch::Reflection => (&mut settings.switches.reflection, "reflection"),
@@ -211,7 +211,7 @@ impl App {
 
     pub(super) fn toggle_specular(&mut self) {
         use crate::scene::SpecularModel::{Blinn, Phong};
-        let mut settings = self.scene.settings.clone();
+        let mut settings = self.settings;
         settings.specular = if settings.specular == Blinn {
             Phong
         } else {
@@ -229,15 +229,15 @@ impl App {
     }
 
     pub(super) fn change_depth(&mut self, delta: i32) {
-        let depth = self.scene.settings.max_depth as i64 + delta as i64;
+        let depth = self.settings.max_depth as i64 + delta as i64;
         if !(1..=MAX_DEPTH as i64).contains(&depth) {
             self.message = Some(format!(
                 "max depth stays {}: it goes from 1 to {MAX_DEPTH}",
-                self.scene.settings.max_depth
+                self.settings.max_depth
             ));
             return;
         }
-        let mut settings = self.scene.settings.clone();
+        let mut settings = self.settings;
         settings.max_depth = depth as u32;
         self.apply_settings(settings);
         self.message = Some(format!("max depth {depth}"));

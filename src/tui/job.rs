@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 use image::RgbImage;
 
 use crate::render::render_unless;
-use crate::scene::Scene;
+use crate::scene::{Scene, Settings};
 use crate::terms::{TermImages, render_terms_unless};
 use crate::trace::NoRecorder;
 
@@ -24,6 +24,8 @@ use crate::trace::NoRecorder;
 pub struct Request {
     pub generation: u64,
     pub scene: Arc<Scene>,
+    /// The settings to trace with: the scene's own or the user's toggles.
+    pub settings: Settings,
     pub terms: bool,
 }
 
@@ -151,7 +153,9 @@ impl Renderer {
         let preview = !self.sync && !request.terms;
         let job = move || {
             let started = Instant::now();
-            if preview && let Some(image) = preview_image(&request.scene, &cancel) {
+            if preview
+                && let Some(image) = preview_image(&request.scene, &request.settings, &cancel)
+            {
                 let _ = previews.send(Preview {
                     generation: request.generation,
                     image,
@@ -198,7 +202,7 @@ const PREVIEW_PIXELS: u32 = 20_000;
 /// The scene rendered at about terminal resolution and scaled up (nearest
 /// neighbour) to its own size, or `None` when the scene is small anyway or
 /// the render was cancelled.
-fn preview_image(scene: &Scene, cancel: &AtomicBool) -> Option<RgbImage> {
+fn preview_image(scene: &Scene, settings: &Settings, cancel: &AtomicBool) -> Option<RgbImage> {
     let (width, height) = (scene.width, scene.height);
     if width * height <= PREVIEW_ABOVE {
         return None;
@@ -208,7 +212,7 @@ fn preview_image(scene: &Scene, cancel: &AtomicBool) -> Option<RgbImage> {
         .ceil() as u32;
     let (small_w, small_h) = (width.div_ceil(step), height.div_ceil(step));
     let (small, _) = catch_unwind(AssertUnwindSafe(|| {
-        render_unless::<NoRecorder>(scene, (small_w, small_h), &|| {}, cancel)
+        render_unless::<NoRecorder>(scene, settings, (small_w, small_h), &|| {}, cancel)
     }))
     .ok()
     .flatten()?;
@@ -221,13 +225,13 @@ fn run(request: &Request, rows_done: &AtomicU32, cancel: &AtomicBool) -> Output 
     let tick = || {
         rows_done.fetch_add(1, Ordering::Relaxed);
     };
-    let scene = &request.scene;
+    let (scene, settings) = (&request.scene, &request.settings);
     let output = if request.terms {
-        render_terms_unless::<NoRecorder>(scene, &tick, cancel)
+        render_terms_unless::<NoRecorder>(scene, settings, &tick, cancel)
             .map(|(terms, _)| Output::Terms(terms))
     } else {
         let size = (scene.width, scene.height);
-        render_unless::<NoRecorder>(scene, size, &tick, cancel)
+        render_unless::<NoRecorder>(scene, settings, size, &tick, cancel)
             .map(|(image, _)| Output::Image(image))
     };
     output.unwrap_or(Output::Cancelled)
@@ -258,10 +262,11 @@ mod tests {
         // = ceil(2.45) = 3, so the preview traces 134 x 100 and each of its
         // pixels fills a 3 x 3 block.
         let scene = seven_rays(400, 300);
-        let preview = preview_image(&scene, &AtomicBool::new(false)).unwrap();
+        let preview = preview_image(&scene, &scene.settings, &AtomicBool::new(false)).unwrap();
         assert_eq!(preview.dimensions(), (400, 300));
         assert_eq!(preview.get_pixel(0, 0), preview.get_pixel(2, 2));
-        let small = crate::render::render_at::<NoRecorder>(&scene, 134, 100, &|| {}).0;
+        let small =
+            crate::render::render_at::<NoRecorder>(&scene, &scene.settings, (134, 100), &|| {}).0;
         assert_eq!(preview.get_pixel(123, 77), small.get_pixel(41, 25));
     }
 
@@ -279,7 +284,7 @@ mod tests {
             }
         };
         let result = crate::render::with_threads(Some(4), || {
-            render_unless::<NoRecorder>(&scene, (200, 2000), &tick, &cancel)
+            render_unless::<NoRecorder>(&scene, &scene.settings, (200, 2000), &tick, &cancel)
         })
         .unwrap();
         assert!(result.is_none());
@@ -293,8 +298,13 @@ mod tests {
         let tick = || {
             rows.fetch_add(1, Ordering::Relaxed);
         };
-        let result =
-            render_terms_unless::<NoRecorder>(&seven_rays(161, 121), &tick, &AtomicBool::new(true));
+        let scene = seven_rays(161, 121);
+        let result = render_terms_unless::<NoRecorder>(
+            &scene,
+            &scene.settings,
+            &tick,
+            &AtomicBool::new(true),
+        );
         assert!(result.is_none());
         assert_eq!(rows.load(Ordering::Relaxed), 0);
     }
@@ -303,8 +313,9 @@ mod tests {
     fn a_newer_request_cancels_the_running_render() {
         // 4000 x 3000 pixels take seconds; the newer small one, milliseconds.
         let mut renderer = Renderer::new(false);
-        let request = |generation, scene| Request {
+        let request = |generation, scene: Scene| Request {
             generation,
+            settings: scene.settings,
             scene: Arc::new(scene),
             terms: false,
         };
@@ -328,6 +339,13 @@ mod tests {
 
     #[test]
     fn small_images_need_no_preview() {
-        assert!(preview_image(&seven_rays(161, 121), &AtomicBool::new(false)).is_none());
+        assert!(
+            preview_image(
+                &seven_rays(161, 121),
+                &Default::default(),
+                &AtomicBool::new(false)
+            )
+            .is_none()
+        );
     }
 }

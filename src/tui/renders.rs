@@ -31,6 +31,7 @@ impl App {
         self.renderer.request(Request {
             generation: self.generation,
             scene: self.scene.clone(),
+            settings: self.settings,
             terms,
         });
     }
@@ -86,7 +87,7 @@ mod tests {
         // 4000 x 3000 = 12 million pixels: seconds of work on this machine,
         // against a row (4000 pixels, about a millisecond) once cancelled.
         let mut app = App::open(None, false).unwrap();
-        app.file_scene = app.file_scene.with_size(4000, 3000).unwrap();
+        app.scene = std::sync::Arc::new((*app.scene).clone().with_size(4000, 3000).unwrap());
         app.update(Action::Toggle(Switch::Shadows));
         let deadline = Instant::now() + Duration::from_secs(30);
         while !app

@@ -33,7 +33,7 @@ impl SceneSource {
 /// the specular model and max depth follow the file only where the file
 /// changed them, so an edit to `max_depth` takes effect and a toggle is kept.
 pub fn merge_settings(old_file: &Settings, new_file: &Settings, current: &Settings) -> Settings {
-    let mut merged = new_file.clone();
+    let mut merged = *new_file;
     merged.switches = current.switches;
     if new_file.specular == old_file.specular {
         merged.specular = current.specular;

@@ -89,7 +89,7 @@ fn on_off(name: &str, on: bool) -> Span<'static> {
 /// The top line: the scene (shortened first when space is short) and the
 /// model's settings as the toggles left them.
 fn header(app: &App, width: u16) -> Line<'static> {
-    let settings = &app.scene.settings;
+    let settings = &app.settings;
     let s = settings.switches;
     let sep = || Span::raw(" · ").dark_gray();
     let mut right = vec![

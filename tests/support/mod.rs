@@ -7,7 +7,7 @@ use glam::DVec3;
 use raystep::math::Ray;
 use raystep::record::{RayTree, TreeRecorder};
 use raystep::scene::{Scene, parse};
-use raystep::trace::{RayKind, trace};
+use raystep::trace::trace;
 
 pub fn scene(text: &str) -> Scene {
     parse(Path::new("test.toml"), text).unwrap()
@@ -16,7 +16,7 @@ pub fn scene(text: &str) -> Scene {
 /// The tree of one primary ray from `origin` along `direction`.
 pub fn record(scene: &Scene, origin: [f64; 3], direction: [f64; 3]) -> RayTree {
     let ray = Ray::new(DVec3::from_array(origin), DVec3::from_array(direction));
-    let mut recorder = TreeRecorder::new(scene);
-    trace(scene, &ray, RayKind::Primary, 1, 1.0, &mut recorder);
+    let mut recorder = TreeRecorder::new(scene, &scene.settings);
+    trace(scene, &scene.settings, &ray, &mut recorder);
     recorder.into_tree((0, 0))
 }
