@@ -10,7 +10,7 @@ mod tree;
 
 pub use explain::explain;
 pub use finite::{NonFinite, check_finite};
-pub use lines::{About, Line, Piece};
+pub use lines::{About, Line, Piece, Row, Word};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use text::{
     Children, color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line,

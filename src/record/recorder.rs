@@ -135,8 +135,8 @@ impl Recorder for TreeRecorder<'_> {
             material: scene.materials[object.material].name.clone(),
             t: hit.t,
             point: hit.point,
-            normal: hit.geometric_normal,
-            shading_normal: hit.normal,
+            geometric_normal: hit.geometric_normal,
+            normal: hit.normal,
             entering: hit.entering,
             working: object.shape.working(&ray, Interval::in_front()),
         });

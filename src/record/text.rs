@@ -358,8 +358,8 @@ fn hit_lines(node: &Node, hit: &HitRecord) -> Vec<Line> {
             about,
             format!(
                 "  N_g {} N {}",
-                vector(hit.normal),
-                vector(hit.shading_normal)
+                vector(hit.geometric_normal),
+                vector(hit.normal)
             ),
         ),
     ];
@@ -431,29 +431,6 @@ pub fn ray_header(node: &Node) -> String {
 /// The text form fits an 80-column terminal.
 const WIDTH: usize = 80;
 
-/// Breaks a line at spaces so each part has at most `room` characters (a
-/// single longer word stays whole); continuations are indented.
-pub fn wrap(line: &str, room: usize) -> Vec<String> {
-    let body = line.trim_start();
-    let lead = line.len() - body.len();
-    let indent = " ".repeat(lead + 4);
-    let room = room.max(lead + 24);
-    let mut parts = vec![line[..lead].to_string()];
-    for word in body.split(' ') {
-        let current = parts.last_mut().expect("never empty");
-        let used = current.chars().count();
-        if used > indent.len() && used + 1 + word.chars().count() > room {
-            parts.push(format!("{indent}{word}"));
-        } else {
-            if used > lead {
-                current.push(' ');
-            }
-            current.push_str(word);
-        }
-    }
-    parts
-}
-
 /// The whole recording as an indented tree, like `cargo tree`.
 pub fn text(tree: &RayTree) -> String {
     let c = tree.color();
@@ -474,8 +451,8 @@ fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str) {
     let body = if children.is_empty() { "  " } else { "│ " };
     let room = WIDTH.saturating_sub(prefix.chars().count() + 2);
     for line in node_lines(tree, id, Children::Omitted) {
-        for part in wrap(&line.to_string(), room) {
-            let _ = writeln!(out, "{prefix}{body}{part}");
+        for row in line.wrap(room, 0) {
+            let _ = writeln!(out, "{prefix}{body}{}", row.text());
         }
     }
     for (i, child) in children.iter().enumerate() {

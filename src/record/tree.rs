@@ -63,9 +63,9 @@ pub struct HitRecord {
     pub t: f64,
     pub point: DVec3,
     /// N_g.
+    pub geometric_normal: DVec3,
+    /// N: N_g facing the ray (MODEL §3), as in the tracer's `SurfaceHit`.
     pub normal: DVec3,
-    /// N, facing the ray.
-    pub shading_normal: DVec3,
     pub entering: bool,
     /// The intersection worked the way the course notes teach it.
     pub working: Working,

@@ -7,8 +7,7 @@
 use ratatui::style::{Color as TermColor, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use crate::math::Color;
-use crate::record::{self, About, Children, NodeId, Piece, RayTree, color, kind_name, node_lines};
+use crate::record::{self, About, Children, NodeId, RayTree, kind_name, node_lines};
 
 use super::app::App;
 use super::layout::Pane;
@@ -35,62 +34,29 @@ pub fn marked(tree: &RayTree, id: NodeId, at: Option<usize>) -> Option<About> {
     Some(About::of(tree, event))
 }
 
-/// Words, keeping a parenthesised group such as a vector in one piece; a
-/// word holding a colour piece carries that colour, for a swatch after it.
-fn tokens(line: &record::Line) -> Vec<(String, Option<Color>)> {
-    let mut tokens = vec![(String::new(), None)];
-    let mut open = 0;
-    for piece in &line.pieces {
-        let text = match piece {
-            Piece::Text(text) => text,
-            Piece::Color(c) => {
-                let last = tokens.last_mut().expect("never empty");
-                last.0.push_str(&color(*c));
-                last.1 = Some(*c);
-                continue;
+/// One line wrapped to `width`, a swatch after each colour.
+fn wrap(line: &record::Line, width: usize, style: Style) -> Vec<Line<'static>> {
+    let rows = line.wrap(width, SWATCH_WIDTH);
+    rows.into_iter()
+        .map(|row| {
+            let mut spans = vec![Span::raw(" ".repeat(row.indent))];
+            for (i, word) in row.words.into_iter().enumerate() {
+                if i > 0 {
+                    spans.push(Span::raw(" "));
+                }
+                spans.push(Span::raw(word.text));
+                if let Some(c) = word.color {
+                    spans.push(Span::raw(" "));
+                    spans.push(swatch(c));
+                }
             }
-        };
-        for ch in text.chars() {
-            if ch == ' ' && open <= 0 {
-                tokens.push((String::new(), None));
-                open = 0;
-                continue;
-            }
-            open += i32::from(ch == '(') - i32::from(ch == ')');
-            let last = tokens.last_mut().expect("never empty");
-            last.0.push(ch);
-        }
-    }
-    tokens
+            Line::from(spans).style(style)
+        })
+        .collect()
 }
 
-/// One line wrapped to `width`, with swatches, continuation indented.
-fn wrap(line: &record::Line, width: usize, style: Style) -> Vec<Line<'static>> {
-    let text = line.to_string();
-    let indent = text.len() - text.trim_start().len() + 4;
-    let mut lines = Vec::new();
-    let mut spans: Vec<Span<'static>> = Vec::new();
-    let mut used = 0;
-    for (i, (token, swatch_color)) in tokens(line).into_iter().enumerate() {
-        let len = token.chars().count() + if swatch_color.is_some() { 3 } else { 0 };
-        if i > 0 && used + 1 + len > width && used > indent {
-            lines.push(Line::from(std::mem::take(&mut spans)).style(style));
-            spans.push(Span::raw(" ".repeat(indent)));
-            used = indent;
-        } else if i > 0 {
-            spans.push(Span::raw(" "));
-            used += 1;
-        }
-        spans.push(Span::raw(token));
-        if let Some(c) = swatch_color {
-            spans.push(Span::raw(" "));
-            spans.push(swatch(c));
-        }
-        used += len;
-    }
-    lines.push(Line::from(spans).style(style));
-    lines
-}
+/// A space and the two-cell swatch after each colour.
+const SWATCH_WIDTH: usize = 3;
 
 /// The pane's lines wrapped to `width`, and the first line of the marked part.
 pub fn lines(
@@ -113,7 +79,7 @@ pub fn lines(
         } else {
             Style::new()
         };
-        out.extend(wrap(line, width.max(20), style));
+        out.extend(wrap(line, width, style));
     }
     (out, first_marked)
 }
@@ -141,24 +107,4 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
             .scroll((offset as u16, 0)),
         area,
     );
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn only_colour_pieces_get_swatches() {
-        // A vector with three decimals a number reads like a colour, but it
-        // is text: only the colour piece carries a colour.
-        let c = Color::new(0.5, 0.25, 1.0);
-        let line = record::Line::text(None, "from (0.125, 0.375, 0.625) adds ")
-            .color(c)
-            .then(" = x");
-        let words = |w: &[&str]| w.iter().map(|w| (w.to_string(), None)).collect::<Vec<_>>();
-        let mut expected = words(&["from", "(0.125, 0.375, 0.625)", "adds"]);
-        expected.push(("(0.500, 0.250, 1.000)".into(), Some(c)));
-        expected.extend(words(&["=", "x"]));
-        assert_eq!(tokens(&line), expected);
-    }
 }

@@ -73,7 +73,7 @@ impl Projection {
 fn primary_plane(root: &crate::record::Node, camera_up: DVec3) -> (DVec3, DVec3) {
     let d = root.direction.normalize();
     if let Some(hit) = &root.hit {
-        let n = hit.shading_normal;
+        let n = hit.normal;
         let along = d - d.dot(n) * n;
         if along.length() > 1e-6 {
             return (along.normalize(), n);
@@ -149,7 +149,7 @@ pub fn ray_segments(
             stroke,
         });
         let Some(hit) = &node.hit else { continue };
-        let normal_end = hit.point + hit.shading_normal * miss_length * 0.08;
+        let normal_end = hit.point + hit.normal * miss_length * 0.08;
         segments.push(Segment {
             from: projection.project(hit.point),
             to: projection.project(normal_end),
