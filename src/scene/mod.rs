@@ -19,6 +19,7 @@ use crate::accel::{Accel, ObjectTables};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::exceeds;
+use crate::mistakes::Mistakes;
 pub use crate::object::Object;
 
 /// The largest image side accepted; beyond it a render would take minutes and
@@ -87,6 +88,9 @@ pub struct Settings {
     pub max_rays: u32,
     pub specular: SpecularModel,
     pub switches: Switches,
+    /// Classic student mistakes to trace with (none in a scene file; `compare`
+    /// and the debugger set them).
+    pub mistakes: Mistakes,
 }
 
 impl Default for Settings {
@@ -101,6 +105,7 @@ impl Default for Settings {
             max_rays: DEFAULT_MAX_RAYS,
             specular: SpecularModel::Blinn,
             switches: Switches::default(),
+            mistakes: Mistakes::NONE,
         }
     }
 }

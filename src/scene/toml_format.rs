@@ -468,7 +468,7 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
         min_weight: def.min_weight.as_ref().map_or(defaults.min_weight, number),
         max_rays: max_rays(source, def)?,
         specular: def.specular.unwrap_or_default(),
-        switches: defaults.switches,
+        ..defaults
     })
 }
 

@@ -1,0 +1,179 @@
+//! The classic mistakes of a student's Whitted tracer, each one a switch the
+//! tracer reads (docs/MODEL.md §8 defines them). `raystep compare` renders a
+//! scene under each to say which one a student's image looks like; the
+//! debugger turns them on so a teacher can step through the ray that shows one.
+//! Their names are fixed: graders and tools rely on them.
+
+use std::fmt;
+
+use serde::{Serialize, Serializer};
+
+/// One classic mistake.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Mistake {
+    /// Shadow rays accept crossings at t > 0 instead of t > EPS.
+    ShadowAcne,
+    /// Diffuse, specular and the faces-away test use the outward normal N_g,
+    /// not N turned to face the ray (reflection and refraction unchanged).
+    NoNormalFlip,
+    /// Snell's law with eta = n_t / n_i.
+    EtaInverted,
+    /// At total internal reflection k_t is not added to the reflected weight.
+    TirDropped,
+    /// Phong's R·V in place of Blinn's N·H.
+    PhongNotBlinn,
+    /// Any crossing blocks the light fully: k_t ignored.
+    OpaqueShadows,
+    /// Crossings beyond the light (t >= d_L) block it too.
+    ShadowsPastLight,
+    /// f_att = 1 for every light.
+    NoLightAttenuation,
+    /// One level fewer: rays of depth max_depth - 1 spawn no children.
+    DepthOffByOne,
+    /// The ambient term left out.
+    NoAmbient,
+    /// byte = floor(255c + 0.5) mod 256 instead of clamping.
+    ByteWrap,
+    /// byte = floor(255 c^(1/2.2) + 0.5), clamped.
+    Gamma,
+    /// Rows upside down.
+    FlippedY,
+    /// Primary rays through pixel corners (x, y) instead of centres.
+    PixelCorner,
+}
+
+impl Mistake {
+    /// The catalogue, in the order docs/MODEL.md lists it.
+    pub const ALL: [Mistake; 14] = [
+        Mistake::ShadowAcne,
+        Mistake::NoNormalFlip,
+        Mistake::EtaInverted,
+        Mistake::TirDropped,
+        Mistake::PhongNotBlinn,
+        Mistake::OpaqueShadows,
+        Mistake::ShadowsPastLight,
+        Mistake::NoLightAttenuation,
+        Mistake::DepthOffByOne,
+        Mistake::NoAmbient,
+        Mistake::ByteWrap,
+        Mistake::Gamma,
+        Mistake::FlippedY,
+        Mistake::PixelCorner,
+    ];
+
+    /// The fixed name, as the command line, JSON and MODEL.md write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mistake::ShadowAcne => "shadow-acne",
+            Mistake::NoNormalFlip => "no-normal-flip",
+            Mistake::EtaInverted => "eta-inverted",
+            Mistake::TirDropped => "tir-dropped",
+            Mistake::PhongNotBlinn => "phong-not-blinn",
+            Mistake::OpaqueShadows => "opaque-shadows",
+            Mistake::ShadowsPastLight => "shadows-past-light",
+            Mistake::NoLightAttenuation => "no-light-attenuation",
+            Mistake::DepthOffByOne => "depth-off-by-one",
+            Mistake::NoAmbient => "no-ambient",
+            Mistake::ByteWrap => "byte-wrap",
+            Mistake::Gamma => "gamma",
+            Mistake::FlippedY => "flipped-y",
+            Mistake::PixelCorner => "pixel-corner",
+        }
+    }
+
+    /// The mistake of this name.
+    pub fn from_name(name: &str) -> Option<Mistake> {
+        Mistake::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    fn bit(self) -> u16 {
+        1 << self as u16
+    }
+}
+
+impl fmt::Display for Mistake {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Serialize for Mistake {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+/// A set of mistakes; empty (the correct model) by default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Mistakes(u16);
+
+impl Mistakes {
+    pub const NONE: Mistakes = Mistakes(0);
+
+    pub fn contains(self, mistake: Mistake) -> bool {
+        self.0 & mistake.bit() != 0
+    }
+
+    /// The set with `mistake` added.
+    pub fn with(self, mistake: Mistake) -> Mistakes {
+        Mistakes(self.0 | mistake.bit())
+    }
+
+    /// The set with `mistake` in it if it was not, out of it if it was.
+    pub fn toggled(self, mistake: Mistake) -> Mistakes {
+        Mistakes(self.0 ^ mistake.bit())
+    }
+
+    pub fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// The mistakes in the set, in catalogue order.
+    pub fn iter(self) -> impl Iterator<Item = Mistake> {
+        Mistake::ALL.into_iter().filter(move |&m| self.contains(m))
+    }
+}
+
+impl FromIterator<Mistake> for Mistakes {
+    fn from_iter<I: IntoIterator<Item = Mistake>>(iter: I) -> Mistakes {
+        iter.into_iter().fold(Mistakes::NONE, Mistakes::with)
+    }
+}
+
+/// As the list of their names.
+impl Serialize for Mistakes {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.iter())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_reads_back_as_its_mistake() {
+        for mistake in Mistake::ALL {
+            assert_eq!(Mistake::from_name(mistake.name()), Some(mistake));
+        }
+        assert_eq!(Mistake::from_name("shadow_acne"), None);
+    }
+
+    #[test]
+    fn a_set_holds_what_was_added_in_catalogue_order() {
+        let set: Mistakes = [Mistake::PixelCorner, Mistake::ShadowAcne]
+            .into_iter()
+            .collect();
+        assert!(set.contains(Mistake::ShadowAcne));
+        assert!(!set.contains(Mistake::Gamma));
+        assert_eq!(
+            set.iter().collect::<Vec<_>>(),
+            [Mistake::ShadowAcne, Mistake::PixelCorner]
+        );
+        assert!(
+            set.toggled(Mistake::ShadowAcne)
+                .toggled(Mistake::PixelCorner)
+                .is_empty()
+        );
+    }
+}
