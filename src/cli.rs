@@ -41,6 +41,35 @@ pub enum Command {
     Inspect(InspectArgs),
     /// Explain in plain words why one pixel has its colour.
     Explain(PixelArgs),
+    /// Compare your own render of a scene with raystep's: how far apart,
+    /// where, and which classic mistake explains the difference.
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// Scene file (.toml or .nff); rendered at the image's size.
+    pub scene: PathBuf,
+    /// Your render of the scene, a PNG (alpha and 16 bits are converted).
+    pub image: PathBuf,
+    /// Output form: a report for people, or JSON for graders.
+    #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
+    pub format: CompareFormat,
+    /// Also write FLIP's error map (magma colours) to this PNG.
+    #[arg(short, long, value_name = "DIFF.png")]
+    pub output: Option<PathBuf>,
+    /// Exit with status 3 when FLIP's mean error is above F.
+    #[arg(long, value_name = "F")]
+    pub max_flip: Option<f64>,
+    /// Exit with status 3 when the mean absolute error is above E.
+    #[arg(long, value_name = "E")]
+    pub max_mean_abs: Option<f64>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CompareFormat {
+    Text,
+    Json,
 }
 
 #[derive(Args, Debug)]
@@ -141,6 +170,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Render(args)) => render_command(&args),
         Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Explain(args)) => explain_command(&args),
+        Some(Command::Compare(args)) => compare_command(&args),
         Some(Command::Debug { scene }) => debug_command(scene.as_deref()),
         None => debug_command(cli.scene.as_deref()),
     }
@@ -192,6 +222,45 @@ fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
     let tree = record(args)?;
     emit(&explain(&tree))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Exit status of `compare` when a `--max-*` threshold is exceeded.
+const OVER_THRESHOLD: u8 = 3;
+
+fn compare_command(args: &CompareArgs) -> Result<ExitCode> {
+    let student = crate::compare::student::load(&args.image)?;
+    let (width, height) = student.image.dimensions();
+    let scene = load_scene(
+        Some(&args.scene),
+        SizeArg {
+            size: Some((width, height)),
+        },
+    )?;
+    let diff = args.output.as_deref().map(output::file).transpose()?;
+    if let Some(diff) = &diff {
+        output::refuse_clashes(&args.scene, &[(diff, "the error map (-o)".to_owned())])?;
+        output::refuse_input(diff, &args.image, "your image")?;
+    }
+    let comparison = crate::compare::compare(&scene, student);
+    if let Some(diff) = diff {
+        output::write_all(None, std::iter::once((&diff, comparison.error_map.clone())))?;
+    }
+    match args.format {
+        CompareFormat::Text => emit(&crate::compare::text(
+            &comparison,
+            &args.image.display().to_string(),
+            &args.scene.display().to_string(),
+        ))?,
+        CompareFormat::Json => emit(&format!("{}\n", serde_json::to_string_pretty(&comparison)?))?,
+    }
+    let m = &comparison.metrics;
+    let over = args.max_flip.is_some_and(|f| m.flip_mean > f)
+        || args.max_mean_abs.is_some_and(|e| m.mean_abs > e);
+    Ok(if over {
+        ExitCode::from(OVER_THRESHOLD)
+    } else {
+        ExitCode::SUCCESS
+    })
 }
 
 /// The image, its stats when `stats`, and the term images when `terms`: one

@@ -81,6 +81,26 @@ impl Mistake {
         }
     }
 
+    /// What a tracer with the mistake does, in a few words.
+    pub fn summary(self) -> &'static str {
+        match self {
+            Mistake::ShadowAcne => "shadow rays hit their own surface (t > 0, not t > EPS)",
+            Mistake::NoNormalFlip => "shading uses the outward normal on back faces",
+            Mistake::EtaInverted => "Snell's law with n_t / n_i",
+            Mistake::TirDropped => "k_t lost at total internal reflection",
+            Mistake::PhongNotBlinn => "specular with R·V, not N·H",
+            Mistake::OpaqueShadows => "transparent objects cast full shadows",
+            Mistake::ShadowsPastLight => "objects beyond the light cast shadows",
+            Mistake::NoLightAttenuation => "lights not attenuated with distance",
+            Mistake::DepthOffByOne => "one reflection/refraction level too few",
+            Mistake::NoAmbient => "no ambient term",
+            Mistake::ByteWrap => "colours above 1 wrap around instead of clamping",
+            Mistake::Gamma => "a gamma of 2.2 applied to the bytes",
+            Mistake::FlippedY => "the image is upside down",
+            Mistake::PixelCorner => "primary rays through pixel corners, not centres",
+        }
+    }
+
     /// The mistake of this name.
     pub fn from_name(name: &str) -> Option<Mistake> {
         Mistake::ALL.into_iter().find(|m| m.name() == name)

@@ -165,6 +165,19 @@ pub fn refuse_clashes(scene: &Path, targets: &[(&Target, String)]) -> Result<()>
     Ok(())
 }
 
+/// Refuses an output that is the input `input`, named `what` in the message.
+pub fn refuse_input(target: &Target, input: &Path, what: &str) -> Result<()> {
+    let input_real = fs::canonicalize(input).ok();
+    if input_real.as_ref() == Some(&target.real) || same_file(input, &target.real) {
+        bail!(
+            "cannot write {}: it is {what} {}",
+            target.shown.display(),
+            input.display()
+        );
+    }
+    Ok(())
+}
+
 /// Whether two existing paths are the same file (hard links included).
 fn same_file(a: &Path, b: &Path) -> bool {
     #[cfg(unix)]

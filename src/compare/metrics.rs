@@ -1,0 +1,135 @@
+//! How far two images of the same size are apart: the mean absolute error,
+//! NVIDIA's FLIP (through the `nv-flip` crate, as wgpu's tests use it), the
+//! share of pixels past a tolerance, and the worst pixel.
+
+use image::{GrayImage, RgbImage};
+use serde::Serialize;
+
+/// A channel may differ by this many 8-bit steps before a pixel counts as
+/// different (mental ray's imf_diff counts the same way): another correct
+/// tracer rounds differently in the last bit, and a student's byte
+/// conversion may differ by one step.
+pub const TOLERANCE_STEPS: u8 = 3;
+/// The images match when at most this share of pixels is past the
+/// tolerance: an independent correct tracer differs on a few pixels where a
+/// ray grazes an edge or a shadow boundary, which must still match.
+pub const MATCH_SHARE: f64 = 0.001;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Metrics {
+    /// Mean over pixels and channels of |yours - reference|, from 0 to 1.
+    pub mean_abs: f64,
+    /// FLIP's mean error (LDR, 67 pixels per degree), from 0 to 1.
+    pub flip_mean: f64,
+    /// The share of pixels with a channel more than `tolerance` apart.
+    pub pixels_over_tolerance: f64,
+    /// `TOLERANCE_STEPS` / 255.
+    pub tolerance: f64,
+    pub worst: Option<Worst>,
+}
+
+/// The pixel with the largest difference in one channel.
+#[derive(Clone, Debug, Serialize)]
+pub struct Worst {
+    pub pixel: [u32; 2],
+    pub yours: [u8; 3],
+    pub reference: [u8; 3],
+}
+
+impl Metrics {
+    pub fn matches(&self) -> bool {
+        self.pixels_over_tolerance <= MATCH_SHARE
+    }
+}
+
+/// The largest difference of one channel between the two pixels.
+pub fn channel_gap(a: [u8; 3], b: [u8; 3]) -> u8 {
+    (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0)
+}
+
+/// Whether each pixel differs past the tolerance, as a mask (255 differs).
+pub fn over_tolerance(yours: &RgbImage, reference: &RgbImage) -> GrayImage {
+    GrayImage::from_fn(yours.width(), yours.height(), |x, y| {
+        let gap = channel_gap(yours.get_pixel(x, y).0, reference.get_pixel(x, y).0);
+        image::Luma([if gap > TOLERANCE_STEPS { 255 } else { 0 }])
+    })
+}
+
+/// Measures `yours` against `reference` (same size); also gives FLIP's
+/// error map in its magma colours.
+pub fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbImage) {
+    let (width, height) = yours.dimensions();
+    let pixels = (width as u64 * height as u64) as f64;
+    let mut sum = 0u64;
+    let mut over = 0u64;
+    let mut worst: Option<(u8, u32, u32)> = None;
+    for (x, y, p) in yours.enumerate_pixels() {
+        let (a, b) = (p.0, reference.get_pixel(x, y).0);
+        sum += (0..3).map(|c| a[c].abs_diff(b[c]) as u64).sum::<u64>();
+        let gap = channel_gap(a, b);
+        over += u64::from(gap > TOLERANCE_STEPS);
+        if gap > 0 && worst.is_none_or(|(g, _, _)| gap > g) {
+            worst = Some((gap, x, y));
+        }
+    }
+    let (flip_mean, error_map) = flip(yours, reference);
+    let metrics = Metrics {
+        mean_abs: sum as f64 / (3.0 * 255.0 * pixels),
+        flip_mean,
+        pixels_over_tolerance: over as f64 / pixels,
+        tolerance: TOLERANCE_STEPS as f64 / 255.0,
+        worst: worst.map(|(_, x, y)| Worst {
+            pixel: [x, y],
+            yours: yours.get_pixel(x, y).0,
+            reference: reference.get_pixel(x, y).0,
+        }),
+    };
+    (metrics, error_map)
+}
+
+/// FLIP's mean error and its error map in magma colours.
+fn flip(yours: &RgbImage, reference: &RgbImage) -> (f64, RgbImage) {
+    let (width, height) = yours.dimensions();
+    let test = nv_flip::FlipImageRgb8::with_data(width, height, yours.as_raw());
+    let refer = nv_flip::FlipImageRgb8::with_data(width, height, reference.as_raw());
+    let errors = nv_flip::flip(refer, test, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let mean = nv_flip::FlipPool::from_image(&errors).mean() as f64;
+    let colours = errors.apply_color_lut(&nv_flip::magma_lut());
+    let map = RgbImage::from_raw(width, height, colours.to_vec())
+        .expect("FLIP's map has the images' size");
+    (mean, map)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_follow_the_tolerance_and_the_worst_pixel_is_found() {
+        // 4 pixels: equal; off by 3 (within); off by 4 (over); off by 40 (worst).
+        let reference = RgbImage::from_pixel(4, 1, image::Rgb([100, 100, 100]));
+        let mut yours = reference.clone();
+        yours.put_pixel(1, 0, image::Rgb([103, 100, 100]));
+        yours.put_pixel(2, 0, image::Rgb([100, 96, 100]));
+        yours.put_pixel(3, 0, image::Rgb([100, 100, 140]));
+        let (metrics, map) = measure(&yours, &reference);
+        // (3 + 4 + 40) / (4 pixels * 3 channels * 255) = 47 / 3060.
+        assert!((metrics.mean_abs - 47.0 / 3060.0).abs() < 1e-12);
+        assert_eq!(metrics.pixels_over_tolerance, 0.5);
+        let worst = metrics.worst.clone().unwrap();
+        assert_eq!(worst.pixel, [3, 0]);
+        assert_eq!(worst.yours, [100, 100, 140]);
+        assert!(!metrics.matches());
+        assert_eq!(map.dimensions(), (4, 1));
+    }
+
+    #[test]
+    fn identical_images_have_no_error_at_all() {
+        let image = RgbImage::from_fn(16, 16, |x, y| image::Rgb([x as u8 * 16, y as u8 * 16, 9]));
+        let (metrics, _) = measure(&image, &image);
+        assert_eq!(metrics.mean_abs, 0.0);
+        assert_eq!(metrics.flip_mean, 0.0);
+        assert!(metrics.worst.is_none());
+        assert!(metrics.matches());
+    }
+}

@@ -1,0 +1,124 @@
+//! The comparison as a student reads it: the verdict first, then the likely
+//! mistakes, then where the images differ and what each place looks like.
+
+use std::fmt::Write;
+
+use super::{Comparison, MATCH_SHARE, RegionReport};
+
+pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
+    let mut out = String::new();
+    let m = &c.metrics;
+    let _ = writeln!(
+        out,
+        "{image} against {scene} rendered at {}x{}:",
+        c.width, c.height
+    );
+    for note in &c.notes {
+        let _ = writeln!(out, "  note: {note}");
+    }
+    let verdict = if c.matches {
+        "they match"
+    } else {
+        "they differ"
+    };
+    let _ = writeln!(
+        out,
+        "{verdict}: {} of the pixels differ by more than {} steps of 255 (a match allows {}).",
+        percent(m.pixels_over_tolerance),
+        super::TOLERANCE_STEPS,
+        percent(MATCH_SHARE)
+    );
+    let _ = writeln!(
+        out,
+        "  mean absolute error {:.4}, FLIP {:.4}",
+        m.mean_abs, m.flip_mean
+    );
+    if let Some(w) = &m.worst {
+        let _ = writeln!(
+            out,
+            "  worst pixel ({}, {}): yours {:?}, reference {:?}",
+            w.pixel[0], w.pixel[1], w.yours, w.reference
+        );
+    }
+    write_mistakes(&mut out, c);
+    if !c.regions.is_empty() {
+        let _ = writeln!(
+            out,
+            "Where ({} region{} of differing pixels; the largest first):",
+            c.region_count,
+            if c.region_count == 1 { "" } else { "s" }
+        );
+        for (i, region) in c.regions.iter().enumerate() {
+            write_region(&mut out, i + 1, region);
+        }
+    }
+    out
+}
+
+fn write_mistakes(out: &mut String, c: &Comparison) {
+    if c.matches {
+        return;
+    }
+    if c.mistakes.is_empty() {
+        let _ = writeln!(
+            out,
+            "Likely mistake: none of the catalogue explains the difference (see the regions below)."
+        );
+        return;
+    }
+    let _ = writeln!(
+        out,
+        "Likely mistakes (share of the difference each explains):"
+    );
+    for ranked in &c.mistakes {
+        let at = ranked
+            .pixel
+            .map(|[x, y]| format!("; see pixel {x},{y}"))
+            .unwrap_or_default();
+        let _ = writeln!(
+            out,
+            "  {:<20} {:>4}  {}{at}",
+            ranked.mistake.name(),
+            percent(ranked.explains.max(0.0)),
+            ranked.mistake.summary()
+        );
+    }
+}
+
+fn write_region(out: &mut String, number: usize, r: &RegionReport) {
+    let mut objects: Vec<String> = r
+        .objects
+        .iter()
+        .map(|o| format!("{} ({})", o.object, o.pixels))
+        .collect();
+    if r.more_objects > 0 {
+        objects.push(format!("{} more objects", r.more_objects));
+    }
+    let [x0, y0, x1, y1] = r.bounds;
+    let _ = writeln!(
+        out,
+        "  {number}. {} pixels in ({x0}, {y0})-({x1}, {y1}), on {}",
+        r.pixels,
+        objects.join(", ")
+    );
+    let _ = writeln!(
+        out,
+        "     pixel {},{}: yours {:?}, reference {:?}",
+        r.pixel[0], r.pixel[1], r.yours, r.reference
+    );
+    if let Some(diagnosis) = &r.diagnosis {
+        let _ = writeln!(out, "     {diagnosis}");
+    }
+    for line in &r.explain {
+        let _ = writeln!(out, "     {line}");
+    }
+}
+
+fn percent(share: f64) -> String {
+    let p = share * 100.0;
+    if p > 0.0 && p < 0.1 {
+        format!("{p:.2}%")
+    } else {
+        format!("{p:.1}%")
+    }
+}

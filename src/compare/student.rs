@@ -1,0 +1,136 @@
+//! The student's image: a PNG read into 8-bit RGB, saying what was converted
+//! on the way (alpha, 16 bits, grey), and refusing what is not a usable PNG
+//! with a message that names the file.
+
+use std::fs::File;
+use std::io::Read;
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
+use image::{ColorType, DynamicImage, ImageDecoder, ImageFormat, ImageReader, RgbImage};
+
+use crate::scene::check_image_size;
+
+/// The eight bytes every PNG file starts with.
+const PNG_SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n'];
+
+/// A student's render, as 8-bit RGB.
+pub struct StudentImage {
+    pub image: RgbImage,
+    /// What was converted to make it 8-bit RGB, for the report.
+    pub notes: Vec<String>,
+}
+
+/// Reads `path`, which must be a PNG no larger than raystep renders.
+pub fn load(path: &Path) -> Result<StudentImage> {
+    let name = path.display();
+    let mut signature = [0u8; 8];
+    let read = File::open(path)
+        .and_then(|mut file| file.read(&mut signature))
+        .with_context(|| format!("cannot read {name}"))?;
+    if read < PNG_SIGNATURE.len() || signature != PNG_SIGNATURE {
+        bail!("{name} is not a PNG image (it does not start with the PNG signature)");
+    }
+    let mut reader = ImageReader::open(path).with_context(|| format!("cannot read {name}"))?;
+    reader.set_format(ImageFormat::Png);
+    let decoder = reader
+        .into_decoder()
+        .with_context(|| format!("{name} is not a readable PNG"))?;
+    let (width, height) = decoder.dimensions();
+    check_image_size(width, height).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+    let color = decoder.color_type();
+    let image = DynamicImage::from_decoder(decoder)
+        .with_context(|| format!("{name} is a damaged or truncated PNG"))?;
+    let notes = conversion_notes(color, &image);
+    Ok(StudentImage {
+        image: image.into_rgb8(),
+        notes,
+    })
+}
+
+/// What turning an image of `color` into 8-bit RGB changes.
+fn conversion_notes(color: ColorType, image: &DynamicImage) -> Vec<String> {
+    let mut notes = Vec::new();
+    if color.bytes_per_pixel() / color.channel_count() > 1 {
+        notes.push("16 bits per channel: rounded to 8 bits".to_string());
+    }
+    if !color.has_color() {
+        notes.push("a grey image: read as red = green = blue".to_string());
+    }
+    if color.has_alpha() {
+        let see_through = image.to_rgba8().pixels().filter(|p| p.0[3] < 255).count();
+        notes.push(if see_through == 0 {
+            "an alpha channel, opaque everywhere: ignored".to_string()
+        } else {
+            format!("an alpha channel: ignored ({see_through} pixels are not opaque)")
+        });
+    }
+    notes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use image::{ImageBuffer, LumaA, Rgba};
+
+    fn write(dir: &Path, name: &str, image: DynamicImage) -> std::path::PathBuf {
+        let path = dir.join(name);
+        image.save(&path).unwrap();
+        path
+    }
+
+    #[test]
+    fn alpha_and_sixteen_bits_are_converted_and_said() {
+        let dir = tempfile::tempdir().unwrap();
+        // 16-bit 65535 becomes 255; the one pixel with alpha 0 is counted.
+        let rgba16 = ImageBuffer::from_fn(2, 1, |x, _| {
+            Rgba([65535u16, 0, 0, if x == 0 { 65535 } else { 0 }])
+        });
+        let loaded = load(&write(
+            dir.path(),
+            "a.png",
+            DynamicImage::ImageRgba16(rgba16),
+        ))
+        .unwrap();
+        assert_eq!(loaded.image.get_pixel(0, 0).0, [255, 0, 0]);
+        assert_eq!(
+            loaded.notes,
+            [
+                "16 bits per channel: rounded to 8 bits",
+                "an alpha channel: ignored (1 pixels are not opaque)"
+            ]
+        );
+        let grey = ImageBuffer::from_pixel(1, 1, LumaA([100u8, 255]));
+        let loaded = load(&write(dir.path(), "g.png", DynamicImage::ImageLumaA8(grey))).unwrap();
+        assert_eq!(loaded.image.get_pixel(0, 0).0, [100, 100, 100]);
+        assert_eq!(loaded.notes.len(), 2);
+    }
+
+    #[test]
+    fn what_is_not_a_whole_png_is_refused_by_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let text = dir.path().join("notes.png");
+        std::fs::write(&text, "not an image").unwrap();
+        let error = load(&text).err().unwrap().to_string();
+        assert!(error.contains("notes.png is not a PNG"), "{error}");
+
+        let whole = write(
+            dir.path(),
+            "whole.png",
+            DynamicImage::ImageRgb8(RgbImage::from_fn(64, 64, |x, y| {
+                image::Rgb([x as u8 * 4, y as u8 * 4, 7])
+            })),
+        );
+        let bytes = std::fs::read(&whole).unwrap();
+        let cut = dir.path().join("cut.png");
+        std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+        let error = format!("{:#}", load(&cut).err().unwrap());
+        assert!(error.contains("cut.png"), "{error}");
+
+        let missing = format!("{:#}", load(&dir.path().join("none.png")).err().unwrap());
+        assert!(
+            missing.contains("cannot read") && missing.contains("none.png"),
+            "{missing}"
+        );
+    }
+}
