@@ -53,7 +53,7 @@ fn a_correct_image_with_noise_of_another_tracer_still_matches() {
         state = state
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
-        if (state >> 33) % 50 == 0 {
+        if (state >> 33).is_multiple_of(50) {
             let c = ((state >> 20) % 3) as usize;
             p.0[c] = if p.0[c] == 255 { 254 } else { p.0[c] + 1 };
             changed += 1;
