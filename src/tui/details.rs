@@ -120,11 +120,11 @@ pub fn lines(
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let id = app.selected_node();
-    let node = &app.tree.nodes[id];
+    let node = &app.tree().nodes[id];
     let title = format!(" Details · r{id} {} ray ", kind_name(node.kind));
     let block = pane_block(app, Pane::Details, title);
     let inside = block.inner(area);
-    let (lines, marked) = lines(&app.tree, id, Some(app.current), inside.width as usize);
+    let (lines, marked) = lines(app.tree(), id, Some(app.current()), inside.width as usize);
     let height = inside.height as usize;
     let auto = marked.map_or(0, |m| {
         if m + 4 <= height {
@@ -134,7 +134,7 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         }
     });
     let most = lines.len().saturating_sub(height);
-    let offset = app.details_scroll.map_or(auto, |s| s as usize).min(most);
+    let offset = app.details_scroll().map_or(auto, |s| s as usize).min(most);
     frame.render_widget(
         Paragraph::new(lines)
             .block(block)

@@ -13,7 +13,7 @@ use super::stepper::Step;
 pub fn action(event: &Event, app: &App) -> Option<Action> {
     match event {
         Event::Key(key) if key.kind != KeyEventKind::Release => {
-            key_action(key, app.help, app.focus)
+            key_action(key, app.help(), app.focus())
         }
         Event::Mouse(mouse) => {
             let input = match mouse.kind {
@@ -22,7 +22,7 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
                 MouseEventKind::ScrollDown => Input::WheelDown,
                 _ => return None,
             };
-            match keymap::mouse_command(input, app.help)? {
+            match keymap::mouse_command(input, app.help())? {
                 Command::Click => Some(Action::Click(mouse.column, mouse.row)),
                 command => in_pane(command, app.panes().pane_at(mouse.column, mouse.row)?),
             }

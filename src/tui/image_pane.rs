@@ -11,28 +11,27 @@ use ratatui::widgets::Paragraph;
 use crate::record::{color, num};
 use crate::terms::{Term, false_color};
 
+use super::app::inner;
 use super::app::{App, View};
-use super::controls::inner;
 use super::image_view::ImageWidget;
 use super::layout::Pane;
 use super::tree_view::rgb_swatch;
 use super::ui::pane_block;
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let (x, y) = app.cursor;
+    let (x, y) = app.cursor();
     let mut title = vec![Span::raw(format!(" Pixel ({x}, {y}) "))];
     if let Some(rgb) = app
-        .image
-        .as_ref()
+        .image()
         .filter(|i| x < i.width() && y < i.height())
         .map(|i| i.get_pixel(x, y).0)
     {
         title.push(Span::raw(format!("rgb({},{},{}) ", rgb[0], rgb[1], rgb[2])));
         title.push(rgb_swatch(rgb));
     }
-    title.push(Span::raw(format!(" zoom {}x ", app.zoom)));
+    title.push(Span::raw(format!(" zoom {}x ", app.zoom())));
     let mut block = pane_block(app, Pane::Image, String::new()).title(Line::from(title));
-    if let View::Term(term) = app.view {
+    if let View::Term(term) = app.view() {
         block = block.title_bottom(term_legend(app, term).right_aligned());
     }
     frame.render_widget(block, area);
@@ -52,11 +51,11 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         ImageWidget {
             view,
             pixel: &pixel,
-            cursor: app.cursor,
+            cursor: app.cursor(),
         },
         area,
     );
-    if let Some((column, row, _)) = view.cursor_cell(app.cursor) {
+    if let Some((column, row, _)) = view.cursor_cell(app.cursor()) {
         // Marks on the border point at the cursor's column and row.
         let marks = [
             ((column, area.y + area.height - 1), "▲", "─"),
@@ -77,10 +76,10 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
 /// The term view's legend: the view's name, the selected pixel's value,
 /// and the scale of a count view.
 fn term_legend(app: &App, term: Term) -> Line<'static> {
-    let Some(terms) = &app.terms else {
+    let Some(terms) = app.terms() else {
         return Line::raw(format!(" {}: rendering… ", term.name()));
     };
-    let (x, y) = app.cursor;
+    let (x, y) = app.cursor();
     let index = (x < terms.width && y < terms.height).then_some((y * terms.width + x) as usize);
     let here = index
         .and_then(|i| terms.pixels.get(i))

@@ -11,7 +11,6 @@
 
 pub mod action;
 pub mod app;
-mod controls;
 pub mod details;
 pub mod diagram;
 pub mod event;
@@ -22,7 +21,6 @@ pub mod job;
 pub mod keymap;
 pub mod layout;
 pub mod projection;
-mod renders;
 pub mod source;
 pub mod stepper;
 pub mod steps_view;
@@ -83,14 +81,16 @@ where
     B::Error: Send + Sync + 'static,
 {
     let size = terminal.size()?;
-    if (size.width, size.height) != (app.screen.width, app.screen.height) {
+    if (size.width, size.height) != (app.screen().width, app.screen().height) {
         app.update(Action::Resize(size.width, size.height));
     }
     terminal.draw(|frame| ui::draw(frame, app))?;
     Ok(())
 }
 
-/// The main loop: draw, wait for an event or for background work, update.
+/// The main loop: draw, wait for an event or for background work, and turn
+/// both into actions. It redraws after an event, and after a tick while
+/// background work is under way (or has just ended).
 pub fn run_loop<B: Backend>(
     terminal: &mut Terminal<B>,
     app: &mut App,
@@ -100,11 +100,12 @@ where
     B::Error: Send + Sync + 'static,
 {
     let mut dirty = true;
-    while !app.quit {
+    while !app.should_quit() {
         if dirty {
             draw(terminal, app)?;
         }
-        let timeout = Duration::from_millis(if app.busy() { 50 } else { 250 });
+        let busy = app.busy();
+        let timeout = Duration::from_millis(if busy { 50 } else { 250 });
         dirty = false;
         if let Some(event) = input.next(timeout)? {
             if let Some(action) = event::action(&event, app) {
@@ -112,7 +113,8 @@ where
             }
             dirty = true;
         }
-        dirty |= app.tick();
+        app.update(Action::Tick);
+        dirty |= busy || app.busy();
     }
     Ok(())
 }
@@ -126,8 +128,9 @@ pub fn run(path: Option<&Path>) -> Result<ExitCode> {
              or `raystep inspect SCENE --pixel X,Y` for one pixel's ray tree"
         );
     }
-    let mut app = App::open(path.map(Path::to_path_buf), false).map_err(anyhow::Error::new)?;
-    app.watch();
+    let mut app = App::open(path.map(Path::to_path_buf), false)
+        .map_err(anyhow::Error::new)?
+        .watching();
     let result = terminal::take()
         .and_then(|mut terminal| run_loop(&mut terminal, &mut app, &mut TerminalInput));
     terminal::restore();

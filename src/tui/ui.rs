@@ -26,19 +26,19 @@ pub fn draw(frame: &mut Frame, app: &App) {
     let block = pane_block(
         app,
         Pane::Diagram,
-        format!(" Diagram · {} · white: current ", app.plane.name()),
+        format!(" Diagram · {} · white: current ", app.plane().name()),
     );
     let block = block.title_bottom(diagram::legend());
     diagram::render(
         panes.diagram,
         frame.buffer_mut(),
         block,
-        &app.scene,
-        &app.tree,
-        app.current,
-        app.plane,
+        app.scene(),
+        app.tree(),
+        app.current(),
+        app.plane(),
     );
-    if let Some(error) = &app.error {
+    if let Some(error) = app.error() {
         let block = Block::bordered()
             .border_style(Style::new().fg(Color::Red))
             .title(
@@ -46,14 +46,11 @@ pub fn draw(frame: &mut Frame, app: &App) {
                     .bold()
                     .red(),
             );
-        frame.render_widget(
-            Paragraph::new(error.as_str()).red().block(block),
-            panes.banner,
-        );
+        frame.render_widget(Paragraph::new(error).red().block(block), panes.banner);
     }
     frame.render_widget(status(app), panes.status);
-    if app.help {
-        help::draw(frame, area, app.help_scroll);
+    if app.help() {
+        help::draw(frame, area, app.help_scroll());
     }
 }
 
@@ -89,7 +86,7 @@ fn on_off(name: &str, on: bool) -> Span<'static> {
 /// The top line: the scene (shortened first when space is short) and the
 /// model's settings as the toggles left them.
 fn header(app: &App, width: u16) -> Line<'static> {
-    let settings = &app.settings;
+    let settings = app.settings();
     let s = settings.switches;
     let sep = || Span::raw(" · ").dark_gray();
     let mut right = vec![
@@ -106,7 +103,7 @@ fn header(app: &App, width: u16) -> Line<'static> {
         sep(),
         Span::raw(format!("depth {}", settings.max_depth)),
     ];
-    if let View::Term(term) = app.view {
+    if let View::Term(term) = app.view() {
         right.extend([
             sep(),
             Span::raw(format!("view: {}", term.name())).bold().yellow(),
@@ -115,9 +112,9 @@ fn header(app: &App, width: u16) -> Line<'static> {
     let used: usize = 9 + right.iter().map(|s| s.width()).sum::<usize>();
     let scene = format!(
         " {} {}x{}",
-        app.source.name(),
-        app.scene.width,
-        app.scene.height
+        app.source().name(),
+        app.scene().width,
+        app.scene().height
     );
     let room = (width as usize).saturating_sub(used);
     let scene = if scene.chars().count() <= room {
@@ -140,7 +137,7 @@ fn header(app: &App, width: u16) -> Line<'static> {
 
 /// A bordered pane, its border bright when it has the focus.
 pub(super) fn pane_block(app: &App, pane: Pane, title: String) -> Block<'static> {
-    let focused = app.focus == pane;
+    let focused = app.focus() == pane;
     let style = if focused {
         Style::new().fg(Color::Cyan).add_modifier(Modifier::BOLD)
     } else {
@@ -160,16 +157,16 @@ fn status(app: &App) -> Line<'static> {
                 .on_yellow(),
         );
     }
-    if let Some(message) = &app.message {
+    if let Some(message) = app.message() {
         spans.push(Span::raw(format!(" {message} ")).yellow().bold());
-    } else if app.show_timings {
-        let render = app.render_time.map_or(String::new(), |t| {
+    } else if app.show_timings() {
+        let render = app.render_time().map_or(String::new(), |t| {
             format!(", image in {:.0} ms", t.as_secs_f64() * 1e3)
         });
         spans.push(
             Span::raw(format!(
                 " pixel traced in {} µs{render} ",
-                app.pick_time.as_micros()
+                app.pick_time().as_micros()
             ))
             .dark_gray(),
         );

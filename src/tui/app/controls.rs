@@ -1,16 +1,16 @@
 //! What each action does to the app: cursor, zoom, stepping, the tree, and
-//! the teaching toggles. Split from `app.rs` only to keep files short.
+//! the teaching toggles. Split from `app/mod.rs` only to keep files short.
 
 use ratatui::layout::Position;
 
 use crate::terms::Term;
 
-use super::app::{App, MAX_DEPTH, Switch, View};
-use super::image_view::{ImageView, max_zoom};
-use super::layout::Pane;
-use super::stepper::{self, Breakpoint, Step};
-use super::steps_view;
-use super::tree_view::{self, RowKind};
+use super::{App, MAX_DEPTH, Switch, View};
+use crate::tui::image_view::{ImageView, max_zoom};
+use crate::tui::layout::Pane;
+use crate::tui::stepper::{self, Breakpoint, Step};
+use crate::tui::steps_view;
+use crate::tui::tree_view::{self, RowKind};
 
 /// The inner area of a bordered pane.
 pub fn inner(area: ratatui::layout::Rect) -> ratatui::layout::Rect {
