@@ -141,3 +141,69 @@ fn the_reader_sees_paths_groups_and_circles() {
     assert_eq!(circle_through(&graph, "d"), None);
     assert_eq!(circles(&graph).len(), 3);
 }
+
+/// The module names in `text`'s `use` declarations and inline paths
+/// (`a::b::c` gives a, b and c), outside its unit tests.
+fn path_segments(text: &str) -> BTreeSet<String> {
+    let library = text.split("#[cfg(test)]").next().unwrap_or_default();
+    let mut names = BTreeSet::new();
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    for (at, _) in library.match_indices("use ") {
+        // Only a declaration: `use` first on its line, or after `pub(..)`.
+        let line_start = library[..at].rfind('\n').map_or(0, |i| i + 1);
+        let lead = library[line_start..at].trim();
+        if !(lead.is_empty() || lead.starts_with("pub")) {
+            continue;
+        }
+        let statement = &library[at..at + library[at..].find(';').unwrap_or(0)];
+        names.extend(statement.split(|c| !ident(c)).map(String::from));
+    }
+    for (at, _) in library.match_indices("::") {
+        let before = library[..at].rsplit(|c| !ident(c)).next().unwrap_or("");
+        names.insert(before.to_string());
+    }
+    names.retain(|n| !n.is_empty());
+    names
+}
+
+/// The `src/tui/` folders that `folder` names.
+fn tui_folders_named(folder: &str) -> BTreeSet<String> {
+    let tui = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/tui");
+    let mut named = BTreeSet::new();
+    for file in rust_files(&tui.join(folder)) {
+        let segments = path_segments(&fs::read_to_string(&file).unwrap());
+        for other in ["app", "pane", "view"] {
+            if other != folder && segments.contains(other) {
+                named.insert(format!("{} names {other}", file.display()));
+            }
+        }
+    }
+    named
+}
+
+#[test]
+fn the_debuggers_state_and_views_know_no_pane() {
+    // The state reads views (layout, tree rows, stepping) but never how a
+    // pane is drawn; the views know neither the state nor the panes.
+    let app: Vec<_> = tui_folders_named("app")
+        .into_iter()
+        .filter(|n| !n.ends_with("view"))
+        .collect();
+    assert!(app.is_empty(), "{app:#?}");
+    let view = tui_folders_named("view");
+    assert!(view.is_empty(), "{view:#?}");
+}
+
+#[test]
+fn the_path_reader_sees_uses_groups_and_inline_paths() {
+    let text = "use super::view::{layout, tree};\npub use crate::tui::pane;\n\
+                // because it is;\nfn f() { super::super::app::x() }\n\
+                #[cfg(test)]\nuse crate::other;";
+    let names: Vec<_> = path_segments(text).into_iter().collect();
+    assert_eq!(
+        names,
+        [
+            "app", "crate", "layout", "pane", "super", "tree", "tui", "use", "view"
+        ]
+    );
+}

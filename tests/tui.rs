@@ -356,7 +356,7 @@ fn tree_selection_and_collapse_follow_the_events() {
     assert_eq!(app.current(), 8, "r1's row selects its cast");
     press(&mut app, &[key(KeyCode::Enter)]);
     assert!(app.collapsed().contains(&1));
-    let rows = tui::tree_view::rows(app.tree(), app.collapsed());
+    let rows = tui::view::tree::rows(app.tree(), app.collapsed());
     assert_eq!(
         rows.len(),
         3 + 1 + 3 + 3 + 1,

@@ -3,7 +3,7 @@
 
 use crate::terms::Term;
 
-use super::stepper::{Breakpoint, Step};
+use super::view::stepper::{Breakpoint, Step};
 
 /// Something the user asked for, or a tick of the clock.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

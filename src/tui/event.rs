@@ -6,8 +6,8 @@ use crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKin
 
 use super::app::{Action, App};
 use super::keymap::{self, Command, Input};
-use super::layout::Pane;
-use super::stepper::Step;
+use super::view::layout::Pane;
+use super::view::stepper::Step;
 
 /// The action for a terminal event, if it means one.
 pub fn action(event: &Event, app: &App) -> Option<Action> {
@@ -67,7 +67,7 @@ mod tests {
 
     use super::*;
     use crate::tui::app::Switch;
-    use crate::tui::stepper::Breakpoint;
+    use crate::tui::view::stepper::Breakpoint;
 
     const BIG_STEP: i32 = 10;
 

@@ -11,22 +11,13 @@
 
 pub mod action;
 pub mod app;
-pub mod details;
-pub mod diagram;
 pub mod event;
-mod help;
-mod image_pane;
-pub mod image_view;
 pub mod job;
 pub mod keymap;
-pub mod layout;
-pub mod projection;
+pub mod pane;
 pub mod source;
-pub mod stepper;
-pub mod steps_view;
 mod terminal;
-pub mod tree_view;
-pub mod ui;
+pub mod view;
 
 use std::collections::VecDeque;
 use std::io::{self, IsTerminal};
@@ -41,9 +32,9 @@ use ratatui::backend::Backend;
 
 pub use action::{Action, Switch, View};
 pub use app::App;
-pub use layout::Pane;
-pub use projection::ViewPlane;
-pub use stepper::{Breakpoint, Step};
+pub use view::layout::Pane;
+pub use view::projection::ViewPlane;
+pub use view::stepper::{Breakpoint, Step};
 
 /// Where terminal events come from: the real terminal, or a script in tests.
 pub trait Input {
@@ -84,7 +75,7 @@ where
     if (size.width, size.height) != (app.screen().width, app.screen().height) {
         app.update(Action::Resize(size.width, size.height));
     }
-    terminal.draw(|frame| ui::draw(frame, app))?;
+    terminal.draw(|frame| pane::draw(frame, app))?;
     Ok(())
 }
 

@@ -6,16 +6,11 @@ use ratatui::layout::Position;
 use crate::terms::Term;
 
 use super::{App, MAX_DEPTH, Switch, View};
-use crate::tui::image_view::{ImageView, max_zoom};
-use crate::tui::layout::Pane;
-use crate::tui::stepper::{self, Breakpoint, Step};
-use crate::tui::steps_view;
-use crate::tui::tree_view::{self, RowKind};
-
-/// The inner area of a bordered pane.
-pub fn inner(area: ratatui::layout::Rect) -> ratatui::layout::Rect {
-    area.inner(ratatui::layout::Margin::new(1, 1))
-}
+use crate::tui::view::image_grid::{ImageView, max_zoom};
+use crate::tui::view::layout::{Pane, inner};
+use crate::tui::view::stepper::{self, Breakpoint, Step};
+use crate::tui::view::steps;
+use crate::tui::view::tree::{self, RowKind};
 
 impl App {
     /// The image pane's mapping, for drawing and for clicks.
@@ -59,20 +54,16 @@ impl App {
                 }
             }
             Pane::Tree => {
-                let rows = tree_view::rows(&self.tree, &self.collapsed);
-                let selected =
-                    tree_view::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
-                let first = tree_view::scroll_offset(selected, inside.height as usize);
+                let rows = tree::rows(&self.tree, &self.collapsed);
+                let selected = tree::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
+                let first = tree::scroll_offset(selected, inside.height as usize);
                 if let Some(row) = rows.get(first + line) {
                     self.select(row.kind);
                 }
             }
             Pane::Steps => {
-                let first = steps_view::first_line(
-                    self.current,
-                    self.tree.events.len(),
-                    inside.height as usize,
-                );
+                let first =
+                    steps::first_line(self.current, self.tree.events.len(), inside.height as usize);
                 if first + line < self.tree.events.len() {
                     self.set_current(first + line);
                 }
@@ -175,8 +166,8 @@ impl App {
     }
 
     pub(super) fn select_row(&mut self, delta: i32) {
-        let rows = tree_view::rows(&self.tree, &self.collapsed);
-        let Some(selected) = tree_view::selected_row(&self.tree, &rows, self.current) else {
+        let rows = tree::rows(&self.tree, &self.collapsed);
+        let Some(selected) = tree::selected_row(&self.tree, &rows, self.current) else {
             return;
         };
         let row = (selected as i64 + delta as i64).clamp(0, rows.len() as i64 - 1) as usize;

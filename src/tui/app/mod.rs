@@ -19,15 +19,13 @@ use crate::terms::TermImages;
 
 pub use super::action::{Action, Switch, View};
 use super::job::Renderer;
-use super::layout::{self, Pane, Panes};
-use super::projection::ViewPlane;
 use super::source::{FileWatcher, SceneSource, merge_settings};
-use super::tree_view;
+use super::view::layout::{self, Pane, Panes};
+use super::view::projection::ViewPlane;
+use super::view::{help, tree};
 
 mod controls;
 mod renders;
-
-pub use controls::inner;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
@@ -166,7 +164,7 @@ impl App {
             Action::ToggleHelp => (self.help, self.help_scroll) = (!self.help, 0),
             Action::CloseHelp => self.help = false,
             Action::ScrollHelp(delta) => {
-                let most = super::help::hidden_lines(self.screen.height) as i32;
+                let most = help::hidden_lines(self.screen.height) as i32;
                 self.help_scroll = (self.help_scroll as i32 + delta).clamp(0, most) as u16;
             }
             Action::FocusNext => self.focus = self.focus.next(),
@@ -323,7 +321,7 @@ impl App {
 
     pub fn panes(&self) -> Panes {
         let banner = self.error.as_ref().map_or(0, |e| e.lines().count() as u16);
-        let rows = tree_view::rows(&self.tree, &self.collapsed).len() as u16;
+        let rows = tree::rows(&self.tree, &self.collapsed).len() as u16;
         layout::panes(self.screen, banner, rows)
     }
 

@@ -3,20 +3,20 @@
 //! view's legend at the bottom.
 
 use ratatui::Frame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
 use ratatui::style::{Color, Stylize};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::Paragraph;
+use ratatui::widgets::{Paragraph, Widget};
 
 use crate::record::{color, num};
 use crate::terms::{Term, false_color};
 
-use super::app::inner;
-use super::app::{App, View};
-use super::image_view::ImageWidget;
-use super::layout::Pane;
-use super::tree_view::rgb_swatch;
-use super::ui::pane_block;
+use super::pane_block;
+use crate::tui::view::image_grid::ImageView;
+use crate::tui::view::layout::{Pane, inner};
+use crate::tui::view::tree::rgb_swatch;
+use crate::tui::{App, View};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let (x, y) = app.cursor();
@@ -104,4 +104,55 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
         spans.push(Span::raw(format!(" {} ", terms.max_count(term))));
     }
     Line::from(spans)
+}
+
+/// The half-block drawing of an image through a view, with the cursor.
+pub struct ImageWidget<'a> {
+    pub view: ImageView,
+    pub pixel: &'a dyn Fn(u32, u32) -> [u8; 3],
+    pub cursor: (u32, u32),
+}
+
+/// The cursor's colour: one that stands out against the pixel under it.
+fn cursor_color(under: [u8; 3]) -> Color {
+    let luma = 0.3 * under[0] as f64 + 0.59 * under[1] as f64 + 0.11 * under[2] as f64;
+    if luma > 140.0 {
+        Color::Rgb(200, 0, 160)
+    } else {
+        Color::Rgb(255, 90, 255)
+    }
+}
+
+impl Widget for ImageWidget<'_> {
+    fn render(self, _area: Rect, buf: &mut Buffer) {
+        let view = self.view;
+        let rgb = |[r, g, b]: [u8; 3]| Color::Rgb(r, g, b);
+        let cursor = view.display_of(self.cursor);
+        for dy in (0..view.shown.1).step_by(2) {
+            for dx in 0..view.shown.0 {
+                let color_at = |dy: u32| {
+                    let (x, y) = view.sample(dx, dy);
+                    let color = (self.pixel)(x, y);
+                    if cursor == Some((dx, dy)) {
+                        cursor_color(color)
+                    } else {
+                        rgb(color)
+                    }
+                };
+                let upper = color_at(dy);
+                let lower = if dy + 1 < view.shown.1 {
+                    color_at(dy + 1)
+                } else {
+                    Color::Reset
+                };
+                let position = (
+                    view.area.x + view.offset.0 + dx as u16,
+                    view.area.y + view.offset.1 + (dy / 2) as u16,
+                );
+                if let Some(cell) = buf.cell_mut(position) {
+                    cell.set_symbol("▀").set_fg(upper).set_bg(lower);
+                }
+            }
+        }
+    }
 }

@@ -13,7 +13,7 @@ use crate::math::to_rgb8;
 use crate::record::RayTree;
 use crate::scene::Scene;
 
-use super::projection::{
+use crate::tui::view::projection::{
     Outline, Projection, Segment, Stroke, ViewPlane, involved_objects, outline, ray_segments,
 };
 
