@@ -405,11 +405,11 @@ fn tab_cycles_the_panes_and_arrows_act_on_the_focused_one() {
 #[test]
 fn clicks_pick_pixels_and_rows() {
     let mut app = app();
-    let view = app.image_view().unwrap();
-    let (column, row, _) = view.cursor_cell((40, 30)).unwrap();
+    let grid = app.image_grid().unwrap();
+    let (column, row, _) = grid.cursor_cell((40, 30)).unwrap();
     app.update(Action::Click(column, row));
     let picked = app.cursor();
-    assert_eq!(view.pixel_at_cell(column, row), Some(picked));
+    assert_eq!(grid.pixel_at_cell(column, row), Some(picked));
     assert!(
         picked.0.abs_diff(40) <= 3 && picked.1.abs_diff(30) <= 3,
         "{picked:?}"
@@ -425,19 +425,19 @@ fn clicks_pick_pixels_and_rows() {
 fn zoom_goes_down_to_one_pixel_per_half_cell() {
     let mut app = app();
     chars(&mut app, "++++++++");
-    let view = app.image_view().unwrap();
-    assert_eq!(view.scale, 1.0);
+    let grid = app.image_grid().unwrap();
+    assert_eq!(grid.scale, 1.0);
     assert!(
         app.message()
             .unwrap_or("")
             .contains("zoomed in all the way")
     );
     assert_eq!(
-        view.sample(0, 0),
-        (view.origin.0 as u32, view.origin.1 as u32)
+        grid.sample(0, 0),
+        (grid.origin.0 as u32, grid.origin.1 as u32)
     );
     assert!(
-        view.display_of(app.cursor()).is_some(),
+        grid.display_of(app.cursor()).is_some(),
         "the cursor stays in view"
     );
     chars(&mut app, "--------");
@@ -449,20 +449,20 @@ fn image_cells_carry_the_pixel_colours() {
     let mut app = app();
     app.update(Action::Pick(10, 10));
     let terminal = screen(&mut app, 120, 40);
-    let view = app.image_view().unwrap();
-    let (column, row) = (view.area.x + 20, view.area.y + 5);
+    let grid = app.image_grid().unwrap();
+    let (column, row) = (grid.area.x + 20, grid.area.y + 5);
     let cell = &terminal.backend().buffer()[(column, row)];
     let [r, g, b] = app
         .image()
         .unwrap()
-        .get_pixel(view.sample(20, 10).0, view.sample(20, 10).1)
+        .get_pixel(grid.sample(20, 10).0, grid.sample(20, 10).1)
         .0;
     assert_eq!(cell.symbol(), "▀");
     assert_eq!(cell.fg, Color::Rgb(r, g, b));
     let [r, g, b] = app
         .image()
         .unwrap()
-        .get_pixel(view.sample(20, 11).0, view.sample(20, 11).1)
+        .get_pixel(grid.sample(20, 11).0, grid.sample(20, 11).1)
         .0;
     assert_eq!(cell.bg, Color::Rgb(r, g, b));
 }

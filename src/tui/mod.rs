@@ -33,7 +33,7 @@ use ratatui::backend::Backend;
 pub use action::{Action, Switch, View};
 pub use app::App;
 pub use view::layout::Pane;
-pub use view::projection::ViewPlane;
+pub use view::projection::DiagramPlane;
 pub use view::stepper::{Breakpoint, Step};
 
 /// Where terminal events come from: the real terminal, or a script in tests.

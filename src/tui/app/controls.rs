@@ -6,7 +6,7 @@ use ratatui::layout::Position;
 use crate::terms::Term;
 
 use super::{App, MAX_DEPTH, Switch, View};
-use crate::tui::view::image_grid::{ImageView, max_zoom};
+use crate::tui::view::image_grid::{ImageGrid, max_zoom};
 use crate::tui::view::layout::{Pane, inner};
 use crate::tui::view::stepper::{self, Breakpoint, Step};
 use crate::tui::view::steps;
@@ -14,9 +14,9 @@ use crate::tui::view::tree::{self, RowKind};
 
 impl App {
     /// The image pane's mapping, for drawing and for clicks.
-    pub fn image_view(&self) -> Option<ImageView> {
+    pub fn image_grid(&self) -> Option<ImageGrid> {
         let size = self.image.as_ref().map(|i| (i.width(), i.height()))?;
-        Some(ImageView::new(
+        Some(ImageGrid::new(
             inner(self.panes().image),
             size,
             self.zoom,
@@ -49,7 +49,7 @@ impl App {
         let line = (row - inside.y) as usize;
         match pane {
             Pane::Image => {
-                if let Some((x, y)) = self.image_view().and_then(|v| v.pixel_at_cell(column, row)) {
+                if let Some((x, y)) = self.image_grid().and_then(|v| v.pixel_at_cell(column, row)) {
                     self.pick(x.min(self.scene.width - 1), y.min(self.scene.height - 1));
                 }
             }

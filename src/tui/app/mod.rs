@@ -21,7 +21,7 @@ pub use super::action::{Action, Switch, View};
 use super::job::Renderer;
 use super::source::{FileWatcher, SceneSource, merge_settings};
 use super::view::layout::{self, Pane, Panes};
-use super::view::projection::ViewPlane;
+use super::view::projection::DiagramPlane;
 use super::view::{help, tree};
 
 mod controls;
@@ -53,7 +53,7 @@ pub struct App {
     /// 1 shows the whole image; each doubling halves the pixels per cell.
     zoom: u32,
     view: View,
-    plane: ViewPlane,
+    plane: DiagramPlane,
     help: bool,
     help_scroll: u16,
     /// The banner: why the last reload failed.
@@ -106,7 +106,7 @@ impl App {
             focus: Pane::Image,
             zoom: 1,
             view: View::Image,
-            plane: ViewPlane::Top,
+            plane: DiagramPlane::Top,
             help: false,
             help_scroll: 0,
             error: None,
@@ -251,7 +251,7 @@ impl App {
         self.view
     }
 
-    pub fn plane(&self) -> ViewPlane {
+    pub fn plane(&self) -> DiagramPlane {
         self.plane
     }
 

@@ -13,7 +13,7 @@ use crate::record::{color, num};
 use crate::terms::{Term, false_color};
 
 use super::pane_block;
-use crate::tui::view::image_grid::ImageView;
+use crate::tui::view::image_grid::ImageGrid;
 use crate::tui::view::layout::{Pane, inner};
 use crate::tui::view::tree::rgb_swatch;
 use crate::tui::{App, View};
@@ -35,7 +35,7 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         block = block.title_bottom(term_legend(app, term).right_aligned());
     }
     frame.render_widget(block, area);
-    let (Some(view), Some(_)) = (app.image_view(), app.shown_pixel(0, 0)) else {
+    let (Some(grid), Some(_)) = (app.image_grid(), app.shown_pixel(0, 0)) else {
         let text = match app.progress() {
             Some(p) => format!("rendering… {}/{} rows", p.rows_done, p.rows),
             None => "rendering…".into(),
@@ -49,13 +49,13 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let pixel = |x: u32, y: u32| app.shown_pixel(x, y).unwrap_or([0, 0, 0]);
     frame.render_widget(
         ImageWidget {
-            view,
+            grid,
             pixel: &pixel,
             cursor: app.cursor(),
         },
         area,
     );
-    if let Some((column, row, _)) = view.cursor_cell(app.cursor()) {
+    if let Some((column, row, _)) = grid.cursor_cell(app.cursor()) {
         // Marks on the border point at the cursor's column and row.
         let marks = [
             ((column, area.y + area.height - 1), "▲", "─"),
@@ -106,9 +106,9 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
     Line::from(spans)
 }
 
-/// The half-block drawing of an image through a view, with the cursor.
+/// The half-block drawing of an image through its grid, with the cursor.
 pub struct ImageWidget<'a> {
-    pub view: ImageView,
+    pub grid: ImageGrid,
     pub pixel: &'a dyn Fn(u32, u32) -> [u8; 3],
     pub cursor: (u32, u32),
 }
@@ -125,13 +125,13 @@ fn cursor_color(under: [u8; 3]) -> Color {
 
 impl Widget for ImageWidget<'_> {
     fn render(self, _area: Rect, buf: &mut Buffer) {
-        let view = self.view;
+        let grid = self.grid;
         let rgb = |[r, g, b]: [u8; 3]| Color::Rgb(r, g, b);
-        let cursor = view.display_of(self.cursor);
-        for dy in (0..view.shown.1).step_by(2) {
-            for dx in 0..view.shown.0 {
+        let cursor = grid.display_of(self.cursor);
+        for dy in (0..grid.shown.1).step_by(2) {
+            for dx in 0..grid.shown.0 {
                 let color_at = |dy: u32| {
-                    let (x, y) = view.sample(dx, dy);
+                    let (x, y) = grid.sample(dx, dy);
                     let color = (self.pixel)(x, y);
                     if cursor == Some((dx, dy)) {
                         cursor_color(color)
@@ -140,14 +140,14 @@ impl Widget for ImageWidget<'_> {
                     }
                 };
                 let upper = color_at(dy);
-                let lower = if dy + 1 < view.shown.1 {
+                let lower = if dy + 1 < grid.shown.1 {
                     color_at(dy + 1)
                 } else {
                     Color::Reset
                 };
                 let position = (
-                    view.area.x + view.offset.0 + dx as u16,
-                    view.area.y + view.offset.1 + (dy / 2) as u16,
+                    grid.area.x + grid.offset.0 + dx as u16,
+                    grid.area.y + grid.offset.1 + (dy / 2) as u16,
                 );
                 if let Some(cell) = buf.cell_mut(position) {
                     cell.set_symbol("▀").set_fg(upper).set_bg(lower);

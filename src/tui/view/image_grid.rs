@@ -8,9 +8,10 @@
 
 use ratatui::layout::Rect;
 
-/// How the image maps onto a pane's inner area at one zoom.
+/// The grid of display pixels the image pane shows: which image pixel each
+/// samples and which screen cell holds it, at one zoom around the cursor.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ImageView {
+pub struct ImageGrid {
     pub area: Rect,
     /// Image pixels per display pixel, at least 1.
     pub scale: f64,
@@ -38,7 +39,7 @@ pub fn max_zoom(area: Rect, image: (u32, u32)) -> u32 {
     zoom
 }
 
-impl ImageView {
+impl ImageGrid {
     pub fn new(area: Rect, image: (u32, u32), zoom: u32, cursor: (u32, u32)) -> Self {
         let scale = (fit_scale(area, image) / zoom.max(1) as f64).max(1.0);
         let (cols, rows) = (area.width as u32, 2 * area.height as u32);
@@ -119,42 +120,42 @@ mod tests {
     #[test]
     fn a_square_image_fills_the_area_two_pixels_a_side() {
         // 20 x 20 pixels in 10 x 10 display pixels: 2 per display pixel.
-        let view = ImageView::new(AREA, (20, 20), 1, (0, 0));
+        let grid = ImageGrid::new(AREA, (20, 20), 1, (0, 0));
         assert_eq!(fit_scale(AREA, (20, 20)), 2.0);
         assert_eq!(
-            (view.scale, view.shown, view.offset),
+            (grid.scale, grid.shown, grid.offset),
             (2.0, (10, 10), (0, 0))
         );
         // A display pixel samples the image at its centre: 0.5 x 2 = 1.
-        assert_eq!(view.sample(0, 0), (1, 1));
-        assert_eq!(view.sample(9, 9), (19, 19));
+        assert_eq!(grid.sample(0, 0), (1, 1));
+        assert_eq!(grid.sample(9, 9), (19, 19));
         // Cell (3, 2) inside the area holds display pixels (3, 4) and (3, 5);
         // its upper half samples (3.5 x 2, 4.5 x 2) = (7, 9).
-        assert_eq!(view.pixel_at_cell(5, 5), Some((7, 9)));
-        assert_eq!(view.cursor_cell((7, 9)), Some((5, 5, true)));
-        assert_eq!(view.cursor_cell((7, 11)), Some((5, 5, false)), "lower half");
-        assert_eq!(view.pixel_at_cell(1, 5), None, "left of the area");
+        assert_eq!(grid.pixel_at_cell(5, 5), Some((7, 9)));
+        assert_eq!(grid.cursor_cell((7, 9)), Some((5, 5, true)));
+        assert_eq!(grid.cursor_cell((7, 11)), Some((5, 5, false)), "lower half");
+        assert_eq!(grid.pixel_at_cell(1, 5), None, "left of the area");
     }
 
     #[test]
     fn zooming_in_centres_the_cursor_down_to_one_pixel_each() {
         // Scale 2 at zoom 1, so zoom 2 is one image pixel per display pixel.
         assert_eq!(max_zoom(AREA, (20, 20)), 2);
-        let view = ImageView::new(AREA, (20, 20), 2, (15, 15));
-        assert_eq!(view.scale, 1.0);
+        let grid = ImageGrid::new(AREA, (20, 20), 2, (15, 15));
+        assert_eq!(grid.scale, 1.0);
         // 10 of the 20 pixels show, centred on 15.5 but kept inside: 10..20.
-        assert_eq!(view.origin, (10.0, 10.0));
-        assert_eq!(view.sample(0, 0), (10, 10));
-        assert_eq!(view.display_of((9, 15)), None, "scrolled out of view");
+        assert_eq!(grid.origin, (10.0, 10.0));
+        assert_eq!(grid.sample(0, 0), (10, 10));
+        assert_eq!(grid.display_of((9, 15)), None, "scrolled out of view");
     }
 
     #[test]
     fn a_wide_image_is_centred_vertically() {
         // 40 x 10: scale max(40 / 10, 10 / 10) = 4, so 10 x 3 display
         // pixels (⌈10 / 4⌉ = 3), 2 cells tall, 1 cell down from the top of 5.
-        let view = ImageView::new(AREA, (40, 10), 1, (0, 0));
-        assert_eq!((view.shown, view.offset), ((10, 3), (0, 1)));
-        assert_eq!(view.pixel_at_cell(2, 3), None, "the empty row above");
-        assert_eq!(view.pixel_at_cell(2, 4), Some((2, 2)));
+        let grid = ImageGrid::new(AREA, (40, 10), 1, (0, 0));
+        assert_eq!((grid.shown, grid.offset), ((10, 3), (0, 1)));
+        assert_eq!(grid.pixel_at_cell(2, 3), None, "the empty row above");
+        assert_eq!(grid.pixel_at_cell(2, 4), Some((2, 2)));
     }
 }
