@@ -1,6 +1,8 @@
-//! The crate's layout: no import circle between the top-level modules of
-//! src/ (issue 14). A circle means neither module can be read, tested or
-//! moved without the other; the shared thing belongs in the lower one.
+//! The crate's layout (issue 14): no import circle between the top-level
+//! modules of src/ (a circle means neither module can be read, tested or
+//! moved without the other; the shared thing belongs in the lower one); in
+//! the debugger, the state and the views know no pane; README's Layout
+//! section names every folder of the debugger.
 //!
 //! Module A depends on B when any file of A names `crate::B` (in a `use`,
 //! a path or a doc link) outside its unit tests. This reads the source, not
@@ -206,4 +208,30 @@ fn the_path_reader_sees_uses_groups_and_inline_paths() {
             "app", "crate", "layout", "pane", "super", "tree", "tui", "use", "view"
         ]
     );
+}
+
+#[test]
+fn readme_layout_names_every_folder_of_the_debugger() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = fs::read_to_string(root.join("README.md")).unwrap();
+    let start = readme
+        .find("## Layout")
+        .expect("README has a Layout section");
+    let section = &readme[start..];
+    let section = &section[..section[1..].find("\n## ").map_or(section.len(), |i| i + 1)];
+    let mut folders = vec!["src/tui/".to_string()];
+    for entry in fs::read_dir(root.join("src/tui")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            folders.push(format!("src/tui/{name}/"));
+        }
+    }
+    assert!(folders.len() >= 4, "app, view and pane: {folders:?}");
+    for folder in folders {
+        assert!(
+            section.contains(&format!("`{folder}`")),
+            "README's Layout section does not say what `{folder}` holds"
+        );
+    }
 }

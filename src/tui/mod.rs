@@ -1,13 +1,24 @@
 //! The interactive debugger: pick a pixel, walk its ray tree, step through
 //! the trace event by event, and flip the model's terms on and off.
 //!
-//! The structure follows ratatui's event-driven template: state in
-//! `app.rs`, terminal events turned into `Action`s in `event.rs` by the one
-//! key table in `keymap.rs` (which the help and status line also read),
-//! `App::update` the only place state changes, `ui::draw` only reading it.
+//! The structure follows ratatui's event-driven template:
+//!
+//! - `app/`: the state, its fields private; `App::update(Action)` is the
+//!   only place it changes, and the rest reads it through accessors.
+//! - `action.rs`: what can be asked for. Terminal events become `Action`s in
+//!   `event.rs` by the one key table in `keymap.rs` (which the help and the
+//!   status line also read); the main loop below adds `Action::Tick`, on
+//!   which the app takes in finished renders and reloads a changed file.
+//! - `view/`: what the panes show, worked out without drawing (tree rows,
+//!   the step list, stepping, the diagram's projection, the image grid,
+//!   layout). Pure and unit tested; the state uses it, it knows no pane.
+//! - `pane/`: the drawing, one file per pane; `pane::draw` only reads an `App`.
+//! - `job.rs` renders whole images on a background thread; picking a pixel
+//!   retraces that pixel alone. `source.rs` loads and watches the scene file,
+//!   `terminal.rs` sets the terminal up and restores it.
+//!
 //! The main loop is generic over the ratatui `Backend`, so tests drive the
-//! real app on a `TestBackend`. Whole-image renders run on a background
-//! thread (`job.rs`); picking a pixel retraces that pixel alone.
+//! real app on a `TestBackend`.
 
 pub mod action;
 pub mod app;
