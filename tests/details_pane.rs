@@ -9,7 +9,8 @@ use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use raystep::math::to_rgb8;
 use raystep::record::EventKind;
-use raystep::tui::{App, details};
+use raystep::tui::pane::details;
+use raystep::tui::{Action, App, Step};
 
 /// A mirror ball in front of a grey wall, lit from the eye's right. The centre
 /// pixel hits the ball at (0, 0, 1), facing the eye: its reflected ray
@@ -68,22 +69,27 @@ fn app_at(x: u32, y: u32) -> App {
     let path = dir.path().join("pane.toml");
     std::fs::write(&path, SCENE).unwrap();
     let mut app = App::open(Some(path), true).unwrap();
-    app.pick(x, y);
+    app.update(Action::Pick(x, y));
     app
 }
 
 /// The first event of ray `node` that `test` accepts.
 fn event(app: &App, node: usize, test: impl Fn(&EventKind) -> bool) -> usize {
-    app.tree
+    app.tree()
         .events
         .iter()
         .position(|e| e.node == node && test(&e.kind))
         .expect("the event")
 }
 
-/// The details pane alone, filling the screen, at event `at`.
+/// The details pane alone, filling the screen, at event `at` (stepped to
+/// from the first event, as a user would).
 fn pane(app: &mut App, at: usize) -> Buffer {
-    app.current = at;
+    app.update(Action::Step(Step::Start));
+    for _ in 0..at {
+        app.update(Action::Step(Step::Next));
+    }
+    assert_eq!(app.current(), at);
     let mut terminal = Terminal::new(TestBackend::new(WIDTH, HEIGHT)).unwrap();
     terminal
         .draw(|frame| details::draw(frame, app, frame.area()))

@@ -1,6 +1,8 @@
-//! The crate's layout: no import circle between the top-level modules of
-//! src/ (issue 14). A circle means neither module can be read, tested or
-//! moved without the other; the shared thing belongs in the lower one.
+//! The crate's layout (issue 14): no import circle between the top-level
+//! modules of src/ (a circle means neither module can be read, tested or
+//! moved without the other; the shared thing belongs in the lower one); in
+//! the debugger, the state and the views know no pane; README's Layout
+//! section names every folder of the debugger.
 //!
 //! Module A depends on B when any file of A names `crate::B` (in a `use`,
 //! a path or a doc link) outside its unit tests. This reads the source, not
@@ -140,4 +142,96 @@ fn the_reader_sees_paths_groups_and_circles() {
     assert_eq!(circle_through(&graph, "a").unwrap(), ["a", "b", "c", "a"]);
     assert_eq!(circle_through(&graph, "d"), None);
     assert_eq!(circles(&graph).len(), 3);
+}
+
+/// The module names in `text`'s `use` declarations and inline paths
+/// (`a::b::c` gives a, b and c), outside its unit tests.
+fn path_segments(text: &str) -> BTreeSet<String> {
+    let library = text.split("#[cfg(test)]").next().unwrap_or_default();
+    let mut names = BTreeSet::new();
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    for (at, _) in library.match_indices("use ") {
+        // Only a declaration: `use` first on its line, or after `pub(..)`.
+        let line_start = library[..at].rfind('\n').map_or(0, |i| i + 1);
+        let lead = library[line_start..at].trim();
+        if !(lead.is_empty() || lead.starts_with("pub")) {
+            continue;
+        }
+        let statement = &library[at..at + library[at..].find(';').unwrap_or(0)];
+        names.extend(statement.split(|c| !ident(c)).map(String::from));
+    }
+    for (at, _) in library.match_indices("::") {
+        let before = library[..at].rsplit(|c| !ident(c)).next().unwrap_or("");
+        names.insert(before.to_string());
+    }
+    names.retain(|n| !n.is_empty());
+    names
+}
+
+/// The `src/tui/` folders that `folder` names.
+fn tui_folders_named(folder: &str) -> BTreeSet<String> {
+    let tui = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/tui");
+    let mut named = BTreeSet::new();
+    for file in rust_files(&tui.join(folder)) {
+        let segments = path_segments(&fs::read_to_string(&file).unwrap());
+        for other in ["app", "pane", "view"] {
+            if other != folder && segments.contains(other) {
+                named.insert(format!("{} names {other}", file.display()));
+            }
+        }
+    }
+    named
+}
+
+#[test]
+fn the_debuggers_state_and_views_know_no_pane() {
+    // The state reads views (layout, tree rows, stepping) but never how a
+    // pane is drawn; the views know neither the state nor the panes.
+    let app: Vec<_> = tui_folders_named("app")
+        .into_iter()
+        .filter(|n| !n.ends_with("view"))
+        .collect();
+    assert!(app.is_empty(), "{app:#?}");
+    let view = tui_folders_named("view");
+    assert!(view.is_empty(), "{view:#?}");
+}
+
+#[test]
+fn the_path_reader_sees_uses_groups_and_inline_paths() {
+    let text = "use super::view::{layout, tree};\npub use crate::tui::pane;\n\
+                // because it is;\nfn f() { super::super::app::x() }\n\
+                #[cfg(test)]\nuse crate::other;";
+    let names: Vec<_> = path_segments(text).into_iter().collect();
+    assert_eq!(
+        names,
+        [
+            "app", "crate", "layout", "pane", "super", "tree", "tui", "use", "view"
+        ]
+    );
+}
+
+#[test]
+fn readme_layout_names_every_folder_of_the_debugger() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = fs::read_to_string(root.join("README.md")).unwrap();
+    let start = readme
+        .find("## Layout")
+        .expect("README has a Layout section");
+    let section = &readme[start..];
+    let section = &section[..section[1..].find("\n## ").map_or(section.len(), |i| i + 1)];
+    let mut folders = vec!["src/tui/".to_string()];
+    for entry in fs::read_dir(root.join("src/tui")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            folders.push(format!("src/tui/{name}/"));
+        }
+    }
+    assert!(folders.len() >= 4, "app, view and pane: {folders:?}");
+    for folder in folders {
+        assert!(
+            section.contains(&format!("`{folder}`")),
+            "README's Layout section does not say what `{folder}` holds"
+        );
+    }
 }

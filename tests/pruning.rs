@@ -329,7 +329,7 @@ fn a_light_within_eps_of_the_point_adds_nothing_and_casts_no_shadow_ray() {
 #[test]
 fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
     use raystep::record::EventKind;
-    use raystep::tui::{details, steps_view};
+    use raystep::tui::view::{details, steps};
     // The mirrors of ks = 0.1: the third reflection, from ray r2, is not cast.
     let scene = mirrors(0.1, "");
     let tree = bounce(&scene);
@@ -345,7 +345,7 @@ fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
         EventKind::RayDone { .. }
     ));
     let line = "reflected ray not cast: accumulated weight 0.001 < min_weight 1/512";
-    let (text, _) = steps_view::describe(&tree, &scene, &tree.events[at]);
+    let (text, _) = steps::describe(&tree, &scene, &tree.events[at]);
     assert_eq!(text, format!("r2: {line}"));
     let about = details::marked(&tree, 2, Some(at));
     let marked: Vec<String> = details::ray_lines(&tree, 2)
@@ -367,5 +367,5 @@ fn the_debugger_opens_lossless_glass_planes_at_depth_64() {
         .replace("kt = 0.5", "kt = 1");
     std::fs::write(&path, text).unwrap();
     let app = raystep::tui::App::open(Some(path), true).unwrap();
-    assert_eq!(app.tree.nodes.len(), 4096);
+    assert_eq!(app.tree().nodes.len(), 4096);
 }

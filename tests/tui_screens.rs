@@ -52,7 +52,7 @@ fn snapshot_help_overlay() {
 fn snapshot_term_view() {
     let mut app = app();
     chars(&mut app, "vvvvvvv");
-    assert_eq!(app.view, View::Term(Term::Rays));
+    assert_eq!(app.view(), View::Term(Term::Rays));
     snapshot!("term_view_rays", screen(&mut app, 120, 40));
 }
 
@@ -90,17 +90,17 @@ fn measure_pick_and_render_on_the_teapot() {
     let mut app = App::open(Some(path), true).unwrap();
     println!(
         "teapot {}x{}, {} objects",
-        app.scene.width,
-        app.scene.height,
-        app.scene.objects.len()
+        app.scene().width,
+        app.scene().height,
+        app.scene().objects.len()
     );
     let mut picks = Vec::new();
     for i in 0..200u32 {
         app.update(Action::Pick(
-            (i * 37) % app.scene.width,
-            (i * 91) % app.scene.height,
+            (i * 37) % app.scene().width,
+            (i * 91) % app.scene().height,
         ));
-        picks.push(app.pick_time);
+        picks.push(app.pick_time());
     }
     picks.sort();
     println!(
@@ -113,7 +113,7 @@ fn measure_pick_and_render_on_the_teapot() {
         app.update(Action::Toggle(tui::Switch::Shadows));
         println!(
             "toggle shadows: re-render {:?} (update returned after {:?})",
-            app.render_time.unwrap(),
+            app.render_time().unwrap(),
             started.elapsed()
         );
     }

@@ -1,11 +1,11 @@
 //! What the user can ask for: the `Action`s that `event.rs` makes of keys
-//! and that `App::update` carries out.
+//! (and the main loop of time passing) and that `App::update` carries out.
 
 use crate::terms::Term;
 
-use super::stepper::{Breakpoint, Step};
+use super::view::stepper::{Breakpoint, Step};
 
-/// Something the user asked for.
+/// Something the user asked for, or a tick of the clock.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
     Quit,
@@ -37,6 +37,9 @@ pub enum Action {
     CyclePlane,
     Reload,
     Resize(u16, u16),
+    /// Time passed: take in finished renders, reload a changed scene file.
+    /// The main loop sends one after every wait, event or not.
+    Tick,
 }
 
 /// A teaching switch of the illumination model.

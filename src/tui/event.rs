@@ -6,14 +6,14 @@ use crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKin
 
 use super::app::{Action, App};
 use super::keymap::{self, Command, Input};
-use super::layout::Pane;
-use super::stepper::Step;
+use super::view::layout::Pane;
+use super::view::stepper::Step;
 
 /// The action for a terminal event, if it means one.
 pub fn action(event: &Event, app: &App) -> Option<Action> {
     match event {
         Event::Key(key) if key.kind != KeyEventKind::Release => {
-            key_action(key, app.help, app.focus)
+            key_action(key, app.help(), app.focus())
         }
         Event::Mouse(mouse) => {
             let input = match mouse.kind {
@@ -22,7 +22,7 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
                 MouseEventKind::ScrollDown => Input::WheelDown,
                 _ => return None,
             };
-            match keymap::mouse_command(input, app.help)? {
+            match keymap::mouse_command(input, app.help())? {
                 Command::Click => Some(Action::Click(mouse.column, mouse.row)),
                 command => in_pane(command, app.panes().pane_at(mouse.column, mouse.row)?),
             }
@@ -67,7 +67,7 @@ mod tests {
 
     use super::*;
     use crate::tui::app::Switch;
-    use crate::tui::stepper::Breakpoint;
+    use crate::tui::view::stepper::Breakpoint;
 
     const BIG_STEP: i32 = 10;
 

@@ -5,7 +5,7 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use super::action::{Action, Switch};
-use super::stepper::{Breakpoint, Step};
+use super::view::stepper::{Breakpoint, Step};
 
 /// How far Shift (or H J K L) moves the pixel cursor.
 pub const BIG_STEP: i32 = 10;

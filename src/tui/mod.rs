@@ -1,34 +1,34 @@
 //! The interactive debugger: pick a pixel, walk its ray tree, step through
 //! the trace event by event, and flip the model's terms on and off.
 //!
-//! The structure follows ratatui's event-driven template: state in
-//! `app.rs`, terminal events turned into `Action`s in `event.rs` by the one
-//! key table in `keymap.rs` (which the help and status line also read),
-//! `App::update` the only place state changes, `ui::draw` only reading it.
+//! The structure follows ratatui's event-driven template:
+//!
+//! - `app/`: the state, its fields private; `App::update(Action)` is the
+//!   only place it changes, and the rest reads it through accessors.
+//! - `action.rs`: what can be asked for. Terminal events become `Action`s in
+//!   `event.rs` by the one key table in `keymap.rs` (which the help and the
+//!   status line also read); the main loop below adds `Action::Tick`, on
+//!   which the app takes in finished renders and reloads a changed file.
+//! - `view/`: what the panes show, worked out without drawing (tree rows,
+//!   the step list, stepping, the diagram's projection, the image grid,
+//!   layout). Pure and unit tested; the state uses it, it knows no pane.
+//! - `pane/`: the drawing, one file per pane; `pane::draw` only reads an `App`.
+//! - `job.rs` renders whole images on a background thread; picking a pixel
+//!   retraces that pixel alone. `source.rs` loads and watches the scene file,
+//!   `terminal.rs` sets the terminal up and restores it.
+//!
 //! The main loop is generic over the ratatui `Backend`, so tests drive the
-//! real app on a `TestBackend`. Whole-image renders run on a background
-//! thread (`job.rs`); picking a pixel retraces that pixel alone.
+//! real app on a `TestBackend`.
 
 pub mod action;
 pub mod app;
-mod controls;
-pub mod details;
-pub mod diagram;
 pub mod event;
-mod help;
-mod image_pane;
-pub mod image_view;
 pub mod job;
 pub mod keymap;
-pub mod layout;
-pub mod projection;
-mod renders;
+pub mod pane;
 pub mod source;
-pub mod stepper;
-pub mod steps_view;
 mod terminal;
-pub mod tree_view;
-pub mod ui;
+pub mod view;
 
 use std::collections::VecDeque;
 use std::io::{self, IsTerminal};
@@ -43,9 +43,9 @@ use ratatui::backend::Backend;
 
 pub use action::{Action, Switch, View};
 pub use app::App;
-pub use layout::Pane;
-pub use projection::ViewPlane;
-pub use stepper::{Breakpoint, Step};
+pub use view::layout::Pane;
+pub use view::projection::DiagramPlane;
+pub use view::stepper::{Breakpoint, Step};
 
 /// Where terminal events come from: the real terminal, or a script in tests.
 pub trait Input {
@@ -83,14 +83,16 @@ where
     B::Error: Send + Sync + 'static,
 {
     let size = terminal.size()?;
-    if (size.width, size.height) != (app.screen.width, app.screen.height) {
+    if (size.width, size.height) != (app.screen().width, app.screen().height) {
         app.update(Action::Resize(size.width, size.height));
     }
-    terminal.draw(|frame| ui::draw(frame, app))?;
+    terminal.draw(|frame| pane::draw(frame, app))?;
     Ok(())
 }
 
-/// The main loop: draw, wait for an event or for background work, update.
+/// The main loop: draw, wait for an event or for background work, and turn
+/// both into actions. It redraws after an event, and after a tick while
+/// background work is under way (or has just ended).
 pub fn run_loop<B: Backend>(
     terminal: &mut Terminal<B>,
     app: &mut App,
@@ -100,11 +102,12 @@ where
     B::Error: Send + Sync + 'static,
 {
     let mut dirty = true;
-    while !app.quit {
+    while !app.should_quit() {
         if dirty {
             draw(terminal, app)?;
         }
-        let timeout = Duration::from_millis(if app.busy() { 50 } else { 250 });
+        let busy = app.busy();
+        let timeout = Duration::from_millis(if busy { 50 } else { 250 });
         dirty = false;
         if let Some(event) = input.next(timeout)? {
             if let Some(action) = event::action(&event, app) {
@@ -112,7 +115,8 @@ where
             }
             dirty = true;
         }
-        dirty |= app.tick();
+        app.update(Action::Tick);
+        dirty |= busy || app.busy();
     }
     Ok(())
 }
@@ -126,8 +130,9 @@ pub fn run(path: Option<&Path>) -> Result<ExitCode> {
              or `raystep inspect SCENE --pixel X,Y` for one pixel's ray tree"
         );
     }
-    let mut app = App::open(path.map(Path::to_path_buf), false).map_err(anyhow::Error::new)?;
-    app.watch();
+    let mut app = App::open(path.map(Path::to_path_buf), false)
+        .map_err(anyhow::Error::new)?
+        .watching();
     let result = terminal::take()
         .and_then(|mut terminal| run_loop(&mut terminal, &mut app, &mut TerminalInput));
     terminal::restore();

@@ -1,4 +1,4 @@
-//! The ray tree pane: one row per shading ray and one per light it asked,
+//! The ray tree's rows: one per shading ray and one per light it asked,
 //! indented like the tree, each with a colour swatch and its share of the
 //! pixel. A collapsed ray hides its lights and child rays.
 
@@ -10,13 +10,7 @@ use ratatui::text::{Line, Span};
 use crate::math::to_rgb8;
 use crate::record::{LightRecord, NodeId, RayTree, kind_name, num};
 
-use super::app::App;
-use super::layout::Pane;
 use super::stepper::event_light;
-use super::ui::pane_block;
-use ratatui::Frame;
-use ratatui::layout::Rect;
-use ratatui::widgets::Paragraph;
 
 /// What a row shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -216,33 +210,68 @@ pub fn selected_style(focused: bool) -> Style {
     }
 }
 
-pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let tree = &app.tree;
-    let rays = tree.nodes.len();
-    let title = format!(
-        " Ray tree · pixel ({}, {}) · {rays} ray{} ",
-        tree.pixel.0,
-        tree.pixel.1,
-        if rays == 1 { "" } else { "s" }
-    );
-    let block = pane_block(app, Pane::Tree, title);
-    let inside = block.inner(area);
-    let rows = rows(tree, &app.collapsed);
-    let selected = selected_row(tree, &rows, app.current);
-    let first = scroll_offset(selected.unwrap_or(0), inside.height as usize);
-    let lines: Vec<Line> = rows
-        .iter()
-        .enumerate()
-        .skip(first)
-        .take(inside.height as usize)
-        .map(|(i, row)| {
-            let line = row_line(tree, &app.collapsed, row, inside.width as usize);
-            if Some(i) == selected {
-                line.patch_style(selected_style(app.focus == Pane::Tree))
-            } else {
-                line
-            }
-        })
-        .collect();
-    frame.render_widget(Paragraph::new(lines).block(block), area);
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::view::fixture::ball;
+
+    #[test]
+    fn rows_list_a_ray_its_lights_then_its_children() {
+        let (_, tree) = ball();
+        // r0, the lamp it asked (one deeper), r1 (one deeper).
+        let expected = [
+            Row {
+                kind: RowKind::Ray(0),
+                indent: 0,
+            },
+            Row {
+                kind: RowKind::Light { node: 0, light: 0 },
+                indent: 1,
+            },
+            Row {
+                kind: RowKind::Ray(1),
+                indent: 1,
+            },
+        ];
+        assert_eq!(rows(&tree, &BTreeSet::new()), expected);
+        // Collapsing r0 hides its lamp and r1.
+        assert_eq!(rows(&tree, &BTreeSet::from([0])), expected[..1]);
+    }
+
+    #[test]
+    fn an_event_selects_its_lights_row_else_its_rays() {
+        let (_, tree) = ball();
+        let open = rows(&tree, &BTreeSet::new());
+        // 0: r0's cast; 3 and 4: the shadow ray to the lamp and its terms;
+        // 6: r1's miss; 8: r0 again (r1 returning is r0's event).
+        for (event, row) in [(0, 0), (3, 1), (4, 1), (6, 2), (8, 0)] {
+            assert_eq!(selected_row(&tree, &open, event), Some(row), "{event}");
+        }
+        // With r0 collapsed, r1's miss falls back to r0, its visible parent.
+        let folded = rows(&tree, &BTreeSet::from([0]));
+        assert_eq!(selected_row(&tree, &folded, 6), Some(0));
+        assert_eq!(selected_row(&tree, &open, 10), None, "no event 10");
+    }
+
+    #[test]
+    fn the_scroll_keeps_the_selected_row_on_the_last_line() {
+        // Rows 0..=4 fit 5 lines; row 9 needs rows 5..=9.
+        assert_eq!(scroll_offset(4, 5), 0);
+        assert_eq!(scroll_offset(9, 5), 5);
+        assert_eq!(scroll_offset(3, 0), 3, "no room: the selected row first");
+    }
+
+    #[test]
+    fn a_rays_worth_in_the_pixel_is_the_product_down_its_path() {
+        let (_, tree) = ball();
+        // r0 counts fully; r1 is weighted by ks = 0.5 (no distance attenuation).
+        assert_eq!(path_factor(&tree, 0), 1.0);
+        assert_eq!(path_factor(&tree, 1), 0.5);
+    }
+
+    #[test]
+    fn light_labels_say_light_once() {
+        assert_eq!(light_label("lamp"), "light lamp");
+        assert_eq!(light_label("light 0"), "light 0");
+    }
 }

@@ -1,5 +1,5 @@
-//! The step-through pane: the execution-ordered event list, one line per
-//! event, indented by the depth of the ray it belongs to.
+//! The step-through list: the execution-ordered events, one line per event,
+//! indented by the depth of the ray it belongs to, the current one centred.
 
 use ratatui::style::{Color as TermColor, Style};
 use ratatui::text::{Line, Span};
@@ -8,13 +8,7 @@ use crate::math::Color;
 use crate::record::{Event, EventKind, RayTree, color, kind_name, not_cast_line, num};
 use crate::scene::Scene;
 
-use super::app::App;
-use super::layout::Pane;
-use super::tree_view::{light_label, swatch};
-use super::ui::pane_block;
-use ratatui::Frame;
-use ratatui::layout::Rect;
-use ratatui::widgets::Paragraph;
+use super::tree::{light_label, swatch};
 
 fn light_name(scene: &Scene, light: usize) -> String {
     light_label(scene.lights.get(light).map_or("?", |l| l.name.as_str()))
@@ -163,14 +157,59 @@ pub fn lines(tree: &RayTree, scene: &Scene, current: usize, height: usize) -> Ve
         .collect()
 }
 
-pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let count = app.tree.events.len();
-    let mut title = format!(" Step-through · event {} of {count} ", app.current + 1);
-    if let Some(object) = app.break_object.and_then(|o| app.scene.objects.get(o)) {
-        title.push_str(&format!("· x stops at hits on {} ", object.name));
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::view::fixture::ball;
+
+    #[test]
+    fn the_current_event_is_centred_until_an_end_is_reached() {
+        // 10 events in 4 lines: centred means 2 lines above the current one.
+        assert_eq!(first_line(0, 10, 4), 0, "nothing above the first");
+        assert_eq!(first_line(5, 10, 4), 3);
+        assert_eq!(first_line(9, 10, 4), 6, "the last 4: events 6..=9");
+        assert_eq!(first_line(3, 2, 10), 0, "all fit");
     }
-    let block = pane_block(app, Pane::Steps, title);
-    let height = block.inner(area).height as usize;
-    let lines = lines(&app.tree, &app.scene, app.current, height);
-    frame.render_widget(Paragraph::new(lines).block(block), area);
+
+    #[test]
+    fn events_read_as_what_happened() {
+        let (scene, tree) = ball();
+        let text = |i: usize| describe(&tree, &scene, &tree.events[i]);
+        assert_eq!(text(3), ("r0: shadow ray to light lamp".into(), None));
+        // r1 misses: its colour is the background.
+        let background = Color::new(0.1, 0.2, 0.3);
+        assert_eq!(
+            text(6),
+            ("r1: missed everything: background".into(), Some(background))
+        );
+        // r1 adds ks x background = 0.5 x (0.1, 0.2, 0.3).
+        let (words, carried) = text(8);
+        assert_eq!(
+            words,
+            "r0: reflected ray r1 returns, adds (0.050, 0.100, 0.150)"
+        );
+        assert!((carried.unwrap() - background * 0.5).abs().max_element() < 1e-12);
+    }
+
+    #[test]
+    fn lines_number_and_mark_the_events_shown() {
+        let (scene, tree) = ball();
+        let text = |l: &Line| {
+            l.spans
+                .iter()
+                .map(|s| s.content.as_ref())
+                .collect::<String>()
+        };
+        let lines = lines(&tree, &scene, 5, 4);
+        // Events 3..=6, numbered from 1; r1 (depth 2) indented once; the
+        // current one, event 5, marked.
+        let first: Vec<String> = lines.iter().map(text).collect();
+        assert_eq!(first.len(), 4);
+        assert_eq!(first[0], "   4 r0: shadow ray to light lamp");
+        assert_eq!(
+            first[2],
+            "▶  6   r1: cast reflected ray, depth 2, weight 0.5"
+        );
+        assert!(first[3].starts_with("   7   r1: missed everything: background ██"));
+    }
 }

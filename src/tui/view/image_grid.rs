@@ -1,18 +1,17 @@
-//! The image pane: the render drawn with half-block cells (▀: the foreground
-//! is the upper display pixel, the background the lower one), scaled to fit
-//! or zoomed around the cursor down to one image pixel per half cell.
+//! Where the image's pixels land in the image pane: half-block cells (▀: the
+//! foreground is the upper display pixel, the background the lower one),
+//! scaled to fit or zoomed around the cursor down to one image pixel per
+//! half cell. The same mapping draws the image and turns clicks into pixels.
 //!
 //! Coordinates are always the scene image's own pixels (those `raystep
 //! inspect --pixel X,Y` takes); display pixels only sample them.
 
-use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::Color;
-use ratatui::widgets::Widget;
 
-/// How the image maps onto a pane's inner area at one zoom.
+/// The grid of display pixels the image pane shows: which image pixel each
+/// samples and which screen cell holds it, at one zoom around the cursor.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ImageView {
+pub struct ImageGrid {
     pub area: Rect,
     /// Image pixels per display pixel, at least 1.
     pub scale: f64,
@@ -40,7 +39,7 @@ pub fn max_zoom(area: Rect, image: (u32, u32)) -> u32 {
     zoom
 }
 
-impl ImageView {
+impl ImageGrid {
     pub fn new(area: Rect, image: (u32, u32), zoom: u32, cursor: (u32, u32)) -> Self {
         let scale = (fit_scale(area, image) / zoom.max(1) as f64).max(1.0);
         let (cols, rows) = (area.width as u32, 2 * area.height as u32);
@@ -111,53 +110,52 @@ impl ImageView {
     }
 }
 
-/// The half-block drawing of an image through a view, with the cursor.
-pub struct ImageWidget<'a> {
-    pub view: ImageView,
-    pub pixel: &'a dyn Fn(u32, u32) -> [u8; 3],
-    pub cursor: (u32, u32),
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-/// The cursor's colour: one that stands out against the pixel under it.
-fn cursor_color(under: [u8; 3]) -> Color {
-    let luma = 0.3 * under[0] as f64 + 0.59 * under[1] as f64 + 0.11 * under[2] as f64;
-    if luma > 140.0 {
-        Color::Rgb(200, 0, 160)
-    } else {
-        Color::Rgb(255, 90, 255)
+    /// 10 x 5 cells: 10 x 10 display pixels (two per cell, one above the other).
+    const AREA: Rect = Rect::new(2, 3, 10, 5);
+
+    #[test]
+    fn a_square_image_fills_the_area_two_pixels_a_side() {
+        // 20 x 20 pixels in 10 x 10 display pixels: 2 per display pixel.
+        let grid = ImageGrid::new(AREA, (20, 20), 1, (0, 0));
+        assert_eq!(fit_scale(AREA, (20, 20)), 2.0);
+        assert_eq!(
+            (grid.scale, grid.shown, grid.offset),
+            (2.0, (10, 10), (0, 0))
+        );
+        // A display pixel samples the image at its centre: 0.5 x 2 = 1.
+        assert_eq!(grid.sample(0, 0), (1, 1));
+        assert_eq!(grid.sample(9, 9), (19, 19));
+        // Cell (3, 2) inside the area holds display pixels (3, 4) and (3, 5);
+        // its upper half samples (3.5 x 2, 4.5 x 2) = (7, 9).
+        assert_eq!(grid.pixel_at_cell(5, 5), Some((7, 9)));
+        assert_eq!(grid.cursor_cell((7, 9)), Some((5, 5, true)));
+        assert_eq!(grid.cursor_cell((7, 11)), Some((5, 5, false)), "lower half");
+        assert_eq!(grid.pixel_at_cell(1, 5), None, "left of the area");
     }
-}
 
-impl Widget for ImageWidget<'_> {
-    fn render(self, _area: Rect, buf: &mut Buffer) {
-        let view = self.view;
-        let rgb = |[r, g, b]: [u8; 3]| Color::Rgb(r, g, b);
-        let cursor = view.display_of(self.cursor);
-        for dy in (0..view.shown.1).step_by(2) {
-            for dx in 0..view.shown.0 {
-                let color_at = |dy: u32| {
-                    let (x, y) = view.sample(dx, dy);
-                    let color = (self.pixel)(x, y);
-                    if cursor == Some((dx, dy)) {
-                        cursor_color(color)
-                    } else {
-                        rgb(color)
-                    }
-                };
-                let upper = color_at(dy);
-                let lower = if dy + 1 < view.shown.1 {
-                    color_at(dy + 1)
-                } else {
-                    Color::Reset
-                };
-                let position = (
-                    view.area.x + view.offset.0 + dx as u16,
-                    view.area.y + view.offset.1 + (dy / 2) as u16,
-                );
-                if let Some(cell) = buf.cell_mut(position) {
-                    cell.set_symbol("▀").set_fg(upper).set_bg(lower);
-                }
-            }
-        }
+    #[test]
+    fn zooming_in_centres_the_cursor_down_to_one_pixel_each() {
+        // Scale 2 at zoom 1, so zoom 2 is one image pixel per display pixel.
+        assert_eq!(max_zoom(AREA, (20, 20)), 2);
+        let grid = ImageGrid::new(AREA, (20, 20), 2, (15, 15));
+        assert_eq!(grid.scale, 1.0);
+        // 10 of the 20 pixels show, centred on 15.5 but kept inside: 10..20.
+        assert_eq!(grid.origin, (10.0, 10.0));
+        assert_eq!(grid.sample(0, 0), (10, 10));
+        assert_eq!(grid.display_of((9, 15)), None, "scrolled out of view");
+    }
+
+    #[test]
+    fn a_wide_image_is_centred_vertically() {
+        // 40 x 10: scale max(40 / 10, 10 / 10) = 4, so 10 x 3 display
+        // pixels (⌈10 / 4⌉ = 3), 2 cells tall, 1 cell down from the top of 5.
+        let grid = ImageGrid::new(AREA, (40, 10), 1, (0, 0));
+        assert_eq!((grid.shown, grid.offset), ((10, 3), (0, 1)));
+        assert_eq!(grid.pixel_at_cell(2, 3), None, "the empty row above");
+        assert_eq!(grid.pixel_at_cell(2, 4), Some((2, 2)));
     }
 }

@@ -3,40 +3,39 @@
 //! view's legend at the bottom.
 
 use ratatui::Frame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
 use ratatui::style::{Color, Stylize};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::Paragraph;
+use ratatui::widgets::{Paragraph, Widget};
 
 use crate::record::{color, num};
 use crate::terms::{Term, false_color};
 
-use super::app::{App, View};
-use super::controls::inner;
-use super::image_view::ImageWidget;
-use super::layout::Pane;
-use super::tree_view::rgb_swatch;
-use super::ui::pane_block;
+use super::pane_block;
+use crate::tui::view::image_grid::ImageGrid;
+use crate::tui::view::layout::{Pane, inner};
+use crate::tui::view::tree::rgb_swatch;
+use crate::tui::{App, View};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let (x, y) = app.cursor;
+    let (x, y) = app.cursor();
     let mut title = vec![Span::raw(format!(" Pixel ({x}, {y}) "))];
     if let Some(rgb) = app
-        .image
-        .as_ref()
+        .image()
         .filter(|i| x < i.width() && y < i.height())
         .map(|i| i.get_pixel(x, y).0)
     {
         title.push(Span::raw(format!("rgb({},{},{}) ", rgb[0], rgb[1], rgb[2])));
         title.push(rgb_swatch(rgb));
     }
-    title.push(Span::raw(format!(" zoom {}x ", app.zoom)));
+    title.push(Span::raw(format!(" zoom {}x ", app.zoom())));
     let mut block = pane_block(app, Pane::Image, String::new()).title(Line::from(title));
-    if let View::Term(term) = app.view {
+    if let View::Term(term) = app.view() {
         block = block.title_bottom(term_legend(app, term).right_aligned());
     }
     frame.render_widget(block, area);
-    let (Some(view), Some(_)) = (app.image_view(), app.shown_pixel(0, 0)) else {
+    let (Some(grid), Some(_)) = (app.image_grid(), app.shown_pixel(0, 0)) else {
         let text = match app.progress() {
             Some(p) => format!("rendering… {}/{} rows", p.rows_done, p.rows),
             None => "rendering…".into(),
@@ -50,13 +49,13 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let pixel = |x: u32, y: u32| app.shown_pixel(x, y).unwrap_or([0, 0, 0]);
     frame.render_widget(
         ImageWidget {
-            view,
+            grid,
             pixel: &pixel,
-            cursor: app.cursor,
+            cursor: app.cursor(),
         },
         area,
     );
-    if let Some((column, row, _)) = view.cursor_cell(app.cursor) {
+    if let Some((column, row, _)) = grid.cursor_cell(app.cursor()) {
         // Marks on the border point at the cursor's column and row.
         let marks = [
             ((column, area.y + area.height - 1), "▲", "─"),
@@ -77,10 +76,10 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
 /// The term view's legend: the view's name, the selected pixel's value,
 /// and the scale of a count view.
 fn term_legend(app: &App, term: Term) -> Line<'static> {
-    let Some(terms) = &app.terms else {
+    let Some(terms) = app.terms() else {
         return Line::raw(format!(" {}: rendering… ", term.name()));
     };
-    let (x, y) = app.cursor;
+    let (x, y) = app.cursor();
     let index = (x < terms.width && y < terms.height).then_some((y * terms.width + x) as usize);
     let here = index
         .and_then(|i| terms.pixels.get(i))
@@ -105,4 +104,55 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
         spans.push(Span::raw(format!(" {} ", terms.max_count(term))));
     }
     Line::from(spans)
+}
+
+/// The half-block drawing of an image through its grid, with the cursor.
+pub struct ImageWidget<'a> {
+    pub grid: ImageGrid,
+    pub pixel: &'a dyn Fn(u32, u32) -> [u8; 3],
+    pub cursor: (u32, u32),
+}
+
+/// The cursor's colour: one that stands out against the pixel under it.
+fn cursor_color(under: [u8; 3]) -> Color {
+    let luma = 0.3 * under[0] as f64 + 0.59 * under[1] as f64 + 0.11 * under[2] as f64;
+    if luma > 140.0 {
+        Color::Rgb(200, 0, 160)
+    } else {
+        Color::Rgb(255, 90, 255)
+    }
+}
+
+impl Widget for ImageWidget<'_> {
+    fn render(self, _area: Rect, buf: &mut Buffer) {
+        let grid = self.grid;
+        let rgb = |[r, g, b]: [u8; 3]| Color::Rgb(r, g, b);
+        let cursor = grid.display_of(self.cursor);
+        for dy in (0..grid.shown.1).step_by(2) {
+            for dx in 0..grid.shown.0 {
+                let color_at = |dy: u32| {
+                    let (x, y) = grid.sample(dx, dy);
+                    let color = (self.pixel)(x, y);
+                    if cursor == Some((dx, dy)) {
+                        cursor_color(color)
+                    } else {
+                        rgb(color)
+                    }
+                };
+                let upper = color_at(dy);
+                let lower = if dy + 1 < grid.shown.1 {
+                    color_at(dy + 1)
+                } else {
+                    Color::Reset
+                };
+                let position = (
+                    grid.area.x + grid.offset.0 + dx as u16,
+                    grid.area.y + grid.offset.1 + (dy / 2) as u16,
+                );
+                if let Some(cell) = buf.cell_mut(position) {
+                    cell.set_symbol("▀").set_fg(upper).set_bg(lower);
+                }
+            }
+        }
+    }
 }

@@ -1,8 +1,8 @@
 //! The app's side of background renders: asking for one, following its
 //! progress, and installing what comes back (only the latest generation).
 
-use super::app::{App, View};
-use super::job::{Finished, Output, Progress, Request};
+use super::{App, View};
+use crate::tui::job::{Finished, Output, Progress, Request};
 
 impl App {
     /// Whether a render is under way (the loop then polls more often).
@@ -36,19 +36,16 @@ impl App {
         });
     }
 
-    pub(super) fn collect_renders(&mut self) -> bool {
-        let mut any = false;
+    /// Takes in the previews and renders that came back.
+    pub(super) fn collect_renders(&mut self) {
         while let Some(preview) = self.renderer.poll_preview() {
             if preview.generation == self.generation {
                 self.image = Some(preview.image);
-                any = true;
             }
         }
         while let Some(finished) = self.renderer.poll() {
             self.install(finished);
-            any = true;
         }
-        any
     }
 
     fn install(&mut self, finished: Finished) {
@@ -80,22 +77,23 @@ mod tests {
     use ratatui::backend::TestBackend;
 
     use super::*;
-    use crate::tui::{Action, Switch, run_loop};
+    use crate::tui::source::SceneSource;
+    use crate::tui::{Action, run_loop};
 
     #[test]
     fn quitting_cancels_a_long_render_instead_of_waiting_for_it() {
         // 4000 x 3000 = 12 million pixels: seconds of work on this machine,
         // against a row (4000 pixels, about a millisecond) once cancelled.
-        let mut app = App::open(None, false).unwrap();
-        app.scene = std::sync::Arc::new((*app.scene).clone().with_size(4000, 3000).unwrap());
-        app.update(Action::Toggle(Switch::Shadows));
+        let source = SceneSource { path: None };
+        let big = source.load().unwrap().with_size(4000, 3000).unwrap();
+        let mut app = App::new(source, big, false);
         let deadline = Instant::now() + Duration::from_secs(30);
         while !app
             .progress()
             .is_some_and(|p| p.rows == 3000 && p.rows_done > 0)
         {
             assert!(Instant::now() < deadline, "the big render never started");
-            app.collect_renders();
+            app.update(Action::Tick);
             std::thread::sleep(Duration::from_millis(5));
         }
         let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();

@@ -1,5 +1,9 @@
 //! The debugger's state and the one place it changes: `App::update(Action)`.
-//! Drawing only reads an `App`; keys become `Action`s in `event.rs` first.
+//! Every field is private: drawing and tests read through the accessors
+//! below; keys become `Action`s in `event.rs` first, and background work
+//! (finished renders, a changed scene file) is looked at on `Action::Tick`.
+//! `controls.rs` and `renders.rs` carry out the actions; they are child
+//! modules only so they can reach the fields.
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
@@ -15,10 +19,13 @@ use crate::terms::TermImages;
 
 pub use super::action::{Action, Switch, View};
 use super::job::Renderer;
-use super::layout::{self, Pane, Panes};
-use super::projection::ViewPlane;
 use super::source::{FileWatcher, SceneSource, merge_settings};
-use super::tree_view;
+use super::view::layout::{self, Pane, Panes};
+use super::view::projection::DiagramPlane;
+use super::view::{help, tree};
+
+mod controls;
+mod renders;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
@@ -30,47 +37,47 @@ pub const WELCOME: &str =
 const RELOAD_DELAY: Duration = Duration::from_millis(150);
 
 pub struct App {
-    pub source: SceneSource,
+    source: SceneSource,
     /// The last good file's scene, with the file's own settings; shared with
     /// the render thread, never copied.
-    pub scene: Arc<Scene>,
+    scene: Arc<Scene>,
     /// The settings traced: the file's, with the user's toggles.
-    pub settings: Settings,
+    settings: Settings,
     /// The selected pixel, in the scene image's coordinates.
-    pub cursor: (u32, u32),
-    pub tree: RayTree,
+    cursor: (u32, u32),
+    tree: RayTree,
     /// The current event of `tree.events`.
-    pub current: usize,
-    pub collapsed: BTreeSet<NodeId>,
-    pub focus: Pane,
+    current: usize,
+    collapsed: BTreeSet<NodeId>,
+    focus: Pane,
     /// 1 shows the whole image; each doubling halves the pixels per cell.
-    pub zoom: u32,
-    pub view: View,
-    pub plane: ViewPlane,
-    pub help: bool,
-    pub help_scroll: u16,
+    zoom: u32,
+    view: View,
+    plane: DiagramPlane,
+    help: bool,
+    help_scroll: u16,
     /// The banner: why the last reload failed.
-    pub error: Option<String>,
+    error: Option<String>,
     /// The status line's message.
-    pub message: Option<String>,
-    pub break_object: Option<usize>,
+    message: Option<String>,
+    break_object: Option<usize>,
     /// Manual scroll of the details; `None` follows the current event.
-    pub details_scroll: Option<u16>,
-    pub screen: Rect,
-    pub quit: bool,
+    details_scroll: Option<u16>,
+    screen: Rect,
+    quit: bool,
     /// The latest finished render, and the term images when a term view asked for them.
-    pub image: Option<RgbImage>,
-    pub terms: Option<TermImages>,
-    pub(super) generation: u64,
-    pub(super) terms_generation: Option<u64>,
-    pub(super) renderer: Renderer,
-    pub(super) watcher: Option<FileWatcher>,
-    pub(super) reload_due: Option<Instant>,
+    image: Option<RgbImage>,
+    terms: Option<TermImages>,
+    generation: u64,
+    terms_generation: Option<u64>,
+    renderer: Renderer,
+    watcher: Option<FileWatcher>,
+    reload_due: Option<Instant>,
     /// How long the last pixel pick and the last render took.
-    pub pick_time: Duration,
-    pub render_time: Option<Duration>,
+    pick_time: Duration,
+    render_time: Option<Duration>,
     /// Show timings in the status line (off in tests, for stable screens).
-    pub show_timings: bool,
+    show_timings: bool,
 }
 
 impl App {
@@ -78,7 +85,13 @@ impl App {
     /// before `update` returns, so tests see deterministic screens.
     pub fn open(path: Option<PathBuf>, sync: bool) -> Result<App, SceneError> {
         let source = SceneSource { path };
-        let scene = Arc::new(source.load()?);
+        let scene = source.load()?;
+        Ok(App::new(source, scene, sync))
+    }
+
+    /// The app on a loaded scene: its centre pixel picked, its render asked for.
+    fn new(source: SceneSource, scene: Scene, sync: bool) -> App {
+        let scene = Arc::new(scene);
         let settings = scene.settings;
         let cursor = (scene.width / 2, scene.height / 2);
         let tree = record_pixel(&scene, &settings, cursor.0, cursor.1);
@@ -93,7 +106,7 @@ impl App {
             focus: Pane::Image,
             zoom: 1,
             view: View::Image,
-            plane: ViewPlane::Top,
+            plane: DiagramPlane::Top,
             help: false,
             help_scroll: 0,
             error: None,
@@ -115,13 +128,14 @@ impl App {
         };
         app.request_render();
         app.collect_renders();
-        Ok(app)
+        app
     }
 
-    /// Starts watching the scene file for changes (the built-in scene has none).
-    pub fn watch(&mut self) {
+    /// The app watching its scene file for changes, which it reloads on a
+    /// later `Action::Tick` (the built-in scene has no file).
+    pub fn watching(mut self) -> App {
         let Some(path) = &self.source.path else {
-            return;
+            return self;
         };
         match FileWatcher::new(path) {
             Ok(watcher) => self.watcher = Some(watcher),
@@ -132,11 +146,17 @@ impl App {
                 ))
             }
         }
+        self
     }
 
+    /// Carries out an action: the only way the state changes.
     pub fn update(&mut self, action: Action) {
-        self.message = None;
+        if action != Action::Tick {
+            // A tick is time passing, not the user's doing: the message stays.
+            self.message = None;
+        }
         match action {
+            Action::Tick => self.tick(),
             Action::Quit => {
                 self.quit = true;
                 self.cancel_renders();
@@ -144,7 +164,7 @@ impl App {
             Action::ToggleHelp => (self.help, self.help_scroll) = (!self.help, 0),
             Action::CloseHelp => self.help = false,
             Action::ScrollHelp(delta) => {
-                let most = super::help::hidden_lines(self.screen.height) as i32;
+                let most = help::hidden_lines(self.screen.height) as i32;
                 self.help_scroll = (self.help_scroll as i32 + delta).clamp(0, most) as u16;
             }
             Action::FocusNext => self.focus = self.focus.next(),
@@ -172,24 +192,136 @@ impl App {
         self.collect_renders();
     }
 
-    /// Background work: finished renders and file changes. True when the
-    /// screen should be redrawn.
-    pub fn tick(&mut self) -> bool {
-        let mut changed = self.collect_renders() || self.renderer.busy();
+    /// Background work: finished renders, and a reload once the file has
+    /// been quiet for `RELOAD_DELAY` after a change.
+    fn tick(&mut self) {
         if self.watcher.as_ref().is_some_and(|w| w.changed()) {
             self.reload_due = Some(Instant::now() + RELOAD_DELAY);
         }
         if self.reload_due.is_some_and(|due| Instant::now() >= due) {
             self.reload_due = None;
             self.reload();
-            changed = true;
         }
-        changed || self.reload_due.is_some()
+    }
+
+    pub fn source(&self) -> &SceneSource {
+        &self.source
+    }
+
+    /// The last good file's scene, with the file's own settings.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The settings traced: the file's, with the user's toggles.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The selected pixel, in the scene image's coordinates.
+    pub fn cursor(&self) -> (u32, u32) {
+        self.cursor
+    }
+
+    /// The selected pixel's recording.
+    pub fn tree(&self) -> &RayTree {
+        &self.tree
+    }
+
+    /// The current event, an index into `tree().events`.
+    pub fn current(&self) -> usize {
+        self.current
+    }
+
+    /// The rays whose rows the tree pane folds away.
+    pub fn collapsed(&self) -> &BTreeSet<NodeId> {
+        &self.collapsed
+    }
+
+    pub fn focus(&self) -> Pane {
+        self.focus
+    }
+
+    /// 1 shows the whole image; each doubling halves the pixels per cell.
+    pub fn zoom(&self) -> u32 {
+        self.zoom
+    }
+
+    pub fn view(&self) -> View {
+        self.view
+    }
+
+    pub fn plane(&self) -> DiagramPlane {
+        self.plane
+    }
+
+    /// Whether the help overlay is open, and how far it is scrolled.
+    pub fn help(&self) -> bool {
+        self.help
+    }
+
+    pub fn help_scroll(&self) -> u16 {
+        self.help_scroll
+    }
+
+    /// The banner: why the last reload failed.
+    pub fn error(&self) -> Option<&str> {
+        self.error.as_deref()
+    }
+
+    /// The status line's message.
+    pub fn message(&self) -> Option<&str> {
+        self.message.as_deref()
+    }
+
+    /// The object the `x` breakpoint stops at, once chosen.
+    pub fn break_object(&self) -> Option<usize> {
+        self.break_object
+    }
+
+    /// Manual scroll of the details; `None` follows the current event.
+    pub fn details_scroll(&self) -> Option<u16> {
+        self.details_scroll
+    }
+
+    /// The terminal's size, as the last `Action::Resize` gave it.
+    pub fn screen(&self) -> Rect {
+        self.screen
+    }
+
+    /// Whether the user asked to quit.
+    pub fn should_quit(&self) -> bool {
+        self.quit
+    }
+
+    /// The latest render (or preview) of the current settings.
+    pub fn image(&self) -> Option<&RgbImage> {
+        self.image.as_ref()
+    }
+
+    /// The term images, once a term view asked for them.
+    pub fn terms(&self) -> Option<&TermImages> {
+        self.terms.as_ref()
+    }
+
+    /// How long the last pixel pick took.
+    pub fn pick_time(&self) -> Duration {
+        self.pick_time
+    }
+
+    /// How long the last finished render took.
+    pub fn render_time(&self) -> Option<Duration> {
+        self.render_time
+    }
+
+    /// Whether the status line shows timings (off in tests, for stable screens).
+    pub fn show_timings(&self) -> bool {
+        self.show_timings
     }
 
     pub fn panes(&self) -> Panes {
         let banner = self.error.as_ref().map_or(0, |e| e.lines().count() as u16);
-        let rows = tree_view::rows(&self.tree, &self.collapsed).len() as u16;
+        let rows = tree::rows(&self.tree, &self.collapsed).len() as u16;
         layout::panes(self.screen, banner, rows)
     }
 
@@ -219,7 +351,7 @@ impl App {
     }
 
     /// Re-records the selected pixel in the current scene, keeping the step.
-    pub(super) fn retrace(&mut self) {
+    fn retrace(&mut self) {
         self.cursor = (
             self.cursor.0.min(self.scene.width - 1),
             self.cursor.1.min(self.scene.height - 1),
@@ -233,21 +365,21 @@ impl App {
     }
 
     /// Selects a pixel: only that pixel is traced again.
-    pub fn pick(&mut self, x: u32, y: u32) {
+    fn pick(&mut self, x: u32, y: u32) {
         self.cursor = (x, y);
         self.current = 0;
         self.retrace();
     }
 
     /// Traces the scene with new settings: the pixel, then the image.
-    pub(super) fn apply_settings(&mut self, settings: Settings) {
+    fn apply_settings(&mut self, settings: Settings) {
         self.settings = settings;
         self.retrace();
         self.request_render();
     }
 
     /// Reloads the scene file; a broken file keeps the last good scene.
-    pub fn reload(&mut self) {
+    fn reload(&mut self) {
         match self.source.load() {
             Ok(file_scene) => {
                 let settings =

@@ -1,27 +1,22 @@
 //! What each action does to the app: cursor, zoom, stepping, the tree, and
-//! the teaching toggles. Split from `app.rs` only to keep files short.
+//! the teaching toggles. Split from `app/mod.rs` only to keep files short.
 
 use ratatui::layout::Position;
 
 use crate::terms::Term;
 
-use super::app::{App, MAX_DEPTH, Switch, View};
-use super::image_view::{ImageView, max_zoom};
-use super::layout::Pane;
-use super::stepper::{self, Breakpoint, Step};
-use super::steps_view;
-use super::tree_view::{self, RowKind};
-
-/// The inner area of a bordered pane.
-pub fn inner(area: ratatui::layout::Rect) -> ratatui::layout::Rect {
-    area.inner(ratatui::layout::Margin::new(1, 1))
-}
+use super::{App, MAX_DEPTH, Switch, View};
+use crate::tui::view::image_grid::{ImageGrid, max_zoom};
+use crate::tui::view::layout::{Pane, inner};
+use crate::tui::view::stepper::{self, Breakpoint, Step};
+use crate::tui::view::steps;
+use crate::tui::view::tree::{self, RowKind};
 
 impl App {
     /// The image pane's mapping, for drawing and for clicks.
-    pub fn image_view(&self) -> Option<ImageView> {
+    pub fn image_grid(&self) -> Option<ImageGrid> {
         let size = self.image.as_ref().map(|i| (i.width(), i.height()))?;
-        Some(ImageView::new(
+        Some(ImageGrid::new(
             inner(self.panes().image),
             size,
             self.zoom,
@@ -54,25 +49,21 @@ impl App {
         let line = (row - inside.y) as usize;
         match pane {
             Pane::Image => {
-                if let Some((x, y)) = self.image_view().and_then(|v| v.pixel_at_cell(column, row)) {
+                if let Some((x, y)) = self.image_grid().and_then(|v| v.pixel_at_cell(column, row)) {
                     self.pick(x.min(self.scene.width - 1), y.min(self.scene.height - 1));
                 }
             }
             Pane::Tree => {
-                let rows = tree_view::rows(&self.tree, &self.collapsed);
-                let selected =
-                    tree_view::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
-                let first = tree_view::scroll_offset(selected, inside.height as usize);
+                let rows = tree::rows(&self.tree, &self.collapsed);
+                let selected = tree::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
+                let first = tree::scroll_offset(selected, inside.height as usize);
                 if let Some(row) = rows.get(first + line) {
                     self.select(row.kind);
                 }
             }
             Pane::Steps => {
-                let first = steps_view::first_line(
-                    self.current,
-                    self.tree.events.len(),
-                    inside.height as usize,
-                );
+                let first =
+                    steps::first_line(self.current, self.tree.events.len(), inside.height as usize);
                 if first + line < self.tree.events.len() {
                     self.set_current(first + line);
                 }
@@ -175,8 +166,8 @@ impl App {
     }
 
     pub(super) fn select_row(&mut self, delta: i32) {
-        let rows = tree_view::rows(&self.tree, &self.collapsed);
-        let Some(selected) = tree_view::selected_row(&self.tree, &rows, self.current) else {
+        let rows = tree::rows(&self.tree, &self.collapsed);
+        let Some(selected) = tree::selected_row(&self.tree, &rows, self.current) else {
             return;
         };
         let row = (selected as i64 + delta as i64).clamp(0, rows.len() as i64 - 1) as usize;

@@ -11,7 +11,7 @@ use crate::shapes::Shape;
 /// Which plane the diagram shows, in the camera's frame (so a z-up NFF
 /// scene is seen from above too).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ViewPlane {
+pub enum DiagramPlane {
     /// Seen from above: the camera's right to the right, its forward up.
     Top,
     /// Seen from the camera's right: forward to the right, up up.
@@ -20,20 +20,20 @@ pub enum ViewPlane {
     Primary,
 }
 
-impl ViewPlane {
-    pub fn next(self) -> ViewPlane {
+impl DiagramPlane {
+    pub fn next(self) -> DiagramPlane {
         match self {
-            ViewPlane::Top => ViewPlane::Side,
-            ViewPlane::Side => ViewPlane::Primary,
-            ViewPlane::Primary => ViewPlane::Top,
+            DiagramPlane::Top => DiagramPlane::Side,
+            DiagramPlane::Side => DiagramPlane::Primary,
+            DiagramPlane::Primary => DiagramPlane::Top,
         }
     }
 
     pub fn name(self) -> &'static str {
         match self {
-            ViewPlane::Top => "from above",
-            ViewPlane::Side => "from the right",
-            ViewPlane::Primary => "primary ray's plane",
+            DiagramPlane::Top => "from above",
+            DiagramPlane::Side => "from the right",
+            DiagramPlane::Primary => "primary ray's plane",
         }
     }
 }
@@ -47,15 +47,15 @@ pub struct Projection {
 }
 
 impl Projection {
-    pub fn new(plane: ViewPlane, scene: &Scene, tree: &RayTree) -> Self {
+    pub fn new(plane: DiagramPlane, scene: &Scene, tree: &RayTree) -> Self {
         let root = tree.root();
         let origin = root.hit.as_ref().map_or(root.origin, |h| h.point);
         let camera = &scene.camera;
         let frame = camera.frame();
         let (right, up) = match plane {
-            ViewPlane::Top => (frame.right, frame.forward),
-            ViewPlane::Side => (frame.forward, frame.true_up),
-            ViewPlane::Primary => primary_plane(root, camera.up),
+            DiagramPlane::Top => (frame.right, frame.forward),
+            DiagramPlane::Side => (frame.forward, frame.true_up),
+            DiagramPlane::Primary => primary_plane(root, camera.up),
         };
         Self { origin, right, up }
     }
@@ -291,4 +291,109 @@ pub fn involved_objects(tree: &RayTree) -> Vec<usize> {
     objects.sort_unstable();
     objects.dedup();
     objects
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::view::fixture::ball;
+
+    fn close(a: DVec2, b: DVec2) -> bool {
+        (a - b).length() < 1e-9
+    }
+
+    #[test]
+    fn each_plane_is_seen_from_where_it_says() {
+        // The camera looks down -z with y up: right = (1, 0, 0), forward =
+        // (0, 0, -1). Every plane passes through r0's hit point (0, 0, 1), so
+        // the eye (0, 0, 10) is 9 behind it and the lamp (5, 0, 10) also 5 right.
+        let (scene, tree) = ball();
+        let top = Projection::new(DiagramPlane::Top, &scene, &tree);
+        assert!(close(top.project(DVec3::new(0.0, 0.0, 1.0)), DVec2::ZERO));
+        assert!(close(top.project(scene.camera.eye), DVec2::new(0.0, -9.0)));
+        assert!(close(
+            top.project(DVec3::new(5.0, 0.0, 10.0)),
+            DVec2::new(5.0, -9.0)
+        ));
+        // From the right: forward to the right, up up.
+        let side = Projection::new(DiagramPlane::Side, &scene, &tree);
+        assert!(close(side.project(scene.camera.eye), DVec2::new(-9.0, 0.0)));
+        assert!(close(
+            side.project(DVec3::new(0.0, 2.0, 1.0)),
+            DVec2::new(0.0, 2.0)
+        ));
+        // A head-on hit has no plane of incidence: the ray to the right and
+        // the camera's up up, as from the right.
+        let primary = Projection::new(DiagramPlane::Primary, &scene, &tree);
+        assert_eq!((primary.right, primary.up), (side.right, side.up));
+    }
+
+    #[test]
+    fn planes_cycle_through_all_three() {
+        let p = DiagramPlane::Top;
+        assert_eq!(p.next(), DiagramPlane::Side);
+        assert_eq!(p.next().next(), DiagramPlane::Primary);
+        assert_eq!(p.next().next().next(), p);
+    }
+
+    #[test]
+    fn segments_follow_the_step_through() {
+        let (scene, tree) = ball();
+        let top = Projection::new(DiagramPlane::Top, &scene, &tree);
+        let strokes = |current| {
+            let (segments, blockers) = ray_segments(&tree, &scene, &top, current);
+            assert!(blockers.is_empty(), "nothing blocks the lamp");
+            segments.iter().map(|s| s.stroke).collect::<Vec<_>>()
+        };
+        // r0, its normal, its shadow ray to the lamp, then r1 (no hit: no normal).
+        use Stroke::*;
+        assert_eq!(strokes(0), [Current, Normal, Later, Later], "at r0's cast");
+        assert_eq!(
+            strokes(3),
+            [Primary, Normal, Current, Later],
+            "its shadow ray"
+        );
+        assert_eq!(
+            strokes(9),
+            [Current, Normal, ShadowLit, Reflected],
+            "r0 done"
+        );
+        // r1 misses: drawn half the scene's size long. The hit (0, 0, 1), the
+        // eye (0, 0, 10) and the lamp (5, 0, 10) span (5, 0, 9): half of
+        // √106 from (0, 0, 1) along +z, which the top view shows downward.
+        let (segments, _) = ray_segments(&tree, &scene, &top, 9);
+        let r1 = &segments[3];
+        assert!(close(r1.from, DVec2::ZERO));
+        assert!(close(r1.to, DVec2::new(0.0, -(106f64.sqrt() / 2.0))));
+    }
+
+    #[test]
+    fn a_sphere_is_a_circle_and_a_plane_its_cut() {
+        let (scene, tree) = ball();
+        let top = Projection::new(DiagramPlane::Top, &scene, &tree);
+        // The centre (0, 0, 0) is 1 ahead of the hit point: up in the top view.
+        assert_eq!(
+            outline(&scene.objects[0].shape, &top),
+            [Outline::Circle {
+                center: DVec2::new(0.0, 1.0),
+                radius: 1.0
+            }]
+        );
+        assert_eq!(involved_objects(&tree), [0]);
+        // The floor y = -1 (y + 1 = 0) lies flat in the top view: no line;
+        // from the right it is the line y + 1 = 0 (c = N·origin + d = 0 + 1).
+        let floor = Shape::Plane(crate::shapes::Plane {
+            normal: DVec3::Y,
+            d: 1.0,
+        });
+        assert_eq!(outline(&floor, &top), []);
+        let side = Projection::new(DiagramPlane::Side, &scene, &tree);
+        assert_eq!(
+            outline(&floor, &side),
+            [Outline::Line {
+                normal: DVec2::new(0.0, 1.0),
+                c: 1.0
+            }]
+        );
+    }
 }

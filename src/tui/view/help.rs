@@ -1,12 +1,10 @@
-//! The `?` overlay: every row of `keymap::KEYMAP`, the table the key handling uses.
+//! The `?` overlay's text: every row of `keymap::KEYMAP`, the table the key
+//! handling uses, and how much of it a short terminal hides.
 
-use ratatui::Frame;
-use ratatui::layout::Rect;
 use ratatui::style::Stylize;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph};
 
-use super::keymap::KEYMAP;
+use crate::tui::keymap::KEYMAP;
 
 const KEY_WIDTH: usize = 22;
 
@@ -32,31 +30,6 @@ pub fn lines() -> Vec<Line<'static>> {
 /// How many lines of the help a terminal `height` rows tall cannot show.
 pub fn hidden_lines(height: u16) -> u16 {
     (lines().len() as u16 + 2).saturating_sub(height)
-}
-
-/// The overlay, scrolled by `scroll` lines when the terminal is too short.
-pub fn draw(frame: &mut Frame, area: Rect, scroll: u16) {
-    let lines = lines();
-    let width = (lines.iter().map(|l| l.width()).max().unwrap_or(40) as u16 + 2).min(area.width);
-    let height = (lines.len() as u16 + 2).min(area.height);
-    let hidden = hidden_lines(area.height);
-    let scroll = scroll.min(hidden);
-    let rect = Rect::new(
-        area.x + (area.width - width) / 2,
-        area.y + (area.height - height) / 2,
-        width,
-        height,
-    );
-    let bottom = if hidden > 0 {
-        " j/k scroll for more, any other key closes "
-    } else {
-        " any key closes this help "
-    };
-    let block = Block::bordered()
-        .title(" raystep keys ".bold())
-        .title_bottom(bottom.dark_gray());
-    frame.render_widget(Clear, rect);
-    frame.render_widget(Paragraph::new(lines).block(block).scroll((scroll, 0)), rect);
 }
 
 #[cfg(test)]

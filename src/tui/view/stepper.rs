@@ -114,3 +114,46 @@ pub fn event_light(kind: &EventKind) -> Option<usize> {
         _ => None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::view::fixture::ball;
+
+    #[test]
+    fn steps_move_through_the_ball_pixels_events() {
+        // Events: 0-4 r0, 5 r1 cast, 6 r1 miss, 7 r1 done, 8 r0 (r1 returns), 9 r0 done.
+        let (_, tree) = ball();
+        let at = |from, how| step(&tree, from, how);
+        assert_eq!(at(0, Step::Next), 1);
+        assert_eq!(at(9, Step::Next), 9, "nothing after the last");
+        assert_eq!(at(0, Step::Previous), 0, "nothing before the first");
+        assert_eq!(at(0, Step::Into), 5, "into r1's cast");
+        assert_eq!(at(4, Step::Over), 8, "over r1: r0's next event");
+        assert_eq!(at(6, Step::Out), 8, "out of r1: where it returns to r0");
+        assert_eq!(at(2, Step::Out), 9, "out of the primary ray: the end");
+        assert_eq!((at(6, Step::Start), at(2, Step::End)), (0, 9));
+        assert_eq!(at(8, Step::Into), 9, "no ray cast left: the end");
+    }
+
+    #[test]
+    fn breakpoints_stop_only_where_they_match() {
+        let (_, tree) = ball();
+        // The ball (object 0) is hit once, by r0 at event 1.
+        assert_eq!(run_to(&tree, 0, Breakpoint::HitObject(0)), Some(1));
+        assert_eq!(run_to(&tree, 1, Breakpoint::HitObject(0)), None);
+        // Nothing blocks the lamp; no glass, no TIR.
+        assert_eq!(run_to(&tree, 0, Breakpoint::BlockedShadow), None);
+        assert_eq!(run_to(&tree, 0, Breakpoint::Tir), None);
+    }
+
+    #[test]
+    fn rows_find_their_events() {
+        let (_, tree) = ball();
+        assert_eq!(cast_event(&tree, 1), Some(5));
+        assert_eq!(light_event(&tree, 0, 0), Some(3), "the shadow ray first");
+        assert_eq!(light_event(&tree, 1, 0), None, "r1 missed: no lights");
+        assert_eq!(event_light(&tree.events[4].kind), Some(0));
+        assert_eq!(event_light(&tree.events[5].kind), None);
+    }
+}

@@ -13,8 +13,8 @@ use crate::math::to_rgb8;
 use crate::record::RayTree;
 use crate::scene::Scene;
 
-use super::projection::{
-    Outline, Projection, Segment, Stroke, ViewPlane, involved_objects, outline, ray_segments,
+use crate::tui::view::projection::{
+    DiagramPlane, Outline, Projection, Segment, Stroke, involved_objects, outline, ray_segments,
 };
 
 /// Scenes with more objects show only those the pixel's rays meet.
@@ -135,7 +135,7 @@ pub fn render(
     scene: &Scene,
     tree: &RayTree,
     current: usize,
-    plane: ViewPlane,
+    plane: DiagramPlane,
 ) {
     let inner = block.inner(area);
     let projection = Projection::new(plane, scene, tree);

@@ -1,4 +1,4 @@
-//! The details pane: the lines `raystep inspect` prints for the selected ray
+//! The details pane's text: the lines `raystep inspect` prints for the selected ray
 //! (the intersection working and every term), a swatch after every colour,
 //! and the lines of the current event highlighted. The lines come typed from
 //! `record`: the highlight follows their `About`, the swatches their colour
@@ -7,15 +7,9 @@
 use ratatui::style::{Color as TermColor, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use crate::record::{self, About, Children, NodeId, RayTree, kind_name, node_lines};
+use crate::record::{self, About, Children, NodeId, RayTree, node_lines};
 
-use super::app::App;
-use super::layout::Pane;
-use super::tree_view::swatch;
-use super::ui::pane_block;
-use ratatui::Frame;
-use ratatui::layout::Rect;
-use ratatui::widgets::Paragraph;
+use super::tree::swatch;
 
 /// A ray's lines as the pane lists them: a header, then what `inspect`
 /// prints, with the child rays listed before the colour they add to.
@@ -82,29 +76,4 @@ pub fn lines(
         out.extend(wrap(line, width, style));
     }
     (out, first_marked)
-}
-
-pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let id = app.selected_node();
-    let node = &app.tree.nodes[id];
-    let title = format!(" Details · r{id} {} ray ", kind_name(node.kind));
-    let block = pane_block(app, Pane::Details, title);
-    let inside = block.inner(area);
-    let (lines, marked) = lines(&app.tree, id, Some(app.current), inside.width as usize);
-    let height = inside.height as usize;
-    let auto = marked.map_or(0, |m| {
-        if m + 4 <= height {
-            0
-        } else {
-            m.saturating_sub(1)
-        }
-    });
-    let most = lines.len().saturating_sub(height);
-    let offset = app.details_scroll.map_or(auto, |s| s as usize).min(most);
-    frame.render_widget(
-        Paragraph::new(lines)
-            .block(block)
-            .scroll((offset as u16, 0)),
-        area,
-    );
 }

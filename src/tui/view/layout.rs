@@ -1,7 +1,7 @@
 //! Where each pane goes: a pure function of the screen size, shared by the
 //! drawing code and by mouse handling so a click lands where it was drawn.
 
-use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::layout::{Constraint, Layout, Margin, Rect};
 
 /// The smallest terminal the debugger draws in.
 pub const MIN_WIDTH: u16 = 80;
@@ -70,6 +70,11 @@ impl Panes {
     }
 }
 
+/// The inside of a bordered pane.
+pub fn inner(area: Rect) -> Rect {
+    area.inner(Margin::new(1, 1))
+}
+
 pub fn too_small(area: Rect) -> bool {
     area.width < MIN_WIDTH || area.height < MIN_HEIGHT
 }
@@ -110,5 +115,54 @@ pub fn panes(area: Rect, banner_lines: u16, tree_rows: u16) -> Panes {
         details,
         banner,
         status,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tab_order_goes_round_both_ways() {
+        for pane in Pane::ALL {
+            assert_eq!(pane.next().previous(), pane);
+        }
+        assert_eq!(Pane::Diagram.next(), Pane::Image);
+        assert_eq!(Pane::Image.previous(), Pane::Diagram);
+    }
+
+    #[test]
+    fn the_right_column_stacks_tree_steps_and_details() {
+        // 120 x 40: header row 0, status row 39, 38 rows between. The tree
+        // wants 3 rows + 2 borders = 5; the steps get max(38 / 4, 7) = 9;
+        // the details the other 38 - 5 - 9 = 24.
+        let p = panes(Rect::new(0, 0, 120, 40), 0, 3);
+        assert_eq!((p.header.y, p.status.y, p.banner.height), (0, 39, 0));
+        assert_eq!((p.tree.y, p.tree.height), (1, 5));
+        assert_eq!((p.steps.y, p.steps.height), (6, 9));
+        assert_eq!((p.details.y, p.details.height), (15, 24));
+        // The left column (42% of 120 = 50.4) holds image and diagram.
+        assert_eq!((p.image.x, p.image.width, p.tree.x), (0, 50, 50));
+        assert_eq!(p.diagram.y, p.image.y + p.image.height);
+        assert_eq!(p.pane_at(p.tree.x, p.tree.y), Some(Pane::Tree));
+        assert_eq!(p.pane_at(0, 0), None, "the header is no pane");
+    }
+
+    #[test]
+    fn a_banner_takes_its_lines_and_borders_from_the_middle() {
+        // 2 lines + 2 borders = 4 rows (at most 40 / 3), above the status.
+        let p = panes(Rect::new(0, 0, 120, 40), 2, 3);
+        assert_eq!((p.banner.y, p.banner.height), (35, 4));
+        // A long tree is held to a third of the 34 rows left: 11.
+        let p = panes(Rect::new(0, 0, 120, 40), 2, 50);
+        assert_eq!(p.tree.height, 11);
+    }
+
+    #[test]
+    fn sizes_and_borders() {
+        assert_eq!(inner(Rect::new(2, 3, 10, 5)), Rect::new(3, 4, 8, 3));
+        assert!(too_small(Rect::new(0, 0, 79, 24)));
+        assert!(too_small(Rect::new(0, 0, 80, 23)));
+        assert!(!too_small(Rect::new(0, 0, 80, 24)));
     }
 }

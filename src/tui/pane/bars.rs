@@ -1,0 +1,99 @@
+//! The header and status lines: the scene and the model's settings above
+//! the panes; render progress, the message and the key hints below.
+
+use ratatui::style::Stylize;
+use ratatui::text::{Line, Span};
+
+use crate::tui::{App, View, keymap};
+
+/// A switch's name: plain green when on, "no ..." in red when off.
+fn on_off(name: &str, on: bool) -> Span<'static> {
+    if on {
+        Span::raw(name.to_string()).green()
+    } else {
+        Span::raw(format!("no {name}")).red().bold()
+    }
+}
+
+/// The top line: the scene (shortened first when space is short) and the
+/// model's settings as the toggles left them.
+pub(super) fn header(app: &App, width: u16) -> Line<'static> {
+    let settings = app.settings();
+    let s = settings.switches;
+    let sep = || Span::raw(" · ").dark_gray();
+    let mut right = vec![
+        sep(),
+        on_off("shadows", s.shadows),
+        Span::raw(" "),
+        on_off("reflection", s.reflection),
+        Span::raw(" "),
+        on_off("transmission", s.transmission),
+        Span::raw(" "),
+        on_off("ambient", s.ambient),
+        sep(),
+        Span::raw(if app.phong() { "Phong" } else { "Blinn" }),
+        sep(),
+        Span::raw(format!("depth {}", settings.max_depth)),
+    ];
+    if let View::Term(term) = app.view() {
+        right.extend([
+            sep(),
+            Span::raw(format!("view: {}", term.name())).bold().yellow(),
+        ]);
+    }
+    let used: usize = 9 + right.iter().map(|s| s.width()).sum::<usize>();
+    let scene = format!(
+        " {} {}x{}",
+        app.source().name(),
+        app.scene().width,
+        app.scene().height
+    );
+    let room = (width as usize).saturating_sub(used);
+    let scene = if scene.chars().count() <= room {
+        scene
+    } else {
+        let tail: String = scene
+            .chars()
+            .rev()
+            .take(room.saturating_sub(2))
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
+        format!(" …{tail}")
+    };
+    let mut spans = vec![Span::raw(" raystep ").bold().reversed(), Span::raw(scene)];
+    spans.extend(right);
+    Line::from(spans)
+}
+
+pub(super) fn status(app: &App) -> Line<'static> {
+    let mut spans = Vec::new();
+    if let Some(p) = app.progress() {
+        spans.push(
+            Span::raw(format!(" rendering {}/{} rows ", p.rows_done, p.rows))
+                .black()
+                .on_yellow(),
+        );
+    }
+    if let Some(message) = app.message() {
+        spans.push(Span::raw(format!(" {message} ")).yellow().bold());
+    } else if app.show_timings() {
+        let render = app.render_time().map_or(String::new(), |t| {
+            format!(", image in {:.0} ms", t.as_secs_f64() * 1e3)
+        });
+        spans.push(
+            Span::raw(format!(
+                " pixel traced in {} µs{render} ",
+                app.pick_time().as_micros()
+            ))
+            .dark_gray(),
+        );
+    }
+    spans.push(Span::raw(" "));
+    for hint in keymap::hints() {
+        spans.push(Span::raw(hint.keys).bold().cyan());
+        spans.push(Span::raw(format!(" {}  ", hint.what)));
+    }
+    Line::from(spans)
+}

@@ -1,0 +1,37 @@
+//! The details pane: `view::details`'s lines for the selected ray, scrolled
+//! to the current event's lines unless the user scrolled.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::widgets::Paragraph;
+
+use super::pane_block;
+use crate::record::kind_name;
+use crate::tui::App;
+use crate::tui::view::details::lines;
+use crate::tui::view::layout::Pane;
+
+pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
+    let id = app.selected_node();
+    let node = &app.tree().nodes[id];
+    let title = format!(" Details · r{id} {} ray ", kind_name(node.kind));
+    let block = pane_block(app, Pane::Details, title);
+    let inside = block.inner(area);
+    let (lines, marked) = lines(app.tree(), id, Some(app.current()), inside.width as usize);
+    let height = inside.height as usize;
+    let auto = marked.map_or(0, |m| {
+        if m + 4 <= height {
+            0
+        } else {
+            m.saturating_sub(1)
+        }
+    });
+    let most = lines.len().saturating_sub(height);
+    let offset = app.details_scroll().map_or(auto, |s| s as usize).min(most);
+    frame.render_widget(
+        Paragraph::new(lines)
+            .block(block)
+            .scroll((offset as u16, 0)),
+        area,
+    );
+}
