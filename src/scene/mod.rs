@@ -5,6 +5,7 @@ pub mod builtin;
 mod error;
 pub mod limits;
 pub mod nff;
+mod switches;
 pub mod toml_format;
 mod toml_sections;
 
@@ -14,6 +15,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use error::{SceneError, SourceLocation};
+pub use switches::{Switch, Switches};
 
 use crate::accel::{Accel, ObjectTables};
 use crate::camera::Camera;
@@ -43,27 +45,6 @@ pub enum SpecularModel {
     #[default]
     Blinn,
     Phong,
-}
-
-/// Terms a teacher can switch off to show what each one contributes. They are
-/// not part of the model; all are on unless the debugger turns them off.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub struct Switches {
-    pub shadows: bool,
-    pub reflection: bool,
-    pub transmission: bool,
-    pub ambient: bool,
-}
-
-impl Default for Switches {
-    fn default() -> Self {
-        Self {
-            shadows: true,
-            reflection: true,
-            transmission: true,
-            ambient: true,
-        }
-    }
 }
 
 /// Scene-wide constants of the illumination model. The scene carries its

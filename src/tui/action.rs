@@ -1,6 +1,7 @@
 //! What the user can ask for: the `Action`s that `event.rs` makes of keys
 //! (and the main loop of time passing) and that `App::update` carries out.
 
+use crate::scene::Switch;
 use crate::terms::Term;
 
 use super::view::stepper::{Breakpoint, Step};
@@ -40,15 +41,6 @@ pub enum Action {
     /// Time passed: take in finished renders, reload a changed scene file.
     /// The main loop sends one after every wait, event or not.
     Tick,
-}
-
-/// A teaching switch of the illumination model.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Switch {
-    Shadows,
-    Reflection,
-    Transmission,
-    Ambient,
 }
 
 /// What the image pane shows: the render, or one term image.

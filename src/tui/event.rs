@@ -66,7 +66,7 @@ mod tests {
     use crossterm::event::{KeyCode, KeyModifiers};
 
     use super::*;
-    use crate::tui::app::Switch;
+    use crate::scene::Switch;
     use crate::tui::view::stepper::Breakpoint;
 
     const BIG_STEP: i32 = 10;

@@ -4,8 +4,9 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
-use super::action::{Action, Switch};
+use super::action::Action;
 use super::view::stepper::{Breakpoint, Step};
+use crate::scene::Switch;
 
 /// How far Shift (or H J K L) moves the pixel cursor.
 pub const BIG_STEP: i32 = 10;

@@ -41,7 +41,8 @@ use crossterm::event::Event;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-pub use action::{Action, Switch, View};
+pub use crate::scene::Switch;
+pub use action::{Action, View};
 pub use app::App;
 pub use view::layout::Pane;
 pub use view::projection::DiagramPlane;

@@ -5,7 +5,8 @@ use ratatui::layout::Position;
 
 use crate::terms::Term;
 
-use super::{App, MAX_DEPTH, Switch, View};
+use super::{App, MAX_DEPTH, View};
+use crate::scene::Switch;
 use crate::tui::view::image_grid::{ImageGrid, max_zoom};
 use crate::tui::view::layout::{Pane, inner};
 use crate::tui::view::stepper::{self, Breakpoint, Step};
@@ -188,16 +189,13 @@ impl App {
 
     pub(super) fn toggle(&mut self, switch: Switch) {
         let mut settings = self.settings;
-        let (flag, name) = match switch {
-            Switch::Shadows => (&mut settings.switches.shadows, "shadows"),
-            Switch::Reflection => (&mut settings.switches.reflection, "reflection"),
-            Switch::Transmission => (&mut settings.switches.transmission, "transmission"),
-            Switch::Ambient => (&mut settings.switches.ambient, "ambient"),
+        let state = if settings.switches.flip(switch) {
+            "on"
+        } else {
+            "off"
         };
-        *flag = !*flag;
-        let state = if *flag { "on" } else { "off" };
         self.apply_settings(settings);
-        self.message = Some(format!("{name} {state}"));
+        self.message = Some(format!("{} {state}", switch.name()));
     }
 
     pub(super) fn toggle_specular(&mut self) {
