@@ -547,3 +547,16 @@ fn help_closes_on_any_key_and_esc_quits() {
     press(&mut app, &[key(KeyCode::Esc)]);
     assert!(app.should_quit());
 }
+
+#[test]
+fn a_newcomer_sees_the_welcome_at_any_terminal_size() {
+    // Regression: the first draw in a terminal other than 120x40 resized
+    // the app, and the resize cleared the welcome before anyone saw it.
+    let mut app = app();
+    let terminal = screen(&mut app, 160, 48);
+    assert_eq!(app.message(), Some(tui::app::WELCOME));
+    let bottom: String = (0..160)
+        .map(|x| terminal.backend().buffer()[(x, 47)].symbol().to_string())
+        .collect();
+    assert!(bottom.contains("arrows pick a pixel"), "{bottom}");
+}

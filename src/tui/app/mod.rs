@@ -17,7 +17,7 @@ use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::terms::TermImages;
 
-pub use super::action::{Action, Switch, View};
+pub use super::action::{Action, View};
 use super::job::Renderer;
 use super::source::{FileWatcher, SceneSource, merge_settings};
 use super::view::layout::{self, Pane, Panes};
@@ -151,8 +151,9 @@ impl App {
 
     /// Carries out an action: the only way the state changes.
     pub fn update(&mut self, action: Action) {
-        if action != Action::Tick {
-            // A tick is time passing, not the user's doing: the message stays.
+        if !matches!(action, Action::Tick | Action::Resize(..)) {
+            // Time passing and the terminal's size are not the user's
+            // doing: the message (the welcome, at first) stays.
             self.message = None;
         }
         match action {
