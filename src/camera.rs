@@ -1,13 +1,12 @@
 //! The pinhole camera and its primary rays (MODEL §2).
 
 use glam::DVec3;
-use serde::Serialize;
 
 use crate::math::Ray;
 
 /// Where the eye is and where it looks. `fov` is the vertical field of view in
 /// degrees, edge to edge of the image.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug)]
 pub struct Camera {
     pub eye: DVec3,
     pub look_at: DVec3,

@@ -12,7 +12,7 @@ pub const EPS: f64 = 1e-4;
 
 /// A half-line `origin + t * direction`. The direction of a primary or shadow
 /// ray is unit length; secondary directions are used as computed (MODEL §5).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Ray {
     pub origin: DVec3,
     pub direction: DVec3,
@@ -29,7 +29,7 @@ impl Ray {
 }
 
 /// The open interval `(min, max)` of ray distances a query accepts.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Interval {
     pub min: f64,
     pub max: f64,

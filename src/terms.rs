@@ -73,7 +73,7 @@ impl Term {
 }
 
 /// The terms of one pixel's primary ray.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct PixelTerms {
     pub color: Color,
     pub ambient: Color,

@@ -42,7 +42,7 @@ const SCENE_PADDING: f64 = 1.0 / (1u64 << 30) as f64;
 /// A node of the binary tree as built: a box and what is under it, a range
 /// of primitives (a leaf, `count > 0`) or two children (`count == 0`): the
 /// first right after this node in the array, the second at `offset`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub(super) struct BuildNode {
     pub bounds: Aabb,
     /// Leaf: the first position in the primitive index array; interior: the second child.

@@ -19,7 +19,7 @@ const EDGES_PER_BAND: usize = 2;
 /// Bands per polygon at most, so the lists stay linear in the edges.
 const MAX_BANDS: usize = 64;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub(super) struct EdgeBands {
     /// Band k covers V in (bounds[k], bounds[k + 1]]; bounds[0] is the
     /// polygon's least V and the last its greatest.

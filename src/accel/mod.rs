@@ -72,7 +72,7 @@ pub struct Candidate {
 
 /// The query structure of a scene's objects, built once by `Accel::build`.
 /// The queries take the same object list it was built from.
-#[derive(Clone, Default)]
+#[derive(Clone)]
 pub struct Accel {
     /// The hierarchy, up to four child boxes per node, the walk's start
     /// first (`node::collapse`); empty when no object is bounded.

@@ -8,7 +8,7 @@ use glam::DVec3;
 use super::normals::NormalRecipe;
 use crate::object::Object;
 
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct ObjectTables {
     materials: Vec<usize>,
     normals: Vec<NormalRecipe>,

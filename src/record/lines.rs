@@ -61,7 +61,7 @@ pub enum Piece {
 }
 
 /// One line, and what it is about (`None` for context such as near misses).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Line {
     pub about: Option<About>,
     pub pieces: Vec<Piece>,

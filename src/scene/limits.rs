@@ -12,7 +12,7 @@
 use glam::DVec3;
 
 /// An inclusive range `min..=max` and what the numbers in it are.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Bounds {
     pub min: f64,
     pub max: f64,

@@ -91,7 +91,7 @@ impl Default for Settings {
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
     /// O_d, the object's diffuse colour.
@@ -124,7 +124,7 @@ impl Material {
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Light {
     pub name: String,
     pub position: DVec3,

@@ -54,7 +54,7 @@ use crate::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
 mod bounds;
 
 /// A number that must be finite: TOML allows `nan` and `inf`, scenes do not.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 struct Finite(f64);
 
 impl<'de> Deserialize<'de> for Finite {

@@ -45,7 +45,7 @@ pub enum Working {
 }
 
 /// Up to two ray distances where a segment crosses a surface, in increasing order.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Roots {
     ts: [f64; 2],
     count: usize,

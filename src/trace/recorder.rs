@@ -19,7 +19,7 @@ pub enum RayKind {
 }
 
 /// The surface a ray hit, expanded from the winning candidate only.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct SurfaceHit {
     pub object: usize,
     pub t: f64,
@@ -33,7 +33,7 @@ pub struct SurfaceHit {
 }
 
 /// One crossing of a shadow ray's segment.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug)]
 pub struct Blocker {
     pub object: usize,
     pub t: f64,
@@ -41,7 +41,7 @@ pub struct Blocker {
 }
 
 /// The result of one shadow ray.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShadowOutcome {
     /// S_i: the product of k_t over the crossings.
     pub s: f64,
@@ -51,7 +51,7 @@ pub struct ShadowOutcome {
 }
 
 /// Everything one light contributes at a hit (MODEL §4).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct LightTerm {
     pub light: usize,
     /// L, unit length.
@@ -75,7 +75,7 @@ pub struct LightTerm {
 }
 
 /// Snell's law at a transparent surface (MODEL §5).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize)]
 pub struct Refraction {
     pub cos_i: f64,
     pub eta: f64,
@@ -87,7 +87,7 @@ pub struct Refraction {
 }
 
 /// A secondary ray's returned colour and what it adds to its parent.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct ChildTerm {
     pub kind: RayKind,
     pub weight: f64,
@@ -112,7 +112,7 @@ pub enum PruneRule {
 }
 
 /// A secondary ray that was not cast, and why.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize)]
 pub struct NotCast {
     pub kind: RayKind,
     /// The factor it would have been scaled by in its parent (k_s, k_t, k_s + k_t).

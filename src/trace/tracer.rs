@@ -15,7 +15,7 @@ use crate::math::{Color, EPS, Interval, Ray, attenuation};
 use crate::scene::{Light, Material, Scene, Settings, SpecularModel};
 
 /// What a ray brings back: its colour and, if it hit, how far it went.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 struct Traced {
     color: Color,
     distance: Option<f64>,
