@@ -86,7 +86,11 @@ fn shadow_acne_lets_the_floor_shadow_itself() {
     let blockers = &wrong.root().lights[0].shadow.as_ref().unwrap().blockers;
     assert_eq!(blockers.len(), 1);
     assert_eq!(blockers[0].object_index, 0);
-    assert!(blockers[0].t > 0.0 && blockers[0].t < 1e-16, "{}", blockers[0].t);
+    assert!(
+        blockers[0].t > 0.0 && blockers[0].t < 1e-16,
+        "{}",
+        blockers[0].t
+    );
 }
 
 #[test]
@@ -144,7 +148,10 @@ fn eta_inverted_turns_entering_glass_into_total_internal_reflection() {
         [-1.0, 1.0, 0.0],
         [SQRT_HALF, -SQRT_HALF, 0.0],
     );
-    let (r, w) = (right.root().refraction.unwrap(), wrong.root().refraction.unwrap());
+    let (r, w) = (
+        right.root().refraction.unwrap(),
+        wrong.root().refraction.unwrap(),
+    );
     assert!(close(r.eta, 1.0 / 1.5) && close(r.k, 7.0 / 9.0) && !r.tir);
     assert!(close(w.eta, 1.5) && close(w.k, -0.125) && w.tir);
 }
@@ -313,8 +320,14 @@ fn byte_wrap_and_gamma_change_the_bytes_in_the_image_and_the_recording() {
     let correct = record_pixel(&s, &s.settings, 0, 0);
     assert!((correct.color() - DVec3::new(1.2, 0.5, 0.2)).length() < 1e-15);
     assert_eq!(correct.rgb8(), [255, 128, 51]);
-    assert_eq!(stored_pixel(&s, Mistake::ByteWrap), ([50, 128, 51], [50, 128, 51]));
-    assert_eq!(stored_pixel(&s, Mistake::Gamma), ([255, 186, 123], [255, 186, 123]));
+    assert_eq!(
+        stored_pixel(&s, Mistake::ByteWrap),
+        ([50, 128, 51], [50, 128, 51])
+    );
+    assert_eq!(
+        stored_pixel(&s, Mistake::Gamma),
+        ([255, 186, 123], [255, 186, 123])
+    );
     // Both: 1.2^(1/2.2) = 1.0864, floor(277.0 + 0.5) = 277 mod 256 = 21.
     let both: Mistakes = [Mistake::ByteWrap, Mistake::Gamma].into_iter().collect();
     assert_eq!(both.rgb8(DVec3::new(1.2, 0.5, 0.2)), [21, 186, 123]);
@@ -389,7 +402,11 @@ fn under_every_mistake_the_recording_agrees_with_the_image() {
         let row = (0..w).map(|x| (x, h / 2));
         for (x, y) in pixels.into_iter().chain(row) {
             let tree = record_pixel(&scene, &settings, x, y);
-            assert_eq!(tree.rgb8(), image.get_pixel(x, y).0, "{mistakes} ({x}, {y})");
+            assert_eq!(
+                tree.rgb8(),
+                image.get_pixel(x, y).0,
+                "{mistakes} ({x}, {y})"
+            );
             assert_eq!(tree.pixel, (x, y));
             assert_eq!(tree.mistakes, mistakes);
         }
@@ -426,20 +443,32 @@ fn inspect_with_mistakes_reports_them_and_their_bytes() {
     let args = ["scenes/seven-rays.toml", "--pixel", "80,60"];
     let json = |extra: &[&str]| {
         let out = raystep(&[&["inspect"], &args[..], &["--format", "json"], extra].concat());
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
     };
     let correct = json(&[]);
     assert!(correct.get("mistakes").is_none());
     let wrong = json(&["--mistake", "gamma", "--mistake", "no-ambient"]);
     // Catalogue order, whatever the order on the command line.
-    assert_eq!(wrong["mistakes"], serde_json::json!(["no-ambient", "gamma"]));
+    assert_eq!(
+        wrong["mistakes"],
+        serde_json::json!(["no-ambient", "gamma"])
+    );
     // The bytes are the gamma curve's of the mistaken colour.
     let channel = |c: &serde_json::Value| {
         let c = c.as_f64().unwrap().max(0.0).powf(1.0 / 2.2);
         (255.0 * c + 0.5).floor().min(255.0)
     };
-    let expected: Vec<f64> = wrong["color"].as_array().unwrap().iter().map(channel).collect();
+    let expected: Vec<f64> = wrong["color"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(channel)
+        .collect();
     let bytes: Vec<f64> = wrong["rgb8"]
         .as_array()
         .unwrap()
@@ -466,7 +495,11 @@ fn render_with_a_mistake_writes_the_mistaken_image() {
         "-o",
         png.to_str().unwrap(),
     ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let image = image::open(&png).unwrap().to_rgb8();
     let s = raystep::scene::load(Path::new("scenes/seven-rays.toml"))
         .unwrap()

@@ -243,8 +243,13 @@ impl<R: Recorder> Tracer<'_, R> {
         local: Color,
     ) -> Color {
         let switches = self.settings.switches;
-        let refraction = (material.kt > 0.0 && switches.transmission)
-            .then(|| refract(ray.direction, hit, self.rules.eta(hit.entering, material.ior)));
+        let refraction = (material.kt > 0.0 && switches.transmission).then(|| {
+            refract(
+                ray.direction,
+                hit,
+                self.rules.eta(hit.entering, material.ior),
+            )
+        });
         if let Some(refraction) = &refraction {
             self.rec.refraction(refraction);
         }
