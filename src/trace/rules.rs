@@ -1,115 +1,122 @@
 //! The few numbers and choices of MODEL §3-§6 that a classic mistake changes
-//! (MODEL §8), settled once per pixel from the settings, so that the tracer
-//! reads like the lecture and asks a question (which normal lights the hit?
-//! which segment does the shadow ray test?) rather than checking mistakes.
-//! With no mistakes every rule is the model's, computed the same way.
+//! (MODEL §8), each asked as a question (which normal lights the hit? which
+//! segment does a shadow ray test?) so that the tracer reads like the lecture
+//! rather than checking mistakes. With `MISTAKES` false (an empty set) every
+//! answer is the model's and compiles to it; otherwise each question is one
+//! bit test of the settings' set.
 
 use glam::DVec3;
 
 use super::recorder::SurfaceHit;
 use crate::math::{EPS, Interval};
 use crate::mistakes::Mistake;
-use crate::scene::{Settings, SpecularModel};
+use crate::scene::{Material, Settings, SpecularModel};
 
-/// The rules one pixel is traced by.
+/// The rules a pixel is traced by: the settings' model, with their mistakes
+/// when `MISTAKES`.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Rules {
-    /// Hits at depth < this spawn secondary rays: max_depth, or one fewer.
-    pub spawn_below_depth: u32,
-    /// Whether the ambient term is added (the switch, and no `no-ambient`).
-    pub ambient: bool,
-    /// (c1, c2, c3) of f_att; (1, 0, 0), no attenuation, under `no-light-attenuation`.
-    pub light_attenuation: [f64; 3],
-    /// Phong for every material under `phong-not-blinn`.
-    pub forced_specular: Option<SpecularModel>,
-    /// Where a shadow segment starts: EPS, or 0 under `shadow-acne`.
-    shadow_start: f64,
-    /// Crossings beyond the light block too (`shadows-past-light`).
-    shadow_past_light: bool,
-    /// Every crossing counts as k_t = 0 (`opaque-shadows`).
-    pub opaque_shadows: bool,
-    /// Lighting uses N_g unflipped (`no-normal-flip`).
-    unflipped_lighting: bool,
-    /// eta = ior entering, 1 / ior leaving (`eta-inverted`).
-    eta_inverted: bool,
-    /// At TIR k_t moves to the reflected ray (not under `tir-dropped`).
-    pub tir_adds_kt: bool,
+pub(super) struct Rules<'a, const MISTAKES: bool> {
+    settings: &'a Settings,
 }
 
-impl Rules {
-    pub fn new(settings: &Settings) -> Rules {
-        let mistakes = settings.mistakes;
-        let has = |mistake| mistakes.contains(mistake);
-        if mistakes.is_empty() {
-            return Rules::model(settings);
-        }
-        Rules {
-            spawn_below_depth: if has(Mistake::DepthOffByOne) {
-                settings.max_depth.saturating_sub(1)
-            } else {
-                settings.max_depth
-            },
-            ambient: settings.switches.ambient && !has(Mistake::NoAmbient),
-            light_attenuation: if has(Mistake::NoLightAttenuation) {
-                [1.0, 0.0, 0.0]
-            } else {
-                settings.light_attenuation
-            },
-            forced_specular: has(Mistake::PhongNotBlinn).then_some(SpecularModel::Phong),
-            shadow_start: if has(Mistake::ShadowAcne) { 0.0 } else { EPS },
-            shadow_past_light: has(Mistake::ShadowsPastLight),
-            opaque_shadows: has(Mistake::OpaqueShadows),
-            unflipped_lighting: has(Mistake::NoNormalFlip),
-            eta_inverted: has(Mistake::EtaInverted),
-            tir_adds_kt: !has(Mistake::TirDropped),
+impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
+    pub fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
+        Rules { settings }
+    }
+
+    #[inline]
+    fn has(&self, mistake: Mistake) -> bool {
+        MISTAKES && self.settings.mistakes.contains(mistake)
+    }
+
+    /// Whether the ambient term is added: the switch, unless `no-ambient`.
+    #[inline]
+    pub fn ambient(&self) -> bool {
+        self.settings.switches.ambient && !self.has(Mistake::NoAmbient)
+    }
+
+    /// Hits at a depth below this spawn secondary rays: max_depth, or one
+    /// fewer under `depth-off-by-one`.
+    #[inline]
+    pub fn spawn_below_depth(&self) -> u32 {
+        let max_depth = self.settings.max_depth;
+        if self.has(Mistake::DepthOffByOne) {
+            max_depth.saturating_sub(1)
+        } else {
+            max_depth
         }
     }
 
-    /// MODEL §3-§6 as written.
-    fn model(settings: &Settings) -> Rules {
-        Rules {
-            spawn_below_depth: settings.max_depth,
-            ambient: settings.switches.ambient,
-            light_attenuation: settings.light_attenuation,
-            forced_specular: None,
-            shadow_start: EPS,
-            shadow_past_light: false,
-            opaque_shadows: false,
-            unflipped_lighting: false,
-            eta_inverted: false,
-            tir_adds_kt: true,
+    /// (c1, c2, c3) of f_att; (1, 0, 0), so f_att = 1, under `no-light-attenuation`.
+    #[inline]
+    pub fn light_attenuation(&self) -> [f64; 3] {
+        if self.has(Mistake::NoLightAttenuation) {
+            [1.0, 0.0, 0.0]
+        } else {
+            self.settings.light_attenuation
+        }
+    }
+
+    /// The material's specular model, else the scene's; Phong for every
+    /// material under `phong-not-blinn`.
+    #[inline]
+    pub fn specular_model(&self, material: &Material) -> SpecularModel {
+        if self.has(Mistake::PhongNotBlinn) {
+            SpecularModel::Phong
+        } else {
+            material.specular.unwrap_or(self.settings.specular)
         }
     }
 
     /// The normal that diffuse, specular and the faces-away test use: N,
-    /// facing the ray (MODEL §3). Reflection and refraction always use N.
+    /// facing the ray (MODEL §3), or N_g under `no-normal-flip`. Reflection
+    /// and refraction always use N.
     #[inline]
     pub fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
-        if self.unflipped_lighting {
+        if self.has(Mistake::NoNormalFlip) {
             hit.geometric_normal
         } else {
             hit.normal
         }
     }
 
-    /// The shadow segment towards a light `distance` away: (EPS, d_L).
+    /// The shadow segment towards a light `distance` away: (EPS, d_L); it
+    /// starts at 0 under `shadow-acne` and has no end under `shadows-past-light`.
     #[inline]
     pub fn shadow_segment(&self, distance: f64) -> Interval {
-        let end = if self.shadow_past_light {
+        let start = if self.has(Mistake::ShadowAcne) {
+            0.0
+        } else {
+            EPS
+        };
+        let end = if self.has(Mistake::ShadowsPastLight) {
             f64::INFINITY
         } else {
             distance
         };
-        Interval::new(self.shadow_start, end)
+        Interval::new(start, end)
     }
 
-    /// Snell's eta: 1 / ior entering, ior leaving (MODEL §5).
+    /// Every shadow crossing counts as k_t = 0 (`opaque-shadows`).
+    #[inline]
+    pub fn opaque_shadows(&self) -> bool {
+        self.has(Mistake::OpaqueShadows)
+    }
+
+    /// Snell's eta: 1 / ior entering, ior leaving (MODEL §5); the other way
+    /// round under `eta-inverted`.
     #[inline]
     pub fn eta(&self, entering: bool, ior: f64) -> f64 {
-        if entering != self.eta_inverted {
+        if entering != self.has(Mistake::EtaInverted) {
             1.0 / ior
         } else {
             ior
         }
+    }
+
+    /// At TIR k_t moves to the reflected ray, unless `tir-dropped`.
+    #[inline]
+    pub fn tir_adds_kt(&self) -> bool {
+        !self.has(Mistake::TirDropped)
     }
 }

@@ -38,30 +38,48 @@ pub fn trace_in_row<R: Recorder>(
     cache: &mut ShadowCache,
     rec: &mut R,
 ) -> Color {
-    let mut tracer = Tracer {
-        scene,
-        settings,
-        rules: Rules::new(settings),
-        cache,
-        rec,
-        rays: 0,
-    };
-    tracer.trace(ray, RayKind::Primary, 1, 1.0, 1.0).color
+    // Two tracers: the model's, where every rule is a constant, and one that
+    // asks the set; the common case pays nothing for the mistakes.
+    if settings.mistakes.is_empty() {
+        Tracer::<R, false>::new(scene, settings, cache, rec).primary(ray)
+    } else {
+        Tracer::<R, true>::new(scene, settings, cache, rec).primary(ray)
+    }
 }
 
 /// One pixel's trace in progress: the scene, its settings and the rules they
-/// make, the row's shadow cache, the recorder, and how many rays the pixel's
-/// tree holds so far.
-struct Tracer<'a, R> {
+/// make (with the settings' mistakes if `MISTAKES`), the row's shadow cache,
+/// the recorder, and how many rays the pixel's tree holds so far.
+struct Tracer<'a, R, const MISTAKES: bool> {
     scene: &'a Scene,
     settings: &'a Settings,
-    rules: Rules,
+    rules: Rules<'a, MISTAKES>,
     cache: &'a mut ShadowCache,
     rec: &'a mut R,
     rays: u32,
 }
 
-impl<R: Recorder> Tracer<'_, R> {
+impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
+    fn new(
+        scene: &'a Scene,
+        settings: &'a Settings,
+        cache: &'a mut ShadowCache,
+        rec: &'a mut R,
+    ) -> Self {
+        Tracer {
+            scene,
+            settings,
+            rules: Rules::new(settings),
+            cache,
+            rec,
+            rays: 0,
+        }
+    }
+
+    fn primary(&mut self, ray: &Ray) -> Color {
+        self.trace(ray, RayKind::Primary, 1, 1.0, 1.0).color
+    }
+
     /// `path_weight` is the ray's accumulated weight: the product of the
     /// weights from the primary ray (1) down to this ray.
     fn trace(
@@ -103,7 +121,7 @@ impl<R: Recorder> Tracer<'_, R> {
         let scene = self.scene;
         let settings = self.settings;
         let material = scene.material_of(hit.object);
-        let ambient = if self.rules.ambient {
+        let ambient = if self.rules.ambient() {
             settings.ambient * material.color * material.ka
         } else {
             Color::ZERO
@@ -111,30 +129,32 @@ impl<R: Recorder> Tracer<'_, R> {
         self.rec.ambient(ambient);
         let mut color = ambient;
         let to_viewer = -ray.direction;
+        let normal = self.rules.lighting_normal(hit);
         for (index, light) in scene.lights.iter().enumerate() {
-            let term = self.light_term(hit, material, to_viewer, index, light);
+            let term = self.light_term(hit.point, normal, material, to_viewer, (index, light));
             self.rec.light(&term);
             color += term.diffuse + term.specular;
         }
-        if depth < self.rules.spawn_below_depth {
+        if depth < self.rules.spawn_below_depth() {
             color = self.secondary_rays(ray, hit, material, (depth, path_weight), color);
         }
         color
     }
 
+    /// Light `index`'s diffuse and specular terms at `point`, lit on the side
+    /// of `normal` (`Rules::lighting_normal`).
     fn light_term(
         &mut self,
-        hit: &SurfaceHit,
+        point: DVec3,
+        normal: DVec3,
         material: &Material,
         to_viewer: DVec3,
-        index: usize,
-        light: &Light,
+        (index, light): (usize, &Light),
     ) -> LightTerm {
         let settings = self.settings;
-        let offset = light.position - hit.point;
+        let offset = light.position - point;
         let distance = offset.length();
         let to_light = offset / distance;
-        let normal = self.rules.lighting_normal(hit);
         let n_dot_l = normal.dot(to_light);
         let mut term = LightTerm {
             light: index,
@@ -144,9 +164,8 @@ impl<R: Recorder> Tracer<'_, R> {
             faces_away: n_dot_l <= 0.0,
             at_point: false,
             shadow: None,
-            f_att: attenuation(self.rules.light_attenuation, distance),
-            specular_model: (self.rules.forced_specular)
-                .unwrap_or(material.specular.unwrap_or(settings.specular)),
+            f_att: attenuation(self.rules.light_attenuation(), distance),
+            specular_model: self.rules.specular_model(material),
             specular_cosine: 0.0,
             diffuse: Color::ZERO,
             specular: Color::ZERO,
@@ -160,7 +179,7 @@ impl<R: Recorder> Tracer<'_, R> {
             return term;
         }
         if settings.switches.shadows {
-            term.shadow = Some(self.shadow_ray(hit.point, to_light, distance, index));
+            term.shadow = Some(self.shadow_ray(point, to_light, distance, index));
         }
         let s = term.shadow.map_or(1.0, |shadow| shadow.s);
         term.specular_cosine = match term.specular_model {
@@ -200,7 +219,7 @@ impl<R: Recorder> Tracer<'_, R> {
             cost: Cost::default(),
         };
         let rec = &mut *self.rec;
-        let opaque = self.rules.opaque_shadows;
+        let opaque = self.rules.opaque_shadows();
         let mut visit = |object, t| {
             let kt = if opaque {
                 0.0
@@ -260,7 +279,7 @@ impl<R: Recorder> Tracer<'_, R> {
             0.0
         };
         let reflected_weight = mirror
-            + if tir && self.rules.tir_adds_kt {
+            + if tir && self.rules.tir_adds_kt() {
                 material.kt
             } else {
                 0.0
