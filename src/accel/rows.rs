@@ -49,6 +49,7 @@ mod tests {
 
     use crate::camera::Camera;
     use crate::math::Ray;
+    use crate::mistakes::{Mistake, Mistakes};
 
     #[test]
     fn a_row_of_rays_is_the_rays_one_by_one_to_the_bit() {
@@ -58,9 +59,17 @@ mod tests {
             up: DVec3::new(0.1, 0.0, 1.0),
             fov: 37.0,
         };
-        // Widths around the chunk of eight, and odd heights.
-        for (width, height) in [(1, 1), (7, 5), (8, 3), (9, 9), (513, 17)] {
-            let viewport = camera.viewport(width, height);
+        // Widths around the chunk of eight, and odd heights; the pixel
+        // mistakes too (both ways ask `traced_row` and `pixel_offset`).
+        let corner_and_flipped: Mistakes = [Mistake::PixelCorner, Mistake::FlippedY]
+            .into_iter()
+            .collect();
+        let sizes = [(1, 1), (7, 5), (8, 3), (9, 9), (513, 17)];
+        for ((width, height), mistakes) in sizes
+            .into_iter()
+            .flat_map(|size| [(size, Mistakes::NONE), (size, corner_and_flipped)])
+        {
+            let viewport = camera.viewport(width, height).with_mistakes(mistakes);
             for y in 0..height {
                 let row = viewport.row(y);
                 assert_eq!(row.len(), width as usize);
