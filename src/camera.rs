@@ -3,6 +3,7 @@
 use glam::DVec3;
 
 use crate::math::Ray;
+use crate::mistakes::{Mistake, Mistakes};
 
 /// Where the eye is and where it looks. `fov` is the vertical field of view in
 /// degrees, edge to edge of the image.
@@ -14,8 +15,9 @@ pub struct Camera {
     pub fov: f64,
 }
 
-/// The camera's orthonormal frame for one image size, computed once per render.
-/// A render takes a row's rays at once (`accel::rows`).
+/// The camera's orthonormal frame for one image size, computed once per render,
+/// and which primary ray each image pixel gets. A render takes a row's rays
+/// at once (`accel::rows`).
 #[derive(Clone, Copy, Debug)]
 pub struct Viewport {
     pub(crate) eye: DVec3,
@@ -25,6 +27,11 @@ pub struct Viewport {
     pub(crate) half_height: f64,
     pub(crate) width: u32,
     pub(crate) height: u32,
+    /// Where in its pixel a primary ray passes: 0.5 (the centre), or 0 (the
+    /// top-left corner) under `pixel-corner` (MODEL §8).
+    pub(crate) pixel_offset: f64,
+    /// Image row y shows the row traced for height - 1 - y (`flipped-y`).
+    pub(crate) flip_y: bool,
 }
 
 /// The camera's orthonormal frame: where it looks, its right and its true up
@@ -62,18 +69,41 @@ impl Camera {
             half_height: (self.fov.to_radians() / 2.0).tan(),
             width,
             height,
+            pixel_offset: 0.5,
+            flip_y: false,
         }
     }
 }
 
 impl Viewport {
-    /// The primary ray through the centre of pixel (x, y); x to the right and
-    /// y downward, both from 0.
+    /// The viewport with the pixel mistakes of `mistakes` (`pixel-corner`,
+    /// `flipped-y`) in the mapping from image pixels to primary rays; the
+    /// others do not concern it.
+    pub fn with_mistakes(self, mistakes: Mistakes) -> Viewport {
+        Viewport {
+            pixel_offset: if mistakes.contains(Mistake::PixelCorner) {
+                0.0
+            } else {
+                0.5
+            },
+            flip_y: mistakes.contains(Mistake::FlippedY),
+            ..self
+        }
+    }
+
+    /// The row traced for image row y: y itself, or its mirror under `flipped-y`.
+    pub(crate) fn traced_row(&self, y: u32) -> u32 {
+        if self.flip_y { self.height - 1 - y } else { y }
+    }
+
+    /// The primary ray of image pixel (x, y), through the centre of the
+    /// pixel; x to the right and y downward, both from 0.
     pub fn primary_ray(&self, x: u32, y: u32) -> Ray {
         let (w, h) = (self.width as f64, self.height as f64);
         let s = self.half_height;
-        let px = (2.0 * (x as f64 + 0.5) / w - 1.0) * s * (w / h);
-        let py = (1.0 - 2.0 * (y as f64 + 0.5) / h) * s;
+        let y = self.traced_row(y);
+        let px = (2.0 * (x as f64 + self.pixel_offset) / w - 1.0) * s * (w / h);
+        let py = (1.0 - 2.0 * (y as f64 + self.pixel_offset) / h) * s;
         let direction = (self.forward + px * self.right + py * self.true_up).normalize();
         Ray::new(self.eye, direction)
     }

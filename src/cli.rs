@@ -6,12 +6,14 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
+use clap::builder::PossibleValue;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::mistakes::{Mistake, Mistakes};
 use crate::output::{self, Target};
 use crate::record::{RayTree, dot, explain, record_pixel, text};
 use crate::render::{render, with_threads};
-use crate::scene::{self, Scene};
+use crate::scene::{self, Scene, Settings};
 use crate::terms::{Term, TermImages, render_terms};
 use crate::trace::{NoRecorder, RayStats};
 
@@ -81,6 +83,8 @@ pub struct PixelArgs {
     pub pixel: (u32, u32),
     #[command(flatten)]
     pub size: SizeArg,
+    #[command(flatten)]
+    pub mistakes: MistakeArgs,
 }
 
 #[derive(Args, Debug)]
@@ -124,6 +128,37 @@ pub struct RenderArgs {
     /// missing; all the files are replaced together or none is.
     #[arg(long, value_name = "DIR")]
     pub terms: Option<PathBuf>,
+    #[command(flatten)]
+    pub mistakes: MistakeArgs,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct MistakeArgs {
+    /// Trace with this classic student mistake (repeatable; README and
+    /// docs/MODEL.md §8 list them), to make the wrong image on purpose.
+    #[arg(long = "mistake", value_name = "NAME", value_enum)]
+    pub mistakes: Vec<Mistake>,
+}
+
+impl MistakeArgs {
+    /// The scene's settings with these mistakes.
+    pub fn settings(&self, scene: &Scene) -> Settings {
+        Settings {
+            mistakes: self.mistakes.iter().copied().collect::<Mistakes>(),
+            ..scene.settings
+        }
+    }
+}
+
+/// The catalogue's fixed names are the option's values.
+impl ValueEnum for Mistake {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Mistake::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.name()))
+    }
 }
 
 #[derive(Args, Debug, Clone, Copy)]
@@ -193,7 +228,7 @@ fn record(args: &PixelArgs) -> Result<RayTree> {
             scene.height
         );
     }
-    Ok(record_pixel(&scene, &scene.settings, x, y))
+    Ok(record_pixel(&scene, &args.mistakes.settings(&scene), x, y))
 }
 
 fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
@@ -266,26 +301,26 @@ fn compare_command(args: &CompareArgs) -> Result<ExitCode> {
 /// The image, its stats when `stats`, and the term images when `terms`: one
 /// trace, as the terms pass gives the image (and the stats) too.
 fn trace_image(
-    scene: &Scene,
+    (scene, settings): (&Scene, &Settings),
     stats: bool,
     terms: bool,
     tick: &(dyn Fn() + Sync),
 ) -> (image::RgbImage, RayStats, Option<TermImages>) {
     match (stats, terms) {
         (true, true) => {
-            let (terms, stats) = render_terms::<RayStats>(scene, &scene.settings, tick);
+            let (terms, stats) = render_terms::<RayStats>(scene, settings, tick);
             (terms.color_image(), stats, Some(terms))
         }
         (false, true) => {
-            let (terms, _) = render_terms::<NoRecorder>(scene, &scene.settings, tick);
+            let (terms, _) = render_terms::<NoRecorder>(scene, settings, tick);
             (terms.color_image(), RayStats::default(), Some(terms))
         }
         (true, false) => {
-            let (image, stats) = render::<RayStats>(scene, &scene.settings, tick);
+            let (image, stats) = render::<RayStats>(scene, settings, tick);
             (image, stats, None)
         }
         (false, false) => (
-            render::<NoRecorder>(scene, &scene.settings, tick).0,
+            render::<NoRecorder>(scene, settings, tick).0,
             RayStats::default(),
             None,
         ),
@@ -300,6 +335,7 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
         rayon::spawn(|| {});
     }
     let scene = load_scene(Some(&args.scene), args.size)?;
+    let settings = args.mistakes.settings(&scene);
     let outputs = Outputs::check(args)?;
     let prepared = started.elapsed().as_secs_f64();
     let progress = progress_bar(scene.height);
@@ -308,7 +344,7 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
     let traced = Instant::now();
     let want_terms = outputs.terms.is_some();
     let (image, stats, terms) = with_threads(threads, || {
-        trace_image(&scene, args.stats, want_terms, &tick)
+        trace_image((&scene, &settings), args.stats, want_terms, &tick)
     })?;
     let tracing = traced.elapsed().as_secs_f64();
     progress.finish_and_clear();

@@ -8,6 +8,8 @@ use std::fmt;
 
 use serde::{Serialize, Serializer};
 
+use crate::math::{Color, to_byte, to_rgb8};
+
 /// One classic mistake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Mistake {
@@ -151,6 +153,49 @@ impl Mistakes {
     /// The mistakes in the set, in catalogue order.
     pub fn iter(self) -> impl Iterator<Item = Mistake> {
         Mistake::ALL.into_iter().filter(move |&m| self.contains(m))
+    }
+
+    /// A pixel's colour as the image stores it: MODEL §6's `to_rgb8`, or
+    /// with `gamma` and `byte-wrap` their bytes (§8). The render, the term
+    /// images and a recording's rgb8 all convert here, so they agree.
+    #[inline]
+    pub fn rgb8(self, color: Color) -> [u8; 3] {
+        let bytes = Mistake::Gamma.bit() | Mistake::ByteWrap.bit();
+        if self.0 & bytes == 0 {
+            return to_rgb8(color);
+        }
+        color.to_array().map(|c| self.byte(c))
+    }
+
+    /// One channel under `gamma` and/or `byte-wrap`.
+    #[cold]
+    fn byte(self, channel: f64) -> u8 {
+        let c = if self.contains(Mistake::Gamma) {
+            // A negative channel has no real root; it counts as 0.
+            channel.max(0.0).powf(1.0 / 2.2)
+        } else {
+            channel
+        };
+        if self.contains(Mistake::ByteWrap) {
+            // The integer keeps its low 8 bits, as a C cast to unsigned char
+            // does; the f64 to i64 cast saturates and takes NaN to 0.
+            ((255.0 * c + 0.5).floor() as i64).rem_euclid(256) as u8
+        } else {
+            to_byte(c)
+        }
+    }
+}
+
+/// As the comma-separated list of their names.
+impl fmt::Display for Mistakes {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, mistake) in self.iter().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            f.write_str(mistake.name())?;
+        }
+        Ok(())
     }
 }
 

@@ -9,7 +9,8 @@ use image::RgbImage;
 use rayon::prelude::*;
 
 use crate::accel::ShadowCache;
-use crate::math::{Ray, to_rgb8};
+use crate::camera::Viewport;
+use crate::math::Ray;
 use crate::scene::{Scene, Settings};
 use crate::trace::{NoRecorder, RayStats, Recorder, trace_in_row};
 
@@ -62,34 +63,42 @@ pub fn render_unless<R: RowRecorder>(
 ) -> Option<(RgbImage, R)> {
     let mut image = RgbImage::new(width, height);
     let (pixels, _) = image.as_chunks_mut::<3>();
+    let mistakes = settings.mistakes;
     let recorder = trace_rows(
-        scene,
-        (width, height),
+        &viewport(scene, settings, (width, height)),
         pixels,
         row_done,
         cancel,
         |ray, cache, rec, pixel| {
-            *pixel = to_rgb8(trace_in_row(scene, settings, ray, cache, rec));
+            *pixel = mistakes.rgb8(trace_in_row(scene, settings, ray, cache, rec));
         },
     )?;
     Some((image, recorder))
 }
 
-/// The one row loop of whole images: `pixels` (`width` a row) shared among
-/// threads by rows, each row's primary rays handed to `pixel` with the row's
-/// shadow cache and recorder, the recorders summed. Each row looks at `cancel`
-/// before it starts; `None` when it was set.
+/// Which primary ray each pixel of an image of `size` gets when `scene` is
+/// traced with `settings`: the camera's, with the settings' pixel mistakes
+/// (MODEL §8). Renders and recordings both ask here, so they agree.
+pub fn viewport(scene: &Scene, settings: &Settings, (width, height): (u32, u32)) -> Viewport {
+    scene
+        .camera
+        .viewport(width, height)
+        .with_mistakes(settings.mistakes)
+}
+
+/// The one row loop of whole images: `pixels` (a row of the viewport's width
+/// each) shared among threads by rows, each row's primary rays handed to
+/// `pixel` with the row's shadow cache and recorder, the recorders summed.
+/// Each row looks at `cancel` before it starts; `None` when it was set.
 pub(crate) fn trace_rows<T: Send, R: RowRecorder>(
-    scene: &Scene,
-    (width, height): (u32, u32),
+    viewport: &Viewport,
     pixels: &mut [T],
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
     pixel: impl Fn(&Ray, &mut ShadowCache, &mut R, &mut T) + Sync,
 ) -> Option<R> {
-    let viewport = scene.camera.viewport(width, height);
     let recorder = pixels
-        .par_chunks_mut(width as usize)
+        .par_chunks_mut(viewport.width as usize)
         .enumerate()
         .map(|(y, row)| {
             let mut rec = R::default();

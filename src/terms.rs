@@ -8,7 +8,8 @@ use image::RgbImage;
 
 use crate::accel::Cost;
 use crate::math::{Color, Ray, to_rgb8};
-use crate::render::{RowRecorder, trace_rows};
+use crate::mistakes::Mistakes;
+use crate::render::{RowRecorder, trace_rows, viewport};
 use crate::scene::{Scene, Settings};
 use crate::trace::{
     Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace_in_row,
@@ -156,6 +157,9 @@ pub struct TermImages {
     pub width: u32,
     pub height: u32,
     pub pixels: Vec<PixelTerms>,
+    /// The mistakes traced with: the colour image stores its bytes as the
+    /// render does under them (`Mistakes::rgb8`).
+    pub mistakes: Mistakes,
 }
 
 /// Traces every pixel with the terms recorder (the same `trace` as the
@@ -181,8 +185,7 @@ pub fn render_terms_unless<R: RowRecorder>(
     let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
     // Each pixel has its own terms recorder; the row's recorder sees it all.
     let counts = trace_rows::<_, R>(
-        scene,
-        size,
+        &viewport(scene, settings, size),
         &mut pixels,
         row_done,
         cancel,
@@ -199,6 +202,7 @@ pub fn render_terms_unless<R: RowRecorder>(
         width: scene.width,
         height: scene.height,
         pixels,
+        mistakes: settings.mistakes,
     };
     Some((images, counts))
 }
@@ -283,7 +287,10 @@ impl TermImages {
     /// The rendered image: each pixel's colour, as the plain render writes it.
     pub fn color_image(&self) -> RgbImage {
         RgbImage::from_fn(self.width, self.height, |x, y| {
-            image::Rgb(to_rgb8(self.pixels[(y * self.width + x) as usize].color))
+            image::Rgb(
+                self.mistakes
+                    .rgb8(self.pixels[(y * self.width + x) as usize].color),
+            )
         })
     }
 

@@ -8,7 +8,7 @@ use crate::camera::Viewport;
 use crate::math::Ray;
 
 impl Viewport {
-    /// The primary rays of row y, left to right, as `primary_ray` gives them.
+    /// The primary rays of image row y, left to right, as `primary_ray` gives them.
     ///
     /// The arithmetic is `primary_ray`'s, operation for operation, written
     /// over short arrays of pixels so that the compiler works on two pixels
@@ -18,14 +18,15 @@ impl Viewport {
         const LANES: usize = 8;
         let (w, h) = (self.width as f64, self.height as f64);
         let s = self.half_height;
-        let py = (1.0 - 2.0 * (y as f64 + 0.5) / h) * s;
+        let offset = self.pixel_offset;
+        let py = (1.0 - 2.0 * (self.traced_row(y) as f64 + offset) / h) * s;
         let up = py * self.true_up;
         let mut rays = Vec::with_capacity(self.width as usize);
         for first in (0..self.width).step_by(LANES) {
             let mut d = [[0.0; LANES]; 3];
             let mut length = [0.0; LANES];
             for i in 0..LANES {
-                let px = (2.0 * ((first + i as u32) as f64 + 0.5) / w - 1.0) * s * (w / h);
+                let px = (2.0 * ((first + i as u32) as f64 + offset) / w - 1.0) * s * (w / h);
                 for (axis, d) in d.iter_mut().enumerate() {
                     d[i] = self.forward[axis] + px * self.right[axis] + up[axis];
                 }
@@ -48,6 +49,7 @@ mod tests {
 
     use crate::camera::Camera;
     use crate::math::Ray;
+    use crate::mistakes::{Mistake, Mistakes};
 
     #[test]
     fn a_row_of_rays_is_the_rays_one_by_one_to_the_bit() {
@@ -57,9 +59,17 @@ mod tests {
             up: DVec3::new(0.1, 0.0, 1.0),
             fov: 37.0,
         };
-        // Widths around the chunk of eight, and odd heights.
-        for (width, height) in [(1, 1), (7, 5), (8, 3), (9, 9), (513, 17)] {
-            let viewport = camera.viewport(width, height);
+        // Widths around the chunk of eight, and odd heights; the pixel
+        // mistakes too (both ways ask `traced_row` and `pixel_offset`).
+        let corner_and_flipped: Mistakes = [Mistake::PixelCorner, Mistake::FlippedY]
+            .into_iter()
+            .collect();
+        let sizes = [(1, 1), (7, 5), (8, 3), (9, 9), (513, 17)];
+        for ((width, height), mistakes) in sizes
+            .into_iter()
+            .flat_map(|size| [(size, Mistakes::NONE), (size, corner_and_flipped)])
+        {
+            let viewport = camera.viewport(width, height).with_mistakes(mistakes);
             for y in 0..height {
                 let row = viewport.row(y);
                 assert_eq!(row.len(), width as usize);

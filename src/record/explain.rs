@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use super::text::{color, fraction, kind_name, not_cast_reason, num};
 use super::tree::{LightRecord, NodeId, RayTree};
-use crate::math::{Color, EPS, to_rgb8};
+use crate::math::{Color, EPS};
 use crate::shapes::Working;
 use crate::trace::{PruneRule, RayKind};
 
@@ -18,7 +18,7 @@ pub fn explain(tree: &RayTree) -> String {
     let mut out = String::new();
     let root = tree.root();
     let c = tree.color();
-    let [r, g, b] = to_rgb8(c);
+    let [r, g, b] = tree.rgb8();
     let _ = writeln!(
         out,
         "Pixel ({}, {}) has colour {} (stored as {r}, {g}, {b}).",
@@ -26,6 +26,13 @@ pub fn explain(tree: &RayTree) -> String {
         tree.pixel.1,
         color(c)
     );
+    if !tree.mistakes.is_empty() {
+        let _ = writeln!(
+            out,
+            "It is traced with classic mistakes on purpose: {} (MODEL §8).",
+            tree.mistakes
+        );
+    }
     write_near_misses(&mut out, tree);
     let Some(hit) = &root.hit else {
         let _ = writeln!(

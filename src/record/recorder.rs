@@ -4,6 +4,8 @@
 
 use crate::accel::Cost;
 use crate::math::{Color, Interval, Ray};
+use crate::mistakes::Mistakes;
+use crate::render::viewport;
 use crate::scene::{Scene, Settings};
 use crate::shapes::Shape;
 use crate::trace::{
@@ -24,6 +26,8 @@ pub struct TreeRecorder<'a> {
     scene: &'a Scene,
     /// The settings' depth limit, kept in the tree for its readers.
     max_depth: u32,
+    /// The settings' mistakes, kept in the tree for its bytes.
+    mistakes: Mistakes,
     nodes: Vec<Node>,
     events: Vec<Event>,
     /// The node of the ray being traced, innermost last.
@@ -34,13 +38,10 @@ pub struct TreeRecorder<'a> {
     shadow_ray: Option<(usize, Ray, f64)>,
 }
 
-/// Records pixel (x, y) of `scene` traced with `settings`: the same `trace`
-/// of the same primary ray the render makes.
+/// Records image pixel (x, y) of `scene` traced with `settings`: the same
+/// `trace` of the same primary ray the render makes for that pixel.
 pub fn record_pixel(scene: &Scene, settings: &Settings, x: u32, y: u32) -> RayTree {
-    let ray = scene
-        .camera
-        .viewport(scene.width, scene.height)
-        .primary_ray(x, y);
+    let ray = viewport(scene, settings, (scene.width, scene.height)).primary_ray(x, y);
     let mut recorder = TreeRecorder::new(scene, settings);
     trace(scene, settings, &ray, &mut recorder);
     recorder.into_tree((x, y))
@@ -51,6 +52,7 @@ impl<'a> TreeRecorder<'a> {
         Self {
             scene,
             max_depth: settings.max_depth,
+            mistakes: settings.mistakes,
             nodes: Vec::new(),
             events: Vec::new(),
             stack: Vec::new(),
@@ -64,6 +66,7 @@ impl<'a> TreeRecorder<'a> {
         RayTree {
             pixel,
             max_depth: self.max_depth,
+            mistakes: self.mistakes,
             nodes: self.nodes,
             events: self.events,
         }

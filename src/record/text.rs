@@ -8,7 +8,6 @@ use glam::DVec3;
 use super::lines::{About, Line};
 use super::tree::{HitRecord, LightRecord, Node, NodeId, RayTree};
 use crate::math::EPS;
-use crate::math::to_rgb8;
 use crate::scene::SpecularModel;
 use crate::shapes::{ConeWorking, PolygonWorking, RootChoice, Working};
 use crate::trace::{NotCast, PruneRule, RayKind};
@@ -434,13 +433,16 @@ const WIDTH: usize = 80;
 /// The whole recording as an indented tree, like `cargo tree`.
 pub fn text(tree: &RayTree) -> String {
     let c = tree.color();
-    let [r, g, b] = to_rgb8(c);
+    let [r, g, b] = tree.rgb8();
     let mut out = format!(
         "pixel ({}, {}): colour {} -> rgb8 ({r}, {g}, {b})\n",
         tree.pixel.0,
         tree.pixel.1,
         color(c)
     );
+    if !tree.mistakes.is_empty() {
+        let _ = writeln!(out, "traced with the mistakes: {}", tree.mistakes);
+    }
     write_node(&mut out, tree, 0, "");
     out
 }

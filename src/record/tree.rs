@@ -7,6 +7,7 @@ use serde_json::Value;
 
 use crate::accel::Cost;
 use crate::math::Color;
+use crate::mistakes::Mistakes;
 use crate::scene::SpecularModel;
 use crate::shapes::Working;
 use crate::trace::{NotCast, RayKind, Refraction};
@@ -187,6 +188,8 @@ pub struct RayTree {
     pub pixel: (u32, u32),
     /// The scene's max_depth when recorded.
     pub max_depth: u32,
+    /// The mistakes traced with (MODEL §8); they decide the pixel's bytes too.
+    pub mistakes: Mistakes,
     pub nodes: Vec<Node>,
     pub events: Vec<Event>,
 }
@@ -199,6 +202,11 @@ impl RayTree {
     /// The pixel's colour before clamping.
     pub fn color(&self) -> Color {
         self.root().color
+    }
+
+    /// The pixel's bytes, as the render stores them with the same mistakes.
+    pub fn rgb8(&self) -> [u8; 3] {
+        self.mistakes.rgb8(self.color())
     }
 
     pub fn children(&self, id: NodeId) -> impl Iterator<Item = NodeId> + '_ {
@@ -228,14 +236,19 @@ impl RayTree {
     }
 
     /// The tree as nested JSON, children inside their parents, with the events.
+    /// With a `mistakes` key, the list of their names, only when there are some.
     pub fn to_json(&self) -> Value {
-        serde_json::json!({
+        let mut json = serde_json::json!({
             "pixel": [self.pixel.0, self.pixel.1],
             "color": self.color(),
-            "rgb8": crate::math::to_rgb8(self.color()),
+            "rgb8": self.rgb8(),
             "tree": self.node_json(0),
             "events": self.events,
-        })
+        });
+        if !self.mistakes.is_empty() {
+            json["mistakes"] = serde_json::to_value(self.mistakes).unwrap_or(Value::Null);
+        }
+        json
     }
 
     fn node_json(&self, id: NodeId) -> Value {

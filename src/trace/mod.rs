@@ -2,6 +2,7 @@
 //! everything it does.
 
 mod recorder;
+mod rules;
 mod stats;
 mod tracer;
 

@@ -1,6 +1,7 @@
 //! The Whitted tracer, written once for rendering and recording (MODEL §3-§6):
 //! nearest hit or background; ambient; each light with its shadow ray; then
-//! reflection and transmission while the depth allows.
+//! reflection and transmission while the depth allows. The classic
+//! mistakes of MODEL §8 enter only through `Rules`.
 
 use std::ops::ControlFlow;
 
@@ -10,6 +11,7 @@ use super::recorder::{
     Blocker, ChildTerm, LightTerm, NotCast, PruneRule, RayKind, Recorder, Refraction,
     ShadowOutcome, SurfaceHit,
 };
+use super::rules::Rules;
 use crate::accel::{Candidate, Cost, ShadowCache};
 use crate::math::{Color, EPS, Interval, Ray, attenuation};
 use crate::scene::{Light, Material, Scene, Settings, SpecularModel};
@@ -36,27 +38,48 @@ pub fn trace_in_row<R: Recorder>(
     cache: &mut ShadowCache,
     rec: &mut R,
 ) -> Color {
-    let mut tracer = Tracer {
-        scene,
-        settings,
-        cache,
-        rec,
-        rays: 0,
-    };
-    tracer.trace(ray, RayKind::Primary, 1, 1.0, 1.0).color
+    // Two tracers: the model's, where every rule is a constant, and one that
+    // asks the set; the common case pays nothing for the mistakes.
+    if settings.mistakes.is_empty() {
+        Tracer::<R, false>::new(scene, settings, cache, rec).primary(ray)
+    } else {
+        Tracer::<R, true>::new(scene, settings, cache, rec).primary(ray)
+    }
 }
 
-/// One pixel's trace in progress: the scene and its settings, the row's
-/// shadow cache, the recorder, and how many rays the pixel's tree holds so far.
-struct Tracer<'a, R> {
+/// One pixel's trace in progress: the scene, its settings and the rules they
+/// make (with the settings' mistakes if `MISTAKES`), the row's shadow cache,
+/// the recorder, and how many rays the pixel's tree holds so far.
+struct Tracer<'a, R, const MISTAKES: bool> {
     scene: &'a Scene,
     settings: &'a Settings,
+    rules: Rules<'a, MISTAKES>,
     cache: &'a mut ShadowCache,
     rec: &'a mut R,
     rays: u32,
 }
 
-impl<R: Recorder> Tracer<'_, R> {
+impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
+    fn new(
+        scene: &'a Scene,
+        settings: &'a Settings,
+        cache: &'a mut ShadowCache,
+        rec: &'a mut R,
+    ) -> Self {
+        Tracer {
+            scene,
+            settings,
+            rules: Rules::new(settings),
+            cache,
+            rec,
+            rays: 0,
+        }
+    }
+
+    fn primary(&mut self, ray: &Ray) -> Color {
+        self.trace(ray, RayKind::Primary, 1, 1.0, 1.0).color
+    }
+
     /// `path_weight` is the ray's accumulated weight: the product of the
     /// weights from the primary ray (1) down to this ray.
     fn trace(
@@ -98,7 +121,7 @@ impl<R: Recorder> Tracer<'_, R> {
         let scene = self.scene;
         let settings = self.settings;
         let material = scene.material_of(hit.object);
-        let ambient = if settings.switches.ambient {
+        let ambient = if self.rules.ambient() {
             settings.ambient * material.color * material.ka
         } else {
             Color::ZERO
@@ -106,30 +129,33 @@ impl<R: Recorder> Tracer<'_, R> {
         self.rec.ambient(ambient);
         let mut color = ambient;
         let to_viewer = -ray.direction;
+        let normal = self.rules.lighting_normal(hit);
         for (index, light) in scene.lights.iter().enumerate() {
-            let term = self.light_term(hit, material, to_viewer, index, light);
+            let term = self.light_term(hit.point, normal, material, to_viewer, (index, light));
             self.rec.light(&term);
             color += term.diffuse + term.specular;
         }
-        if depth < settings.max_depth {
+        if depth < self.rules.spawn_below_depth() {
             color = self.secondary_rays(ray, hit, material, (depth, path_weight), color);
         }
         color
     }
 
+    /// Light `index`'s diffuse and specular terms at `point`, lit on the side
+    /// of `normal` (`Rules::lighting_normal`).
     fn light_term(
         &mut self,
-        hit: &SurfaceHit,
+        point: DVec3,
+        normal: DVec3,
         material: &Material,
         to_viewer: DVec3,
-        index: usize,
-        light: &Light,
+        (index, light): (usize, &Light),
     ) -> LightTerm {
         let settings = self.settings;
-        let offset = light.position - hit.point;
+        let offset = light.position - point;
         let distance = offset.length();
         let to_light = offset / distance;
-        let n_dot_l = hit.normal.dot(to_light);
+        let n_dot_l = normal.dot(to_light);
         let mut term = LightTerm {
             light: index,
             to_light,
@@ -138,8 +164,8 @@ impl<R: Recorder> Tracer<'_, R> {
             faces_away: n_dot_l <= 0.0,
             at_point: false,
             shadow: None,
-            f_att: attenuation(settings.light_attenuation, distance),
-            specular_model: material.specular.unwrap_or(settings.specular),
+            f_att: attenuation(self.rules.light_attenuation(), distance),
+            specular_model: self.rules.specular_model(material),
             specular_cosine: 0.0,
             diffuse: Color::ZERO,
             specular: Color::ZERO,
@@ -153,12 +179,12 @@ impl<R: Recorder> Tracer<'_, R> {
             return term;
         }
         if settings.switches.shadows {
-            term.shadow = Some(self.shadow_ray(hit.point, to_light, distance, index));
+            term.shadow = Some(self.shadow_ray(point, to_light, distance, index));
         }
         let s = term.shadow.map_or(1.0, |shadow| shadow.s);
         term.specular_cosine = match term.specular_model {
-            SpecularModel::Blinn => hit.normal.dot((to_light + to_viewer).normalize()),
-            SpecularModel::Phong => (2.0 * n_dot_l * hit.normal - to_light).dot(to_viewer),
+            SpecularModel::Blinn => normal.dot((to_light + to_viewer).normalize()),
+            SpecularModel::Phong => (2.0 * n_dot_l * normal - to_light).dot(to_viewer),
         };
         let strength = s * term.f_att;
         // powf is slow, slower still when it underflows (a shininess of 100000
@@ -193,8 +219,13 @@ impl<R: Recorder> Tracer<'_, R> {
             cost: Cost::default(),
         };
         let rec = &mut *self.rec;
+        let opaque = self.rules.opaque_shadows();
         let mut visit = |object, t| {
-            let kt = scene.material_of(object).kt;
+            let kt = if opaque {
+                0.0
+            } else {
+                scene.material_of(object).kt
+            };
             outcome.s *= kt;
             outcome.crossings += 1;
             rec.blocker(&Blocker { object, t, kt });
@@ -207,7 +238,7 @@ impl<R: Recorder> Tracer<'_, R> {
         // The row's cache only makes the query cheaper; a recording walks
         // the whole segment.
         let cache = (!R::RECORDS_ALL_BLOCKERS).then_some(&mut *self.cache);
-        let segment = Interval::new(EPS, distance);
+        let segment = self.rules.shadow_segment(distance);
         scene.accel.shadow_crossings(
             &scene.objects,
             &ray,
@@ -231,8 +262,13 @@ impl<R: Recorder> Tracer<'_, R> {
         local: Color,
     ) -> Color {
         let switches = self.settings.switches;
-        let refraction = (material.kt > 0.0 && switches.transmission)
-            .then(|| refract(ray.direction, hit, material.ior));
+        let refraction = (material.kt > 0.0 && switches.transmission).then(|| {
+            refract(
+                ray.direction,
+                hit,
+                self.rules.eta(hit.entering, material.ior),
+            )
+        });
         if let Some(refraction) = &refraction {
             self.rec.refraction(refraction);
         }
@@ -242,7 +278,12 @@ impl<R: Recorder> Tracer<'_, R> {
         } else {
             0.0
         };
-        let reflected_weight = mirror + if tir { material.kt } else { 0.0 };
+        let reflected_weight = mirror
+            + if tir && self.rules.tir_adds_kt() {
+                material.kt
+            } else {
+                0.0
+            };
         let mut color = local;
         if reflected_weight > 0.0 {
             let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
@@ -344,10 +385,9 @@ fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
     }
 }
 
-/// Snell's law with N facing the incoming ray; eta = 1 / ior entering, ior leaving.
-fn refract(direction: DVec3, hit: &SurfaceHit, ior: f64) -> Refraction {
+/// Snell's law with N facing the incoming ray and the ratio `eta` (`Rules::eta`).
+fn refract(direction: DVec3, hit: &SurfaceHit, eta: f64) -> Refraction {
     let cos_i = -direction.dot(hit.normal);
-    let eta = if hit.entering { 1.0 / ior } else { ior };
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
     let tir = k < 0.0;
     let direction = (!tir).then(|| eta * direction + (eta * cos_i - k.sqrt()) * hit.normal);

@@ -1,0 +1,122 @@
+//! The few numbers and choices of MODEL §3-§6 that a classic mistake changes
+//! (MODEL §8), each asked as a question (which normal lights the hit? which
+//! segment does a shadow ray test?) so that the tracer reads like the lecture
+//! rather than checking mistakes. With `MISTAKES` false (an empty set) every
+//! answer is the model's and compiles to it; otherwise each question is one
+//! bit test of the settings' set.
+
+use glam::DVec3;
+
+use super::recorder::SurfaceHit;
+use crate::math::{EPS, Interval};
+use crate::mistakes::Mistake;
+use crate::scene::{Material, Settings, SpecularModel};
+
+/// The rules a pixel is traced by: the settings' model, with their mistakes
+/// when `MISTAKES`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Rules<'a, const MISTAKES: bool> {
+    settings: &'a Settings,
+}
+
+impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
+    pub fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
+        Rules { settings }
+    }
+
+    #[inline]
+    fn has(&self, mistake: Mistake) -> bool {
+        MISTAKES && self.settings.mistakes.contains(mistake)
+    }
+
+    /// Whether the ambient term is added: the switch, unless `no-ambient`.
+    #[inline]
+    pub fn ambient(&self) -> bool {
+        self.settings.switches.ambient && !self.has(Mistake::NoAmbient)
+    }
+
+    /// Hits at a depth below this spawn secondary rays: max_depth, or one
+    /// fewer under `depth-off-by-one`.
+    #[inline]
+    pub fn spawn_below_depth(&self) -> u32 {
+        let max_depth = self.settings.max_depth;
+        if self.has(Mistake::DepthOffByOne) {
+            max_depth.saturating_sub(1)
+        } else {
+            max_depth
+        }
+    }
+
+    /// (c1, c2, c3) of f_att; (1, 0, 0), so f_att = 1, under `no-light-attenuation`.
+    #[inline]
+    pub fn light_attenuation(&self) -> [f64; 3] {
+        if self.has(Mistake::NoLightAttenuation) {
+            [1.0, 0.0, 0.0]
+        } else {
+            self.settings.light_attenuation
+        }
+    }
+
+    /// The material's specular model, else the scene's; Phong for every
+    /// material under `phong-not-blinn`.
+    #[inline]
+    pub fn specular_model(&self, material: &Material) -> SpecularModel {
+        if self.has(Mistake::PhongNotBlinn) {
+            SpecularModel::Phong
+        } else {
+            material.specular.unwrap_or(self.settings.specular)
+        }
+    }
+
+    /// The normal that diffuse, specular and the faces-away test use: N,
+    /// facing the ray (MODEL §3), or N_g under `no-normal-flip`. Reflection
+    /// and refraction always use N.
+    #[inline]
+    pub fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
+        if self.has(Mistake::NoNormalFlip) {
+            hit.geometric_normal
+        } else {
+            hit.normal
+        }
+    }
+
+    /// The shadow segment towards a light `distance` away: (EPS, d_L); it
+    /// starts at 0 under `shadow-acne` and has no end under `shadows-past-light`.
+    #[inline]
+    pub fn shadow_segment(&self, distance: f64) -> Interval {
+        let start = if self.has(Mistake::ShadowAcne) {
+            0.0
+        } else {
+            EPS
+        };
+        let end = if self.has(Mistake::ShadowsPastLight) {
+            f64::INFINITY
+        } else {
+            distance
+        };
+        Interval::new(start, end)
+    }
+
+    /// Every shadow crossing counts as k_t = 0 (`opaque-shadows`).
+    #[inline]
+    pub fn opaque_shadows(&self) -> bool {
+        self.has(Mistake::OpaqueShadows)
+    }
+
+    /// Snell's eta: 1 / ior entering, ior leaving (MODEL §5); the other way
+    /// round under `eta-inverted`.
+    #[inline]
+    pub fn eta(&self, entering: bool, ior: f64) -> f64 {
+        if entering != self.has(Mistake::EtaInverted) {
+            1.0 / ior
+        } else {
+            ior
+        }
+    }
+
+    /// At TIR k_t moves to the reflected ray, unless `tir-dropped`.
+    #[inline]
+    pub fn tir_adds_kt(&self) -> bool {
+        !self.has(Mistake::TirDropped)
+    }
+}
