@@ -6,8 +6,8 @@ use std::sync::atomic::AtomicBool;
 use image::RgbImage;
 
 use crate::accel::Cost;
-use crate::math::{Color, to_rgb8};
-use crate::render::trace_rows;
+use crate::math::Color;
+use crate::render::{trace_rows, viewport};
 use crate::scene::{Scene, Settings};
 use crate::trace::{NoRecorder, Recorder, SurfaceHit, trace_in_row};
 
@@ -28,8 +28,7 @@ pub fn render(scene: &Scene, settings: &Settings) -> Reference {
     let (width, height) = (scene.width, scene.height);
     let mut pixels = vec![(Color::ZERO, None); width as usize * height as usize];
     trace_rows::<_, NoRecorder>(
-        scene,
-        (width, height),
+        &viewport(scene, settings, (width, height)),
         &mut pixels,
         &|| {},
         &AtomicBool::new(false),
@@ -41,7 +40,7 @@ pub fn render(scene: &Scene, settings: &Settings) -> Reference {
     )
     .expect("a render nobody can cancel finishes");
     let image = RgbImage::from_fn(width, height, |x, y| {
-        image::Rgb(to_rgb8(pixels[(y * width + x) as usize].0))
+        image::Rgb(settings.mistakes.rgb8(pixels[(y * width + x) as usize].0))
     });
     Reference {
         image,
