@@ -16,7 +16,7 @@ use image::RgbImage;
 use serde::Serialize;
 
 pub use metrics::{MATCH_SHARE, Metrics, TOLERANCE_STEPS};
-pub use ranking::{MIN_EXPLAINS, Ranked};
+pub use ranking::{MIN_FIT, Ranked};
 pub use report::text;
 pub use student::StudentImage;
 

@@ -1,73 +1,170 @@
 //! Which classic mistake explains the student's image: the scene rendered
 //! again under each mistake with the same engine, and each variant measured
-//! by how much of the student's difference from the reference it accounts for.
+//! against the student's image.
 //!
 //! The student's tracer is another program: its rounding speckles other
 //! pixels than ours (shadow acne) and its edges fall elsewhere. So images are
 //! compared by the mean colour of 8 x 8 blocks, not pixel by pixel: two
 //! speckled images of the same density agree there, where a clean one does not.
+//!
+//! A mistake is judged where it changes the image: in the blocks its render
+//! changes, does it bring the reference to the student's image? That finds
+//! a small mistake (a highlight's shape) beside a large one (black
+//! shadows), and turns down a look-alike: once the mistake that darkens
+//! everything is chosen, another that darkens shadows brings nothing more.
 
 use image::RgbImage;
 use serde::Serialize;
 
 use super::metrics::{TOLERANCE_STEPS, channel_gap};
-use crate::mistakes::Mistake;
+use crate::mistakes::{Mistake, Mistakes};
 use crate::render::render;
 use crate::scene::{Scene, Settings};
 use crate::trace::NoRecorder;
 
 /// The side of the blocks compared.
-const BLOCK: u32 = 8;
-/// A mistake is listed when it explains at least this share of the difference.
-pub const MIN_EXPLAINS: f64 = 0.2;
+const BLOCK: u32 = 16;
+/// A mistake is listed when, in the blocks it changes, it takes the image at
+/// least this far from the reference (or from the mistakes listed above it)
+/// to the student's.
+pub const MIN_FIT: f64 = 0.5;
+/// At most this many mistakes are listed.
+const MAX_LISTED: usize = 3;
 
-/// A mistake and how much of the difference it explains.
+/// A mistake, how much of the difference it explains and how well it fits.
 #[derive(Clone, Debug, Serialize)]
 pub struct Ranked {
     #[serde(rename = "name")]
     pub mistake: Mistake,
-    /// 1 - D(yours, variant) / D(yours, reference), D the block difference:
-    /// 1 when the mistaken render is the student's image, 0 or less when it
-    /// is no closer than the correct one.
+    /// 1 - D(yours, variant) / D(yours, reference), D the block difference
+    /// over the whole image: 1 when the mistaken render is the student's
+    /// image, 0 or less when it is no closer than the correct one.
     pub explains: f64,
+    /// The same over the blocks the mistake changes, starting from the
+    /// render with the mistakes listed above it: 1 when there it gives the
+    /// student's image.
+    pub fits: f64,
     /// A pixel where the mistake shows: the student's pixel differs from the
     /// reference there and the mistaken render comes closest to it.
     pub pixel: Option<[u32; 2]>,
 }
 
-/// Every mistake that explains at least `MIN_EXPLAINS` of the difference
-/// between `yours` and `reference`, best first.
+/// The mistakes that explain the difference between `yours` and
+/// `reference`, most first. Each next one is, among the mistakes that fit
+/// at least `MIN_FIT` on top of those above it, the one that explains most.
 pub fn rank(
     scene: &Scene,
     settings: &Settings,
     yours: &RgbImage,
     reference: &RgbImage,
 ) -> Vec<Ranked> {
-    let blocks_yours = block_sums(yours);
-    let apart = difference(&blocks_yours, &block_sums(reference));
-    if apart == 0 {
+    let yours_blocks = block_sums(yours);
+    let reference_blocks = block_sums(reference);
+    if yours_blocks == reference_blocks && yours == reference {
         return Vec::new();
     }
-    let mut ranked: Vec<Ranked> = Mistake::ALL
+    let render_with = |mistakes: Mistakes| {
+        let mut mistaken = *settings;
+        mistaken.mistakes = mistakes;
+        block_sums(&render::<NoRecorder>(scene, &mistaken, &|| {}).0)
+    };
+    // Each mistake alone, with the blocks it changes; one that changes
+    // nothing in this scene drops out. (Dropping those that fit poorly
+    // alone would save renders but lose a small mistake hidden under a
+    // large one, as phong-not-blinn's highlights under opaque shadows.)
+    let mut candidates: Vec<Candidate> = Mistake::ALL
         .into_iter()
         .filter_map(|mistake| {
             let mut mistaken = *settings;
-            mistaken.mistakes = mistaken.mistakes.with(mistake);
-            let variant = render::<NoRecorder>(scene, &mistaken, &|| {}).0;
-            if variant == *reference {
-                return None; // the mistake changes nothing in this scene
-            }
-            let left = difference(&blocks_yours, &block_sums(&variant));
-            let explains = 1.0 - left as f64 / apart as f64;
-            (explains >= MIN_EXPLAINS).then(|| Ranked {
+            mistaken.mistakes = Mistakes::NONE.with(mistake);
+            let image = render::<NoRecorder>(scene, &mistaken, &|| {}).0;
+            let blocks = block_sums(&image);
+            let changed: Vec<bool> = blocks
+                .iter()
+                .zip(&reference_blocks)
+                .map(|(a, b)| a != b)
+                .collect();
+            changed.contains(&true).then(|| Candidate {
                 mistake,
-                explains,
-                pixel: showing_pixel(yours, reference, &variant),
+                explains: explains(&yours_blocks, &reference_blocks, &blocks, None),
+                pixel: showing_pixel(yours, reference, &image),
+                changed,
+                blocks,
             })
         })
         .collect();
-    ranked.sort_by(|a, b| b.explains.total_cmp(&a.explains));
+    let mut ranked: Vec<Ranked> = Vec::new();
+    let mut chosen = Mistakes::NONE;
+    let mut base = reference_blocks.clone();
+    while ranked.len() < MAX_LISTED {
+        // How each remaining mistake fits on top of the chosen ones.
+        let fits: Vec<(f64, Vec<[u32; 3]>)> = candidates
+            .iter()
+            .map(|c| {
+                let blocks = if chosen.is_empty() {
+                    c.blocks.clone()
+                } else {
+                    render_with(chosen.with(c.mistake))
+                };
+                (
+                    explains(&yours_blocks, &base, &blocks, Some(&c.changed)),
+                    blocks,
+                )
+            })
+            .collect();
+        let best = (0..candidates.len())
+            .filter(|&i| fits[i].0 >= MIN_FIT)
+            .max_by(|&a, &b| candidates[a].explains.total_cmp(&candidates[b].explains));
+        let Some(best) = best else { break };
+        let (fit, blocks) = fits.into_iter().nth(best).expect("in range");
+        let c = candidates.remove(best);
+        ranked.push(Ranked {
+            mistake: c.mistake,
+            explains: c.explains,
+            fits: fit,
+            pixel: c.pixel,
+        });
+        chosen = chosen.with(c.mistake);
+        base = blocks;
+    }
     ranked
+}
+
+/// One mistake's render, as the ranking needs it.
+struct Candidate {
+    mistake: Mistake,
+    /// Over the whole image, alone.
+    explains: f64,
+    pixel: Option<[u32; 2]>,
+    /// Which blocks the mistake alone changes.
+    changed: Vec<bool>,
+    blocks: Vec<[u32; 3]>,
+}
+
+/// 1 - D(yours, variant) / D(yours, base) over the blocks in `only` (all
+/// when `None`); 0 when yours and base agree there.
+fn explains(
+    yours: &[[u32; 3]],
+    base: &[[u32; 3]],
+    variant: &[[u32; 3]],
+    only: Option<&[bool]>,
+) -> f64 {
+    let keep = |i: usize| only.is_none_or(|o| o[i]);
+    let gap = |other: &[[u32; 3]]| -> u64 {
+        (0..yours.len())
+            .filter(|&i| keep(i))
+            .map(|i| {
+                (0..3)
+                    .map(|c| yours[i][c].abs_diff(other[i][c]) as u64)
+                    .sum::<u64>()
+            })
+            .sum()
+    };
+    let apart = gap(base);
+    if apart == 0 {
+        return 0.0;
+    }
+    1.0 - gap(variant) as f64 / apart as f64
 }
 
 /// Each block's channel sums, row-major by block.
@@ -82,14 +179,6 @@ fn block_sums(image: &RgbImage) -> Vec<[u32; 3]> {
         }
     }
     sums
-}
-
-/// The sum over blocks and channels of the blocks' difference.
-fn difference(a: &[[u32; 3]], b: &[[u32; 3]]) -> u64 {
-    a.iter()
-        .zip(b)
-        .map(|(a, b)| (0..3).map(|c| a[c].abs_diff(b[c]) as u64).sum::<u64>())
-        .sum()
 }
 
 /// Where the variant comes closest to the student's image, among the pixels
@@ -125,12 +214,29 @@ mod tests {
         let b = RgbImage::from_fn(8, 8, |x, y| {
             image::Rgb([if (x + y) % 2 == 1 { 255 } else { 0 }; 3])
         });
-        assert_eq!(difference(&block_sums(&a), &block_sums(&b)), 0);
-        let black = RgbImage::new(8, 8);
+        assert_eq!(block_sums(&a), block_sums(&b));
+        assert_eq!(block_sums(&a), [[32 * 255; 3]]);
+        // So, against a black reference, b explains all of a's difference.
+        let black = block_sums(&RgbImage::new(8, 8));
         assert_eq!(
-            difference(&block_sums(&a), &block_sums(&black)),
-            3 * 32 * 255
+            explains(&block_sums(&a), &black, &block_sums(&b), None),
+            1.0
         );
+    }
+
+    #[test]
+    fn a_mistake_is_judged_only_where_it_changes_the_image() {
+        // Two blocks. Yours differs from the base by 100 in block 0 and by
+        // 300 in block 1; the variant changes block 0 only, to yours. Over
+        // the whole image it explains 100 / 400 = 0.25; where it changes
+        // the image (block 0) it fits fully.
+        let base = [[0, 0, 0], [0, 0, 0]];
+        let yours = [[100, 0, 0], [300, 0, 0]];
+        let variant = [[100, 0, 0], [0, 0, 0]];
+        assert_eq!(explains(&yours, &base, &variant, None), 0.25);
+        assert_eq!(explains(&yours, &base, &variant, Some(&[true, false])), 1.0);
+        // Where yours and base agree, nothing is there to explain: 0.
+        assert_eq!(explains(&base, &base, &variant, Some(&[true, false])), 0.0);
     }
 
     #[test]

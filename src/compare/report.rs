@@ -68,16 +68,18 @@ fn write_mistakes(out: &mut String, c: &Comparison) {
     }
     let _ = writeln!(
         out,
-        "Likely mistakes (share of the difference each explains):"
+        "Likely mistakes (share of the difference each explains; how well it fits where it changes the image):"
     );
-    for ranked in &c.mistakes {
+    for (i, ranked) in c.mistakes.iter().enumerate() {
+        let fits = format!("fits {}", percent(ranked.fits));
+        let with = if i == 0 { "" } else { " with the above" };
         let at = ranked
             .pixel
             .map(|[x, y]| format!("; see pixel {x},{y}"))
             .unwrap_or_default();
         let _ = writeln!(
             out,
-            "  {:<20} {:>4}  {}{at}",
+            "  {:<20} {:>6}  ({fits}{with})  {}{at}",
             ranked.mistake.name(),
             percent(ranked.explains.max(0.0)),
             ranked.mistake.summary()
