@@ -16,3 +16,9 @@ for f in ../scenes/spd/*-small.nff; do
     # First byte odd = NFF.
     { printf 'K'; cat "corpus/nff_loader/$name"; } > "corpus/trace_pixel/nff-$name"
 done
+# student_png: small PNGs as raystep writes them (RGB, 8 bits).
+mkdir -p corpus/student_png
+for size in 4x3 16x12; do
+    cargo run --quiet --release --manifest-path ../Cargo.toml -- \
+        render ../scenes/glass.toml --size "$size" -o "corpus/student_png/glass-$size.png"
+done

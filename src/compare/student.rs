@@ -3,7 +3,7 @@
 //! with a message that names the file.
 
 use std::fs::File;
-use std::io::Read;
+use std::io::{BufRead, BufReader, Read, Seek};
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
@@ -23,17 +23,26 @@ pub struct StudentImage {
 
 /// Reads `path`, which must be a PNG no larger than raystep renders.
 pub fn load(path: &Path) -> Result<StudentImage> {
-    let name = path.display();
-    let mut signature = [0u8; 8];
-    let read = File::open(path)
-        .and_then(|mut file| file.read(&mut signature))
+    let name = path.display().to_string();
+    let file = File::open(path).with_context(|| format!("cannot read {name}"))?;
+    read(BufReader::new(file), &name)
+}
+
+/// Reads a PNG from `reader`; `name` names it in messages. The signature is
+/// checked first, then the size in the header, then the pixels are decoded.
+pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage> {
+    let mut signature = Vec::with_capacity(PNG_SIGNATURE.len());
+    (&mut reader)
+        .take(PNG_SIGNATURE.len() as u64)
+        .read_to_end(&mut signature)
         .with_context(|| format!("cannot read {name}"))?;
-    if read < PNG_SIGNATURE.len() || signature != PNG_SIGNATURE {
+    if signature != PNG_SIGNATURE {
         bail!("{name} is not a PNG image (it does not start with the PNG signature)");
     }
-    let mut reader = ImageReader::open(path).with_context(|| format!("cannot read {name}"))?;
-    reader.set_format(ImageFormat::Png);
-    let decoder = reader
+    reader
+        .rewind()
+        .with_context(|| format!("cannot read {name}"))?;
+    let decoder = ImageReader::with_format(reader, ImageFormat::Png)
         .into_decoder()
         .with_context(|| format!("{name} is not a readable PNG"))?;
     let (width, height) = decoder.dimensions();
