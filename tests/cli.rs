@@ -1,19 +1,10 @@
 //! Bad input through the command line: a clear message, a non-zero exit,
 //! never a panic, and nothing already written damaged.
 
+mod support;
+use support::{raystep, stderr};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn raystep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raystep"))
-        .args(args)
-        .output()
-        .expect("raystep runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
 
 /// A scene file in a fresh temporary directory.
 fn scene_file(dir: &tempfile::TempDir, name: &str, text: impl AsRef<[u8]>) -> PathBuf {

@@ -1,23 +1,11 @@
 //! `raystep compare` as a student and an autograder run it: exit codes, bad
 //! images, a correct image from another tracer, and what the report says.
 
+mod support;
+use support::{raystep, stderr, stdout};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn raystep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raystep"))
-        .args(args)
-        .output()
-        .expect("raystep runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
+use std::process::Output;
 
 fn path(p: &Path) -> &str {
     p.to_str().unwrap()

@@ -5,7 +5,6 @@
 mod support;
 
 use std::path::Path;
-use std::process::Command;
 
 use glam::DVec3;
 use raystep::mistakes::{Mistake, Mistakes};
@@ -15,7 +14,7 @@ use raystep::scene::{Scene, Settings, parse};
 use raystep::terms::render_terms;
 use raystep::trace::NoRecorder;
 
-use support::scene;
+use support::{raystep, scene};
 
 const SQRT_HALF: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
@@ -411,14 +410,6 @@ fn under_every_mistake_the_recording_agrees_with_the_image() {
             assert_eq!(tree.mistakes, mistakes);
         }
     }
-}
-
-fn raystep(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_raystep"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
 }
 
 #[test]
