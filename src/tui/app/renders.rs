@@ -89,7 +89,7 @@ mod tests {
             size: None,
         };
         let big = source.load().unwrap().with_size(4000, 3000).unwrap();
-        let mut app = App::new(source, big, false);
+        let mut app = App::new(source, big, None, false);
         let deadline = Instant::now() + Duration::from_secs(30);
         while !app
             .progress()

@@ -7,8 +7,6 @@ use ratatui::text::{Line, Span};
 use crate::compare::Ranked;
 use crate::mistakes::{Mistake, Mistakes};
 
-/// The widest mistake name, for the column.
-const NAME_WIDTH: usize = 20;
 
 /// "#1 explains 100%": where the comparison ranks `mistake`, if it does.
 pub fn rank_label(ranked: &[Ranked], mistake: Mistake) -> Option<String> {
@@ -43,6 +41,8 @@ pub fn ranking(ranked: &[Ranked], matches: bool) -> String {
 
 /// The menu's lines, the `selected` row highlighted.
 pub fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Line<'static>> {
+    // The names' column: the longest name and two spaces.
+    let width = Mistake::ALL.iter().map(|m| m.name().len()).max().unwrap_or(0) + 2;
     Mistake::ALL
         .iter()
         .enumerate()
@@ -50,7 +50,7 @@ pub fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Line<'stat
             let check = if on.contains(mistake) { "[x]" } else { "[ ]" };
             let mut spans = vec![
                 Span::raw(format!(" {check} ")),
-                Span::raw(format!("{:<NAME_WIDTH$}", mistake.name())).bold(),
+                Span::raw(format!("{:<width$}", mistake.name())).bold(),
                 Span::raw(mistake.summary().to_string()),
             ];
             if let Some(label) = rank_label(ranked, mistake) {
@@ -89,13 +89,13 @@ mod tests {
         let on = Mistakes::NONE.with(Mistake::NoAmbient);
         let lines = lines(on, 0, &[ranked(Mistake::NoAmbient, 0.996)]);
         assert_eq!(lines.len(), 14);
-        // Row 9 of the catalogue is no-ambient: on, ranked first, 99.6% -> 100%.
+        // Row 9 of the catalogue is no-ambient: on, ranked first, 99.6% ->
+        // 100%; the name padded to 22 (no-light-attenuation's 20, and 2).
         assert_eq!(
             text(&lines[9]),
-            format!(
-                " [x] no-ambient          no ambient term  #1 explains 100% "
-            )
+            " [x] no-ambient            no ambient term  #1 explains 100% "
         );
+        assert!(text(&lines[7]).starts_with(" [ ] no-light-attenuation  lights not"));
         assert!(text(&lines[0]).starts_with(" [ ] shadow-acne "));
         assert!(text(&lines[0]).contains(Mistake::ShadowAcne.summary()));
     }
