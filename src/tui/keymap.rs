@@ -175,13 +175,13 @@ const PIXEL_AND_VIEW: &[Binding] = &[
     },
     Binding {
         inputs: &[(key('v'), act(Action::CycleView))],
-        what: "cycle the image: render, each term, shadow, rays, cost, yours, error map",
+        what: "cycle the image: render, each term image, yours, error map",
         hint: hint(7, "v", "view"),
         ..ROW
     },
     Binding {
         inputs: &[(key('w'), act(Action::NextRegion))],
-        what: "with --compare: to the next region that differs, largest first",
+        what: "with --compare: next region that differs, largest first",
         ..ROW
     },
     Binding {
