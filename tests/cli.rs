@@ -471,7 +471,10 @@ fn debug_compare_reports_a_bad_image_before_the_terminal() {
     for (args, want) in [
         (vec!["debug", scene, "--compare", missing], "cannot read"),
         (vec![scene, "--compare", missing], "cannot read"),
-        (vec!["debug", scene, "--compare", not_png], "is not a PNG image"),
+        (
+            vec!["debug", scene, "--compare", not_png],
+            "is not a PNG image",
+        ),
     ] {
         let output = raystep(&args);
         let message = stderr(&output);
@@ -497,6 +500,9 @@ fn debug_compare_with_a_good_image_still_needs_a_terminal() {
     ]);
     let message = stderr(&output);
     assert_eq!(output.status.code(), Some(1), "{message}");
-    assert!(message.contains("the debugger needs a terminal"), "{message}");
+    assert!(
+        message.contains("the debugger needs a terminal"),
+        "{message}"
+    );
     assert!(output.stdout.is_empty());
 }

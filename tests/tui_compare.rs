@@ -79,7 +79,10 @@ fn a_mistake_turned_on_in_the_menu_records_as_record_pixel_with_it() {
     assert_eq!(Mistake::ALL[9], Mistake::NoAmbient);
     chars(&mut app, " ");
     assert_eq!(app.message(), Some("mistake no-ambient on"));
-    assert_eq!(app.settings().mistakes, Mistakes::NONE.with(Mistake::NoAmbient));
+    assert_eq!(
+        app.settings().mistakes,
+        Mistakes::NONE.with(Mistake::NoAmbient)
+    );
     let mistaken = text(&record_pixel(&scene, &with(Mistake::NoAmbient), x, y));
     assert_ne!(mistaken, plain, "the centre pixel has an ambient term");
     assert_eq!(text(app.tree()), mistaken);
@@ -92,7 +95,11 @@ fn a_mistake_turned_on_in_the_menu_records_as_record_pixel_with_it() {
     assert!(!app.should_quit(), "Esc closes the menu, not the debugger");
     let header = screen_text(&mut app, 120, 40);
     assert!(
-        header.lines().next().unwrap().contains("mistakes: no-ambient"),
+        header
+            .lines()
+            .next()
+            .unwrap()
+            .contains("mistakes: no-ambient"),
         "{header}"
     );
     // Enter toggles it off again; M closes.
@@ -127,7 +134,10 @@ fn a_mistake_stays_on_across_a_reload() {
     app.update(Action::Reload);
     assert_eq!(app.error(), None);
     assert_eq!(app.settings().max_depth, 2, "the edit took effect");
-    assert_eq!(app.settings().mistakes, Mistakes::NONE.with(Mistake::ShadowAcne));
+    assert_eq!(
+        app.settings().mistakes,
+        Mistakes::NONE.with(Mistake::ShadowAcne)
+    );
 }
 
 #[test]
@@ -200,10 +210,17 @@ fn w_goes_to_each_regions_pixel_largest_first_and_cycles() {
             "{message}"
         );
         let scene = app.scene();
-        assert_eq!(text(app.tree()), text(&record_pixel(scene, &scene.settings, x, y)));
+        assert_eq!(
+            text(app.tree()),
+            text(&record_pixel(scene, &scene.settings, x, y))
+        );
     }
     chars(&mut app, "w");
-    assert_eq!(app.cursor(), (regions[0].0[0], regions[0].0[1]), "back to the largest");
+    assert_eq!(
+        app.cursor(),
+        (regions[0].0[0], regions[0].0[1]),
+        "back to the largest"
+    );
 }
 
 #[test]

@@ -533,9 +533,7 @@ mod tests {
             .collect();
         for (n, &(ca, a)) in inputs.iter().enumerate() {
             for &(cb, b) in &inputs[n + 1..] {
-                let together = Mode::ALL
-                    .iter()
-                    .any(|&m| ca.applies(m) && cb.applies(m));
+                let together = Mode::ALL.iter().any(|&m| ca.applies(m) && cb.applies(m));
                 // Ctrl+x and Shift+x would tie for a key with both held.
                 let tie = match (a, b) {
                     (Input::Ctrl(x), Input::Shift(y)) | (Input::Shift(x), Input::Ctrl(y)) => x == y,
@@ -575,7 +573,10 @@ mod tests {
             Some(act(Action::Move(-10, 0)))
         );
         let ctrl_h = key(KeyCode::Char('h'), KeyModifiers::CONTROL);
-        assert_eq!(key_command(&ctrl_h, Mode::Browsing), Some(Command::Arrow(-1, 0)));
+        assert_eq!(
+            key_command(&ctrl_h, Mode::Browsing),
+            Some(Command::Arrow(-1, 0))
+        );
         assert_eq!(
             key_command(&key(KeyCode::F(5), KeyModifiers::NONE), Mode::Browsing),
             None

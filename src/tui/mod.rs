@@ -135,6 +135,10 @@ pub fn run(path: Option<&Path>, compare: Option<&Path>) -> Result<ExitCode> {
              or `raystep inspect SCENE --pixel X,Y` for one pixel's ray tree"
         );
     }
+    if let Some(image) = compare {
+        // Seconds on a large scene, before the screen changes: say why.
+        eprintln!("comparing {} with the scene…", image.display());
+    }
     let mut app = App::open_with(path.map(Path::to_path_buf), student, false)?.watching();
     let result = terminal::take()
         .and_then(|mut terminal| run_loop(&mut terminal, &mut app, &mut TerminalInput));

@@ -14,8 +14,8 @@ use image::RgbImage;
 use ratatui::layout::Rect;
 
 use crate::compare::{self, Comparison, StudentImage};
-use crate::record::{NodeId, RayTree, record_pixel};
 use crate::mistakes::Mistake;
+use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::terms::TermImages;
 

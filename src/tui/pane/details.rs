@@ -17,8 +17,7 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let title = format!(" Details · r{id} {} ray ", kind_name(node.kind));
     let block = pane_block(app, Pane::Details, title);
     let inside = block.inner(area);
-    let (mut lines, mut marked) =
-        lines(app.tree(), id, Some(app.current()), inside.width as usize);
+    let (mut lines, mut marked) = lines(app.tree(), id, Some(app.current()), inside.width as usize);
     let (x, y) = app.cursor();
     if let Some(yours) = app.compared().map(|c| c.yours.get_pixel(x, y).0) {
         lines.insert(0, compare_line(yours, app.our_pixel()));

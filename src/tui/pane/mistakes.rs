@@ -13,7 +13,13 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect, selected: usize) {
     let ranked = app.comparison().map_or(&[][..], |c| &c.mistakes[..]);
     let lines = lines(app.settings().mistakes, selected, ranked);
     let bottom = " j/k select · Space turns on/off · Esc or M closes ";
-    let width = lines.iter().map(|l| l.width()).max().unwrap_or(40).max(bottom.len()) as u16 + 2;
+    let width = lines
+        .iter()
+        .map(|l| l.width())
+        .max()
+        .unwrap_or(40)
+        .max(bottom.len()) as u16
+        + 2;
     let width = width.min(area.width);
     let height = (lines.len() as u16 + 2).min(area.height);
     let rect = Rect::new(

@@ -7,7 +7,6 @@ use ratatui::text::{Line, Span};
 use crate::compare::Ranked;
 use crate::mistakes::{Mistake, Mistakes};
 
-
 /// "#1 explains 100%": where the comparison ranks `mistake`, if it does.
 pub fn rank_label(ranked: &[Ranked], mistake: Mistake) -> Option<String> {
     let place = ranked.iter().position(|r| r.mistake == mistake)?;
@@ -42,7 +41,12 @@ pub fn ranking(ranked: &[Ranked], matches: bool) -> String {
 /// The menu's lines, the `selected` row highlighted.
 pub fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Line<'static>> {
     // The names' column: the longest name and two spaces.
-    let width = Mistake::ALL.iter().map(|m| m.name().len()).max().unwrap_or(0) + 2;
+    let width = Mistake::ALL
+        .iter()
+        .map(|m| m.name().len())
+        .max()
+        .unwrap_or(0)
+        + 2;
     Mistake::ALL
         .iter()
         .enumerate()
@@ -102,7 +106,10 @@ mod tests {
 
     #[test]
     fn the_ranking_line_lists_names_and_shares() {
-        let both = [ranked(Mistake::NoAmbient, 1.0), ranked(Mistake::ShadowAcne, 0.171)];
+        let both = [
+            ranked(Mistake::NoAmbient, 1.0),
+            ranked(Mistake::ShadowAcne, 0.171),
+        ];
         assert_eq!(ranking(&both, false), "no-ambient 100% · shadow-acne 17%");
         assert_eq!(ranking(&[], true), "your image matches");
     }
