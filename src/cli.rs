@@ -28,6 +28,10 @@ pub struct Cli {
     pub command: Option<Command>,
     /// Scene file for the debugger (.toml or .nff).
     pub scene: Option<PathBuf>,
+    /// Compare with your own render of the scene (a PNG): its views, regions
+    /// and the mistakes that explain it, in the debugger.
+    #[arg(long, value_name = "IMAGE.png")]
+    pub compare: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -36,6 +40,10 @@ pub enum Command {
     Debug {
         /// Scene file (.toml or .nff); the built-in scene when absent.
         scene: Option<PathBuf>,
+        /// Compare with your own render of the scene (a PNG), traced at its
+        /// size: its views, regions and the mistakes that explain it.
+        #[arg(long, value_name = "IMAGE.png")]
+        compare: Option<PathBuf>,
     },
     /// Render a whole image to PNG.
     Render(RenderArgs),
@@ -206,13 +214,11 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Explain(args)) => explain_command(&args),
         Some(Command::Compare(args)) => compare_command(&args),
-        Some(Command::Debug { scene }) => debug_command(scene.as_deref()),
-        None => debug_command(cli.scene.as_deref()),
+        Some(Command::Debug { scene, compare }) => {
+            crate::tui::run(scene.as_deref(), compare.as_deref())
+        }
+        None => crate::tui::run(cli.scene.as_deref(), cli.compare.as_deref()),
     }
-}
-
-fn debug_command(scene: Option<&Path>) -> Result<ExitCode> {
-    crate::tui::run(scene)
 }
 
 /// Loads the scene and records the pixel, refusing one outside the image.

@@ -446,3 +446,54 @@ fn json_output_never_hides_a_non_finite_number() {
     assert_eq!(light["n_dot_l"].as_f64(), Some(0.0));
     assert_eq!(light["at_point"].as_bool(), Some(true));
 }
+
+/// `debug --compare` reads the student's image before anything else: a bad
+/// one is the error reported, exit 1, even without a terminal (stdin here
+/// is not a TTY), and nothing is written to stdout (no escape codes).
+#[test]
+fn debug_compare_reports_a_bad_image_before_the_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_file(&dir, "scene.toml", GOOD);
+    let scene = scene.to_str().unwrap();
+    let missing = dir.path().join("missing.png");
+    let missing = missing.to_str().unwrap();
+    let not_png = scene_file(&dir, "notes.png", "not an image");
+    let not_png = not_png.to_str().unwrap();
+    for (args, want) in [
+        (vec!["debug", scene, "--compare", missing], "cannot read"),
+        (vec![scene, "--compare", missing], "cannot read"),
+        (
+            vec!["debug", scene, "--compare", not_png],
+            "is not a PNG image",
+        ),
+    ] {
+        let output = raystep(&args);
+        let message = stderr(&output);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {message}");
+        assert!(message.contains(want), "{args:?}: {message}");
+        assert!(!message.contains("needs a terminal"), "{message}");
+        assert!(output.stdout.is_empty(), "{args:?} wrote to stdout");
+    }
+}
+
+/// A good image gets as far as the terminal check.
+#[test]
+fn debug_compare_with_a_good_image_still_needs_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_file(&dir, "scene.toml", GOOD);
+    let png = dir.path().join("yours.png");
+    image::RgbImage::new(8, 6).save(&png).unwrap();
+    let output = raystep(&[
+        "debug",
+        scene.to_str().unwrap(),
+        "--compare",
+        png.to_str().unwrap(),
+    ]);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("the debugger needs a terminal"),
+        "{message}"
+    );
+    assert!(output.stdout.is_empty());
+}

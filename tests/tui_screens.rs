@@ -118,3 +118,12 @@ fn measure_pick_and_render_on_the_teapot() {
         );
     }
 }
+
+#[test]
+fn snapshot_mistakes_menu() {
+    // no-ambient (row 9) turned on: [x] in the menu, red in the header,
+    // the pixel retraced without its ambient term behind the menu.
+    let mut app = app();
+    chars(&mut app, "Mjjjjjjjjj ");
+    snapshot!("mistakes_menu", screen(&mut app, 120, 40));
+}

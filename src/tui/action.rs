@@ -1,6 +1,7 @@
 //! What the user can ask for: the `Action`s that `event.rs` makes of keys
 //! (and the main loop of time passing) and that `App::update` carries out.
 
+use crate::mistakes::Mistake;
 use crate::scene::Switch;
 use crate::terms::Term;
 
@@ -35,6 +36,16 @@ pub enum Action {
     ToggleSpecular,
     Depth(i32),
     CycleView,
+    /// Open the mistakes menu, or close it when open.
+    ToggleMistakeMenu,
+    CloseMistakeMenu,
+    /// Move the mistakes menu's selection by rows.
+    MenuMove(i32),
+    /// Turn the menu's selected mistake on or off.
+    MenuToggle,
+    ToggleMistake(Mistake),
+    /// With a comparison: the cursor to the next region's pixel.
+    NextRegion,
     CyclePlane,
     Reload,
     Resize(u16, u16),
@@ -43,9 +54,12 @@ pub enum Action {
     Tick,
 }
 
-/// What the image pane shows: the render, or one term image.
+/// What the image pane shows: the render, one term image, or (when
+/// comparing) the student's image or FLIP's error map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum View {
     Image,
     Term(Term),
+    Yours,
+    ErrorMap,
 }

@@ -5,7 +5,7 @@
 use crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
 
 use super::app::{Action, App};
-use super::keymap::{self, Command, Input};
+use super::keymap::{self, Command, Input, Mode};
 use super::view::layout::Pane;
 use super::view::stepper::Step;
 
@@ -13,7 +13,7 @@ use super::view::stepper::Step;
 pub fn action(event: &Event, app: &App) -> Option<Action> {
     match event {
         Event::Key(key) if key.kind != KeyEventKind::Release => {
-            key_action(key, app.help(), app.focus())
+            key_action(key, app.mode(), app.focus())
         }
         Event::Mouse(mouse) => {
             let input = match mouse.kind {
@@ -22,7 +22,7 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
                 MouseEventKind::ScrollDown => Input::WheelDown,
                 _ => return None,
             };
-            match keymap::mouse_command(input, app.help())? {
+            match keymap::mouse_command(input, app.mode())? {
                 Command::Click => Some(Action::Click(mouse.column, mouse.row)),
                 command => in_pane(command, app.panes().pane_at(mouse.column, mouse.row)?),
             }
@@ -32,9 +32,10 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
     }
 }
 
-/// A key's action with the help open or not and `focus` the focused pane.
-pub fn key_action(key: &KeyEvent, help: bool, focus: Pane) -> Option<Action> {
-    in_pane(keymap::key_command(key, help)?, focus)
+/// A key's action in `mode` (help or menu open or not) with `focus` the
+/// focused pane.
+pub fn key_action(key: &KeyEvent, mode: Mode, focus: Pane) -> Option<Action> {
+    in_pane(keymap::key_command(key, mode)?, focus)
 }
 
 /// What `command` does in `pane` (the focused one for keys, the one under
@@ -62,6 +63,7 @@ fn in_pane(command: Command, pane: Pane) -> Option<Action> {
 mod tests {
     //! The dispatch before the table (commit fc0f12c), kept as the oracle:
     //! every key, modifier, pane and help state must still do what it did.
+    //! Since then: `M` (the mistakes menu) and `w` (next region) are new.
 
     use crossterm::event::{KeyCode, KeyModifiers};
 
@@ -121,6 +123,8 @@ mod tests {
             KeyCode::Char('v') => Action::CycleView,
             KeyCode::Char('d') => Action::CyclePlane,
             KeyCode::Char('R') => Action::Reload,
+            KeyCode::Char('M') => Action::ToggleMistakeMenu,
+            KeyCode::Char('w') => Action::NextRegion,
             KeyCode::PageDown if focus == Pane::Details => Action::ScrollDetails(10),
             KeyCode::PageUp if focus == Pane::Details => Action::ScrollDetails(-10),
             _ => return None,
@@ -202,8 +206,9 @@ mod tests {
                 for help in [false, true] {
                     for focus in Pane::ALL {
                         let old = old_key_action(&key, help, focus);
+                        let mode = if help { Mode::Help } else { Mode::Browsing };
                         assert_eq!(
-                            key_action(&key, help, focus),
+                            key_action(&key, mode, focus),
                             old,
                             "{code:?} with {mods:?}, help {help}, focus {focus:?}"
                         );
@@ -219,19 +224,34 @@ mod tests {
     }
 
     #[test]
+    fn the_mistakes_menu_has_the_keys_while_open() {
+        let key = |code| KeyEvent::new(code, KeyModifiers::NONE);
+        let menu = |code| key_action(&key(code), Mode::Menu, Pane::Image);
+        assert_eq!(menu(KeyCode::Down), Some(Action::MenuMove(1)));
+        assert_eq!(menu(KeyCode::Char('k')), Some(Action::MenuMove(-1)));
+        assert_eq!(menu(KeyCode::Char(' ')), Some(Action::MenuToggle));
+        assert_eq!(menu(KeyCode::Enter), Some(Action::MenuToggle));
+        assert_eq!(menu(KeyCode::Esc), Some(Action::CloseMistakeMenu));
+        assert_eq!(menu(KeyCode::Char('M')), Some(Action::ToggleMistakeMenu));
+        // The panes' keys wait until the menu closes.
+        assert_eq!(menu(KeyCode::Char('s')), None);
+        assert_eq!(menu(KeyCode::Char('q')), None);
+    }
+
+    #[test]
     fn the_wheel_acts_on_the_pane_under_the_mouse_as_before() {
         for (input, kind) in [
             (Input::WheelUp, MouseEventKind::ScrollUp),
             (Input::WheelDown, MouseEventKind::ScrollDown),
         ] {
             for pane in Pane::ALL {
-                for help in [false, true] {
-                    let command = keymap::mouse_command(input, help).unwrap();
+                for mode in Mode::ALL {
+                    let command = keymap::mouse_command(input, mode).unwrap();
                     assert_eq!(in_pane(command, pane), old_wheel_action(kind, pane));
                 }
             }
         }
-        let click = keymap::mouse_command(Input::Click, true);
+        let click = keymap::mouse_command(Input::Click, Mode::Help);
         assert_eq!(
             click,
             Some(Command::Click),

@@ -31,10 +31,24 @@ pub enum Input {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Context {
     Always,
-    /// The help overlay is closed.
+    /// Neither the help nor the mistakes menu is open.
     Browsing,
     /// The help overlay is open.
     Help,
+    /// The mistakes menu is open.
+    Menu,
+}
+
+/// What has the keys: the panes, the help overlay or the mistakes menu.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    Browsing,
+    Help,
+    Menu,
+}
+
+impl Mode {
+    pub const ALL: [Mode; 3] = [Mode::Browsing, Mode::Help, Mode::Menu];
 }
 
 /// What an input asks for, before the pane it acts on is known.
@@ -97,6 +111,7 @@ pub const KEYMAP: &[(&str, &[Binding])] = &[
     ("Teaching toggles (re-render at once)", TOGGLES),
     ("Other", OTHER),
     ("In this help", IN_HELP),
+    ("In the mistakes menu", IN_MENU),
 ];
 
 const PIXEL_AND_VIEW: &[Binding] = &[
@@ -160,8 +175,13 @@ const PIXEL_AND_VIEW: &[Binding] = &[
     },
     Binding {
         inputs: &[(key('v'), act(Action::CycleView))],
-        what: "cycle the image: render, each term, shadow, rays, cost",
+        what: "cycle the image: render, each term image, yours, error map",
         hint: hint(7, "v", "view"),
+        ..ROW
+    },
+    Binding {
+        inputs: &[(key('w'), act(Action::NextRegion))],
+        what: "with --compare: next region that differs, largest first",
         ..ROW
     },
     Binding {
@@ -270,6 +290,11 @@ const TOGGLES: &[Binding] = &[
         ..ROW
     },
     Binding {
+        inputs: &[(key('M'), act(Action::ToggleMistakeMenu))],
+        what: "classic student mistakes: a menu to turn each on / off",
+        ..ROW
+    },
+    Binding {
         inputs: &[
             (key('['), act(Action::Depth(-1))),
             (key(']'), act(Action::Depth(1))),
@@ -334,6 +359,38 @@ const IN_HELP: &[Binding] = &[
     },
 ];
 
+const IN_MENU: &[Binding] = &[
+    Binding {
+        context: Context::Menu,
+        inputs: &[
+            (Input::Key(KeyCode::Up), act(Action::MenuMove(-1))),
+            (Input::Key(KeyCode::Down), act(Action::MenuMove(1))),
+            (key('k'), act(Action::MenuMove(-1))),
+            (key('j'), act(Action::MenuMove(1))),
+        ],
+        what: "select a mistake",
+        ..ROW
+    },
+    Binding {
+        context: Context::Menu,
+        inputs: &[
+            (key(' '), act(Action::MenuToggle)),
+            (Input::Key(KeyCode::Enter), act(Action::MenuToggle)),
+        ],
+        what: "turn the selected mistake on / off (re-renders at once)",
+        ..ROW
+    },
+    Binding {
+        context: Context::Menu,
+        inputs: &[
+            (Input::Key(KeyCode::Esc), act(Action::CloseMistakeMenu)),
+            (key('M'), act(Action::ToggleMistakeMenu)),
+        ],
+        what: "close the menu",
+        ..ROW
+    },
+];
+
 /// Every row, in the help's order.
 pub fn rows() -> impl Iterator<Item = &'static Binding> {
     KEYMAP.iter().flat_map(|(_, rows)| rows.iter())
@@ -341,18 +398,18 @@ pub fn rows() -> impl Iterator<Item = &'static Binding> {
 
 /// The command for `key`, from the rows that apply: the most specific input
 /// wins (Ctrl+ or Shift+ a key, then the key, then any key).
-pub fn key_command(key: &KeyEvent, help: bool) -> Option<Command> {
-    lookup(help, |input| input.fit(key))
+pub fn key_command(key: &KeyEvent, mode: Mode) -> Option<Command> {
+    lookup(mode, |input| input.fit(key))
 }
 
 /// The command for a mouse input (`Click`, `WheelUp`, `WheelDown`).
-pub fn mouse_command(mouse: Input, help: bool) -> Option<Command> {
-    lookup(help, |input| (input == mouse).then_some(1))
+pub fn mouse_command(mouse: Input, mode: Mode) -> Option<Command> {
+    lookup(mode, |input| (input == mouse).then_some(1))
 }
 
-fn lookup(help: bool, fit: impl Fn(Input) -> Option<u8>) -> Option<Command> {
+fn lookup(mode: Mode, fit: impl Fn(Input) -> Option<u8>) -> Option<Command> {
     rows()
-        .filter(|row| row.context.applies(help))
+        .filter(|row| row.context.applies(mode))
         .flat_map(|row| row.inputs)
         .filter_map(|&(input, command)| Some((fit(input)?, command)))
         .max_by_key(|&(fit, _)| fit)
@@ -360,11 +417,12 @@ fn lookup(help: bool, fit: impl Fn(Input) -> Option<u8>) -> Option<Command> {
 }
 
 impl Context {
-    pub fn applies(self, help: bool) -> bool {
+    pub fn applies(self, mode: Mode) -> bool {
         match self {
             Context::Always => true,
-            Context::Browsing => !help,
-            Context::Help => help,
+            Context::Browsing => mode == Mode::Browsing,
+            Context::Help => mode == Mode::Help,
+            Context::Menu => mode == Mode::Menu,
         }
     }
 }
@@ -464,6 +522,8 @@ mod tests {
         row("Ctrl+C");
         row("Up Down k j");
         row("any other key");
+        row("Space Enter");
+        row("Esc M");
     }
 
     #[test]
@@ -473,9 +533,7 @@ mod tests {
             .collect();
         for (n, &(ca, a)) in inputs.iter().enumerate() {
             for &(cb, b) in &inputs[n + 1..] {
-                let together = [false, true]
-                    .iter()
-                    .any(|&h| ca.applies(h) && cb.applies(h));
+                let together = Mode::ALL.iter().any(|&m| ca.applies(m) && cb.applies(m));
                 // Ctrl+x and Shift+x would tie for a key with both held.
                 let tie = match (a, b) {
                     (Input::Ctrl(x), Input::Shift(y)) | (Input::Shift(x), Input::Ctrl(y)) => x == y,
@@ -507,16 +565,20 @@ mod tests {
         let key = |code, mods| KeyEvent::new(code, mods);
         let ctrl_c = key(KeyCode::Char('c'), KeyModifiers::CONTROL);
         // Ctrl+C beats the help's "any other key".
-        assert_eq!(key_command(&ctrl_c, true), Some(act(Action::Quit)));
+        assert_eq!(key_command(&ctrl_c, Mode::Help), Some(act(Action::Quit)));
+        assert_eq!(key_command(&ctrl_c, Mode::Menu), Some(act(Action::Quit)));
         let shift_h = key(KeyCode::Char('h'), KeyModifiers::SHIFT);
         assert_eq!(
-            key_command(&shift_h, false),
+            key_command(&shift_h, Mode::Browsing),
             Some(act(Action::Move(-10, 0)))
         );
         let ctrl_h = key(KeyCode::Char('h'), KeyModifiers::CONTROL);
-        assert_eq!(key_command(&ctrl_h, false), Some(Command::Arrow(-1, 0)));
         assert_eq!(
-            key_command(&key(KeyCode::F(5), KeyModifiers::NONE), false),
+            key_command(&ctrl_h, Mode::Browsing),
+            Some(Command::Arrow(-1, 0))
+        );
+        assert_eq!(
+            key_command(&key(KeyCode::F(5), KeyModifiers::NONE), Mode::Browsing),
             None
         );
     }

@@ -43,7 +43,8 @@ use ratatui::backend::Backend;
 
 pub use crate::scene::Switch;
 pub use action::{Action, View};
-pub use app::App;
+pub use app::{App, Compared};
+pub use keymap::Mode;
 pub use view::layout::Pane;
 pub use view::projection::DiagramPlane;
 pub use view::stepper::{Breakpoint, Step};
@@ -122,8 +123,11 @@ where
     Ok(())
 }
 
-/// `raystep [debug] [SCENE]`: runs the debugger in the terminal.
-pub fn run(path: Option<&Path>) -> Result<ExitCode> {
+/// `raystep [debug] [SCENE] [--compare IMAGE.png]`: runs the debugger in
+/// the terminal. The student's image is read first: a bad one is reported
+/// (exit 1) whether or not there is a terminal, and before it is taken.
+pub fn run(path: Option<&Path>, compare: Option<&Path>) -> Result<ExitCode> {
+    let student = compare.map(crate::compare::student::load).transpose()?;
     if !io::stdin().is_terminal() || !io::stdout().is_terminal() {
         bail!(
             "the debugger needs a terminal (stdin and stdout must be a TTY); \
@@ -131,9 +135,11 @@ pub fn run(path: Option<&Path>) -> Result<ExitCode> {
              or `raystep inspect SCENE --pixel X,Y` for one pixel's ray tree"
         );
     }
-    let mut app = App::open(path.map(Path::to_path_buf), false)
-        .map_err(anyhow::Error::new)?
-        .watching();
+    if let Some(image) = compare {
+        // Seconds on a large scene, before the screen changes: say why.
+        eprintln!("comparing {} with the scene…", image.display());
+    }
+    let mut app = App::open_with(path.map(Path::to_path_buf), student, false)?.watching();
     let result = terminal::take()
         .and_then(|mut terminal| run_loop(&mut terminal, &mut app, &mut TerminalInput));
     terminal::restore();

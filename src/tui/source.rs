@@ -9,10 +9,12 @@ use notify::{EventKind, RecursiveMode, Watcher as _};
 use crate::scene::builtin::{self, load_file_or_builtin};
 use crate::scene::{Scene, SceneError, Settings};
 
-/// The scene file, or `None` for the built-in scene.
+/// The scene file, or `None` for the built-in scene, and the size it is
+/// traced at when not its own (a compared image's).
 #[derive(Clone, Debug)]
 pub struct SceneSource {
     pub path: Option<PathBuf>,
+    pub size: Option<(u32, u32)>,
 }
 
 impl SceneSource {
@@ -25,16 +27,22 @@ impl SceneSource {
     }
 
     pub fn load(&self) -> Result<Scene, SceneError> {
-        load_file_or_builtin(self.path.as_deref())
+        let scene = load_file_or_builtin(self.path.as_deref())?;
+        match self.size {
+            Some((width, height)) => scene.with_size(width, height),
+            None => Ok(scene),
+        }
     }
 }
 
-/// Settings after a reload: the teaching switches stay as the user set them;
+/// Settings after a reload: the teaching switches and the mistakes stay as
+/// the user set them;
 /// the specular model and max depth follow the file only where the file
 /// changed them, so an edit to `max_depth` takes effect and a toggle is kept.
 pub fn merge_settings(old_file: &Settings, new_file: &Settings, current: &Settings) -> Settings {
     let mut merged = *new_file;
     merged.switches = current.switches;
+    merged.mistakes = current.mistakes;
     if new_file.specular == old_file.specular {
         merged.specular = current.specular;
     }
@@ -89,5 +97,21 @@ impl FileWatcher {
             changed = true;
         }
         changed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mistakes::Mistake;
+
+    #[test]
+    fn a_reload_keeps_the_mistakes_turned_on() {
+        let file = Settings::default();
+        let mut current = file;
+        current.mistakes = current.mistakes.with(Mistake::ShadowAcne);
+        let merged = merge_settings(&file, &file, &current);
+        assert!(merged.mistakes.contains(Mistake::ShadowAcne));
+        assert_eq!(merged.mistakes.iter().count(), 1);
     }
 }

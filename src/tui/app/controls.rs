@@ -232,13 +232,21 @@ impl App {
         self.message = Some(format!("max depth {depth}"));
     }
 
+    /// The render, each term, then (when comparing) yours and the error map.
     pub(super) fn cycle_view(&mut self) {
+        let after_terms = if self.compared.is_some() {
+            View::Yours
+        } else {
+            View::Image
+        };
         self.view = match self.view {
             View::Image => View::Term(Term::ALL[0]),
             View::Term(term) => match Term::ALL.iter().position(|&t| t == term) {
                 Some(i) if i + 1 < Term::ALL.len() => View::Term(Term::ALL[i + 1]),
-                _ => View::Image,
+                _ => after_terms,
             },
+            View::Yours => View::ErrorMap,
+            View::ErrorMap => View::Image,
         };
         if matches!(self.view, View::Term(_)) && self.terms_generation != Some(self.generation) {
             self.request_current();
@@ -246,6 +254,11 @@ impl App {
         self.message = Some(match self.view {
             View::Image => "view: the render".to_string(),
             View::Term(term) => format!("view {}: {}", term.name(), term.legend()),
+            View::Yours => "view yours: the image you compare".to_string(),
+            View::ErrorMap => {
+                "view error map: FLIP's error, black where the images agree, bright where they part"
+                    .to_string()
+            }
         });
     }
 }

@@ -13,19 +13,26 @@ use std::time::{Duration, Instant};
 use image::RgbImage;
 use ratatui::layout::Rect;
 
+use crate::compare::{self, Comparison, StudentImage};
+use crate::mistakes::Mistake;
 use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::terms::TermImages;
 
 pub use super::action::{Action, View};
 use super::job::Renderer;
+use super::keymap::Mode;
 use super::source::{FileWatcher, SceneSource, merge_settings};
 use super::view::layout::{self, Pane, Panes};
 use super::view::projection::DiagramPlane;
 use super::view::{help, tree};
 
+mod comparing;
 mod controls;
+mod mistakes;
 mod renders;
+
+pub use comparing::Compared;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
@@ -56,6 +63,13 @@ pub struct App {
     plane: DiagramPlane,
     help: bool,
     help_scroll: u16,
+    /// Whether the mistakes menu is open, and its selected row.
+    menu: bool,
+    menu_row: usize,
+    /// The student's image and what `compare` found, with `--compare`.
+    compared: Option<Compared>,
+    /// The region `w` went to last.
+    region: Option<usize>,
     /// The banner: why the last reload failed.
     error: Option<String>,
     /// The status line's message.
@@ -84,13 +98,35 @@ impl App {
     /// Opens a scene (`None`: the built-in one). With `sync`, renders finish
     /// before `update` returns, so tests see deterministic screens.
     pub fn open(path: Option<PathBuf>, sync: bool) -> Result<App, SceneError> {
-        let source = SceneSource { path };
+        let source = SceneSource { path, size: None };
         let scene = source.load()?;
-        Ok(App::new(source, scene, sync))
+        Ok(App::new(source, scene, None, sync))
+    }
+
+    /// Opens a scene as `open` does, and with a student's image compares
+    /// them once, here: the scene is traced at the image's size from then on
+    /// (reloads too). `raystep debug SCENE --compare IMAGE.png` opens here.
+    pub fn open_with(
+        path: Option<PathBuf>,
+        student: Option<StudentImage>,
+        sync: bool,
+    ) -> anyhow::Result<App> {
+        let Some(student) = student else {
+            return Ok(App::open(path, sync)?);
+        };
+        let source = SceneSource {
+            path,
+            size: Some(student.image.dimensions()),
+        };
+        let scene = source.load()?;
+        let yours = student.image.clone();
+        let comparison = compare::compare(&scene, student);
+        let compared = Compared { yours, comparison };
+        Ok(App::new(source, scene, Some(compared), sync))
     }
 
     /// The app on a loaded scene: its centre pixel picked, its render asked for.
-    fn new(source: SceneSource, scene: Scene, sync: bool) -> App {
+    fn new(source: SceneSource, scene: Scene, compared: Option<Compared>, sync: bool) -> App {
         let scene = Arc::new(scene);
         let settings = scene.settings;
         let cursor = (scene.width / 2, scene.height / 2);
@@ -109,6 +145,10 @@ impl App {
             plane: DiagramPlane::Top,
             help: false,
             help_scroll: 0,
+            menu: false,
+            menu_row: 0,
+            compared,
+            region: None,
             error: None,
             message: Some(WELCOME.into()),
             break_object: None,
@@ -186,6 +226,12 @@ impl App {
             Action::ToggleSpecular => self.toggle_specular(),
             Action::Depth(delta) => self.change_depth(delta),
             Action::CycleView => self.cycle_view(),
+            Action::ToggleMistakeMenu => self.menu = !self.menu,
+            Action::CloseMistakeMenu => self.menu = false,
+            Action::MenuMove(delta) => self.menu_move(delta),
+            Action::MenuToggle => self.toggle_mistake(Mistake::ALL[self.menu_row]),
+            Action::ToggleMistake(mistake) => self.toggle_mistake(mistake),
+            Action::NextRegion => self.next_region(),
             Action::CyclePlane => self.plane = self.plane.next(),
             Action::Reload => self.reload(),
             Action::Resize(width, height) => self.screen = Rect::new(0, 0, width, height),
@@ -265,6 +311,33 @@ impl App {
         self.help_scroll
     }
 
+    /// The mistakes menu's selected row (an index into `Mistake::ALL`)
+    /// when the menu is open.
+    pub fn mistake_menu(&self) -> Option<usize> {
+        self.menu.then_some(self.menu_row)
+    }
+
+    /// What has the keys: the help, the mistakes menu, or the panes.
+    pub fn mode(&self) -> Mode {
+        if self.help {
+            Mode::Help
+        } else if self.menu {
+            Mode::Menu
+        } else {
+            Mode::Browsing
+        }
+    }
+
+    /// The student's image and the comparison, with `--compare`.
+    pub fn compared(&self) -> Option<&Compared> {
+        self.compared.as_ref()
+    }
+
+    /// The comparison's findings, with `--compare`.
+    pub fn comparison(&self) -> Option<&Comparison> {
+        self.compared.as_ref().map(|c| &c.comparison)
+    }
+
     /// The banner: why the last reload failed.
     pub fn error(&self) -> Option<&str> {
         self.error.as_deref()
@@ -338,17 +411,24 @@ impl App {
     /// The colour of a pixel as the image pane shows it (render or term view).
     pub fn shown_pixel(&self, x: u32, y: u32) -> Option<[u8; 3]> {
         match self.view {
-            View::Image => self
-                .image
-                .as_ref()
-                .filter(|i| x < i.width() && y < i.height())
-                .map(|i| i.get_pixel(x, y).0),
+            View::Image => self.image.as_ref().and_then(|i| pixel(i, x, y)),
             View::Term(term) => self
                 .terms
                 .as_ref()
                 .filter(|t| x < t.width && y < t.height)
                 .map(|t| t.rgb(term, (y * t.width + x) as usize, t.max_count(term))),
+            View::Yours => self.compared.as_ref().and_then(|c| pixel(&c.yours, x, y)),
+            View::ErrorMap => self
+                .compared
+                .as_ref()
+                .and_then(|c| pixel(&c.comparison.error_map, x, y)),
         }
+    }
+
+    /// Our pixel at the cursor, as the render (with the toggles) has it.
+    pub fn our_pixel(&self) -> Option<[u8; 3]> {
+        let (x, y) = self.cursor;
+        self.image.as_ref().and_then(|i| pixel(i, x, y))
     }
 
     /// Re-records the selected pixel in the current scene, keeping the step.
@@ -397,4 +477,9 @@ impl App {
             }
         }
     }
+}
+
+/// An image's pixel, `None` outside it.
+fn pixel(image: &RgbImage, x: u32, y: u32) -> Option<[u8; 3]> {
+    (x < image.width() && y < image.height()).then(|| image.get_pixel(x, y).0)
 }

@@ -84,9 +84,12 @@ mod tests {
     fn quitting_cancels_a_long_render_instead_of_waiting_for_it() {
         // 4000 x 3000 = 12 million pixels: seconds of work on this machine,
         // against a row (4000 pixels, about a millisecond) once cancelled.
-        let source = SceneSource { path: None };
+        let source = SceneSource {
+            path: None,
+            size: None,
+        };
         let big = source.load().unwrap().with_size(4000, 3000).unwrap();
-        let mut app = App::new(source, big, false);
+        let mut app = App::new(source, big, None, false);
         let deadline = Instant::now() + Duration::from_secs(30);
         while !app
             .progress()

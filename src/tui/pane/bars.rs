@@ -35,11 +35,23 @@ pub(super) fn header(app: &App, width: u16) -> Line<'static> {
         sep(),
         Span::raw(format!("depth {}", settings.max_depth)),
     ];
-    if let View::Term(term) = app.view() {
+    if !settings.mistakes.is_empty() {
+        // A teacher must not forget a mistake is on: it changes every pixel.
         right.extend([
             sep(),
-            Span::raw(format!("view: {}", term.name())).bold().yellow(),
+            Span::raw(format!("mistakes: {}", settings.mistakes))
+                .bold()
+                .red(),
         ]);
+    }
+    let view = match app.view() {
+        View::Image => None,
+        View::Term(term) => Some(term.name()),
+        View::Yours => Some("yours"),
+        View::ErrorMap => Some("error map"),
+    };
+    if let Some(view) = view {
+        right.extend([sep(), Span::raw(format!("view: {view}")).bold().yellow()]);
     }
     let used: usize = 9 + right.iter().map(|s| s.width()).sum::<usize>();
     let scene = format!(

@@ -8,7 +8,7 @@ use ratatui::widgets::Paragraph;
 use super::pane_block;
 use crate::record::kind_name;
 use crate::tui::App;
-use crate::tui::view::details::lines;
+use crate::tui::view::details::{compare_line, lines};
 use crate::tui::view::layout::Pane;
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
@@ -17,7 +17,12 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let title = format!(" Details · r{id} {} ray ", kind_name(node.kind));
     let block = pane_block(app, Pane::Details, title);
     let inside = block.inner(area);
-    let (lines, marked) = lines(app.tree(), id, Some(app.current()), inside.width as usize);
+    let (mut lines, mut marked) = lines(app.tree(), id, Some(app.current()), inside.width as usize);
+    let (x, y) = app.cursor();
+    if let Some(yours) = app.compared().map(|c| c.yours.get_pixel(x, y).0) {
+        lines.insert(0, compare_line(yours, app.our_pixel()));
+        marked = marked.map(|m| m + 1);
+    }
     let height = inside.height as usize;
     let auto = marked.map_or(0, |m| {
         if m + 4 <= height {

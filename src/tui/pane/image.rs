@@ -15,6 +15,7 @@ use crate::terms::{Term, false_color};
 use super::pane_block;
 use crate::tui::view::image_grid::ImageGrid;
 use crate::tui::view::layout::{Pane, inner};
+use crate::tui::view::mistakes;
 use crate::tui::view::tree::rgb_swatch;
 use crate::tui::{App, View};
 
@@ -33,6 +34,11 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let mut block = pane_block(app, Pane::Image, String::new()).title(Line::from(title));
     if let View::Term(term) = app.view() {
         block = block.title_bottom(term_legend(app, term).right_aligned());
+    }
+    if let Some(c) = app.comparison() {
+        // The ranking stays in sight while comparing, whatever the view.
+        let ranking = mistakes::ranking(&c.mistakes, c.matches);
+        block = block.title_bottom(Line::from(format!(" compare: {ranking} ")).bold().yellow());
     }
     frame.render_widget(block, area);
     let (Some(grid), Some(_)) = (app.image_grid(), app.shown_pixel(0, 0)) else {

@@ -7,6 +7,7 @@ pub mod details;
 pub mod diagram;
 pub mod help;
 pub mod image;
+pub mod mistakes;
 pub mod steps;
 pub mod tree;
 
@@ -57,6 +58,9 @@ pub fn draw(frame: &mut Frame, app: &App) {
         frame.render_widget(Paragraph::new(error).red().block(block), panes.banner);
     }
     frame.render_widget(bars::status(app), panes.status);
+    if let Some(selected) = app.mistake_menu() {
+        mistakes::draw(frame, app, area, selected);
+    }
     if app.help() {
         help::draw(frame, area, app.help_scroll());
     }

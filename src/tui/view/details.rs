@@ -9,7 +9,7 @@ use ratatui::text::{Line, Span};
 
 use crate::record::{self, About, Children, NodeId, RayTree, node_lines};
 
-use super::tree::swatch;
+use super::tree::{rgb_swatch, swatch};
 
 /// A ray's lines as the pane lists them: a header, then what `inspect`
 /// prints, with the child rays listed before the colour they add to.
@@ -76,4 +76,31 @@ pub fn lines(
         out.extend(wrap(line, width, style));
     }
     (out, first_marked)
+}
+
+/// With `--compare`: the student's pixel beside ours, each with a swatch.
+pub fn compare_line(yours: [u8; 3], ours: Option<[u8; 3]>) -> Line<'static> {
+    let rgb = |[r, g, b]: [u8; 3]| format!("({r}, {g}, {b})");
+    let mut spans = vec![
+        Span::raw(format!("yours {} ", rgb(yours))),
+        rgb_swatch(yours),
+    ];
+    if let Some(ours) = ours {
+        spans.push(Span::raw(format!(" · ours {} ", rgb(ours))));
+        spans.push(rgb_swatch(ours));
+    }
+    Line::from(spans).style(Style::new().add_modifier(Modifier::BOLD))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_compare_line_puts_yours_beside_ours() {
+        let line = compare_line([0, 0, 0], Some([12, 34, 255]));
+        let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+        assert_eq!(text, "yours (0, 0, 0) ██ · ours (12, 34, 255) ██");
+        assert_eq!(line.spans[3].style.fg, Some(TermColor::Rgb(12, 34, 255)));
+    }
 }

@@ -52,8 +52,9 @@ mod tests {
         for (group, _) in keymap::KEYMAP {
             assert!(text.iter().any(|l| l == group), "{group}");
         }
-        // 5 titles, 4 blank lines between groups, one line per row.
-        assert_eq!(text.len(), 5 + 4 + keymap::rows().count());
+        // 6 titles, 5 blank lines between groups, one line per row.
+        assert_eq!(keymap::KEYMAP.len(), 6);
+        assert_eq!(text.len(), 6 + 5 + keymap::rows().count());
     }
 
     #[test]

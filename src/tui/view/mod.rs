@@ -9,6 +9,7 @@ pub mod details;
 pub mod help;
 pub mod image_grid;
 pub mod layout;
+pub mod mistakes;
 pub mod projection;
 pub mod stepper;
 pub mod steps;
