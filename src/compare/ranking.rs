@@ -74,6 +74,7 @@ pub fn rank(
     // large one, as phong-not-blinn's highlights under opaque shadows.)
     let mut candidates: Vec<Candidate> = Mistake::ALL
         .into_iter()
+        .filter(|&mistake| may_change(scene, settings, mistake))
         .filter_map(|mistake| {
             let mut mistaken = *settings;
             mistaken.mistakes = Mistakes::NONE.with(mistake);
@@ -103,6 +104,8 @@ pub fn rank(
             .map(|c| {
                 let blocks = if chosen.is_empty() {
                     c.blocks.clone()
+                } else if !worth_a_render(&yours_blocks, &base, &reference_blocks, c) {
+                    return (0.0, Vec::new());
                 } else {
                     render_with(chosen.with(c.mistake))
                 };
@@ -128,6 +131,54 @@ pub fn rank(
         base = blocks;
     }
     ranked
+}
+
+/// Whether `mistake` can change this scene's image at all: false when the
+/// scene lacks what it acts on (no transparent material for eta-inverted,
+/// no distance attenuation for no-light-attenuation, ...), which saves its
+/// render. True when unsure.
+fn may_change(scene: &Scene, settings: &Settings, mistake: Mistake) -> bool {
+    let any = |f: fn(&crate::scene::Material) -> bool| scene.materials.iter().any(f);
+    match mistake {
+        Mistake::EtaInverted | Mistake::TirDropped => {
+            settings.switches.transmission && any(|m| m.kt > 0.0)
+        }
+        Mistake::OpaqueShadows => settings.switches.shadows && any(|m| m.kt > 0.0),
+        Mistake::NoLightAttenuation => settings.light_attenuation != [1.0, 0.0, 0.0],
+        Mistake::NoAmbient => {
+            settings.switches.ambient
+                && settings.ambient != crate::math::Color::ZERO
+                && any(|m| m.ka > 0.0)
+        }
+        Mistake::PhongNotBlinn => any(|m| m.ks > 0.0),
+        Mistake::DepthOffByOne => settings.max_depth > 1 && any(|m| m.ks > 0.0 || m.kt > 0.0),
+        _ => true,
+    }
+}
+
+/// Whether rendering `c` on top of the chosen mistakes can fit: where `c`
+/// changes the image, the student's image must still differ from the
+/// chosen mistakes' render by a thirtieth of what `c` itself changes there. A
+/// mistake the student made passes (there the difference is about its own
+/// change); one whose blocks the chosen mistakes already explain, or whose
+/// change dwarfs what is left (gamma's, everywhere), is not rendered.
+fn worth_a_render(
+    yours: &[[u32; 3]],
+    base: &[[u32; 3]],
+    reference: &[[u32; 3]],
+    c: &Candidate,
+) -> bool {
+    let gap = |a: &[[u32; 3]], b: &[[u32; 3]]| -> u64 {
+        (0..a.len())
+            .filter(|&i| c.changed[i])
+            .map(|i| {
+                (0..3)
+                    .map(|k| a[i][k].abs_diff(b[i][k]) as u64)
+                    .sum::<u64>()
+            })
+            .sum()
+    };
+    30 * gap(yours, base) >= gap(&c.blocks, reference)
 }
 
 /// One mistake's render, as the ranking needs it.
