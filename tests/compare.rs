@@ -424,3 +424,43 @@ fn the_text_report_reads_as_reviewed() {
         });
     }
 }
+
+/// The JSON's shape: every key with the kind of its value, arrays by their
+/// first element.
+fn shape(value: &serde_json::Value) -> serde_json::Value {
+    use serde_json::Value;
+    match value {
+        Value::Object(map) => {
+            Value::Object(map.iter().map(|(k, v)| (k.clone(), shape(v))).collect())
+        }
+        Value::Array(items) => Value::Array(items.iter().take(1).map(shape).collect()),
+        Value::Null => "null".into(),
+        Value::Bool(_) => "bool".into(),
+        Value::Number(_) => "number".into(),
+        Value::String(_) => "string".into(),
+    }
+}
+
+#[test]
+fn the_json_shape_is_pinned() {
+    // Reviewed against README's schema: metrics, regions (with objects,
+    // explain lines and a diagnosis) and mistakes (name, explains, fits,
+    // pixel), for glass.toml under opaque-shadows and phong-not-blinn.
+    let dir = tempfile::tempdir().unwrap();
+    let image = render(
+        dir.path(),
+        SCENE,
+        "two.png",
+        &[
+            "--mistake",
+            "opaque-shadows",
+            "--mistake",
+            "phong-not-blinn",
+        ],
+    );
+    let output = raystep(&["compare", SCENE, path(&image), "--format", "json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
+        insta::assert_json_snapshot!("compare__json_shape", shape(&json(&output)));
+    });
+}
