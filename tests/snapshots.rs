@@ -140,3 +140,15 @@ fn chosen_pixels() {
         });
     }
 }
+
+#[test]
+fn graphviz_of_a_pixel_with_total_internal_reflection() {
+    // glass.toml names (135, 58) for TIR: into the block's top face, then
+    // TIR at its right and back faces (red edges, weight k_s + k_t = 1),
+    // a light that faces away without a shadow edge, blockers named.
+    let scene = scene_at(&scene_path("glass.toml"), None);
+    let tree = record_pixel(&scene, &scene.settings, 135, 58);
+    let dot = raystep::record::dot(&tree);
+    assert_eq!(dot.matches("(TIR)").count(), 2);
+    settings().bind(|| insta::assert_snapshot!("glass_135_58_dot", dot));
+}

@@ -1,6 +1,7 @@
 //! Recording one pixel: the ray tree with every term, the execution-ordered
 //! event list, and their text, JSON and Graphviz forms.
 
+mod dot;
 mod explain;
 mod finite;
 mod lines;
@@ -8,13 +9,14 @@ mod recorder;
 mod text;
 mod tree;
 
+pub use dot::dot;
 pub use explain::explain;
 pub use finite::{NonFinite, check_finite};
 pub use lines::{About, Line, Piece, Row, Word};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use text::{
-    Children, color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line,
-    not_cast_reason, num, ray_header, text, vector, working_lines,
+    Children, color, fraction, kind_name, light_lines, node_lines, not_cast_line, not_cast_reason,
+    num, ray_header, text, vector, working_lines,
 };
 pub use tree::{
     BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,

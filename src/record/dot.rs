@@ -1,0 +1,135 @@
+//! A pixel's ray tree for Graphviz (`inspect --format dot`): one box per ray,
+//! filled with the colour it brings back; one ellipse per light at each hit,
+//! joined by its shadow ray when one was cast; total internal reflection and
+//! blocked lights named on their edges, so the figure tells the story alone.
+
+use std::fmt::Write;
+
+use super::text::{color, kind_name, not_cast_reason, num};
+use super::tree::{LightRecord, Node, NodeId, RayTree};
+use crate::math::{Color, to_rgb8};
+use crate::trace::RayKind;
+
+/// The one font of every label.
+const FONT: &str = "fontname=\"Helvetica\", fontsize=10";
+
+pub fn dot(tree: &RayTree) -> String {
+    let mut out = format!(
+        "digraph raytree {{\n  rankdir=TB;\n  graph [{FONT}];\n  node [{FONT}];\n  edge [{FONT}];\n"
+    );
+    let _ = writeln!(out, "  eye [shape=point, label=\"\"];");
+    for (id, node) in tree.nodes.iter().enumerate() {
+        write_ray(&mut out, tree, id, node);
+        for (i, light) in node.lights.iter().enumerate() {
+            write_light(&mut out, id, i, light);
+        }
+        for (i, ray) in node.not_cast.iter().enumerate() {
+            let kind = format!("{} ray not cast", kind_name(ray.kind));
+            let why = not_cast_reason(ray);
+            let _ = writeln!(
+                out,
+                "  n{id}p{i} [shape=box, style=dashed, label=\"{kind}\\n{why}\"];"
+            );
+            let _ = writeln!(out, "  n{id} -> n{id}p{i} [style=dotted];");
+        }
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// A ray's box, filled with its colour, and the edge from its parent.
+fn write_ray(out: &mut String, tree: &RayTree, id: NodeId, node: &Node) {
+    let what = match &node.hit {
+        Some(hit) => format!("hit {} at t={}", escape(&hit.object), num(hit.t)),
+        None => "miss".into(),
+    };
+    let _ = writeln!(
+        out,
+        "  n{id} [shape=box, style=filled, fillcolor=\"{}\", fontcolor=\"{}\", \
+         label=\"{} ray (depth {})\\n{what}\\ncolour {}\"];",
+        hex(node.color),
+        text_colour(node.color),
+        kind_name(node.kind),
+        node.depth,
+        color(node.color)
+    );
+    let Some(parent) = node.parent else {
+        let _ = writeln!(out, "  eye -> n{id} [label=\"primary\"];");
+        return;
+    };
+    // A reflected ray whose parent met total internal reflection carries
+    // k_t too: say so on the edge.
+    let tir = node.kind == RayKind::Reflected && tree.nodes[parent].tir();
+    let (label, style) = if tir {
+        (
+            format!("reflected (TIR) x{}", num(node.weight)),
+            ", color=\"red\", fontcolor=\"red\"",
+        )
+    } else {
+        (
+            format!("{} x{}", kind_name(node.kind), num(node.weight)),
+            "",
+        )
+    };
+    let _ = writeln!(out, "  n{parent} -> n{id} [label=\"{label}\"{style}];");
+}
+
+/// A light at a hit: the shadow ray to it when one was cast (dashed, naming
+/// what blocked it), else a plain dotted line saying why none was.
+fn write_light(out: &mut String, id: NodeId, i: usize, light: &LightRecord) {
+    let fate = match &light.shadow {
+        _ if light.at_point => "at the point".to_string(),
+        _ if light.faces_away => format!("faces away (N·L = {})", num(light.n_dot_l)),
+        None => "shadows off".to_string(),
+        Some(s) if s.blockers.is_empty() => "S = 1, nothing in the way".to_string(),
+        Some(s) => {
+            let names: Vec<String> = s.blockers.iter().map(|b| escape(&b.object)).collect();
+            format!("S = {}, blocked by {}", num(s.s), names.join(", "))
+        }
+    };
+    let _ = writeln!(
+        out,
+        "  n{id}l{i} [shape=ellipse, label=\"{}\\n{fate}\"];",
+        escape(&light.light)
+    );
+    let edge = if light.shadow.is_some() {
+        "style=dashed, label=\"shadow\""
+    } else {
+        "style=dotted, arrowhead=none, label=\"no shadow ray\""
+    };
+    let _ = writeln!(out, "  n{id} -> n{id}l{i} [{edge}];");
+}
+
+/// `#rrggbb` of a colour as the image stores it.
+fn hex(c: Color) -> String {
+    let [r, g, b] = to_rgb8(c);
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
+/// Black on light fills, white on dark ones (Rec. 601 luma at half).
+fn text_colour(c: Color) -> &'static str {
+    let [r, g, b] = to_rgb8(c);
+    if 299 * r as u32 + 587 * g as u32 + 114 * b as u32 >= 128_000 {
+        "black"
+    } else {
+        "white"
+    }
+}
+
+fn escape(text: &str) -> String {
+    text.replace('\\', "\\\\").replace('"', "\\\"")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fills_and_their_text_colours() {
+        // (1, 0.5, 0) stores as (255, 128, 0): luma 299*255 + 587*128 =
+        // 151,381 >= 128,000, so black text; (0.1, 0.1, 0.1) -> 26s: white.
+        assert_eq!(hex(Color::new(1.0, 0.5, 0.0)), "#ff8000");
+        assert_eq!(text_colour(Color::new(1.0, 0.5, 0.0)), "black");
+        assert_eq!(text_colour(Color::splat(0.1)), "white");
+    }
+}
