@@ -93,6 +93,15 @@ pub struct PixelArgs {
     pub size: SizeArg,
     #[command(flatten)]
     pub mistakes: MistakeArgs,
+    /// What-if: change a setting or a material's number first, e.g.
+    /// `settings.max_depth=2` or `materials.glass.ior=1.0` (repeatable); the
+    /// text then ends with what changed against the scene as written.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Also record the pixel in ORIGINAL (another scene file, at the same
+    /// size) and end the text with what changed from it.
+    #[arg(long, value_name = "ORIGINAL")]
+    pub diff_against: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -221,9 +230,30 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-/// Loads the scene and records the pixel, refusing one outside the image.
-fn record(args: &PixelArgs) -> Result<RayTree> {
-    let scene = load_scene(Some(&args.scene), args.size)?;
+/// The pixel's recording, and for `--set` or `--diff-against` the one it
+/// is compared with and what that was.
+struct Recorded {
+    tree: RayTree,
+    before: Option<(RayTree, String)>,
+}
+
+impl Recorded {
+    /// What changed against the recording before, as a closing section.
+    fn what_changed(&self) -> String {
+        match &self.before {
+            None => String::new(),
+            Some((before, what)) => format!(
+                "\nWhat changed against {what}:\n{}",
+                crate::record::diff(before, &self.tree)
+            ),
+        }
+    }
+}
+
+/// Loads the scene and records the pixel, refusing one outside the image;
+/// with `--set`, the changed scene, and the scene as written beside it.
+fn record(args: &PixelArgs) -> Result<Recorded> {
+    let mut scene = load_scene(Some(&args.scene), args.size)?;
     let (x, y) = args.pixel;
     if x >= scene.width || y >= scene.height {
         bail!(
@@ -234,13 +264,30 @@ fn record(args: &PixelArgs) -> Result<RayTree> {
             scene.height
         );
     }
-    Ok(record_pixel(&scene, &args.mistakes.settings(&scene), x, y))
+    let before = match &args.diff_against {
+        Some(original) => {
+            let other = scene::builtin::load_file_or_builtin(Some(original))?
+                .with_size(scene.width, scene.height)?;
+            Some((other, original.display().to_string()))
+        }
+        None if !args.set.is_empty() => Some((scene.clone(), "the scene as written".to_string())),
+        None => None,
+    };
+    for assignment in &args.set {
+        scene::overrides::apply(&mut scene, assignment).map_err(anyhow::Error::msg)?;
+    }
+    let record = |scene: &Scene| record_pixel(scene, &args.mistakes.settings(scene), x, y);
+    Ok(Recorded {
+        tree: record(&scene),
+        before: before.map(|(other, what)| (record(&other), what)),
+    })
 }
 
 fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
-    let tree = record(&args.pixel)?;
+    let recorded = record(&args.pixel)?;
+    let tree = &recorded.tree;
     match args.format {
-        InspectFormat::Text => emit(&text(&tree))?,
+        InspectFormat::Text => emit(&(text(tree) + &recorded.what_changed()))?,
         InspectFormat::Json => {
             // serde_json would print a NaN or an infinity as `null`: refuse instead.
             tree.check_finite().map_err(|e| {
@@ -254,14 +301,14 @@ fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
                 serde_json::to_string_pretty(&tree.to_json())?
             ))?
         }
-        InspectFormat::Dot => emit(&dot(&tree))?,
+        InspectFormat::Dot => emit(&dot(tree))?,
     }
     Ok(ExitCode::SUCCESS)
 }
 
 fn explain_command(args: &PixelArgs) -> Result<ExitCode> {
-    let tree = record(args)?;
-    emit(&explain(&tree))?;
+    let recorded = record(args)?;
+    emit(&(explain(&recorded.tree) + &recorded.what_changed()))?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -1,6 +1,7 @@
 //! Recording one pixel: the ray tree with every term, the execution-ordered
 //! event list, and their text, JSON and Graphviz forms.
 
+mod diff;
 mod dot;
 mod explain;
 mod finite;
@@ -9,6 +10,7 @@ mod recorder;
 mod text;
 mod tree;
 
+pub use diff::diff;
 pub use dot::dot;
 pub use explain::explain;
 pub use finite::{NonFinite, check_finite};

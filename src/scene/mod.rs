@@ -5,6 +5,7 @@ pub mod builtin;
 mod error;
 pub mod limits;
 pub mod nff;
+pub mod overrides;
 mod switches;
 pub mod toml_format;
 mod toml_sections;

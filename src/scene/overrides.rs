@@ -1,0 +1,143 @@
+//! What-if from the command line: `--set KEY=VALUE` changes one setting or
+//! one material's number after the scene is read, with the same ranges as
+//! the file (`limits.rs`), e.g. `settings.max_depth=2` or
+//! `materials.glass.ior=1.0`.
+
+use glam::DVec3;
+
+use super::limits::{self, Bounds};
+use super::toml_format::MAX_DEPTH_LIMIT;
+use super::{MAX_RAYS_LIMIT, Scene, SpecularModel};
+
+/// Applies `KEY=VALUE` to `scene`, or says why it cannot.
+pub fn apply(scene: &mut Scene, assignment: &str) -> Result<(), String> {
+    let (key, value) = assignment
+        .split_once('=')
+        .ok_or_else(|| format!("`{assignment}` is not KEY=VALUE, e.g. settings.max_depth=2"))?;
+    let (key, value) = (key.trim(), value.trim());
+    let parts: Vec<&str> = key.split('.').collect();
+    let bad = |why: String| format!("--set {key}={value}: {why}");
+    match parts.as_slice() {
+        ["settings", name] => setting(scene, name, value).map_err(bad),
+        ["materials", material, name] => {
+            let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
+            let index = names.iter().position(|n| n == material).ok_or_else(|| {
+                bad(format!(
+                    "no material {material:?}; the scene has {}",
+                    names.join(", ")
+                ))
+            })?;
+            material_number(&mut scene.materials[index], name, value).map_err(bad)
+        }
+        _ => Err(bad(
+            "the key must be settings.NAME or materials.MATERIAL.NAME".into(),
+        )),
+    }
+}
+
+fn setting(scene: &mut Scene, name: &str, value: &str) -> Result<(), String> {
+    let s = &mut scene.settings;
+    match name {
+        "max_depth" => {
+            let depth: u32 = value.parse().map_err(|_| "max_depth is a whole number")?;
+            if !(1..=MAX_DEPTH_LIMIT).contains(&depth) {
+                return Err(format!("max_depth must be between 1 and {MAX_DEPTH_LIMIT}"));
+            }
+            s.max_depth = depth;
+        }
+        "max_rays" => {
+            let rays: u32 = value.parse().map_err(|_| "max_rays is a whole number")?;
+            if !(1..=MAX_RAYS_LIMIT).contains(&rays) {
+                return Err(format!("max_rays must be between 1 and {MAX_RAYS_LIMIT}"));
+            }
+            s.max_rays = rays;
+        }
+        "min_weight" => s.min_weight = number(value, limits::WEIGHT)?,
+        "specular" => {
+            s.specular = match value {
+                "blinn" => SpecularModel::Blinn,
+                "phong" => SpecularModel::Phong,
+                _ => return Err("specular is blinn or phong".into()),
+            }
+        }
+        "ambient" => s.ambient = vector(value, limits::COLOR)?,
+        "background" => s.background = vector(value, limits::COLOR)?,
+        "light_attenuation" => s.light_attenuation = vector(value, limits::ATTENUATION)?.into(),
+        "ray_attenuation" => s.ray_attenuation = vector(value, limits::ATTENUATION)?.into(),
+        _ => {
+            return Err(
+                "settings are max_depth, max_rays, min_weight, specular, ambient, \
+                 background, light_attenuation, ray_attenuation"
+                    .into(),
+            );
+        }
+    }
+    Ok(())
+}
+
+fn material_number(material: &mut super::Material, name: &str, value: &str) -> Result<(), String> {
+    match name {
+        "kd" => material.kd = number(value, limits::COEFFICIENT)?,
+        "ks" => material.ks = number(value, limits::COEFFICIENT)?,
+        "ka" => material.ka = number(value, limits::COEFFICIENT)?,
+        "kt" => material.kt = number(value, limits::TRANSMISSION)?,
+        "n" => material.shininess = number(value, limits::SHININESS)?,
+        "ior" => material.ior = number(value, limits::IOR)?,
+        "color" => material.color = vector(value, limits::COLOR)?,
+        _ => return Err("a material's numbers are kd, ks, ka, kt, n, ior, color".into()),
+    }
+    Ok(())
+}
+
+fn number(value: &str, bounds: Bounds) -> Result<f64, String> {
+    let x: f64 = value
+        .parse()
+        .map_err(|_| format!("`{value}` is not a number"))?;
+    bounds.check(x)?;
+    Ok(x)
+}
+
+/// `[r, g, b]`, `r,g,b`, or one number for all three.
+fn vector(value: &str, bounds: Bounds) -> Result<DVec3, String> {
+    let inner = value.trim_start_matches('[').trim_end_matches(']');
+    let parts: Vec<&str> = inner.split(',').map(str::trim).collect();
+    let numbers = parts
+        .iter()
+        .map(|p| number(p, bounds))
+        .collect::<Result<Vec<f64>, String>>()?;
+    match numbers.as_slice() {
+        [x] => Ok(DVec3::splat(*x)),
+        [x, y, z] => Ok(DVec3::new(*x, *y, *z)),
+        _ => Err(format!("`{value}` is not one number or three")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::builtin::load_file_or_builtin;
+
+    #[test]
+    fn settings_and_materials_change_within_their_ranges() {
+        let mut scene = load_file_or_builtin(None).unwrap();
+        apply(&mut scene, "settings.max_depth=2").unwrap();
+        assert_eq!(scene.settings.max_depth, 2);
+        apply(&mut scene, "settings.ambient=[0.1, 0.2, 0.3]").unwrap();
+        assert_eq!(scene.settings.ambient, DVec3::new(0.1, 0.2, 0.3));
+        let glass = scene.materials[0].name.clone();
+        apply(&mut scene, &format!("materials.{glass}.ior=1.0")).unwrap();
+        assert_eq!(scene.materials[0].ior, 1.0);
+        for (bad, says) in [
+            ("settings.max_depth=0", "between 1 and 64"),
+            ("materials.nowhere.kd=1", "no material \"nowhere\""),
+            ("settings.colour=1", "settings are"),
+            ("max_depth 2", "not KEY=VALUE"),
+            ("settings.specular=cook", "blinn or phong"),
+        ] {
+            let error = apply(&mut scene, bad).unwrap_err();
+            assert!(error.contains(says), "{bad}: {error}");
+        }
+        let error = apply(&mut scene, &format!("materials.{glass}.ior=20")).unwrap_err();
+        assert!(error.contains("must be between 0.1 and 10"), "{error}");
+    }
+}
