@@ -54,6 +54,28 @@ pub enum Command {
     /// Compare your own render of a scene with raystep's: how far apart,
     /// where, and which classic mistake explains the difference.
     Compare(CompareArgs),
+    /// Draw one pixel's rays as an SVG figure for a slide.
+    Diagram(DiagramArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct DiagramArgs {
+    #[command(flatten)]
+    pub pixel: PixelArgs,
+    /// The SVG file to write (new, or a regular file to replace).
+    #[arg(short, long, value_name = "FIG.svg")]
+    pub output: PathBuf,
+    /// The plane drawn, in the camera's frame: from above, from the side,
+    /// or the primary ray's plane of incidence.
+    #[arg(long, value_enum, default_value_t = PlaneArg::Top)]
+    pub plane: PlaneArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlaneArg {
+    Top,
+    Side,
+    Ray,
 }
 
 #[derive(Args, Debug)]
@@ -223,6 +245,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Explain(args)) => explain_command(&args),
         Some(Command::Compare(args)) => compare_command(&args),
+        Some(Command::Diagram(args)) => diagram_command(&args),
         Some(Command::Debug { scene, compare }) => {
             crate::tui::run(scene.as_deref(), compare.as_deref())
         }
@@ -233,6 +256,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 /// The pixel's recording, and for `--set` or `--diff-against` the one it
 /// is compared with and what that was.
 struct Recorded {
+    scene: Scene,
     tree: RayTree,
     before: Option<(RayTree, String)>,
 }
@@ -279,6 +303,7 @@ fn record(args: &PixelArgs) -> Result<Recorded> {
     let record = |scene: &Scene| record_pixel(scene, &args.mistakes.settings(scene), x, y);
     Ok(Recorded {
         tree: record(&scene),
+        scene,
         before: before.map(|(other, what)| (record(&other), what)),
     })
 }
@@ -303,6 +328,24 @@ fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
         }
         InspectFormat::Dot => emit(&dot(tree))?,
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn diagram_command(args: &DiagramArgs) -> Result<ExitCode> {
+    use crate::tui::view::projection::DiagramPlane;
+    let target = output::file(&args.output)?;
+    output::refuse_clashes(
+        &args.pixel.scene,
+        &[(&target, "the figure (-o)".to_owned())],
+    )?;
+    let recorded = record(&args.pixel)?;
+    let plane = match args.plane {
+        PlaneArg::Top => DiagramPlane::Top,
+        PlaneArg::Side => DiagramPlane::Side,
+        PlaneArg::Ray => DiagramPlane::Primary,
+    };
+    let figure = crate::figure::svg(&recorded.scene, &recorded.tree, plane);
+    output::write_text(&target, &figure)?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -7,6 +7,7 @@ pub mod accel;
 pub mod camera;
 pub mod cli;
 pub mod compare;
+pub mod figure;
 pub mod math;
 pub mod mistakes;
 pub mod object;

@@ -221,6 +221,28 @@ pub fn write_all<'a>(
     placed
 }
 
+/// Writes `text` to `target` as `write_all` writes images: to a temporary
+/// beside it first, then renamed into place.
+pub fn write_text(target: &Target, text: &str) -> Result<()> {
+    let fail = || format!("cannot write {}", target.shown.display());
+    let dir = target.real.parent().unwrap_or(Path::new("/"));
+    remove_stale_temps(dir);
+    let temp = temp_in(dir).with_context(fail)?;
+    let mut out = BufWriter::new(temp.as_file());
+    out.write_all(text.as_bytes()).with_context(fail)?;
+    out.flush().with_context(fail)?;
+    drop(out);
+    if let Some(mode) = &target.mode {
+        temp.as_file()
+            .set_permissions(mode.clone())
+            .with_context(fail)?;
+    }
+    temp.persist(&target.real)
+        .map_err(|e| e.error)
+        .with_context(fail)?;
+    Ok(())
+}
+
 fn write_temps<'a>(
     files: impl IntoIterator<Item = (&'a Target, RgbImage)>,
 ) -> Result<Vec<(NamedTempFile, &'a Target)>> {
