@@ -39,8 +39,17 @@ fn the_figure_is_svg_with_every_ray_light_and_blocker() {
             .filter(|n| n.has_tag_name("text"))
             .filter_map(|n| n.text())
             .collect();
-        for expected in ["eye", "light key", "light fill", "glass block top", "primary"] {
-            assert!(texts.contains(&expected), "{plane}: no {expected:?} in {texts:?}");
+        for expected in [
+            "eye",
+            "light key",
+            "light fill",
+            "glass block top",
+            "primary",
+        ] {
+            assert!(
+                texts.contains(&expected),
+                "{plane}: no {expected:?} in {texts:?}"
+            );
         }
     }
     let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
