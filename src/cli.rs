@@ -460,6 +460,16 @@ fn render_command(args: &RenderArgs) -> Result<ExitCode> {
         } else {
             serde_json::json!({})
         };
+        if let (true, Some(terms)) = (args.stats, &terms) {
+            // The scales of the two false-colour term images.
+            for (key, term) in [
+                ("rays_per_pixel", Term::Rays),
+                ("cost_per_pixel", Term::Cost),
+            ] {
+                let (min, max) = terms.count_range(term);
+                json[key] = serde_json::json!({ "min": min, "max": max });
+            }
+        }
         json["width"] = scene.width.into();
         json["height"] = scene.height.into();
         json["objects"] = scene.objects.len().into();

@@ -66,7 +66,10 @@ impl Term {
             Term::Specular => "sum over lights of the specular terms",
             Term::Reflected => "k_s I_r: what the reflected ray adds",
             Term::Transmitted => "k_t I_t: what the transmitted ray adds",
-            Term::Shadow => "mean S over the lights facing the hit: white lit, black shadowed",
+            Term::Shadow => {
+                "mean S over the lights facing the hit: white lit, black shadowed; \
+                 purple: no light faces the point; dark blue: background"
+            }
             Term::Rays => "rays per pixel (all kinds, shadow rays too): dark few, bright many",
             Term::Cost => "nodes + primitives tested per pixel: dark cheap, bright expensive",
         }
@@ -84,6 +87,9 @@ pub struct PixelTerms {
     pub transmitted: Color,
     /// Mean S over lights facing the hit; `None` on a miss or when none faces it.
     pub shadow: Option<f64>,
+    /// Whether the primary ray hit something (`shadow.png` tells a miss
+    /// from a point no light faces).
+    pub hit: bool,
     pub rays: u32,
     pub cost: u32,
 }
@@ -105,6 +111,9 @@ impl Recorder for TermsRecorder {
 
     fn hit(&mut self, _hit: &SurfaceHit, cost: Cost) {
         self.terms.cost += cost.nodes + cost.primitives;
+        if self.depth == 1 {
+            self.terms.hit = true;
+        }
     }
 
     fn miss(&mut self, _background: Color, cost: Cost) {
@@ -269,6 +278,14 @@ impl TermImages {
             .unwrap_or(0)
     }
 
+    /// The least and the most of a count view (rays or cost) over the
+    /// image: its colour ramp runs from 0 (dark blue) to the most (yellow).
+    pub fn count_range(&self, term: Term) -> (u32, u32) {
+        let count = |p: &PixelTerms| if term == Term::Rays { p.rays } else { p.cost };
+        let min = self.pixels.iter().map(count).min().unwrap_or(0);
+        (min, self.max_count(term))
+    }
+
     /// One pixel of a view as 8-bit RGB; counts are scaled by `max_count`.
     pub fn rgb(&self, term: Term, index: usize, max_count: u32) -> [u8; 3] {
         let p = &self.pixels[index];
@@ -278,7 +295,11 @@ impl TermImages {
             Term::Specular => to_rgb8(p.specular),
             Term::Reflected => to_rgb8(p.reflected),
             Term::Transmitted => to_rgb8(p.transmitted),
-            Term::Shadow => to_rgb8(Color::splat(p.shadow.unwrap_or(0.0))),
+            Term::Shadow => match p.shadow {
+                Some(s) => to_rgb8(Color::splat(s)),
+                None if p.hit => NO_LIGHT_FACES,
+                None => SHADOW_BACKGROUND,
+            },
             Term::Rays => false_color(p.rays as f64 / max_count.max(1) as f64),
             Term::Cost => false_color(p.cost as f64 / max_count.max(1) as f64),
         }
@@ -301,6 +322,12 @@ impl TermImages {
         })
     }
 }
+
+/// `shadow.png` where the primary ray hits a point that no light faces
+/// (no shadow ray is cast): purple, apart from the grey scale of S.
+pub const NO_LIGHT_FACES: [u8; 3] = [110, 40, 120];
+/// `shadow.png` where the primary ray misses: dark blue.
+pub const SHADOW_BACKGROUND: [u8; 3] = [20, 30, 70];
 
 /// A dark-blue to yellow ramp for counts in [0, 1].
 pub fn false_color(v: f64) -> [u8; 3] {
