@@ -70,6 +70,25 @@ pub struct HitRecord {
     pub entering: bool,
     /// The intersection worked the way the course notes teach it.
     pub working: Working,
+    /// The material's numbers the terms were computed with (MODEL §4, §5).
+    pub factors: MaterialFactors,
+    /// I_a, the scene's ambient light (the ambient term is I_a k_a O_d).
+    pub i_a: Color,
+}
+
+/// A material's coefficients as the course notes name them, so that every
+/// term of a hit can be checked by hand from the recording alone.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct MaterialFactors {
+    /// O_d, the diffuse colour.
+    pub o_d: Color,
+    pub ka: f64,
+    pub kd: f64,
+    pub ks: f64,
+    /// The specular exponent.
+    pub n: f64,
+    pub kt: f64,
+    pub ior: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -83,6 +102,8 @@ pub struct NearMiss {
 pub struct LightRecord {
     pub light: String,
     pub light_index: usize,
+    /// I_p, the light's colour.
+    pub i_p: Color,
     pub to_light: DVec3,
     pub distance: f64,
     pub n_dot_l: f64,
