@@ -5,12 +5,14 @@ mod explain;
 mod finite;
 mod lines;
 mod recorder;
+mod shaping;
 mod text;
 mod tree;
 
 pub use explain::explain;
 pub use finite::{NonFinite, check_finite};
 pub use lines::{About, Line, Piece, Row, Word};
+pub use shaping::{Shaping, place, reach, shaping_events};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use text::{
     Children, color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line,
