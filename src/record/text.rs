@@ -623,14 +623,31 @@ fn escape(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::num;
+    use super::{color, num, precise};
+    use glam::DVec3;
 
     #[test]
     fn numbers_are_short() {
         assert_eq!(num(1.0), "1");
         assert_eq!(num(0.25), "0.25");
-        assert_eq!(num(-0.00001), "-1.000e-5");
         assert_eq!(num(-0.0), "0");
         assert_eq!(num(2.0 / 3.0), "0.6667");
+        assert_eq!(num(2.5e7), "2.500e7");
+    }
+
+    #[test]
+    fn what_rounds_to_zero_prints_zero() {
+        // Rounding noise such as 1 - (1 - 2^-52) - 2^-52... prints as 0 at
+        // four decimals; 0.00005 rounds up to 0.0001 and stays.
+        assert_eq!(num(-2.220446049250313e-16), "0");
+        assert_eq!(num(-0.00001), "0");
+        assert_eq!(num(0.00005), "5.000e-5");
+        assert_eq!(color(DVec3::new(-1e-9, 0.5, -0.0)), "(0.000, 0.500, 0.000)");
+    }
+
+    #[test]
+    fn precise_numbers_keep_small_values() {
+        assert_eq!(precise(-0.00001), "-1.000e-5");
+        assert_eq!(precise(1.1102230246251565e-16), "1.110e-16");
     }
 }
