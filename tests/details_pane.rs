@@ -154,9 +154,14 @@ fn a_blocker_and_its_light_highlight_all_the_lights_lines() {
     // A light that is not facing away gets its lines: N·L and S (here with
     // the blocker), f_att and the cosine, then the diffuse and specular
     // terms, each as its formula and its numbers (S = 0, so both are 0;
-    // the diffuse numbers wrap at 100 columns).
+    // the diffuse numbers wrap at 100 columns). The blocker's working comes
+    // after the first line: a unit-length shadow ray, so A = 1, and the ball
+    // crossed at both roots.
     let lamp = [
         "lamp: N·L = ",
+        "  ball crossed at t = 4.4555 (root t0) and t = 6.4054 (root t1):",
+        "    sphere: A = 1, B = ",
+        "    roots t0 = 4.4555, t1 = 6.4054",
         "  f_att = 1, N·H = ",
         "  diffuse = S · f_att · I_p · k_d · O_d · (N·L)",
         "    = 0 · 1 · (1.000, 1.000, 1.000) ██ · 0.8 · (0.500, 0.500, 0.500) ██ ·",

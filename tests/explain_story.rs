@@ -133,11 +133,28 @@ fn a_shadow_below_the_first_hit_is_told_with_what_it_cost() {
     assert!(
         story.contains(
             "0.400  light 0 is blocked at r1 (primary → reflected, depth 2) by ball \
-             (t = 0.4, k_t 0), ball (t = 0.6, k_t 0): S = 0; unblocked it would add \
-             (0.400, 0.400, 0.400) more to the pixel"
+             (t = 0.4, root t0, k_t 0), ball (t = 0.6, root t1, k_t 0): S = 0; unblocked it \
+             would add (0.400, 0.400, 0.400) more to the pixel"
         ),
         "{story}"
     );
+    // Each blocker's working: o - c = (-0.3, 0, 0.4), d = (0.6, 0, -0.8):
+    // A = 1, B = 2 d·(o - c) = -1, C = 0.25 - 0.01 = 0.24, B^2 - 4AC = 0.04,
+    // roots (1 -+ 0.2) / 2 = 0.4 and 0.6.
+    let lines: Vec<String> = node_lines(&tree, 1, Children::Listed)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    let working = [
+        "  ball crossed at t = 0.4 (root t0) and t = 0.6 (root t1):",
+        "    sphere: A = 1, B = -1, C = 0.24, discriminant B^2 - 4AC = 0.04",
+        "    roots t0 = 0.4, t1 = 0.6",
+        "  f_att = 1, N·H = ",
+    ];
+    let at = lines.iter().position(|l| l == working[0]).expect("blocker lines");
+    for (line, start) in lines[at..at + 4].iter().zip(working) {
+        assert!(line.starts_with(start), "{lines:#?}");
+    }
 }
 
 #[test]

@@ -205,11 +205,18 @@ impl Recorder for TreeRecorder<'_> {
                 let mut blockers: Vec<BlockerRecord> = self
                     .blockers
                     .iter()
-                    .map(|b| BlockerRecord {
-                        object: scene.objects[b.object].name.clone(),
-                        object_index: b.object,
-                        t: b.t,
-                        kt: b.kt,
+                    .map(|b| {
+                        let working = scene.objects[b.object]
+                            .shape
+                            .working(&ray, Interval::in_front());
+                        BlockerRecord {
+                            object: scene.objects[b.object].name.clone(),
+                            object_index: b.object,
+                            t: b.t,
+                            kt: b.kt,
+                            root: BlockerRecord::root_of(&working, b.t),
+                            working,
+                        }
                     })
                     .collect();
                 blockers.sort_by(|a, b| {

@@ -162,7 +162,10 @@ fn blocked(
     let by: Vec<String> = shadow
         .blockers
         .iter()
-        .map(|b| format!("{} (t = {}, k_t {})", b.object, precise(b.t), num(b.kt)))
+        .map(|b| {
+            let root = b.root.map(|r| format!(", root {r}")).unwrap_or_default();
+            format!("{} (t = {}{root}, k_t {})", b.object, precise(b.t), num(b.kt))
+        })
         .collect();
     let how = if shadow.s == 0.0 { "blocked" } else { "partly blocked" };
     Some(Shaping {

@@ -6,7 +6,9 @@ use std::fmt::Write;
 use glam::DVec3;
 
 use super::lines::{About, Line};
-use super::tree::{HitRecord, LightRecord, MaterialFactors, Node, NodeId, RayTree};
+use super::tree::{
+    BlockerRecord, HitRecord, LightRecord, MaterialFactors, Node, NodeId, RayTree,
+};
 use crate::math::EPS;
 use crate::mistakes::Mistake;
 use crate::scene::SpecularModel;
@@ -249,15 +251,35 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
     };
     let cosine = cosine_name(light.specular_model);
     let lead = format!("    = {} · {} · ", num(s), precise(light.f_att));
-    vec![
-        Line::text(
-            about,
-            format!(
-                "{}: N·L = {}, {shadow}",
-                light.light,
-                num(light.n_dot_l)
-            ),
+    let mut lines = vec![Line::text(
+        about,
+        format!(
+            "{}: N·L = {}, {shadow}",
+            light.light,
+            num(light.n_dot_l)
         ),
+    )];
+    // Each blocking object once, with all its crossings (a ball twice).
+    let blockers: &[BlockerRecord] = light.shadow.as_ref().map_or(&[], |s| &s.blockers);
+    for (i, b) in blockers.iter().enumerate() {
+        if blockers[..i].iter().any(|o| o.object_index == b.object_index) {
+            continue;
+        }
+        let crossings: Vec<String> = blockers
+            .iter()
+            .filter(|o| o.object_index == b.object_index)
+            .map(|o| {
+                let root = o.root.map(|r| format!(" (root {r})")).unwrap_or_default();
+                format!("t = {}{root}", precise(o.t))
+            })
+            .collect();
+        lines.push(Line::text(
+            about,
+            format!("  {} crossed at {}:", b.object, crossings.join(" and ")),
+        ));
+        lines.extend(indented(about, indented_strings(blocker_lines(&b.working))));
+    }
+    lines.extend([
         Line::text(
             about,
             format!(
@@ -283,7 +305,28 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
                 num(factors.n)
             ))
             .color(light.specular),
-    ]
+    ]);
+    lines
+}
+
+/// A blocker's intersection working: as for a hit, but a sphere's roots
+/// without the closest-hit choice (a shadow ray counts every crossing).
+fn blocker_lines(working: &Working) -> Vec<String> {
+    match working {
+        Working::Sphere(w) => {
+            let mut lines = working_lines(working);
+            if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
+                lines.truncate(1);
+                lines.push(format!("roots t0 = {}, t1 = {}", precise(t0), precise(t1)));
+            }
+            lines
+        }
+        _ => working_lines(working),
+    }
+}
+
+fn indented_strings(lines: Vec<String>) -> Vec<String> {
+    lines.into_iter().map(|l| format!("  {l}")).collect()
 }
 
 /// "N·H" for Blinn, "R·V" for Phong.

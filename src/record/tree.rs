@@ -137,6 +137,24 @@ pub struct BlockerRecord {
     pub object_index: usize,
     pub t: f64,
     pub kt: f64,
+    /// Which root of the quadratic this crossing is ("t0" or "t1"), for a
+    /// sphere, cylinder or cone; absent for a plane or polygon (one root).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub root: Option<&'static str>,
+    /// The shadow ray's intersection with the blocker, worked as for a hit.
+    pub working: Working,
+}
+
+impl BlockerRecord {
+    /// Which of the working's two roots is nearer to `t`, if it has two.
+    pub fn root_of(working: &Working, t: f64) -> Option<&'static str> {
+        let (t0, t1) = match working {
+            Working::Sphere(w) => (w.t0?, w.t1?),
+            Working::Cone(w) => (w.t0?, w.t1?),
+            _ => return None,
+        };
+        Some(if (t - t0).abs() <= (t - t1).abs() { "t0" } else { "t1" })
+    }
 }
 
 /// One step of the trace, in the order the tracer performed it.
