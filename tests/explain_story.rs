@@ -45,7 +45,10 @@ fn each_term_is_printed_with_its_factors() {
     let text = lines.join("\n");
     // diffuse = S f_att I_p k_d O_d (N·L) = 1 · 1 · 1 · 0.5 · (1, 0.5, 0) · 0.8
     //         = (0.4, 0.2, 0).
-    assert!(text.contains("diffuse = S · f_att · I_p · k_d · O_d · (N·L)"), "{text}");
+    assert!(
+        text.contains("diffuse = S · f_att · I_p · k_d · O_d · (N·L)"),
+        "{text}"
+    );
     assert!(
         text.contains(
             "    = 1 · 1 · (1.000, 1.000, 1.000) · 0.5 · (1.000, 0.500, 0.000) · 0.8 = \
@@ -55,7 +58,10 @@ fn each_term_is_printed_with_its_factors() {
     );
     // V = (0, 0, 1): L + V = (0.6, 0, 1.8), N·H = 1.8 / sqrt(3.6) = 0.9487,
     // (N·H)^2 = 3.24 / 3.6 = 0.9; specular = 0.5 · 0.9 = 0.45 per channel.
-    assert!(text.contains("specular = S · f_att · I_p · k_s · (N·H)^n"), "{text}");
+    assert!(
+        text.contains("specular = S · f_att · I_p · k_s · (N·H)^n"),
+        "{text}"
+    );
     assert!(
         text.contains("· 0.5 · 0.9487^2 = (0.450, 0.450, 0.450)"),
         "{text}"
@@ -81,7 +87,10 @@ fn the_json_holds_every_factor() {
     assert_eq!(f["o_d"], serde_json::json!([1.0, 0.5, 0.0]));
     assert_eq!((f["ka"].as_f64(), f["kd"].as_f64()), (Some(0.5), Some(0.5)));
     assert_eq!((f["ks"].as_f64(), f["n"].as_f64()), (Some(0.5), Some(2.0)));
-    assert_eq!((f["kt"].as_f64(), f["ior"].as_f64()), (Some(0.0), Some(1.0)));
+    assert_eq!(
+        (f["kt"].as_f64(), f["ior"].as_f64()),
+        (Some(0.0), Some(1.0))
+    );
     assert_eq!(root["hit"]["i_a"], serde_json::json!([0.2, 0.2, 0.2]));
     assert_eq!(root["lights"][0]["i_p"], serde_json::json!([1.0, 1.0, 1.0]));
 }
@@ -151,7 +160,10 @@ fn a_shadow_below_the_first_hit_is_told_with_what_it_cost() {
         "    roots t0 = 0.4, t1 = 0.6",
         "  f_att = 1, N·H = ",
     ];
-    let at = lines.iter().position(|l| l == working[0]).expect("blocker lines");
+    let at = lines
+        .iter()
+        .position(|l| l == working[0])
+        .expect("blocker lines");
     for (line, start) in lines[at..at + 4].iter().zip(working) {
         assert!(line.starts_with(start), "{lines:#?}");
     }
@@ -161,7 +173,11 @@ fn a_shadow_below_the_first_hit_is_told_with_what_it_cost() {
 fn a_ray_cut_by_the_depth_limit_is_told_with_its_weight() {
     // max_depth 1: the mirror's reflected ray (weight k_s = 0.5) is never
     // spawned; it could have added up to 0.5 per channel.
-    let tree = record(&mirror_and_shadow("max_depth = 1"), [0.0; 3], [0.0, 0.0, -1.0]);
+    let tree = record(
+        &mirror_and_shadow("max_depth = 1"),
+        [0.0; 3],
+        [0.0, 0.0, -1.0],
+    );
     let events = shaping_events(&tree);
     assert_eq!(events.len(), 1, "{events:?}");
     assert_eq!(events[0].matters, 0.5);
@@ -213,5 +229,9 @@ fn the_glass_scenes_tir_example_is_told_below_the_first_hit() {
         "{story}"
     );
     // The TIR is the event that matters most for this pixel.
-    assert!(shaping_events(&tree)[0].text.starts_with("total internal reflection at r2"));
+    assert!(
+        shaping_events(&tree)[0]
+            .text
+            .starts_with("total internal reflection at r2")
+    );
 }

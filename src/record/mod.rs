@@ -12,13 +12,13 @@ mod tree;
 pub use explain::explain;
 pub use finite::{NonFinite, check_finite};
 pub use lines::{About, Line, Piece, Row, Word};
-pub use shaping::{Shaping, place, reach, shaping_events};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
+pub use shaping::{Shaping, place, reach, shaping_events};
 pub use text::{
     Children, color, dot, fraction, kind_name, light_lines, node_lines, not_cast_line,
     not_cast_reason, num, ray_header, text, vector, working_lines,
 };
 pub use tree::{
-    BlockerRecord, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
-    ShadowRecord,
+    BlockerRecord, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node,
+    NodeId, RayTree, ShadowRecord,
 };

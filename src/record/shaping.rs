@@ -164,10 +164,19 @@ fn blocked(
         .iter()
         .map(|b| {
             let root = b.root.map(|r| format!(", root {r}")).unwrap_or_default();
-            format!("{} (t = {}{root}, k_t {})", b.object, precise(b.t), num(b.kt))
+            format!(
+                "{} (t = {}{root}, k_t {})",
+                b.object,
+                precise(b.t),
+                num(b.kt)
+            )
         })
         .collect();
-    let how = if shadow.s == 0.0 { "blocked" } else { "partly blocked" };
+    let how = if shadow.s == 0.0 {
+        "blocked"
+    } else {
+        "partly blocked"
+    };
     Some(Shaping {
         matters: mean(lost),
         node: id,

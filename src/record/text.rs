@@ -6,9 +6,7 @@ use std::fmt::Write;
 use glam::DVec3;
 
 use super::lines::{About, Line};
-use super::tree::{
-    BlockerRecord, HitRecord, LightRecord, MaterialFactors, Node, NodeId, RayTree,
-};
+use super::tree::{BlockerRecord, HitRecord, LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use crate::math::EPS;
 use crate::mistakes::Mistake;
 use crate::scene::SpecularModel;
@@ -253,16 +251,15 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
     let lead = format!("    = {} · {} · ", num(s), precise(light.f_att));
     let mut lines = vec![Line::text(
         about,
-        format!(
-            "{}: N·L = {}, {shadow}",
-            light.light,
-            num(light.n_dot_l)
-        ),
+        format!("{}: N·L = {}, {shadow}", light.light, num(light.n_dot_l)),
     )];
     // Each blocking object once, with all its crossings (a ball twice).
     let blockers: &[BlockerRecord] = light.shadow.as_ref().map_or(&[], |s| &s.blockers);
     for (i, b) in blockers.iter().enumerate() {
-        if blockers[..i].iter().any(|o| o.object_index == b.object_index) {
+        if blockers[..i]
+            .iter()
+            .any(|o| o.object_index == b.object_index)
+        {
             continue;
         }
         let crossings: Vec<String> = blockers
@@ -295,7 +292,10 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
             .color(factors.o_d)
             .then(format!(" · {} = ", num(light.n_dot_l)))
             .color(light.diffuse),
-        Line::text(about, format!("  specular = S · f_att · I_p · k_s · ({cosine})^n")),
+        Line::text(
+            about,
+            format!("  specular = S · f_att · I_p · k_s · ({cosine})^n"),
+        ),
         Line::text(about, lead)
             .color(light.i_p)
             .then(format!(
@@ -519,7 +519,8 @@ pub fn child_formula(tree: &RayTree, child: NodeId) -> String {
 }
 
 fn ks_of(node: Option<&Node>) -> f64 {
-    node.and_then(|n| n.hit.as_ref()).map_or(0.0, |h| h.factors.ks)
+    node.and_then(|n| n.hit.as_ref())
+        .map_or(0.0, |h| h.factors.ks)
 }
 
 /// A child ray's term with its numbers, as the child's own lines end.

@@ -153,7 +153,11 @@ impl BlockerRecord {
             Working::Cone(w) => (w.t0?, w.t1?),
             _ => return None,
         };
-        Some(if (t - t0).abs() <= (t - t1).abs() { "t0" } else { "t1" })
+        Some(if (t - t0).abs() <= (t - t1).abs() {
+            "t0"
+        } else {
+            "t1"
+        })
     }
 }
 
