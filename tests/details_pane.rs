@@ -149,14 +149,25 @@ fn rgb(c: DVec3) -> Color {
 }
 
 #[test]
-fn a_blocker_and_its_light_highlight_the_lights_three_lines() {
+fn a_blocker_and_its_light_highlight_all_the_lights_lines() {
     let mut app = app_at(12, 20);
-    // A light that is not facing away gets three lines: N·L and S (here with
-    // the blocker), f_att and the cosine, then the diffuse and specular terms.
+    // A light that is not facing away gets its lines: N·L and S (here with
+    // the blocker), f_att and the cosine, then the diffuse and specular
+    // terms, each as its formula and its numbers (S = 0, so both are 0;
+    // the diffuse numbers wrap at 100 columns). The blocker's working comes
+    // after the first line: a unit-length shadow ray, so A = 1, and the ball
+    // crossed at both roots.
     let lamp = [
-        "light lamp: N·L = ",
+        "lamp: N·L = ",
+        "  ball crossed at t = 4.4555 (root t0) and t = 6.4054 (root t1):",
+        "    sphere: A = 1, B = ",
+        "    roots t0 = 4.4555, t1 = 6.4054",
         "  f_att = 1, N·H = ",
-        "  diffuse (0.000",
+        "  diffuse = S · f_att · I_p · k_d · O_d · (N·L)",
+        "    = 0 · 1 · (1.000, 1.000, 1.000) ██ · 0.8 · (0.500, 0.500, 0.500) ██ ·",
+        "        (0.000, 0.000, 0.000) ██",
+        "  specular = S · f_att · I_p · k_s · (N·H)^n",
+        "    = 0 · 1 · (1.000, 1.000, 1.000) ██ · 0.5 · ",
     ];
     let blocker = event(&app, 0, |k| matches!(k, EventKind::Blocker { .. }));
     let buffer = pane(&mut app, blocker);

@@ -320,7 +320,7 @@ fn a_light_within_eps_of_the_point_adds_nothing_and_casts_no_shadow_ray() {
     }
     assert_eq!(root["lights"][0]["at_point"], true);
     assert!(root["lights"][2].get("at_point").is_none());
-    assert!(text(&tree).contains("light light 0: at the point (distance 0 < EPS = 0.0001)"));
+    assert!(text(&tree).contains("light 0: at the point (distance 0 < EPS = 0.0001)"));
     assert!(
         explain(&tree).contains("light 1: sits on the point (distance 5.000e-5 < EPS = 0.0001)")
     );

@@ -1,7 +1,7 @@
 //! The debugger with `--compare` and the classic mistakes as switches:
 //! keys in, state out, checked against raystep's own renders and recordings.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crossterm::event::KeyCode;
 use image::RgbImage;
@@ -32,12 +32,17 @@ fn with(mistake: Mistake) -> Settings {
 
 /// The built-in scene rendered by raystep under `mistake`, written as the
 /// student's PNG.
-fn students_png(mistake: Mistake) -> (PathBuf, RgbImage) {
+/// Each call writes its own file: tests run in parallel, and one writing
+/// a PNG while another reads it gave a truncated image.
+fn students_png(mistake: Mistake) -> (tempfile::TempPath, RgbImage) {
     let scene = builtin_scene();
     let (image, _) = render::<NoRecorder>(&scene, &with(mistake), &|| {});
-    let dir = Path::new("target/tui-tests");
-    std::fs::create_dir_all(dir).unwrap();
-    let path = dir.join(format!("yours-{mistake}.png"));
+    let path = tempfile::Builder::new()
+        .prefix(&format!("yours-{mistake}-"))
+        .suffix(".png")
+        .tempfile()
+        .unwrap()
+        .into_temp_path();
     image.save(&path).unwrap();
     (path, image)
 }

@@ -3,7 +3,8 @@
 
 use std::fmt::Write;
 
-use super::text::{color, fraction, kind_name, not_cast_reason, num};
+use super::shaping::shaping_events;
+use super::text::{color, fraction, kind_name, not_cast_reason, num, precise};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
 use crate::shapes::Working;
@@ -78,8 +79,29 @@ pub fn explain(tree: &RayTree) -> String {
             "No secondary rays: max_depth is 1, so the primary ray spawns none."
         );
     }
-    write_clamping(&mut out, c);
+    write_shaping(&mut out, tree);
     out
+}
+
+/// The events anywhere in the tree that shaped the colour, largest first.
+fn write_shaping(out: &mut String, tree: &RayTree) {
+    let events = shaping_events(tree);
+    if events.is_empty() {
+        let _ = writeln!(
+            out,
+            "Nothing else shaped it: no shadow, no total internal reflection, no ray cut short \
+             or lost to the background, no channel clamped."
+        );
+        return;
+    }
+    let _ = writeln!(
+        out,
+        "What shaped the colour, at any depth of the tree (largest first; the number is how \
+         much of a channel it moved in the pixel, on average):"
+    );
+    for event in events {
+        let _ = writeln!(out, "  {:.3}  {}", event.matters, event.text);
+    }
 }
 
 /// Each term of the primary ray with its share of the total brightness.
@@ -158,7 +180,7 @@ fn light_fate(light: &LightRecord) -> String {
             "{}: in shadow, blocked by {} (opaque) at distance {} of {}.",
             light.light,
             opaque.object,
-            num(opaque.t),
+            precise(opaque.t),
             num(shadow.distance)
         );
     }
@@ -269,24 +291,6 @@ fn write_near_misses(out: &mut String, tree: &RayTree) {
                 "On its way it passes through the plane of {} inside its bounding box, but the point \
                  is outside the polygon: {} edge crossings, an even number.",
                 near.object, test.crossings
-            );
-        }
-    }
-}
-
-fn write_clamping(out: &mut String, c: Color) {
-    for (name, value) in [("red", c.x), ("green", c.y), ("blue", c.z)] {
-        if value > 1.0 {
-            let _ = writeln!(
-                out,
-                "The {name} channel is {} before clamping: it is stored as 255 (clamped).",
-                num(value)
-            );
-        } else if value < 0.0 {
-            let _ = writeln!(
-                out,
-                "The {name} channel is {} before clamping: it is stored as 0.",
-                num(value)
             );
         }
     }

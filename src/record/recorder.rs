@@ -13,8 +13,8 @@ use crate::trace::{
 };
 
 use super::tree::{
-    BlockerRecord, Event, EventKind, HitRecord, LightRecord, NearMiss, Node, NodeId, RayTree,
-    ShadowRecord,
+    BlockerRecord, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node,
+    NodeId, RayTree, ShadowRecord,
 };
 
 /// Near misses are looked for in scenes up to this size, where they teach;
@@ -28,6 +28,8 @@ pub struct TreeRecorder<'a> {
     max_depth: u32,
     /// The settings' mistakes, kept in the tree for its bytes.
     mistakes: Mistakes,
+    /// The settings' I_a, kept on each hit for its ambient term's factors.
+    ambient_light: Color,
     nodes: Vec<Node>,
     events: Vec<Event>,
     /// The node of the ray being traced, innermost last.
@@ -53,6 +55,7 @@ impl<'a> TreeRecorder<'a> {
             scene,
             max_depth: settings.max_depth,
             mistakes: settings.mistakes,
+            ambient_light: settings.ambient,
             nodes: Vec::new(),
             events: Vec::new(),
             stack: Vec::new(),
@@ -127,6 +130,8 @@ impl Recorder for TreeRecorder<'_> {
     fn hit(&mut self, hit: &SurfaceHit, cost: Cost) {
         let scene = self.scene;
         let object = &scene.objects[hit.object];
+        let material = scene.material_of(hit.object);
+        let i_a = self.ambient_light;
         let node = self.node();
         let ray = Ray::new(node.origin, node.direction);
         node.cost = cost;
@@ -135,13 +140,23 @@ impl Recorder for TreeRecorder<'_> {
             object: object.name.clone(),
             object_index: hit.object,
             kind: object.shape.kind(),
-            material: scene.materials[object.material].name.clone(),
+            material: material.name.clone(),
             t: hit.t,
             point: hit.point,
             geometric_normal: hit.geometric_normal,
             normal: hit.normal,
             entering: hit.entering,
             working: object.shape.working(&ray, Interval::in_front()),
+            factors: MaterialFactors {
+                o_d: material.color,
+                ka: material.ka,
+                kd: material.kd,
+                ks: material.ks,
+                n: material.shininess,
+                kt: material.kt,
+                ior: material.ior,
+            },
+            i_a,
         });
         self.push_event(EventKind::Hit {
             object: hit.object,
@@ -190,11 +205,18 @@ impl Recorder for TreeRecorder<'_> {
                 let mut blockers: Vec<BlockerRecord> = self
                     .blockers
                     .iter()
-                    .map(|b| BlockerRecord {
-                        object: scene.objects[b.object].name.clone(),
-                        object_index: b.object,
-                        t: b.t,
-                        kt: b.kt,
+                    .map(|b| {
+                        let working = scene.objects[b.object]
+                            .shape
+                            .working(&ray, Interval::in_front());
+                        BlockerRecord {
+                            object: scene.objects[b.object].name.clone(),
+                            object_index: b.object,
+                            t: b.t,
+                            kt: b.kt,
+                            root: BlockerRecord::root_of(&working, b.t),
+                            working,
+                        }
                     })
                     .collect();
                 blockers.sort_by(|a, b| {
@@ -216,6 +238,7 @@ impl Recorder for TreeRecorder<'_> {
         self.node().lights.push(LightRecord {
             light: scene.lights[term.light].name.clone(),
             light_index: term.light,
+            i_p: scene.lights[term.light].color,
             to_light: term.to_light,
             distance: term.distance,
             n_dot_l: term.n_dot_l,

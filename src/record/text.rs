@@ -6,14 +6,26 @@ use std::fmt::Write;
 use glam::DVec3;
 
 use super::lines::{About, Line};
-use super::tree::{HitRecord, LightRecord, Node, NodeId, RayTree};
+use super::tree::{BlockerRecord, HitRecord, LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use crate::math::EPS;
+use crate::mistakes::Mistake;
 use crate::scene::SpecularModel;
 use crate::shapes::{ConeWorking, PolygonWorking, RootChoice, Working};
 use crate::trace::{NotCast, PruneRule, RayKind};
 
-/// A number with at most four decimals and no trailing zeros.
+/// A number with at most four decimals and no trailing zeros; one that
+/// rounds to 0 at four decimals (rounding noise such as -2.2e-16) is `0`.
 pub fn num(x: f64) -> String {
+    if x.abs() < 5e-5 {
+        return "0".into();
+    }
+    precise(x)
+}
+
+/// Like `num`, but a small value keeps its digits (`1.110e-16`): for the
+/// few numbers whose smallness is the lesson (a shadow-acne blocker's t, a
+/// ray's accumulated weight, EPS).
+pub fn precise(x: f64) -> String {
     if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-4) {
         return format!("{x:.3e}");
     }
@@ -26,9 +38,13 @@ pub fn vector(v: DVec3) -> String {
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
 
-/// A colour with three decimals per channel.
+/// A colour with three decimals per channel (never `-0.000`).
 pub fn color(c: DVec3) -> String {
-    format!("({:.3}, {:.3}, {:.3})", c.x, c.y, c.z)
+    let channel = |x: f64| {
+        let s = format!("{x:.3}");
+        if s == "-0.000" { "0.000".into() } else { s }
+    };
+    format!("({}, {}, {})", channel(c.x), channel(c.y), channel(c.z))
 }
 
 /// A cutoff such as 1/512 as a fraction when it is one, else as `num` writes it.
@@ -37,7 +53,7 @@ pub fn fraction(x: f64) -> String {
     if x > 0.0 && inverse.fract() == 0.0 && inverse <= 1e6 {
         format!("1/{inverse}")
     } else {
-        num(x)
+        precise(x)
     }
 }
 
@@ -55,7 +71,7 @@ pub fn not_cast_reason(ray: &NotCast) -> String {
     match ray.rule {
         PruneRule::MinWeight { min_weight } => format!(
             "accumulated weight {} < min_weight {}",
-            num(ray.path_weight),
+            precise(ray.path_weight),
             fraction(min_weight)
         ),
         PruneRule::MaxRays { max_rays } => {
@@ -87,7 +103,8 @@ pub fn working_lines(working: &Working) -> Vec<String> {
                 let why = match w.choice {
                     RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
                     RootChoice::FartherRoot => {
-                        "took t1: t0 is behind, the ray starts inside".to_string()
+                        "took t1: t0 is not beyond EPS, the ray starts on or inside the sphere"
+                            .to_string()
                     }
                     RootChoice::BothBehind => "both roots are behind the ray".to_string(),
                     RootChoice::NoRealRoots => String::new(),
@@ -133,7 +150,7 @@ fn plane_line(w: &crate::shapes::PlaneWorking) -> String {
         ""
     };
     format!(
-        "plane: v_d = P_n·d = {} ({facing}), v_0 = {}, t = v_0 / v_d = {t}{behind}",
+        "plane: v_d = P_n·d = {} ({facing}), v_0 = -(P_n·o + D) = {}, t = v_0 / v_d = {t}{behind}",
         num(w.v_d),
         num(w.v_0)
     )
@@ -190,17 +207,18 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
     lines
 }
 
-/// What one light did at a hit, in one or three lines.
-pub fn light_lines(light: &LightRecord) -> Vec<Line> {
+/// What one light did at a hit: its fate, then each term with its factors
+/// (MODEL §4), so that a student can check the formula by hand.
+pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> {
     let about = Some(About::Light(light.light_index));
     if light.at_point {
         return vec![Line::text(
             about,
             format!(
-                "light {}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
+                "{}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
                 light.light,
-                num(light.distance),
-                num(EPS)
+                precise(light.distance),
+                precise(EPS)
             ),
         )];
     }
@@ -208,50 +226,140 @@ pub fn light_lines(light: &LightRecord) -> Vec<Line> {
         return vec![Line::text(
             about,
             format!(
-                "light {}: faces away (N·L = {}), no shadow ray, adds nothing",
+                "{}: faces away (N·L = {}), no shadow ray, adds nothing",
                 light.light,
                 num(light.n_dot_l)
             ),
         )];
     }
-    let shadow = match &light.shadow {
-        None => "shadows off".to_string(),
-        Some(s) if s.blockers.is_empty() => "S = 1 (nothing in the way)".to_string(),
+    let (s, shadow) = match &light.shadow {
+        None => (1.0, "S = 1 (shadows off)".to_string()),
+        Some(s) if s.blockers.is_empty() => (1.0, "S = 1 (nothing in the way)".to_string()),
         Some(s) => {
             let names: Vec<String> = s
                 .blockers
                 .iter()
-                .map(|b| format!("{} t={} kt={}", b.object, num(b.t), num(b.kt)))
+                .map(|b| format!("{} t={} kt={}", b.object, precise(b.t), num(b.kt)))
                 .collect();
-            format!("S = {}, blocked by {}", num(s.s), names.join("; "))
+            (
+                s.s,
+                format!("S = {}, blocked by {}", num(s.s), names.join("; ")),
+            )
         }
     };
-    let cosine = match light.specular_model {
-        SpecularModel::Blinn => "N·H",
-        SpecularModel::Phong => "R·V",
-    };
-    vec![
-        Line::text(
+    let cosine = cosine_name(light.specular_model);
+    let lead = format!("    = {} · {} · ", num(s), precise(light.f_att));
+    let mut lines = vec![Line::text(
+        about,
+        format!("{}: N·L = {}, {shadow}", light.light, num(light.n_dot_l)),
+    )];
+    // Each blocking object once, with all its crossings (a ball twice).
+    let blockers: &[BlockerRecord] = light.shadow.as_ref().map_or(&[], |s| &s.blockers);
+    for (i, b) in blockers.iter().enumerate() {
+        if blockers[..i]
+            .iter()
+            .any(|o| o.object_index == b.object_index)
+        {
+            continue;
+        }
+        let crossings: Vec<String> = blockers
+            .iter()
+            .filter(|o| o.object_index == b.object_index)
+            .map(|o| {
+                let root = o.root.map(|r| format!(" (root {r})")).unwrap_or_default();
+                format!("t = {}{root}", precise(o.t))
+            })
+            .collect();
+        lines.push(Line::text(
             about,
-            format!(
-                "light {}: N·L = {}, {shadow}",
-                light.light,
-                num(light.n_dot_l)
-            ),
-        ),
+            format!("  {} crossed at {}:", b.object, crossings.join(" and ")),
+        ));
+        lines.extend(indented(about, indented_strings(blocker_lines(&b.working))));
+    }
+    lines.extend([
         Line::text(
             about,
             format!(
                 "  f_att = {}, {cosine} = {}",
-                num(light.f_att),
+                precise(light.f_att),
                 num(light.specular_cosine)
             ),
         ),
-        Line::text(about, "  diffuse ")
-            .color(light.diffuse)
-            .then(" specular ")
+        Line::text(about, "  diffuse = S · f_att · I_p · k_d · O_d · (N·L)"),
+        Line::text(about, lead.clone())
+            .color(light.i_p)
+            .then(format!(" · {} · ", num(factors.kd)))
+            .color(factors.o_d)
+            .then(format!(" · {} = ", num(light.n_dot_l)))
+            .color(light.diffuse),
+        Line::text(
+            about,
+            format!("  specular = S · f_att · I_p · k_s · ({cosine})^n"),
+        ),
+        Line::text(about, lead)
+            .color(light.i_p)
+            .then(format!(
+                " · {} · {}^{} = ",
+                num(factors.ks),
+                highlight_base(light.specular_cosine),
+                num(factors.n)
+            ))
             .color(light.specular),
-    ]
+    ]);
+    lines
+}
+
+/// A blocker's intersection working: as for a hit, but a sphere's roots
+/// without the closest-hit choice (a shadow ray counts every crossing).
+fn blocker_lines(working: &Working) -> Vec<String> {
+    match working {
+        Working::Sphere(w) => {
+            let mut lines = working_lines(working);
+            if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
+                lines.truncate(1);
+                lines.push(format!("roots t0 = {}, t1 = {}", precise(t0), precise(t1)));
+            }
+            lines
+        }
+        _ => working_lines(working),
+    }
+}
+
+fn indented_strings(lines: Vec<String>) -> Vec<String> {
+    lines.into_iter().map(|l| format!("  {l}")).collect()
+}
+
+/// "N·H" for Blinn, "R·V" for Phong.
+pub fn cosine_name(model: SpecularModel) -> &'static str {
+    match model {
+        SpecularModel::Blinn => "N·H",
+        SpecularModel::Phong => "R·V",
+    }
+}
+
+/// The highlight's cosine as the formula raises it: clamped at 0 (MODEL §4).
+fn highlight_base(cosine: f64) -> String {
+    if cosine < 0.0 {
+        format!("max(0, {})", num(cosine))
+    } else {
+        num(cosine)
+    }
+}
+
+/// The ambient term with its factors: I_a · k_a · O_d (MODEL §1).
+fn ambient_line(tree: &RayTree, node: &Node, hit: &HitRecord) -> Line {
+    let f = &hit.factors;
+    let line = Line::text(Some(About::Ambient), "ambient = I_a · k_a · O_d = ")
+        .color(hit.i_a)
+        .then(format!(" · {} · ", num(f.ka)))
+        .color(f.o_d)
+        .then(" = ")
+        .color(node.ambient);
+    if tree.mistakes.contains(Mistake::NoAmbient) {
+        line.then(" (0 under the no-ambient mistake)")
+    } else {
+        line
+    }
 }
 
 /// Whether a ray's lines list its child rays: the debugger does, the text
@@ -295,9 +403,9 @@ pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
         return lines;
     };
     lines.extend(hit_lines(node, hit));
-    lines.push(Line::text(Some(About::Ambient), "ambient ").color(node.ambient));
+    lines.push(ambient_line(tree, node, hit));
     for light in &node.lights {
-        lines.extend(light_lines(light));
+        lines.extend(light_lines(light, &hit.factors));
     }
     lines.extend(secondary_lines(tree, id));
     if children == Children::Listed {
@@ -309,19 +417,7 @@ pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
             .then(" = sum of the terms above and below"),
     );
     if node.kind != RayKind::Primary {
-        lines.push(
-            Line::text(
-                None,
-                format!(
-                    "adds {} x {} (attenuation) x ",
-                    num(node.weight),
-                    num(node.attenuation)
-                ),
-            )
-            .color(node.color)
-            .then(" = ")
-            .color(node.contribution),
-        );
+        lines.push(child_term(tree, id));
     }
     lines
 }
@@ -407,6 +503,43 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
     lines
 }
 
+/// The formula of a child ray's term (MODEL §1): "reflected = k_s · att ·
+/// I_r" ((k_s + k_t) on TIR) or "transmitted = k_t · att · I_t", and the
+/// symbol of its returned colour.
+pub fn child_formula(tree: &RayTree, child: NodeId) -> String {
+    let node = &tree.nodes[child];
+    let parent = node.parent.map(|p| &tree.nodes[p]);
+    match node.kind {
+        RayKind::Transmitted => "transmitted = k_t · att · I_t".into(),
+        _ if parent.is_some_and(Node::tir) && node.weight != ks_of(parent) => {
+            "reflected = (k_s + k_t) · att · I_r (TIR)".into()
+        }
+        _ => "reflected = k_s · att · I_r".into(),
+    }
+}
+
+fn ks_of(node: Option<&Node>) -> f64 {
+    node.and_then(|n| n.hit.as_ref())
+        .map_or(0.0, |h| h.factors.ks)
+}
+
+/// A child ray's term with its numbers, as the child's own lines end.
+fn child_term(tree: &RayTree, id: NodeId) -> Line {
+    let node = &tree.nodes[id];
+    Line::text(
+        None,
+        format!(
+            "{} = {} · {} · ",
+            child_formula(tree, id),
+            num(node.weight),
+            num(node.attenuation)
+        ),
+    )
+    .color(node.color)
+    .then(" = ")
+    .color(node.contribution)
+}
+
 /// What a child ray adds, as its parent lists it.
 fn child_line(tree: &RayTree, child: NodeId) -> Line {
     let node = &tree.nodes[child];
@@ -467,14 +600,31 @@ fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str) {
 
 #[cfg(test)]
 mod tests {
-    use super::num;
+    use super::{color, num, precise};
+    use glam::DVec3;
 
     #[test]
     fn numbers_are_short() {
         assert_eq!(num(1.0), "1");
         assert_eq!(num(0.25), "0.25");
-        assert_eq!(num(-0.00001), "-1.000e-5");
         assert_eq!(num(-0.0), "0");
         assert_eq!(num(2.0 / 3.0), "0.6667");
+        assert_eq!(num(2.5e7), "2.500e7");
+    }
+
+    #[test]
+    fn what_rounds_to_zero_prints_zero() {
+        // Rounding noise such as 1 - (1 - 2^-52) - 2^-52... prints as 0 at
+        // four decimals; 0.00005 rounds up to 0.0001 and stays.
+        assert_eq!(num(-2.220446049250313e-16), "0");
+        assert_eq!(num(-0.00001), "0");
+        assert_eq!(num(0.00005), "5.000e-5");
+        assert_eq!(color(DVec3::new(-1e-9, 0.5, -0.0)), "(0.000, 0.500, 0.000)");
+    }
+
+    #[test]
+    fn precise_numbers_keep_small_values() {
+        assert_eq!(precise(-0.00001), "-1.000e-5");
+        assert_eq!(precise(1.1102230246251565e-16), "1.110e-16");
     }
 }

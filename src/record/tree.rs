@@ -70,6 +70,25 @@ pub struct HitRecord {
     pub entering: bool,
     /// The intersection worked the way the course notes teach it.
     pub working: Working,
+    /// The material's numbers the terms were computed with (MODEL §4, §5).
+    pub factors: MaterialFactors,
+    /// I_a, the scene's ambient light (the ambient term is I_a k_a O_d).
+    pub i_a: Color,
+}
+
+/// A material's coefficients as the course notes name them, so that every
+/// term of a hit can be checked by hand from the recording alone.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct MaterialFactors {
+    /// O_d, the diffuse colour.
+    pub o_d: Color,
+    pub ka: f64,
+    pub kd: f64,
+    pub ks: f64,
+    /// The specular exponent.
+    pub n: f64,
+    pub kt: f64,
+    pub ior: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -83,6 +102,8 @@ pub struct NearMiss {
 pub struct LightRecord {
     pub light: String,
     pub light_index: usize,
+    /// I_p, the light's colour.
+    pub i_p: Color,
     pub to_light: DVec3,
     pub distance: f64,
     pub n_dot_l: f64,
@@ -116,6 +137,28 @@ pub struct BlockerRecord {
     pub object_index: usize,
     pub t: f64,
     pub kt: f64,
+    /// Which root of the quadratic this crossing is ("t0" or "t1"), for a
+    /// sphere, cylinder or cone; absent for a plane or polygon (one root).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub root: Option<&'static str>,
+    /// The shadow ray's intersection with the blocker, worked as for a hit.
+    pub working: Working,
+}
+
+impl BlockerRecord {
+    /// Which of the working's two roots is nearer to `t`, if it has two.
+    pub fn root_of(working: &Working, t: f64) -> Option<&'static str> {
+        let (t0, t1) = match working {
+            Working::Sphere(w) => (w.t0?, w.t1?),
+            Working::Cone(w) => (w.t0?, w.t1?),
+            _ => return None,
+        };
+        Some(if (t - t0).abs() <= (t - t1).abs() {
+            "t0"
+        } else {
+            "t1"
+        })
+    }
 }
 
 /// One step of the trace, in the order the tracer performed it.

@@ -1,0 +1,237 @@
+//! `explain` and `inspect` tell the whole story (issue 16 §1): each term
+//! with its factors, and the events deep in the tree that shaped the pixel,
+//! ranked by how much each moved it. Values derived by hand in comments.
+
+mod support;
+
+use std::path::Path;
+
+use raystep::record::{Children, explain, node_lines, record_pixel, shaping_events};
+use raystep::scene::{Scene, load};
+
+use support::{record, scene};
+
+/// A plane z = -1 facing the camera at the origin; one white light at
+/// (0.6, 0, -0.2), so from the hit (0, 0, -1) L = (0.6, 0, 0.8), d_L = 1.
+fn lit_plane() -> Scene {
+    scene(
+        "[camera]
+        eye = [0, 0, 0]
+        look_at = [0, 0, -1]
+        [settings]
+        ambient = [0.2, 0.2, 0.2]
+        [materials.paint]
+        color = [1, 0.5, 0]
+        ka = 0.5
+        kd = 0.5
+        ks = 0.5
+        n = 2
+        [[light]]
+        position = [0.6, 0, -0.2]
+        [[object]]
+        material = \"paint\"
+        plane = { normal = [0, 0, 1], point = [0, 0, -1] }",
+    )
+}
+
+#[test]
+fn each_term_is_printed_with_its_factors() {
+    let tree = record(&lit_plane(), [0.0; 3], [0.0, 0.0, -1.0]);
+    // The lines unwrapped, as the details pane gets them.
+    let lines: Vec<String> = node_lines(&tree, 0, Children::Listed)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    let text = lines.join("\n");
+    // diffuse = S f_att I_p k_d O_d (N·L) = 1 · 1 · 1 · 0.5 · (1, 0.5, 0) · 0.8
+    //         = (0.4, 0.2, 0).
+    assert!(
+        text.contains("diffuse = S · f_att · I_p · k_d · O_d · (N·L)"),
+        "{text}"
+    );
+    assert!(
+        text.contains(
+            "    = 1 · 1 · (1.000, 1.000, 1.000) · 0.5 · (1.000, 0.500, 0.000) · 0.8 = \
+             (0.400, 0.200, 0.000)"
+        ),
+        "{text}"
+    );
+    // V = (0, 0, 1): L + V = (0.6, 0, 1.8), N·H = 1.8 / sqrt(3.6) = 0.9487,
+    // (N·H)^2 = 3.24 / 3.6 = 0.9; specular = 0.5 · 0.9 = 0.45 per channel.
+    assert!(
+        text.contains("specular = S · f_att · I_p · k_s · (N·H)^n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("· 0.5 · 0.9487^2 = (0.450, 0.450, 0.450)"),
+        "{text}"
+    );
+    // ambient = I_a k_a O_d = 0.2 · 0.5 · (1, 0.5, 0) = (0.1, 0.05, 0).
+    assert!(
+        text.contains(
+            "ambient = I_a · k_a · O_d = (0.200, 0.200, 0.200) · 0.5 · (1.000, 0.500, 0.000) \
+             = (0.100, 0.050, 0.000)"
+        ),
+        "{text}"
+    );
+    // An unnamed light is "light 0", once.
+    assert!(text.contains("light 0: N·L = 0.8, S = 1"), "{text}");
+    assert!(!text.contains("light light"), "{text}");
+}
+
+#[test]
+fn the_json_holds_every_factor() {
+    let tree = record(&lit_plane(), [0.0; 3], [0.0, 0.0, -1.0]);
+    let root = &tree.to_json()["tree"];
+    let f = &root["hit"]["factors"];
+    assert_eq!(f["o_d"], serde_json::json!([1.0, 0.5, 0.0]));
+    assert_eq!((f["ka"].as_f64(), f["kd"].as_f64()), (Some(0.5), Some(0.5)));
+    assert_eq!((f["ks"].as_f64(), f["n"].as_f64()), (Some(0.5), Some(2.0)));
+    assert_eq!(
+        (f["kt"].as_f64(), f["ior"].as_f64()),
+        (Some(0.0), Some(1.0))
+    );
+    assert_eq!(root["hit"]["i_a"], serde_json::json!([0.2, 0.2, 0.2]));
+    assert_eq!(root["lights"][0]["i_p"], serde_json::json!([1.0, 1.0, 1.0]));
+}
+
+/// A mirror z = -1 (k_s = 0.5) in front of the camera and a white matte
+/// plane z = 1 behind it; the light at (0.6, 0, 0.2) lights the matte plane
+/// at (0, 0, 1) with N·L = 0.8, but an opaque ball of radius 0.1 at
+/// (0.3, 0, 0.6), halfway along the shadow segment, blocks it.
+fn mirror_and_shadow(settings: &str) -> Scene {
+    scene(&format!(
+        "[camera]
+        eye = [0, 0, 0]
+        look_at = [0, 0, -1]
+        [settings]
+        {settings}
+        [materials.mirror]
+        kd = 0
+        ks = 0.5
+        n = 10
+        [materials.matte]
+        kd = 1
+        [[light]]
+        position = [0.6, 0, 0.2]
+        [[object]]
+        material = \"mirror\"
+        plane = {{ normal = [0, 0, 1], point = [0, 0, -1] }}
+        [[object]]
+        material = \"matte\"
+        plane = {{ normal = [0, 0, -1], point = [0, 0, 1] }}
+        [[object]]
+        name = \"ball\"
+        material = \"matte\"
+        sphere = {{ center = [0.3, 0, 0.6], radius = 0.1 }}"
+    ))
+}
+
+#[test]
+fn a_shadow_below_the_first_hit_is_told_with_what_it_cost() {
+    let tree = record(&mirror_and_shadow(""), [0.0; 3], [0.0, 0.0, -1.0]);
+    // Unblocked, the matte plane's diffuse would be 1 · 1 · 1 · 1 · 0.8 =
+    // 0.8 per channel; the reflected ray reaches the pixel with weight 0.5
+    // (attenuation 1), so the shadow takes 0.4 from each channel. The
+    // shadow ray (0.6, 0, -0.8) meets the ball at t = 0.5 -+ 0.1.
+    let events = shaping_events(&tree);
+    assert_eq!(events.len(), 1, "{events:?}");
+    assert!((events[0].matters - 0.4).abs() < 1e-12);
+    assert_eq!(events[0].node, 1);
+    let story = explain(&tree);
+    assert!(
+        story.contains(
+            "0.400  light 0 is blocked at r1 (primary → reflected, depth 2) by ball \
+             (t = 0.4, root t0, k_t 0), ball (t = 0.6, root t1, k_t 0): S = 0; unblocked it \
+             would add (0.400, 0.400, 0.400) more to the pixel"
+        ),
+        "{story}"
+    );
+    // Each blocker's working: o - c = (-0.3, 0, 0.4), d = (0.6, 0, -0.8):
+    // A = 1, B = 2 d·(o - c) = -1, C = 0.25 - 0.01 = 0.24, B^2 - 4AC = 0.04,
+    // roots (1 -+ 0.2) / 2 = 0.4 and 0.6.
+    let lines: Vec<String> = node_lines(&tree, 1, Children::Listed)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    let working = [
+        "  ball crossed at t = 0.4 (root t0) and t = 0.6 (root t1):",
+        "    sphere: A = 1, B = -1, C = 0.24, discriminant B^2 - 4AC = 0.04",
+        "    roots t0 = 0.4, t1 = 0.6",
+        "  f_att = 1, N·H = ",
+    ];
+    let at = lines
+        .iter()
+        .position(|l| l == working[0])
+        .expect("blocker lines");
+    for (line, start) in lines[at..at + 4].iter().zip(working) {
+        assert!(line.starts_with(start), "{lines:#?}");
+    }
+}
+
+#[test]
+fn a_ray_cut_by_the_depth_limit_is_told_with_its_weight() {
+    // max_depth 1: the mirror's reflected ray (weight k_s = 0.5) is never
+    // spawned; it could have added up to 0.5 per channel.
+    let tree = record(
+        &mirror_and_shadow("max_depth = 1"),
+        [0.0; 3],
+        [0.0, 0.0, -1.0],
+    );
+    let events = shaping_events(&tree);
+    assert_eq!(events.len(), 1, "{events:?}");
+    assert_eq!(events[0].matters, 0.5);
+    assert!(
+        events[0]
+            .text
+            .contains("the depth limit (max_depth 1) stops its reflected ray (weight 0.5)"),
+        "{}",
+        events[0].text
+    );
+}
+
+#[test]
+fn a_clamped_channel_is_ranked_by_what_clamping_took() {
+    // Ambient 1.6 on a white matte plane: the pixel is (1.6, 1.6, 1.6) and
+    // each channel loses 0.6 to clamping, 0.6 / 3 = 0.2 of a channel on average.
+    let plane = scene(
+        "[camera]
+        eye = [0, 0, 0]
+        look_at = [0, 0, -1]
+        [settings]
+        ambient = [1.6, 1.6, 1.6]
+        [materials.white]
+        kd = 0
+        [[object]]
+        material = \"white\"
+        plane = { normal = [0, 0, 1], point = [0, 0, -1] }",
+    );
+    let tree = record(&plane, [0.0; 3], [0.0, 0.0, -1.0]);
+    let events = shaping_events(&tree);
+    assert_eq!(events.len(), 3, "{events:?}");
+    assert!(events.iter().all(|e| (e.matters - 0.2).abs() < 1e-12));
+    assert!(explain(&tree).contains("the red channel is 1.6 before clamping: it is stored as 255"));
+}
+
+#[test]
+fn the_glass_scenes_tir_example_is_told_below_the_first_hit() {
+    // scenes/glass.toml names pixel (132, 88): into the block's front face,
+    // then TIR at its bottom (k = -1.02), on the transmitted ray r2.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
+    let scene = load(&path).unwrap();
+    let tree = record_pixel(&scene, &scene.settings, 132, 88);
+    let story = explain(&tree);
+    assert!(
+        story.contains(
+            "total internal reflection at r2 (primary → transmitted, depth 2) on glass block \
+             bottom: k = -1.0217 < 0"
+        ),
+        "{story}"
+    );
+    // The TIR is the event that matters most for this pixel.
+    assert!(
+        shaping_events(&tree)[0]
+            .text
+            .starts_with("total internal reflection at r2")
+    );
+}
