@@ -17,7 +17,7 @@ use crate::compare::{self, Comparison, StudentImage};
 use crate::mistakes::Mistake;
 use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
-use crate::terms::TermImages;
+use crate::terms::{Term, TermImages};
 
 pub use super::action::{Action, View};
 use super::job::Renderer;
@@ -82,6 +82,9 @@ pub struct App {
     /// The latest finished render, and the term images when a term view asked for them.
     image: Option<RgbImage>,
     terms: Option<TermImages>,
+    /// The term images' largest ray and cost counts, worked out once when
+    /// they arrive: a redraw then costs the cells shown, not the image.
+    count_max: (u32, u32),
     generation: u64,
     terms_generation: Option<u64>,
     renderer: Renderer,
@@ -157,6 +160,7 @@ impl App {
             quit: false,
             image: None,
             terms: None,
+            count_max: (0, 0),
             generation: 0,
             terms_generation: None,
             renderer: Renderer::new(sync),
@@ -378,6 +382,15 @@ impl App {
         self.terms.as_ref()
     }
 
+    /// The scale of a count view (rays or cost): its largest count, as
+    /// `TermImages::max_count` has it, but without a scan of the image.
+    pub fn count_max(&self, term: Term) -> u32 {
+        match term {
+            Term::Rays => self.count_max.0,
+            _ => self.count_max.1,
+        }
+    }
+
     /// How long the last pixel pick took.
     pub fn pick_time(&self) -> Duration {
         self.pick_time
@@ -416,7 +429,7 @@ impl App {
                 .terms
                 .as_ref()
                 .filter(|t| x < t.width && y < t.height)
-                .map(|t| t.rgb(term, (y * t.width + x) as usize, t.max_count(term))),
+                .map(|t| t.rgb(term, (y * t.width + x) as usize, self.count_max(term))),
             View::Yours => self.compared.as_ref().and_then(|c| pixel(&c.yours, x, y)),
             View::ErrorMap => self
                 .compared
