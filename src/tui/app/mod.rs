@@ -30,6 +30,7 @@ use super::view::{help, tree};
 mod comparing;
 mod controls;
 mod mistakes;
+mod reach;
 mod renders;
 
 pub use comparing::Compared;
@@ -66,6 +67,10 @@ pub struct App {
     /// Whether the mistakes menu is open, and its selected row.
     menu: bool,
     menu_row: usize,
+    /// The go-to prompt's text while it is open (`:`).
+    prompt: Option<String>,
+    /// `f` was pressed: the next key says what to find across the image.
+    finding: bool,
     /// The student's image and what `compare` found, with `--compare`.
     compared: Option<Compared>,
     /// The region `w` went to last.
@@ -150,6 +155,8 @@ impl App {
             help_scroll: 0,
             menu: false,
             menu_row: 0,
+            prompt: None,
+            finding: false,
             compared,
             region: None,
             error: None,
@@ -237,6 +244,20 @@ impl App {
             Action::ToggleMistake(mistake) => self.toggle_mistake(mistake),
             Action::NextRegion => self.next_region(),
             Action::CyclePlane => self.plane = self.plane.next(),
+            Action::OpenPrompt => self.prompt = Some(String::new()),
+            Action::PromptChar(c) => self.prompt_char(c),
+            Action::PromptBackspace => self.prompt_backspace(),
+            Action::PromptSubmit => self.prompt_submit(),
+            Action::PromptCancel => self.prompt = None,
+            Action::StartFind => {
+                self.finding = true;
+                self.message = Some(
+                    "find the next pixel with: b blocked shadow, t TIR, D depth limit, x object X"
+                        .into(),
+                );
+            }
+            Action::CancelFind => self.finding = false,
+            Action::Find(what) => self.find(what),
             Action::Reload => self.reload(),
             Action::Resize(width, height) => self.screen = Rect::new(0, 0, width, height),
         }
@@ -327,6 +348,10 @@ impl App {
             Mode::Help
         } else if self.menu {
             Mode::Menu
+        } else if self.prompt.is_some() {
+            Mode::Prompt
+        } else if self.finding {
+            Mode::Find
         } else {
             Mode::Browsing
         }
