@@ -646,7 +646,7 @@ mod tests {
         let order: Vec<&str> = hints().iter().map(|h| h.keys).collect();
         assert_eq!(
             order,
-            ["?", "q", "arrows", "Tab", "n/p", "b", "s r t a", "v"]
+            ["?", "q", "arrows", "Tab", "n/p", "b", "s r t a", "v", ":"]
         );
     }
 
