@@ -76,7 +76,13 @@ pub fn reading_order(from: (u32, u32), size: (u32, u32)) -> impl Iterator<Item =
 
 /// The go-to prompt's text as a pixel of an image of `size`, or why not.
 pub fn parse_goto(text: &str, size: (u32, u32)) -> Result<(u32, u32), String> {
-    let (x, y) = crate::cli::parse_pixel(text.trim())?;
+    let bad =
+        || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 120,40");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    let (x, y): (u32, u32) = (
+        x.trim().parse().map_err(|_| bad())?,
+        y.trim().parse().map_err(|_| bad())?,
+    );
     if x >= size.0 || y >= size.1 {
         return Err(outside((x, y), size));
     }
