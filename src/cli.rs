@@ -32,6 +32,9 @@ pub struct Cli {
     /// and the mistakes that explain it, in the debugger.
     #[arg(long, value_name = "IMAGE.png")]
     pub compare: Option<PathBuf>,
+    /// Open the debugger on the pixel X,Y (x to the right, y downward, from 0).
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    pub pixel: Option<(u32, u32)>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -44,6 +47,9 @@ pub enum Command {
         /// size: its views, regions and the mistakes that explain it.
         #[arg(long, value_name = "IMAGE.png")]
         compare: Option<PathBuf>,
+        /// Open on the pixel X,Y (x to the right, y downward, from 0).
+        #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+        pixel: Option<(u32, u32)>,
     },
     /// Render a whole image to PNG.
     Render(RenderArgs),
@@ -246,10 +252,12 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Explain(args)) => explain_command(&args),
         Some(Command::Compare(args)) => compare_command(&args),
         Some(Command::Diagram(args)) => diagram_command(&args),
-        Some(Command::Debug { scene, compare }) => {
-            crate::tui::run(scene.as_deref(), compare.as_deref())
-        }
-        None => crate::tui::run(cli.scene.as_deref(), cli.compare.as_deref()),
+        Some(Command::Debug {
+            scene,
+            compare,
+            pixel,
+        }) => crate::tui::run(scene.as_deref(), compare.as_deref(), pixel),
+        None => crate::tui::run(cli.scene.as_deref(), cli.compare.as_deref(), cli.pixel),
     }
 }
 

@@ -5,6 +5,7 @@ use crate::mistakes::Mistake;
 use crate::scene::Switch;
 use crate::terms::Term;
 
+use super::view::find::Find;
 use super::view::stepper::{Breakpoint, Step};
 
 /// Something the user asked for, or a tick of the clock.
@@ -47,6 +48,19 @@ pub enum Action {
     /// With a comparison: the cursor to the next region's pixel.
     NextRegion,
     CyclePlane,
+    /// Open the go-to prompt in the status line (`:`).
+    OpenPrompt,
+    /// A character typed into the prompt.
+    PromptChar(char),
+    PromptBackspace,
+    /// Go to the pixel the prompt names (Enter).
+    PromptSubmit,
+    PromptCancel,
+    /// `f`: the next key names what to find across the image.
+    StartFind,
+    CancelFind,
+    /// The cursor to the next pixel, in reading order, whose recording has it.
+    Find(Find),
     Reload,
     Resize(u16, u16),
     /// Time passed: take in finished renders, reload a changed scene file.

@@ -2,7 +2,7 @@
 //! what comes from the one table in `keymap.rs`; this file only decides what
 //! a command does in the pane it acts on.
 
-use crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
 
 use super::app::{Action, App};
 use super::keymap::{self, Command, Input, Mode};
@@ -35,7 +35,11 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
 /// A key's action in `mode` (help or menu open or not) with `focus` the
 /// focused pane.
 pub fn key_action(key: &KeyEvent, mode: Mode, focus: Pane) -> Option<Action> {
-    in_pane(keymap::key_command(key, mode)?, focus)
+    match (keymap::key_command(key, mode)?, key.code) {
+        (Command::Type, KeyCode::Char(c)) => Some(Action::PromptChar(c)),
+        (Command::Type, _) => None,
+        (command, _) => in_pane(command, focus),
+    }
 }
 
 /// What `command` does in `pane` (the focused one for keys, the one under
@@ -63,9 +67,10 @@ fn in_pane(command: Command, pane: Pane) -> Option<Action> {
 mod tests {
     //! The dispatch before the table (commit fc0f12c), kept as the oracle:
     //! every key, modifier, pane and help state must still do what it did.
-    //! Since then: `M` (the mistakes menu) and `w` (next region) are new.
+    //! Since then: `M` (the mistakes menu), `w` (next region), `:` (go to)
+    //! and `f` (find across the image) are new.
 
-    use crossterm::event::{KeyCode, KeyModifiers};
+    use crossterm::event::KeyModifiers;
 
     use super::*;
     use crate::scene::Switch;
@@ -125,6 +130,8 @@ mod tests {
             KeyCode::Char('R') => Action::Reload,
             KeyCode::Char('M') => Action::ToggleMistakeMenu,
             KeyCode::Char('w') => Action::NextRegion,
+            KeyCode::Char(':') => Action::OpenPrompt,
+            KeyCode::Char('f') => Action::StartFind,
             KeyCode::PageDown if focus == Pane::Details => Action::ScrollDetails(10),
             KeyCode::PageUp if focus == Pane::Details => Action::ScrollDetails(-10),
             _ => return None,

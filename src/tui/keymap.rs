@@ -5,6 +5,7 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use super::action::Action;
+use super::view::find::Find;
 use super::view::stepper::{Breakpoint, Step};
 use crate::scene::Switch;
 
@@ -37,6 +38,10 @@ pub enum Context {
     Help,
     /// The mistakes menu is open.
     Menu,
+    /// The go-to prompt (`:`) is open in the status line.
+    Prompt,
+    /// `f` was pressed: the next key says what to find.
+    Find,
 }
 
 /// What has the keys: the panes, the help overlay or the mistakes menu.
@@ -45,10 +50,18 @@ pub enum Mode {
     Browsing,
     Help,
     Menu,
+    Prompt,
+    Find,
 }
 
 impl Mode {
-    pub const ALL: [Mode; 3] = [Mode::Browsing, Mode::Help, Mode::Menu];
+    pub const ALL: [Mode; 5] = [
+        Mode::Browsing,
+        Mode::Help,
+        Mode::Menu,
+        Mode::Prompt,
+        Mode::Find,
+    ];
 }
 
 /// What an input asks for, before the pane it acts on is known.
@@ -64,6 +77,8 @@ pub enum Command {
     Wheel(i32),
     /// Pick what is under the mouse.
     Click,
+    /// The key's character, typed into the prompt.
+    Type,
 }
 
 /// The status line's short form of a row: `rank` orders the hints.
@@ -112,6 +127,8 @@ pub const KEYMAP: &[(&str, &[Binding])] = &[
     ("Other", OTHER),
     ("In this help", IN_HELP),
     ("In the mistakes menu", IN_MENU),
+    ("In the go-to prompt (after :)", IN_PROMPT),
+    ("Find across the image (after f)", IN_FIND),
 ];
 
 const PIXEL_AND_VIEW: &[Binding] = &[
@@ -182,6 +199,17 @@ const PIXEL_AND_VIEW: &[Binding] = &[
     Binding {
         inputs: &[(key('w'), act(Action::NextRegion))],
         what: "with --compare: next region that differs, largest first",
+        ..ROW
+    },
+    Binding {
+        inputs: &[(key(':'), act(Action::OpenPrompt))],
+        what: "go to a pixel: type X,Y then Enter",
+        hint: hint(8, ":", "go to"),
+        ..ROW
+    },
+    Binding {
+        inputs: &[(key('f'), act(Action::StartFind))],
+        what: "find across the image: then b, t, D or x (below)",
         ..ROW
     },
     Binding {
@@ -391,6 +419,66 @@ const IN_MENU: &[Binding] = &[
     },
 ];
 
+const IN_PROMPT: &[Binding] = &[
+    Binding {
+        context: Context::Prompt,
+        inputs: &[(Input::Key(KeyCode::Enter), act(Action::PromptSubmit))],
+        what: "go to the pixel typed",
+        ..ROW
+    },
+    Binding {
+        context: Context::Prompt,
+        inputs: &[(Input::Key(KeyCode::Esc), act(Action::PromptCancel))],
+        what: "close the prompt, staying on the pixel",
+        ..ROW
+    },
+    Binding {
+        context: Context::Prompt,
+        inputs: &[(Input::Key(KeyCode::Backspace), act(Action::PromptBackspace))],
+        what: "delete the last character",
+        ..ROW
+    },
+    Binding {
+        context: Context::Prompt,
+        inputs: &[(Input::AnyKey, Command::Type)],
+        what: "type it (digits and a comma: 120,40)",
+        ..ROW
+    },
+];
+
+const IN_FIND: &[Binding] = &[
+    Binding {
+        context: Context::Find,
+        inputs: &[(key('b'), act(Action::Find(Find::BlockedShadow)))],
+        what: "the next pixel with a blocked shadow ray",
+        ..ROW
+    },
+    Binding {
+        context: Context::Find,
+        inputs: &[(key('t'), act(Action::Find(Find::Tir)))],
+        what: "the next pixel with a total internal reflection",
+        ..ROW
+    },
+    Binding {
+        context: Context::Find,
+        inputs: &[(key('D'), act(Action::Find(Find::DepthLimit)))],
+        what: "the next pixel with a ray cut by the depth limit",
+        ..ROW
+    },
+    Binding {
+        context: Context::Find,
+        inputs: &[(key('x'), act(Action::Find(Find::BreakObject)))],
+        what: "the next pixel whose rays hit object X (as x)",
+        ..ROW
+    },
+    Binding {
+        context: Context::Find,
+        inputs: &[(Input::AnyKey, act(Action::CancelFind))],
+        what: "cancel the find",
+        ..ROW
+    },
+];
+
 /// Every row, in the help's order.
 pub fn rows() -> impl Iterator<Item = &'static Binding> {
     KEYMAP.iter().flat_map(|(_, rows)| rows.iter())
@@ -423,6 +511,8 @@ impl Context {
             Context::Browsing => mode == Mode::Browsing,
             Context::Help => mode == Mode::Help,
             Context::Menu => mode == Mode::Menu,
+            Context::Prompt => mode == Mode::Prompt,
+            Context::Find => mode == Mode::Find,
         }
     }
 }
@@ -556,7 +646,7 @@ mod tests {
         let order: Vec<&str> = hints().iter().map(|h| h.keys).collect();
         assert_eq!(
             order,
-            ["?", "q", "arrows", "Tab", "n/p", "b", "s r t a", "v"]
+            ["?", "q", "arrows", "Tab", "n/p", "b", "s r t a", "v", ":"]
         );
     }
 

@@ -123,11 +123,32 @@ where
     Ok(())
 }
 
-/// `raystep [debug] [SCENE] [--compare IMAGE.png]`: runs the debugger in
-/// the terminal. The student's image is read first: a bad one is reported
-/// (exit 1) whether or not there is a terminal, and before it is taken.
-pub fn run(path: Option<&Path>, compare: Option<&Path>) -> Result<ExitCode> {
+/// `raystep [debug] [SCENE] [--compare IMAGE.png] [--pixel X,Y]`: runs the
+/// debugger in the terminal. The student's image is read and the pixel
+/// checked first: a bad one is reported (exit 1) whether or not there is a
+/// terminal, and before it is taken.
+pub fn run(
+    path: Option<&Path>,
+    compare: Option<&Path>,
+    pixel: Option<(u32, u32)>,
+) -> Result<ExitCode> {
     let student = compare.map(crate::compare::student::load).transpose()?;
+    if let Some(pixel) = pixel {
+        let size = match &student {
+            Some(student) => student.image.dimensions(),
+            None => {
+                let source = source::SceneSource {
+                    path: path.map(Path::to_path_buf),
+                    size: None,
+                };
+                let scene = source.load()?;
+                (scene.width, scene.height)
+            }
+        };
+        if pixel.0 >= size.0 || pixel.1 >= size.1 {
+            bail!("--pixel: {}", view::find::outside(pixel, size));
+        }
+    }
     if !io::stdin().is_terminal() || !io::stdout().is_terminal() {
         bail!(
             "the debugger needs a terminal (stdin and stdout must be a TTY); \
@@ -140,6 +161,9 @@ pub fn run(path: Option<&Path>, compare: Option<&Path>) -> Result<ExitCode> {
         eprintln!("comparing {} with the scene…", image.display());
     }
     let mut app = App::open_with(path.map(Path::to_path_buf), student, false)?.watching();
+    if let Some(pixel) = pixel {
+        app = app.at_pixel(pixel).map_err(anyhow::Error::msg)?;
+    }
     let result = terminal::take()
         .and_then(|mut terminal| run_loop(&mut terminal, &mut app, &mut TerminalInput));
     terminal::restore();

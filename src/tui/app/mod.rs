@@ -17,7 +17,7 @@ use crate::compare::{self, Comparison, StudentImage};
 use crate::mistakes::Mistake;
 use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
-use crate::terms::TermImages;
+use crate::terms::{Term, TermImages};
 
 pub use super::action::{Action, View};
 use super::job::Renderer;
@@ -30,6 +30,7 @@ use super::view::{help, tree};
 mod comparing;
 mod controls;
 mod mistakes;
+mod reach;
 mod renders;
 
 pub use comparing::Compared;
@@ -66,6 +67,10 @@ pub struct App {
     /// Whether the mistakes menu is open, and its selected row.
     menu: bool,
     menu_row: usize,
+    /// The go-to prompt's text while it is open (`:`).
+    prompt: Option<String>,
+    /// `f` was pressed: the next key says what to find across the image.
+    finding: bool,
     /// The student's image and what `compare` found, with `--compare`.
     compared: Option<Compared>,
     /// The region `w` went to last.
@@ -82,6 +87,9 @@ pub struct App {
     /// The latest finished render, and the term images when a term view asked for them.
     image: Option<RgbImage>,
     terms: Option<TermImages>,
+    /// The term images' largest ray and cost counts, worked out once when
+    /// they arrive: a redraw then costs the cells shown, not the image.
+    count_max: (u32, u32),
     generation: u64,
     terms_generation: Option<u64>,
     renderer: Renderer,
@@ -147,6 +155,8 @@ impl App {
             help_scroll: 0,
             menu: false,
             menu_row: 0,
+            prompt: None,
+            finding: false,
             compared,
             region: None,
             error: None,
@@ -157,6 +167,7 @@ impl App {
             quit: false,
             image: None,
             terms: None,
+            count_max: (0, 0),
             generation: 0,
             terms_generation: None,
             renderer: Renderer::new(sync),
@@ -233,6 +244,20 @@ impl App {
             Action::ToggleMistake(mistake) => self.toggle_mistake(mistake),
             Action::NextRegion => self.next_region(),
             Action::CyclePlane => self.plane = self.plane.next(),
+            Action::OpenPrompt => self.prompt = Some(String::new()),
+            Action::PromptChar(c) => self.prompt_char(c),
+            Action::PromptBackspace => self.prompt_backspace(),
+            Action::PromptSubmit => self.prompt_submit(),
+            Action::PromptCancel => self.prompt = None,
+            Action::StartFind => {
+                self.finding = true;
+                self.message = Some(
+                    "find the next pixel with: b blocked shadow, t TIR, D depth limit, x object X"
+                        .into(),
+                );
+            }
+            Action::CancelFind => self.finding = false,
+            Action::Find(what) => self.find(what),
             Action::Reload => self.reload(),
             Action::Resize(width, height) => self.screen = Rect::new(0, 0, width, height),
         }
@@ -323,6 +348,10 @@ impl App {
             Mode::Help
         } else if self.menu {
             Mode::Menu
+        } else if self.prompt.is_some() {
+            Mode::Prompt
+        } else if self.finding {
+            Mode::Find
         } else {
             Mode::Browsing
         }
@@ -378,6 +407,15 @@ impl App {
         self.terms.as_ref()
     }
 
+    /// The scale of a count view (rays or cost): its largest count, as
+    /// `TermImages::max_count` has it, but without a scan of the image.
+    pub fn count_max(&self, term: Term) -> u32 {
+        match term {
+            Term::Rays => self.count_max.0,
+            _ => self.count_max.1,
+        }
+    }
+
     /// How long the last pixel pick took.
     pub fn pick_time(&self) -> Duration {
         self.pick_time
@@ -416,7 +454,7 @@ impl App {
                 .terms
                 .as_ref()
                 .filter(|t| x < t.width && y < t.height)
-                .map(|t| t.rgb(term, (y * t.width + x) as usize, t.max_count(term))),
+                .map(|t| t.rgb(term, (y * t.width + x) as usize, self.count_max(term))),
             View::Yours => self.compared.as_ref().and_then(|c| pixel(&c.yours, x, y)),
             View::ErrorMap => self
                 .compared

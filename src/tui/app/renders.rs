@@ -2,6 +2,7 @@
 //! progress, and installing what comes back (only the latest generation).
 
 use super::{App, View};
+use crate::terms::Term;
 use crate::tui::job::{Finished, Output, Progress, Request};
 
 impl App {
@@ -59,6 +60,7 @@ impl App {
             Ok(Output::Image(image)) => self.image = Some(image),
             Ok(Output::Terms(terms)) => {
                 self.image = Some(terms.color_image());
+                self.count_max = (terms.max_count(Term::Rays), terms.max_count(Term::Cost));
                 self.terms = Some(terms);
                 self.terms_generation = Some(finished.generation);
             }

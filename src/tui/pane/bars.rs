@@ -81,6 +81,13 @@ pub(super) fn header(app: &App, width: u16) -> Line<'static> {
 
 pub(super) fn status(app: &App) -> Line<'static> {
     let mut spans = Vec::new();
+    if let Some(text) = app.prompt() {
+        // The prompt has the keys: it, then why the last Enter failed.
+        spans.push(Span::raw(format!(" go to X,Y: {text}▏")).bold().reversed());
+        let why = app.message().unwrap_or("Enter goes, Esc cancels");
+        spans.push(Span::raw(format!(" {why} ")).yellow());
+        return Line::from(spans);
+    }
     if let Some(p) = app.progress() {
         spans.push(
             Span::raw(format!(" rendering {}/{} rows ", p.rows_done, p.rows))

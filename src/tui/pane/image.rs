@@ -107,7 +107,7 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
         for i in 0..8 {
             spans.push(rgb_swatch(false_color(i as f64 / 7.0)));
         }
-        spans.push(Span::raw(format!(" {} ", terms.max_count(term))));
+        spans.push(Span::raw(format!(" {} ", app.count_max(term))));
     }
     Line::from(spans)
 }

@@ -52,9 +52,9 @@ mod tests {
         for (group, _) in keymap::KEYMAP {
             assert!(text.iter().any(|l| l == group), "{group}");
         }
-        // 6 titles, 5 blank lines between groups, one line per row.
-        assert_eq!(keymap::KEYMAP.len(), 6);
-        assert_eq!(text.len(), 6 + 5 + keymap::rows().count());
+        // 8 titles, 7 blank lines between groups, one line per row.
+        assert_eq!(keymap::KEYMAP.len(), 8);
+        assert_eq!(text.len(), 8 + 7 + keymap::rows().count());
     }
 
     #[test]

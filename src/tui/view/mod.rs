@@ -6,6 +6,7 @@
 //! read them, and nothing here knows either.
 
 pub mod details;
+pub mod find;
 pub mod help;
 pub mod image_grid;
 pub mod layout;

@@ -1,0 +1,120 @@
+//! Finding across the image (`f` then a key): which pixel's recording has a
+//! blocked shadow ray, a total internal reflection, a ray cut by the depth
+//! limit, or a hit on the breakpoint object; and the go-to prompt's `X,Y`.
+
+use crate::record::RayTree;
+use crate::scene::{Scene, Settings};
+
+use super::stepper::{self, Breakpoint};
+
+/// What `f` looks for in each pixel's recording.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Find {
+    BlockedShadow,
+    Tir,
+    /// A ray that hit a reflective or transparent surface at max_depth, so
+    /// the child it would have cast (with its switch on) was not.
+    DepthLimit,
+    /// A hit on the breakpoint object (`x`'s).
+    BreakObject,
+}
+
+impl Find {
+    /// For the status line: "no pixel with {what}".
+    pub fn what(self) -> &'static str {
+        match self {
+            Find::BlockedShadow => "a blocked shadow ray",
+            Find::Tir => "a total internal reflection",
+            Find::DepthLimit => "a ray cut by the depth limit",
+            Find::BreakObject => "a hit on the object",
+        }
+    }
+}
+
+/// The first event of `tree` that `find` looks for; `object` is the
+/// breakpoint object for `Find::BreakObject`. The depth limit needs the
+/// materials (the scene's) and the switches `tree` was recorded with.
+pub fn first_event(
+    tree: &RayTree,
+    scene: &Scene,
+    settings: &Settings,
+    find: Find,
+    object: usize,
+) -> Option<usize> {
+    let breakpoint = match find {
+        Find::BlockedShadow => Breakpoint::BlockedShadow,
+        Find::Tir => Breakpoint::Tir,
+        Find::BreakObject => Breakpoint::HitObject(object),
+        Find::DepthLimit => return depth_cut(tree, scene, settings),
+    };
+    (0..tree.events.len()).find(|&i| stepper::matches(tree, i, breakpoint))
+}
+
+/// The cast event of the first ray whose children the depth limit cut.
+fn depth_cut(tree: &RayTree, scene: &Scene, settings: &Settings) -> Option<usize> {
+    let switches = settings.switches;
+    let cut = tree.nodes.iter().position(|node| {
+        let Some(hit) = &node.hit else { return false };
+        let material = scene.material_of(hit.object_index);
+        let would_cast = (switches.reflection && material.ks > 0.0)
+            || (switches.transmission && material.kt > 0.0);
+        node.depth >= tree.max_depth && would_cast
+    })?;
+    stepper::cast_event(tree, cut)
+}
+
+/// The pixels after `from` in reading order (left to right, rows down),
+/// wrapping at the end and ending with `from` itself: each pixel once.
+pub fn reading_order(from: (u32, u32), size: (u32, u32)) -> impl Iterator<Item = (u32, u32)> {
+    let count = size.0 as u64 * size.1 as u64;
+    let start = from.1 as u64 * size.0 as u64 + from.0 as u64;
+    (1..=count).map(move |k| {
+        let i = (start + k) % count;
+        ((i % size.0 as u64) as u32, (i / size.0 as u64) as u32)
+    })
+}
+
+/// The go-to prompt's text as a pixel of an image of `size`, or why not.
+pub fn parse_goto(text: &str, size: (u32, u32)) -> Result<(u32, u32), String> {
+    let bad =
+        || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 120,40");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    let (x, y): (u32, u32) = (
+        x.trim().parse().map_err(|_| bad())?,
+        y.trim().parse().map_err(|_| bad())?,
+    );
+    if x >= size.0 || y >= size.1 {
+        return Err(outside((x, y), size));
+    }
+    Ok((x, y))
+}
+
+/// Why a pixel is not in the image.
+pub fn outside((x, y): (u32, u32), (width, height): (u32, u32)) -> String {
+    format!(
+        "pixel ({x}, {y}) is outside the {width}x{height} image: x must be below {width} and y below {height}"
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reading_order_visits_each_pixel_once_ending_at_the_start() {
+        // 3 x 2 from (1, 1), index 4: then 5, 0, 1, 2, 3, 4.
+        let order: Vec<_> = reading_order((1, 1), (3, 2)).collect();
+        assert_eq!(order, [(2, 1), (0, 0), (1, 0), (2, 0), (0, 1), (1, 1)]);
+    }
+
+    #[test]
+    fn the_prompt_takes_x_comma_y_inside_the_image() {
+        assert_eq!(parse_goto("120,40", (160, 120)), Ok((120, 40)));
+        assert_eq!(parse_goto(" 0, 119 ", (160, 120)), Ok((0, 119)));
+        let err = parse_goto("160,0", (160, 120)).unwrap_err();
+        assert!(err.contains("outside the 160x120 image"), "{err}");
+        let err = parse_goto("12", (160, 120)).unwrap_err();
+        assert!(err.contains("expected X,Y"), "{err}");
+        assert!(parse_goto("-1,3", (160, 120)).is_err());
+    }
+}

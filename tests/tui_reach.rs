@@ -1,0 +1,214 @@
+//! Issue 16, sections 2 and 5: reaching any pixel in a few keys, and term
+//! views that redraw in the time of the cells shown.
+
+use std::path::Path;
+
+use crossterm::event::KeyCode;
+use raystep::record::{EventKind, record_pixel};
+use raystep::terms::Term;
+use raystep::tui::{Action, App, Mode, View};
+
+mod common;
+mod support;
+
+use common::*;
+use support::{raystep, stderr};
+
+/// A term view's pixels, scaled as the image files scale them: each
+/// rescanning the whole image for its maximum (the slow way the pane
+/// used to take, once per shown pixel).
+fn slow_pixel(app: &App, term: Term, x: u32, y: u32) -> [u8; 3] {
+    let terms = app.terms().unwrap();
+    terms.rgb(term, (y * terms.width + x) as usize, terms.max_count(term))
+}
+
+#[test]
+fn count_views_show_the_pixels_scaled_by_the_whole_image() {
+    let mut app = app();
+    while app.view() != View::Term(Term::Rays) {
+        app.update(Action::CycleView);
+    }
+    let (width, height) = (app.scene().width, app.scene().height);
+    for term in [Term::Rays, Term::Cost] {
+        // The scale matters only when counts differ: a miss casts 1 ray,
+        // the glass in the middle many more.
+        assert!(app.terms().unwrap().max_count(term) > 1, "{term:?}");
+        assert_eq!(
+            app.count_max(term),
+            app.terms().unwrap().max_count(term),
+            "{term:?}"
+        );
+        for y in 0..height {
+            for x in 0..width {
+                assert_eq!(
+                    app.shown_pixel(x, y),
+                    Some(slow_pixel(&app, term, x, y)),
+                    "{term:?} at ({x}, {y})"
+                );
+            }
+        }
+        app.update(Action::CycleView);
+    }
+}
+
+/// The recording the app shows is the one `record_pixel` makes of the
+/// cursor's pixel, with the same settings.
+fn assert_shows_pixel(app: &App, pixel: (u32, u32)) {
+    assert_eq!(app.cursor(), pixel);
+    let expected = record_pixel(app.scene(), app.settings(), pixel.0, pixel.1);
+    assert_eq!(
+        serde_json::to_value(&app.tree().nodes).unwrap(),
+        serde_json::to_value(&expected.nodes).unwrap()
+    );
+}
+
+#[test]
+fn colon_then_x_comma_y_and_enter_goes_to_that_pixel() {
+    let mut app = app();
+    assert_eq!(app.cursor(), (80, 60), "the centre of 161x121");
+    chars(&mut app, ":120,40");
+    assert_eq!(app.mode(), Mode::Prompt);
+    assert_eq!(app.prompt(), Some("120,40"));
+    assert_eq!(app.cursor(), (80, 60), "nothing moves while typing");
+    press(&mut app, &[key(KeyCode::Enter)]);
+    assert_eq!(app.mode(), Mode::Browsing);
+    assert_shows_pixel(&app, (120, 40));
+    assert_eq!(app.current(), 0);
+}
+
+#[test]
+fn the_prompt_says_why_bad_input_is_refused_and_esc_cancels() {
+    let mut app = app();
+    chars(&mut app, ":161,3");
+    press(&mut app, &[key(KeyCode::Enter)]);
+    // x runs 0..161 in the 161x121 image: 161 is one past the edge.
+    let message = app.message().unwrap();
+    assert!(message.contains("outside the 161x121 image"), "{message}");
+    assert_eq!(app.prompt(), Some("161,3"), "kept, to be corrected");
+    let mut terminal = screen(&mut app, 120, 40);
+    let status = row_text(&mut terminal, 39);
+    assert!(status.contains("go to X,Y: 161,3"), "{status}");
+    assert!(status.contains("outside the 161x121 image"), "{status}");
+    press(
+        &mut app,
+        &[key(KeyCode::Backspace), key(KeyCode::Backspace)],
+    );
+    chars(&mut app, "x");
+    press(&mut app, &[key(KeyCode::Enter)]);
+    assert!(app.message().unwrap().contains("expected X,Y"));
+    press(&mut app, &[key(KeyCode::Esc)]);
+    assert_eq!(app.mode(), Mode::Browsing);
+    assert_eq!(app.cursor(), (80, 60));
+    assert!(
+        !app.should_quit(),
+        "Esc closed the prompt, not the debugger"
+    );
+}
+
+fn row_text(terminal: &mut ratatui::Terminal<ratatui::backend::TestBackend>, y: u16) -> String {
+    let buffer = terminal.backend().buffer();
+    (0..buffer.area.width)
+        .map(|x| buffer[(x, y)].symbol().to_string())
+        .collect()
+}
+
+fn glass() -> App {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
+    App::open(Some(path), true).unwrap()
+}
+
+#[test]
+fn f_t_finds_the_next_pixel_with_total_internal_reflection() {
+    let mut app = glass();
+    let start = app.cursor();
+    let (width, height) = (app.scene().width, app.scene().height);
+    // Independently: the pixels in reading order after the cursor (then
+    // from the top), the first whose tree has a node that refracted with TIR.
+    let (scene, settings) = (app.scene().clone(), *app.settings());
+    let has_tir = |x, y| {
+        record_pixel(&scene, &settings, x, y)
+            .nodes
+            .iter()
+            .any(|n| n.refraction.is_some_and(|r| r.tir))
+    };
+    let after = (start.1 * width + start.0 + 1..width * height)
+        .chain(0..=start.1 * width + start.0)
+        .map(|i| (i % width, i / width));
+    let expected = after
+        .clone()
+        .find(|&(x, y)| has_tir(x, y))
+        .expect("glass has TIR");
+    chars(&mut app, "ft");
+    assert_shows_pixel(&app, expected);
+    assert!(
+        matches!(
+            app.tree().events[app.current()].kind,
+            EventKind::Refraction { tir: true }
+        ),
+        "the TIR is the current event"
+    );
+    assert!(app.message().unwrap().contains("total internal reflection"));
+    // Once more: the next one after that.
+    let next = after
+        .skip_while(|&p| p != expected)
+        .skip(1)
+        .chain([expected])
+        .find(|&(x, y)| has_tir(x, y))
+        .unwrap();
+    chars(&mut app, "ft");
+    assert_eq!(app.cursor(), next);
+}
+
+#[test]
+fn a_find_with_nothing_to_find_says_none_in_the_image() {
+    // With shadows off (s) no shadow ray is cast, so none is blocked.
+    let mut app = app();
+    chars(&mut app, "s");
+    assert!(!app.settings().switches.shadows);
+    chars(&mut app, "fb");
+    assert_eq!(app.cursor(), (80, 60));
+    let message = app.message().unwrap();
+    assert!(message.contains("none in the image"), "{message}");
+    // Any other key after f cancels it and does nothing else.
+    chars(&mut app, "fq");
+    assert!(!app.should_quit());
+    assert_eq!(app.mode(), Mode::Browsing);
+}
+
+#[test]
+fn pixel_opens_the_debugger_on_that_pixel() {
+    let app = glass().at_pixel((3, 4)).unwrap();
+    assert_shows_pixel(&app, (3, 4));
+    let (width, height) = (glass().scene().width, glass().scene().height);
+    let Err(why) = glass().at_pixel((width, 0)) else {
+        panic!("a pixel one past the right edge opened");
+    };
+    assert!(
+        why.contains(&format!("outside the {width}x{height} image")),
+        "{why}"
+    );
+}
+
+/// `--pixel` outside the image is refused before the terminal is looked at:
+/// exit 1, the message, nothing on stdout.
+#[test]
+fn pixel_outside_the_image_is_refused_before_the_terminal() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/seven-rays.toml");
+    for args in [
+        vec!["debug", scene, "--pixel", "161,0"],
+        vec![scene, "--pixel", "0,121"],
+    ] {
+        let output = raystep(&args);
+        let message = stderr(&output);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {message}");
+        assert!(message.contains("outside the 161x121 image"), "{message}");
+        assert!(output.stdout.is_empty());
+    }
+    // Inside, it gets as far as the terminal check.
+    let output = raystep(&["debug", scene, "--pixel", "160,120"]);
+    assert!(
+        stderr(&output).contains("needs a terminal"),
+        "{}",
+        stderr(&output)
+    );
+}
