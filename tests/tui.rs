@@ -560,3 +560,36 @@ fn a_newcomer_sees_the_welcome_at_any_terminal_size() {
         .collect();
     assert!(bottom.contains("arrows pick a pixel"), "{bottom}");
 }
+
+#[test]
+fn a_toggle_shows_what_changed_for_the_pixel_until_another_is_picked() {
+    // Max depth 3 -> 2 -> 1 on the centre pixel: the last toggle (2 -> 1)
+    // leaves the primary ray alone, and every ray the depth-2 tree had
+    // below it is gone (as record::diff says).
+    let mut app = app();
+    app.update(Action::Depth(-1));
+    let rays = app.tree().nodes.len();
+    assert!(rays > 1);
+    app.update(Action::Depth(-1));
+    assert_eq!(app.settings().max_depth, 1);
+    let what_if = app.what_if().expect("a toggle records what changed");
+    assert_eq!(
+        what_if.matches("ray is gone").count(),
+        rays - 1,
+        "{what_if}"
+    );
+    let screen = screen(&mut app, 120, 40);
+    let text: String = screen
+        .backend()
+        .buffer()
+        .content()
+        .iter()
+        .map(|c| c.symbol())
+        .collect();
+    assert!(
+        text.contains("What changed with the last toggle:"),
+        "{text}"
+    );
+    app.update(Action::Pick(0, 0));
+    assert!(app.what_if().is_none());
+}

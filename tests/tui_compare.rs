@@ -190,7 +190,8 @@ fn the_details_put_your_pixel_beside_ours() {
     // With the student's mistake on, ours is theirs.
     app.update(Action::ToggleMistake(Mistake::NoAmbient));
     let want = format!("yours ({a}, {b}, {c}) ██ · ours ({a}, {b}, {c}) ██");
-    assert!(screen_text(&mut app, 120, 40).contains(&want));
+    let screen = screen_text(&mut app, 120, 40);
+    assert!(screen.contains(&want), "{want} not in\n{screen}");
 }
 
 #[test]

@@ -214,7 +214,7 @@ const PIXEL_AND_VIEW: &[Binding] = &[
     },
     Binding {
         inputs: &[(key('d'), act(Action::CyclePlane))],
-        what: "diagram plane: top, side, plane of the primary ray",
+        what: "diagram plane (camera frame): above, side, primary ray",
         ..ROW
     },
     Binding {

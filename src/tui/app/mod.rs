@@ -54,6 +54,9 @@ pub struct App {
     /// The selected pixel, in the scene image's coordinates.
     cursor: (u32, u32),
     tree: RayTree,
+    /// What-if: how the pixel's tree changed with the last toggle (or
+    /// reload), in `record::diff`'s words; cleared when another pixel is picked.
+    what_if: Option<String>,
     /// The current event of `tree.events`.
     current: usize,
     collapsed: BTreeSet<NodeId>,
@@ -145,6 +148,7 @@ impl App {
             settings,
             cursor,
             tree,
+            what_if: None,
             current: 0,
             collapsed: BTreeSet::new(),
             focus: Pane::Image,
@@ -487,14 +491,26 @@ impl App {
     fn pick(&mut self, x: u32, y: u32) {
         self.cursor = (x, y);
         self.current = 0;
+        self.what_if = None;
         self.retrace();
     }
 
-    /// Traces the scene with new settings: the pixel, then the image.
+    /// Traces the scene with new settings: the pixel, then the image. The
+    /// pixel's tree before and after give the what-if.
     fn apply_settings(&mut self, settings: Settings) {
+        let before = self.tree.clone();
         self.settings = settings;
         self.retrace();
+        self.what_if =
+            (before.pixel == self.tree.pixel).then(|| crate::record::diff(&before, &self.tree));
+        // The details open at the top, on what changed.
+        self.details_scroll = self.what_if.as_ref().map(|_| 0);
         self.request_render();
+    }
+
+    /// How the selected pixel changed with the last toggle, when it did.
+    pub fn what_if(&self) -> Option<&str> {
+        self.what_if.as_deref()
     }
 
     /// Reloads the scene file; a broken file keeps the last good scene.

@@ -8,7 +8,7 @@ use ratatui::widgets::Paragraph;
 use super::pane_block;
 use crate::record::kind_name;
 use crate::tui::App;
-use crate::tui::view::details::{compare_line, lines};
+use crate::tui::view::details::{compare_line, lines, what_if_lines};
 use crate::tui::view::layout::Pane;
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
@@ -19,6 +19,11 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let inside = block.inner(area);
     let (mut lines, mut marked) = lines(app.tree(), id, Some(app.current()), inside.width as usize);
     let (x, y) = app.cursor();
+    if let Some(what_if) = app.what_if() {
+        let changed = what_if_lines(what_if, inside.width as usize);
+        marked = marked.map(|m| m + changed.len());
+        lines.splice(0..0, changed);
+    }
     if let Some(yours) = app.compared().map(|c| c.yours.get_pixel(x, y).0) {
         lines.insert(0, compare_line(yours, app.our_pixel()));
         marked = marked.map(|m| m + 1);

@@ -92,6 +92,22 @@ pub fn compare_line(yours: [u8; 3], ours: Option<[u8; 3]>) -> Line<'static> {
     Line::from(spans).style(Style::new().add_modifier(Modifier::BOLD))
 }
 
+/// The what-if section above the ray's lines: how the pixel changed with
+/// the last toggle, wrapped to `width`, in italics, then a blank line.
+pub fn what_if_lines(what_if: &str, width: usize) -> Vec<Line<'static>> {
+    let style = Style::new().add_modifier(Modifier::ITALIC);
+    let mut out = vec![
+        Line::from("What changed with the last toggle:").style(style.add_modifier(Modifier::BOLD)),
+    ];
+    for line in what_if.lines() {
+        for row in record::Line::text(None, line).wrap(width, 0) {
+            out.push(Line::from(row.text()).style(style));
+        }
+    }
+    out.push(Line::from(""));
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
