@@ -8,12 +8,11 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
-use crate::record::RayTree;
+use crate::record::{RayTree, light_label};
 use crate::scene::Scene;
 use crate::tui::view::projection::{
     DiagramPlane, Outline, Projection, Stroke, involved_objects, outline, ray_segments,
 };
-use crate::tui::view::tree::light_label;
 
 /// The figure's size in SVG units (pixels), and its margin.
 const WIDTH: f64 = 800.0;

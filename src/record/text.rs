@@ -66,6 +66,15 @@ pub fn not_cast_line(ray: &NotCast) -> String {
     )
 }
 
+/// "light key", or just the name when it already says "light" (NFF's "light 0").
+pub fn light_label(name: &str) -> String {
+    if name.starts_with("light") {
+        name.to_string()
+    } else {
+        format!("light {name}")
+    }
+}
+
 /// Why a rule kept a secondary ray from being cast.
 pub fn not_cast_reason(ray: &NotCast) -> String {
     match ray.rule {

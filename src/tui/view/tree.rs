@@ -126,14 +126,7 @@ pub fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
     Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
 }
 
-/// "light key", or just the name when it already says "light" (NFF's "light 0").
-pub fn light_label(name: &str) -> String {
-    if name.starts_with("light") {
-        name.to_string()
-    } else {
-        format!("light {name}")
-    }
-}
+pub use crate::record::light_label;
 
 fn light_text(light: &LightRecord) -> String {
     let name = light_label(&light.light);
