@@ -54,7 +54,7 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane) -> String {
     points.push(eye);
     points.extend(lights.iter().map(|l| l.1));
     for (_, shapes) in &outlines {
-        points.extend(shapes.iter().flat_map(outline_points));
+        points.extend(shapes.iter().flat_map(Outline::points));
     }
     let view = View::fit(&points);
 
@@ -154,18 +154,6 @@ impl View {
         let middle = DVec2::new(WIDTH / 2.0, (HEIGHT - LEGEND + 20.0) / 2.0);
         let v = (p - self.centre) * self.scale;
         DVec2::new(middle.x + v.x, middle.y - v.y)
-    }
-}
-
-fn outline_points(outline: &Outline) -> Vec<DVec2> {
-    match outline {
-        Outline::Circle { center, radius } => vec![
-            *center - DVec2::splat(*radius),
-            *center + DVec2::splat(*radius),
-        ],
-        Outline::Polyline(points) => points.clone(),
-        // An infinite line does not set the bounds: it is drawn across them.
-        Outline::Line { .. } => Vec::new(),
     }
 }
 

@@ -168,17 +168,21 @@ fn worth_a_render(
     reference: &[[u32; 3]],
     c: &Candidate,
 ) -> bool {
-    let gap = |a: &[[u32; 3]], b: &[[u32; 3]]| -> u64 {
-        (0..a.len())
-            .filter(|&i| c.changed[i])
-            .map(|i| {
-                (0..3)
-                    .map(|k| a[i][k].abs_diff(b[i][k]) as u64)
-                    .sum::<u64>()
-            })
-            .sum()
-    };
-    30 * gap(yours, base) >= gap(&c.blocks, reference)
+    let only = Some(c.changed.as_slice());
+    30 * gap(yours, base, only) >= gap(&c.blocks, reference, only)
+}
+
+/// The summed channel difference of two block lists over the blocks in
+/// `only` (all when `None`).
+fn gap(a: &[[u32; 3]], b: &[[u32; 3]], only: Option<&[bool]>) -> u64 {
+    (0..a.len())
+        .filter(|&i| only.is_none_or(|o| o[i]))
+        .map(|i| {
+            (0..3)
+                .map(|k| a[i][k].abs_diff(b[i][k]) as u64)
+                .sum::<u64>()
+        })
+        .sum()
 }
 
 /// One mistake's render, as the ranking needs it.
@@ -200,22 +204,11 @@ fn explains(
     variant: &[[u32; 3]],
     only: Option<&[bool]>,
 ) -> f64 {
-    let keep = |i: usize| only.is_none_or(|o| o[i]);
-    let gap = |other: &[[u32; 3]]| -> u64 {
-        (0..yours.len())
-            .filter(|&i| keep(i))
-            .map(|i| {
-                (0..3)
-                    .map(|c| yours[i][c].abs_diff(other[i][c]) as u64)
-                    .sum::<u64>()
-            })
-            .sum()
-    };
-    let apart = gap(base);
+    let apart = gap(yours, base, only);
     if apart == 0 {
         return 0.0;
     }
-    1.0 - gap(variant) as f64 / apart as f64
+    1.0 - gap(yours, variant, only) as f64 / apart as f64
 }
 
 /// Each block's channel sums, row-major by block.

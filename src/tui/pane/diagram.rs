@@ -72,17 +72,6 @@ fn bounds(points: &[DVec2], area: Rect) -> ([f64; 2], [f64; 2]) {
     )
 }
 
-fn outline_points(outline: &Outline) -> Vec<DVec2> {
-    match outline {
-        Outline::Circle { center, radius } => vec![
-            *center - DVec2::splat(*radius),
-            *center + DVec2::splat(*radius),
-        ],
-        Outline::Polyline(points) => points.clone(),
-        Outline::Line { .. } => vec![],
-    }
-}
-
 /// Where an object's name goes: above a circle, at a polygon's first corner.
 fn label_point(outline: &Outline) -> Option<DVec2> {
     match outline {
@@ -161,7 +150,7 @@ pub fn render(
     points.extend(lights.iter().map(|l| l.0));
     for (i, shapes) in &outlines {
         if involved.contains(i) {
-            points.extend(shapes.iter().flat_map(outline_points));
+            points.extend(shapes.iter().flat_map(Outline::points));
         }
     }
     let (x, y) = bounds(&points, inner);

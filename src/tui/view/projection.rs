@@ -221,6 +221,24 @@ pub enum Outline {
     Polyline(Vec<DVec2>),
 }
 
+impl Outline {
+    /// The points that bound the outline, for fitting the view: a circle's
+    /// box corners, a polyline's points; none for an infinite line, which is
+    /// drawn across whatever the view holds.
+    pub fn points(&self) -> Vec<DVec2> {
+        match self {
+            Outline::Circle { center, radius } => {
+                vec![
+                    *center - DVec2::splat(*radius),
+                    *center + DVec2::splat(*radius),
+                ]
+            }
+            Outline::Polyline(points) => points.clone(),
+            Outline::Line { .. } => Vec::new(),
+        }
+    }
+}
+
 /// The outline of one shape: spheres as circles, polygons as their edges,
 /// cones as their two side lines and end caps, planes as the line where they
 /// cut the view plane (none when parallel to it).
