@@ -3,10 +3,12 @@
 //! Run with `cargo bench --bench debugger`.
 
 use std::path::Path;
+use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
+use raystep::tui::view::find::Find;
 use raystep::tui::{Action, App, View, pane};
 
 fn term_view_redraw(c: &mut Criterion) {
@@ -38,5 +40,41 @@ fn term_view_redraw(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, term_view_redraw);
+/// The longest single `App::update` while `f t` (find the next total
+/// internal reflection) scans all of balls.nff (512x512, no transparent
+/// surface: the find is fruitless, every pixel is recorded). Criterion
+/// reports that longest call, not the whole scan: it is how long a key
+/// can wait. Before the find ran in the background it was the scan itself.
+fn fruitless_find(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/balls.nff");
+    let mut group = c.benchmark_group("debugger balls 512x512");
+    group.sample_size(10);
+    group.bench_function("longest update during a fruitless f t", |b| {
+        b.iter_custom(|iters| {
+            let mut longest_sum = Duration::ZERO;
+            for _ in 0..iters {
+                let mut app = App::open(Some(path.clone()), false).unwrap();
+                let mut longest = Duration::ZERO;
+                let mut timed = |app: &mut App, action: Action| {
+                    let started = Instant::now();
+                    app.update(action);
+                    longest = longest.max(started.elapsed());
+                };
+                timed(&mut app, Action::StartFind);
+                timed(&mut app, Action::Find(Find::Tir));
+                while app.finding_progress().is_some() {
+                    std::thread::sleep(Duration::from_millis(20));
+                    timed(&mut app, Action::Tick);
+                }
+                let message = app.message().unwrap_or_default().to_string();
+                assert!(message.contains("none in the image"), "{message}");
+                longest_sum += longest;
+            }
+            longest_sum
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, term_view_redraw, fruitless_find);
 criterion_main!(benches);

@@ -2,6 +2,7 @@
 //! views that redraw in the time of the cells shown.
 
 use std::path::Path;
+use std::time::Duration;
 
 use crossterm::event::KeyCode;
 use raystep::record::{EventKind, record_pixel};
@@ -211,4 +212,81 @@ fn pixel_outside_the_image_is_refused_before_the_terminal() {
         "{}",
         stderr(&output)
     );
+}
+
+/// glass.toml, its find running in the background (as in the terminal).
+fn glass_in_background() -> App {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
+    App::open(Some(path), false).unwrap()
+}
+
+/// The last pixel in reading order whose tree has a TIR: a find for TIR
+/// from there scans nearly the whole image before it wraps to the first.
+fn last_tir_pixel(app: &App) -> (u32, u32) {
+    let (scene, settings) = (app.scene().clone(), *app.settings());
+    let (width, height) = (scene.width, scene.height);
+    (0..width * height)
+        .rev()
+        .map(|i| (i % width, i / width))
+        .find(|&(x, y)| {
+            record_pixel(&scene, &settings, x, y)
+                .nodes
+                .iter()
+                .any(|n| n.refraction.is_some_and(|r| r.tir))
+        })
+        .unwrap()
+}
+
+#[test]
+fn a_background_find_ends_where_the_synchronous_one_does() {
+    let mut sync = glass();
+    chars(&mut sync, "ft");
+    let mut app = glass_in_background();
+    chars(&mut app, "ft");
+    until_found(&mut app, Duration::from_secs(60));
+    assert_eq!(app.cursor(), sync.cursor());
+    assert_eq!(app.current(), sync.current());
+    assert_eq!(app.message(), sync.message());
+}
+
+#[test]
+fn keys_are_answered_while_a_find_runs_and_a_cancelled_find_moves_nothing() {
+    let mut app = glass_in_background();
+    let last = last_tir_pixel(&app);
+    app.update(Action::Pick(last.0, last.1));
+    // From the last TIR pixel, f t wraps: all rows after it and all before
+    // the first TIR pixel are recorded first (thousands of pixels).
+    chars(&mut app, "ft");
+    let (what, row, rows) = app.finding_progress().expect("the find runs");
+    assert_eq!(what, "a total internal reflection");
+    assert!((1..=rows).contains(&row) && rows == 120, "row {row} of {rows}");
+    let mut terminal = screen(&mut app, 120, 40);
+    let status = row_text(&mut terminal, 39);
+    assert!(
+        status.contains("finding a total internal reflection… (row "),
+        "{status}"
+    );
+    // A key is answered at once, without waiting for the find, which goes on.
+    chars(&mut app, "?");
+    assert!(app.help());
+    assert!(app.finding_progress().is_some(), "the find still runs");
+    chars(&mut app, "?");
+    // A pick (here j, one row down) cancels it: even once the scan would
+    // have ended, the cursor stays where the key put it.
+    chars(&mut app, "j");
+    let moved = (last.0, last.1 + 1);
+    assert_eq!(app.cursor(), moved);
+    assert!(app.finding_progress().is_none());
+    for _ in 0..100 {
+        std::thread::sleep(Duration::from_millis(10));
+        app.update(Action::Tick);
+    }
+    assert_eq!(app.cursor(), moved);
+    assert_eq!(app.message(), None, "no find result came in");
+    // q while a find runs: answered, and the find is dropped.
+    chars(&mut app, "ft");
+    assert!(app.finding_progress().is_some());
+    chars(&mut app, "q");
+    assert!(app.should_quit());
+    assert!(app.finding_progress().is_none());
 }

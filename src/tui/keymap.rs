@@ -473,6 +473,12 @@ const IN_FIND: &[Binding] = &[
     },
     Binding {
         context: Context::Find,
+        inputs: &[(key('n'), act(Action::Find(Find::NearMiss)))],
+        what: "the next pixel with a near miss (a polygon's plane crossed outside it)",
+        ..ROW
+    },
+    Binding {
+        context: Context::Find,
         inputs: &[(Input::AnyKey, act(Action::CancelFind))],
         what: "cancel the find",
         ..ROW

@@ -23,6 +23,7 @@
 pub mod action;
 pub mod app;
 pub mod event;
+pub mod find_job;
 pub mod job;
 pub mod keymap;
 pub mod pane;

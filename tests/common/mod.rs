@@ -58,3 +58,14 @@ pub fn edit(path: &Path, from: &str, to: &str) {
     assert!(text.contains(from), "{from} not in the scene");
     std::fs::write(path, text.replace(from, to)).unwrap();
 }
+
+/// Pumps `Action::Tick` until the app's background find has ended (its
+/// result, if any, taken in), or panics after `limit`.
+pub fn until_found(app: &mut App, limit: std::time::Duration) {
+    let deadline = std::time::Instant::now() + limit;
+    while app.finding_progress().is_some() {
+        assert!(std::time::Instant::now() < deadline, "the find never ended");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        app.update(tui::Action::Tick);
+    }
+}

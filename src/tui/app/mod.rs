@@ -74,6 +74,10 @@ pub struct App {
     prompt: Option<String>,
     /// `f` was pressed: the next key says what to find across the image.
     finding: bool,
+    /// The find scanning the image in the background, if one runs.
+    searching: Option<reach::Searching>,
+    /// Background work runs on the caller's thread (tests).
+    sync: bool,
     /// The student's image and what `compare` found, with `--compare`.
     compared: Option<Compared>,
     /// The region `w` went to last.
@@ -161,6 +165,8 @@ impl App {
             menu_row: 0,
             prompt: None,
             finding: false,
+            searching: None,
+            sync,
             compared,
             region: None,
             error: None,
@@ -215,6 +221,7 @@ impl App {
             Action::Tick => self.tick(),
             Action::Quit => {
                 self.quit = true;
+                self.searching = None;
                 self.cancel_renders();
             }
             Action::ToggleHelp => (self.help, self.help_scroll) = (!self.help, 0),
@@ -256,7 +263,7 @@ impl App {
             Action::StartFind => {
                 self.finding = true;
                 self.message = Some(
-                    "find the next pixel with: b blocked shadow, t TIR, D depth limit, x object X"
+                    "find the next pixel with: b blocked shadow, t TIR, D depth limit, x object X, n near miss"
                         .into(),
                 );
             }
@@ -266,6 +273,7 @@ impl App {
             Action::Resize(width, height) => self.screen = Rect::new(0, 0, width, height),
         }
         self.collect_renders();
+        self.collect_find();
     }
 
     /// Background work: finished renders, and a reload once the file has
@@ -489,6 +497,7 @@ impl App {
 
     /// Selects a pixel: only that pixel is traced again.
     fn pick(&mut self, x: u32, y: u32) {
+        self.cancel_find();
         self.cursor = (x, y);
         self.current = 0;
         self.what_if = None;
@@ -498,6 +507,7 @@ impl App {
     /// Traces the scene with new settings: the pixel, then the image. The
     /// pixel's tree before and after give the what-if.
     fn apply_settings(&mut self, settings: Settings) {
+        self.cancel_find();
         let before = self.tree.clone();
         self.settings = settings;
         self.retrace();

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use super::App;
-use crate::record::record_pixel;
+use crate::tui::find_job::FindJob;
 use crate::tui::view::find::{self, Find};
 
 impl App {
@@ -57,11 +57,12 @@ impl App {
         }
     }
 
-    /// The cursor to the next pixel in reading order whose recording has
-    /// `what`, its first such event current; at most the whole image is
-    /// scanned, one `record_pixel` each.
+    /// Starts looking for the next pixel in reading order whose recording
+    /// has `what` (its first such event current when found), in the
+    /// background: a pick, a toggle, another find or quitting cancels it.
     pub(super) fn find(&mut self, what: Find) {
         self.finding = false;
+        self.cancel_find();
         let object = match what {
             Find::BreakObject => match self.break_target() {
                 Some(object) => {
@@ -76,29 +77,75 @@ impl App {
             },
             _ => 0,
         };
-        let started = Instant::now();
-        let size = (self.scene.width, self.scene.height);
-        let found = find::reading_order(self.cursor, size).find_map(|(x, y)| {
-            let tree = record_pixel(&self.scene, &self.settings, x, y);
-            let event = find::first_event(&tree, &self.scene, &self.settings, what, object)?;
-            Some(((x, y), tree, event))
-        });
         let what_text = match what {
             Find::BreakObject => format!("a hit on {}", self.scene.object_name(object)),
             _ => what.what().to_string(),
         };
-        let Some(((x, y), tree, event)) = found else {
-            self.message = Some(format!("none in the image: no pixel has {what_text}"));
+        let job = FindJob::start(
+            self.scene.clone(),
+            self.settings,
+            (what, object),
+            self.cursor,
+            self.sync,
+        );
+        self.searching = Some(Searching {
+            job,
+            what: what_text,
+            from: self.cursor,
+            started: Instant::now(),
+        });
+    }
+
+    /// What the running find looks for and the row it is on (from 1), of
+    /// the image's rows: "finding {what}… (row N of H)".
+    pub fn finding_progress(&self) -> Option<(&str, u32, u32)> {
+        let searching = self.searching.as_ref()?;
+        Some((&searching.what, searching.job.row() + 1, self.scene.height))
+    }
+
+    /// Drops the running find, if any: its result can no longer arrive.
+    pub(super) fn cancel_find(&mut self) {
+        self.searching = None;
+    }
+
+    /// Takes in the running find's result once it has one.
+    pub(super) fn collect_find(&mut self) {
+        let Some(searching) = &self.searching else {
             return;
         };
-        let wrapped = (y, x) <= (self.cursor.1, self.cursor.0);
+        let Some(found) = searching.job.poll() else {
+            return;
+        };
+        let Some(Searching {
+            what, from, started, ..
+        }) = self.searching.take()
+        else {
+            return;
+        };
+        let Some(found) = found else {
+            self.message = Some(format!("none in the image: no pixel has {what}"));
+            return;
+        };
+        let (x, y) = found.pixel;
+        let wrapped = (y, x) <= (from.1, from.0);
         self.cursor = (x, y);
-        self.tree = tree;
+        self.tree = found.tree;
         self.pick_time = started.elapsed();
-        self.current = event;
+        self.current = found.event;
+        self.what_if = None;
         self.collapsed.clear();
         self.details_scroll = None;
         let from_top = if wrapped { ", from the top again" } else { "" };
-        self.message = Some(format!("pixel ({x}, {y}) has {what_text}{from_top}"));
+        self.message = Some(format!("pixel ({x}, {y}) has {what}{from_top}"));
     }
+}
+
+/// A find under way: the job, and what the status line and the result say.
+pub(super) struct Searching {
+    job: FindJob,
+    /// "a total internal reflection", "a hit on glass" ...
+    what: String,
+    /// The cursor when the find started (the result says if it wrapped).
+    from: (u32, u32),
+    started: Instant,
 }

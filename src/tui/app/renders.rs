@@ -8,7 +8,7 @@ use crate::tui::job::{Finished, Output, Progress, Request};
 impl App {
     /// Whether a render is under way (the loop then polls more often).
     pub fn busy(&self) -> bool {
-        self.renderer.busy() || self.reload_due.is_some()
+        self.renderer.busy() || self.reload_due.is_some() || self.searching.is_some()
     }
 
     pub fn progress(&self) -> Option<Progress> {

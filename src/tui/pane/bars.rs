@@ -95,6 +95,13 @@ pub(super) fn status(app: &App) -> Line<'static> {
                 .on_yellow(),
         );
     }
+    if let Some((what, row, rows)) = app.finding_progress() {
+        spans.push(
+            Span::raw(format!(" finding {what}… (row {row} of {rows}) "))
+                .black()
+                .on_yellow(),
+        );
+    }
     if let Some(message) = app.message() {
         spans.push(Span::raw(format!(" {message} ")).yellow().bold());
     } else if app.show_timings() {

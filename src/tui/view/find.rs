@@ -1,6 +1,6 @@
 //! Finding across the image (`f` then a key): which pixel's recording has a
 //! blocked shadow ray, a total internal reflection, a ray cut by the depth
-//! limit, or a hit on the breakpoint object; and the go-to prompt's `X,Y`.
+//! limit, a hit on the breakpoint object, or a near miss of a polygon; and the go-to prompt's `X,Y`.
 
 use crate::record::RayTree;
 use crate::scene::{Scene, Settings};
@@ -17,6 +17,9 @@ pub enum Find {
     DepthLimit,
     /// A hit on the breakpoint object (`x`'s).
     BreakObject,
+    /// A near miss: a ray crossed a polygon's plane inside its bounding box
+    /// but outside the polygon (an even crossing count), e.g. a notch.
+    NearMiss,
 }
 
 impl Find {
@@ -27,6 +30,7 @@ impl Find {
             Find::Tir => "a total internal reflection",
             Find::DepthLimit => "a ray cut by the depth limit",
             Find::BreakObject => "a hit on the object",
+            Find::NearMiss => "a near miss (a polygon's plane crossed outside it)",
         }
     }
 }
@@ -46,6 +50,10 @@ pub fn first_event(
         Find::Tir => Breakpoint::Tir,
         Find::BreakObject => Breakpoint::HitObject(object),
         Find::DepthLimit => return depth_cut(tree, scene, settings),
+        Find::NearMiss => {
+            let node = tree.nodes.iter().position(|n| !n.near_misses.is_empty())?;
+            return stepper::cast_event(tree, node);
+        }
     };
     (0..tree.events.len()).find(|&i| stepper::matches(tree, i, breakpoint))
 }

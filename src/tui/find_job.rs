@@ -1,0 +1,97 @@
+//! The image-wide find (`f` then a key) off the UI thread: the pixels are
+//! recorded one by one in reading order on a thread of their own, so keys
+//! are answered while it runs. Dropping the job cancels it (at its next
+//! pixel) and drops its result with the channel, so a stale find can never
+//! move the cursor.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::sync::mpsc::{Receiver, channel};
+use std::thread;
+
+use crate::record::{RayTree, record_pixel};
+use crate::scene::{Scene, Settings};
+use crate::tui::view::find::{self, Find};
+
+/// The first pixel after the start that has what was looked for.
+pub struct Found {
+    pub pixel: (u32, u32),
+    pub tree: RayTree,
+    /// Its first matching event.
+    pub event: usize,
+}
+
+/// A running find.
+pub struct FindJob {
+    /// The row of the pixel being recorded, for "row N of H".
+    row: Arc<AtomicU32>,
+    cancel: Arc<AtomicBool>,
+    /// `Some(found)` or `None` (nothing in the image) once the scan ends.
+    result: Receiver<Option<Found>>,
+}
+
+impl FindJob {
+    /// Scans the image after `from` for `what` (`object` for a hit on an
+    /// object): on the caller's thread when `sync` (tests), else on its own.
+    pub fn start(
+        scene: Arc<Scene>,
+        settings: Settings,
+        (what, object): (Find, usize),
+        from: (u32, u32),
+        sync: bool,
+    ) -> FindJob {
+        let row = Arc::new(AtomicU32::new(from.1));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (sender, result) = channel();
+        let (job_row, job_cancel) = (row.clone(), cancel.clone());
+        let job = move || {
+            let size = (scene.width, scene.height);
+            let mut found = None;
+            for (x, y) in find::reading_order(from, size) {
+                if job_cancel.load(Ordering::Relaxed) {
+                    return;
+                }
+                job_row.store(y, Ordering::Relaxed);
+                let tree = record_pixel(&scene, &settings, x, y);
+                if let Some(event) = find::first_event(&tree, &scene, &settings, what, object) {
+                    found = Some(Found {
+                        pixel: (x, y),
+                        tree,
+                        event,
+                    });
+                    break;
+                }
+            }
+            let _ = sender.send(found);
+        };
+        if sync {
+            job();
+        } else {
+            thread::Builder::new()
+                .name("raystep-find".into())
+                .spawn(job)
+                .expect("cannot start the find thread");
+        }
+        FindJob {
+            row,
+            cancel,
+            result,
+        }
+    }
+
+    /// The scan's outcome once it has ended: `Some(None)` when no pixel has it.
+    pub fn poll(&self) -> Option<Option<Found>> {
+        self.result.try_recv().ok()
+    }
+
+    /// The row being scanned, from 0.
+    pub fn row(&self) -> u32 {
+        self.row.load(Ordering::Relaxed)
+    }
+}
+
+impl Drop for FindJob {
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}

@@ -1,0 +1,176 @@
+//! Issue 16's "Done when": the five questions a student asked of scenes of
+//! their own are each answered by `explain` alone, and reached in the
+//! debugger within 5 keys from its start (the centre pixel, no --pixel).
+//!
+//! (a) an opaque shadow from one of two lights   two-lights.toml 75,65
+//! (b) a fractional shadow through glass and a pane   two-lights.toml 94,66
+//! (c) a pixel lit mostly by a reflection          mirrors.toml 97,50
+//! (d) total internal reflection in a prism        prism.toml 90,60
+//! (e) a ray through the notch of a concave polygon   polygons.toml 30,30
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use raystep::record::{explain, record_pixel};
+use raystep::scene::load;
+use raystep::tui::{App, Mode};
+
+use common::*;
+
+fn scene_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name)
+}
+
+/// `raystep explain scenes/NAME --pixel X,Y`, as the library writes it.
+fn explain_pixel(name: &str, (x, y): (u32, u32)) -> String {
+    let scene = load(&scene_path(name)).unwrap();
+    explain(&record_pixel(&scene, &scene.settings, x, y))
+}
+
+fn snapshot(name: &str, text: &str) {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../snapshots");
+    settings.set_prepend_module_to_snapshot(true);
+    settings.bind(|| insta::assert_snapshot!(name, text));
+}
+
+/// The number after `prefix` in `text` (up to a space, comma or bracket).
+fn number_after(text: &str, prefix: &str) -> f64 {
+    let start = text.find(prefix).unwrap_or_else(|| panic!("{prefix} in {text}")) + prefix.len();
+    let rest = &text[start..];
+    let end = rest
+        .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+        .unwrap_or(rest.len());
+    rest[..end].parse().unwrap()
+}
+
+#[test]
+fn a_an_opaque_shadow_from_one_of_two_lights() {
+    // The red ball (centre (-1, 0.6, 0), r 0.6, opaque) stands between the
+    // left light (-4, 5, 2) and the floor: the line from the light through
+    // the centre meets y = 0 at (-1, 0.6, 0) + 0.136 (3, -4.4, -2) =
+    // (-0.59, 0, -0.27), which pixel 75,65 looks at. Its shadow ray to the
+    // left light enters and leaves the ball (two crossings, k_t 0 each):
+    // S = 0. Towards the right light (4, 5, 2) the line passes x = -0.04 at
+    // the ball's height, far from both balls, and below the pane's top (2.6)
+    // only once past x = 2.3: nothing in the way, S = 1.
+    let text = explain_pixel("two-lights.toml", (75, 65));
+    assert!(text.contains("hits floor"), "{text}");
+    assert!(
+        text.contains("left: in shadow, blocked by red ball (opaque)"),
+        "{text}"
+    );
+    assert!(text.contains("S = 0;"), "{text}");
+    assert!(text.contains("right: lit, nothing in the way"), "{text}");
+    assert!(text.contains("diffuse from right"), "{text}");
+    assert!(!text.contains("diffuse from left"), "{text}");
+    snapshot("a_opaque_shadow", &text);
+}
+
+#[test]
+fn b_a_fractional_shadow_through_glass_and_a_pane() {
+    // Towards the right light the shadow ray from the floor behind the
+    // glass ball enters and leaves it (k_t 0.6 twice), then crosses the
+    // pane at x = 2.3 once (k_t 0.8): S = 0.6 x 0.6 x 0.8 = 0.288.
+    let text = explain_pixel("two-lights.toml", (94, 66));
+    assert!(
+        text.contains(
+            "right: partly blocked through glass ball (k_t 0.6, crossed 2 times), glass pane (k_t 0.8): S = 0.288"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("left: lit, nothing in the way"), "{text}");
+    snapshot("b_fractional_shadow", &text);
+}
+
+#[test]
+fn c_a_pixel_lit_mostly_by_a_reflection() {
+    // The right mirror (k_s 0.85) reflects the red ball: the reflected ray
+    // brings I_r = (0.761, 0.135, 0.103), so k_s I_r = (0.647, 0.115,
+    // 0.088), sum 0.850, of a pixel (0.751, 0.282, 0.276), sum 1.309:
+    // 0.850 / 1.309 = 64.9% of the brightness, the largest term.
+    let text = explain_pixel("mirrors.toml", (97, 50));
+    let terms = text
+        .lines()
+        .skip_while(|l| !l.starts_with("Its colour is the sum"))
+        .nth(1)
+        .unwrap();
+    assert!(terms.trim_start().starts_with("reflected ray"), "{terms}");
+    let share = number_after(terms, ")   ");
+    assert!((share - 64.9).abs() < 0.05, "{share} in {terms}");
+    assert!(
+        text.contains("Reflected ray (weight 0.85): hits red ball"),
+        "{text}"
+    );
+    snapshot("c_mostly_reflection", &text);
+}
+
+#[test]
+fn d_total_internal_reflection_in_a_prism() {
+    // Pixel 90,60's primary ray d = (0.0468, -0.0272, -0.9985) enters the
+    // front face z = 0 (cos_i = 0.9985, eta = 1/1.5) and goes on along
+    // (0.0312, -0.0181, -0.9993). The right face's normal, facing the ray
+    // from inside, is (-1, 0, 1)/sqrt 2: cos_i = 0.7287 (43.2 degrees, past
+    // the critical 41.8), and with eta = 1.5,
+    // k = 1 - 2.25 (1 - 0.7287^2) = -0.0552 < 0: TIR.
+    let text = explain_pixel("prism.toml", (90, 60));
+    let line = text
+        .lines()
+        .find(|l| l.contains("total internal reflection at r1"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(line.contains("on prism right"), "{line}");
+    let k = number_after(line, "k = ");
+    assert!((k + 0.0552).abs() < 1e-4, "{k} in {line}");
+    assert!(
+        text.contains("total internal reflection at r2") && text.contains("on prism left"),
+        "{text}"
+    );
+    snapshot("d_prism_tir", &text);
+}
+
+#[test]
+fn e_a_ray_through_the_notch_of_a_concave_polygon() {
+    // Left of the star's top tip the +U half-line from the hit point in
+    // the star's plane crosses the tip's two edges: 2, even, outside; the
+    // ray goes on to the back wall.
+    let text = explain_pixel("polygons.toml", (30, 30));
+    let line = text
+        .lines()
+        .find(|l| l.contains("star") && l.contains("outside"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(line.contains("2 edge crossings"), "{line}");
+    assert!(line.contains("even"), "{line}");
+    assert!(text.contains("hits back wall"), "{text}");
+    snapshot("e_concave_notch", &text);
+}
+
+// In the debugger, from the start: each answer in the details pane after
+// at most 5 keys.
+
+fn open(name: &str) -> App {
+    App::open(Some(scene_path(name)), true).unwrap()
+}
+
+/// Every character on a 160x50 screen of the app.
+fn screen_text(app: &mut App) -> String {
+    let mut terminal = screen(app, 160, 50);
+    let buffer = terminal.backend_mut().buffer().clone();
+    (0..buffer.area.height)
+        .map(|y| {
+            (0..buffer.area.width)
+                .map(|x| buffer[(x, y)].symbol().to_string())
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Types `keys` (each char one key) and checks the count.
+fn keys(app: &mut App, keys: &str, most: usize) {
+    assert!(keys.chars().count() <= most, "{keys}: more than {most} keys");
+    chars(app, keys);
+    assert_eq!(app.mode(), Mode::Browsing);
+}
