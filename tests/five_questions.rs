@@ -49,40 +49,43 @@ fn number_after(text: &str, prefix: &str) -> f64 {
 
 #[test]
 fn a_an_opaque_shadow_from_one_of_two_lights() {
-    // The red ball (centre (-1, 0.6, 0), r 0.6, opaque) stands between the
-    // left light (-4, 5, 2) and the floor: the line from the light through
-    // the centre meets y = 0 at (-1, 0.6, 0) + 0.136 (3, -4.4, -2) =
-    // (-0.59, 0, -0.27), which pixel 75,65 looks at. Its shadow ray to the
-    // left light enters and leaves the ball (two crossings, k_t 0 each):
-    // S = 0. Towards the right light (4, 5, 2) the line passes x = -0.04 at
-    // the ball's height, far from both balls, and below the pane's top (2.6)
-    // only once past x = 2.3: nothing in the way, S = 1.
-    let text = explain_pixel("two-lights.toml", (75, 65));
+    // Pixel 92,61 looks at the floor near p = (0.84, 0, -0.89). The red ball
+    // (centre c = (1.5, 0.6, -1.05), r = 0.5, opaque) stands between p and
+    // the right light (6, 6, -1): along d = normalize((6, 6, -1) - p) =
+    // (0.65, 0.76, -0.01), the closest approach to c is at
+    // t = (c - p)·d = 0.89, at |p + t d - c| = 0.18 < 0.5: the ray enters
+    // and leaves the ball (two crossings, k_t 0 each), S = 0. Towards the
+    // left light (-12, 6, -0.5) it rises over the picture's left side, far
+    // above the glass ball and the pane: S = 1.
+    let text = explain_pixel("two-lights.toml", (92, 61));
     assert!(text.contains("hits floor"), "{text}");
     assert!(
-        text.contains("left: in shadow, blocked by red ball (opaque)"),
+        text.contains("right: in shadow, blocked by red ball (opaque)"),
         "{text}"
     );
     assert!(text.contains("S = 0;"), "{text}");
-    assert!(text.contains("right: lit, nothing in the way"), "{text}");
-    assert!(text.contains("diffuse from right"), "{text}");
-    assert!(!text.contains("diffuse from left"), "{text}");
+    assert!(text.contains("left: lit, nothing in the way"), "{text}");
+    assert!(text.contains("diffuse from left"), "{text}");
+    assert!(!text.contains("diffuse from right"), "{text}");
     snapshot("a_opaque_shadow", &text);
 }
 
 #[test]
 fn b_a_fractional_shadow_through_glass_and_a_pane() {
-    // Towards the right light the shadow ray from the floor behind the
-    // glass ball enters and leaves it (k_t 0.6 twice), then crosses the
-    // pane at x = 2.3 once (k_t 0.8): S = 0.6 x 0.6 x 0.8 = 0.288.
-    let text = explain_pixel("two-lights.toml", (94, 66));
+    // Pixel 3,64 looks at the floor near p = (-4.92, 0, -0.42). Towards the
+    // left light (-12, 6, -0.5) its shadow ray passes the glass ball's
+    // centre (-5.7, 0.6, -0.5) at 0.09 < r = 0.5 (at t = 0.98), entering and leaving it (k_t 0.6 twice), and then meets
+    // the plane x = -6.75 at a fraction 1.83 / 7.08 = 0.26 of the way, at
+    // y = 1.55, z = -0.44: inside the pane (y 0.8..2.4, z -1.4..0.4),
+    // k_t 0.8. S = 0.6 x 0.6 x 0.8 = 0.288.
+    let text = explain_pixel("two-lights.toml", (3, 64));
     assert!(
         text.contains(
-            "right: partly blocked through glass ball (k_t 0.6, crossed 2 times), glass pane (k_t 0.8): S = 0.288"
+            "left: partly blocked through glass ball (k_t 0.6, crossed 2 times), glass pane (k_t 0.8): S = 0.288"
         ),
         "{text}"
     );
-    assert!(text.contains("left: lit, nothing in the way"), "{text}");
+    assert!(text.contains("right: lit, nothing in the way"), "{text}");
     snapshot("b_fractional_shadow", &text);
 }
 
@@ -173,4 +176,57 @@ fn keys(app: &mut App, keys: &str, most: usize) {
     assert!(keys.chars().count() <= most, "{keys}: more than {most} keys");
     chars(app, keys);
     assert_eq!(app.mode(), Mode::Browsing);
+}
+
+#[test]
+fn each_answer_is_in_the_debugger_within_five_keys_of_the_start() {
+    // (a) f b: from the centre (80, 60), the first blocked shadow ray in
+    // reading order is on row 60, in the red ball's shadow. 2 keys.
+    let mut app = open("two-lights.toml");
+    keys(&mut app, "fb", 5);
+    let text = screen_text(&mut app);
+    assert!(
+        text.contains("right: N·L") && text.contains("S = 0, blocked by red ball"),
+        "{text}"
+    );
+    assert!(text.contains("left: N·L") && text.contains("S = 1 (nothing in the way)"));
+
+    // (b) f p: the first partly blocked shadow ray after the centre is at
+    // the left edge of row 61, through the glass ball and the pane. 2 keys.
+    let mut app = open("two-lights.toml");
+    keys(&mut app, "fp", 5);
+    assert_eq!(app.cursor(), (0, 61));
+    let text = screen_text(&mut app);
+    assert!(
+        text.contains("S = 0.288, blocked by glass ball"),
+        "{text}"
+    );
+    assert!(text.contains("glass pane"), "{text}");
+
+    // (c) no key: mirrors.toml's centre pixel is the right mirror, and the
+    // reflected ray brings most of its colour (ray tree's share, details).
+    let mut app = open("mirrors.toml");
+    keys(&mut app, "", 5);
+    let text = screen_text(&mut app);
+    assert!(text.contains("r1 reflected → hit left mirror"), "{text}");
+    assert!(text.contains("reflected ray r1 adds (0.469, 0.493, 0.463)"), "{text}");
+    assert!(text.contains("colour (0.569, 0.654, 0.644)"), "{text}");
+
+    // (d) f t: the next pixel with TIR, its TIR event current. 2 keys.
+    let mut app = open("prism.toml");
+    keys(&mut app, "ft", 5);
+    let text = screen_text(&mut app);
+    assert!(text.contains("total internal reflection: no transmitted ray"), "{text}");
+    assert!(text.contains("k = -"), "{text}");
+    assert!(text.contains("total internal reflection: kt goes to"), "{text}");
+
+    // (e) X X X f n: X chooses the centre's hit (back wall), then the floor,
+    // then the star; f n goes to the next near miss of the star. 5 keys.
+    let mut app = open("polygons.toml");
+    keys(&mut app, "XXX", 5);
+    assert_eq!(app.break_object(), Some(2), "the star");
+    keys(&mut app, "fn", 2);
+    let text = screen_text(&mut app);
+    assert!(text.contains("passed by star"), "{text}");
+    assert!(text.contains("2 edge crossings"), "{text}");
 }

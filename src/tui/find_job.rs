@@ -31,12 +31,12 @@ pub struct FindJob {
 }
 
 impl FindJob {
-    /// Scans the image after `from` for `what` (`object` for a hit on an
-    /// object): on the caller's thread when `sync` (tests), else on its own.
+    /// Scans the image after `from` for `what` (`object`: the breakpoint
+    /// object, see `find::first_event`): on the caller's thread when `sync` (tests), else on its own.
     pub fn start(
         scene: Arc<Scene>,
         settings: Settings,
-        (what, object): (Find, usize),
+        (what, object): (Find, Option<usize>),
         from: (u32, u32),
         sync: bool,
     ) -> FindJob {

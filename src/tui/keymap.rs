@@ -455,6 +455,12 @@ const IN_FIND: &[Binding] = &[
     },
     Binding {
         context: Context::Find,
+        inputs: &[(key('p'), act(Action::Find(Find::PartialShadow)))],
+        what: "the next pixel with a partly blocked shadow ray (0 < S < 1)",
+        ..ROW
+    },
+    Binding {
+        context: Context::Find,
         inputs: &[(key('t'), act(Action::Find(Find::Tir)))],
         what: "the next pixel with a total internal reflection",
         ..ROW
@@ -474,7 +480,7 @@ const IN_FIND: &[Binding] = &[
     Binding {
         context: Context::Find,
         inputs: &[(key('n'), act(Action::Find(Find::NearMiss)))],
-        what: "the next pixel with a near miss (a polygon's plane crossed outside it)",
+        what: "the next pixel with a near miss (a polygon's plane crossed outside it; of X once chosen)",
         ..ROW
     },
     Binding {

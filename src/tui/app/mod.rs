@@ -263,7 +263,7 @@ impl App {
             Action::StartFind => {
                 self.finding = true;
                 self.message = Some(
-                    "find the next pixel with: b blocked shadow, t TIR, D depth limit, x object X, n near miss"
+                    "find the next pixel with: b blocked shadow, p partly blocked, t TIR, D depth limit, x object X, n near miss"
                         .into(),
                 );
             }

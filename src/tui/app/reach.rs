@@ -67,7 +67,7 @@ impl App {
             Find::BreakObject => match self.break_target() {
                 Some(object) => {
                     self.break_object = Some(object);
-                    object
+                    Some(object)
                 }
                 None => {
                     self.message =
@@ -75,10 +75,16 @@ impl App {
                     return;
                 }
             },
-            _ => 0,
+            Find::NearMiss => self.break_object,
+            _ => None,
         };
-        let what_text = match what {
-            Find::BreakObject => format!("a hit on {}", self.scene.object_name(object)),
+        let what_text = match (what, object) {
+            (Find::BreakObject, Some(object)) => {
+                format!("a hit on {}", self.scene.object_name(object))
+            }
+            (Find::NearMiss, Some(object)) => {
+                format!("a near miss of {}", self.scene.object_name(object))
+            }
             _ => what.what().to_string(),
         };
         let job = FindJob::start(

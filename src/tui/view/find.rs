@@ -1,8 +1,8 @@
 //! Finding across the image (`f` then a key): which pixel's recording has a
-//! blocked shadow ray, a total internal reflection, a ray cut by the depth
+//! blocked (or partly blocked) shadow ray, a total internal reflection, a ray cut by the depth
 //! limit, a hit on the breakpoint object, or a near miss of a polygon; and the go-to prompt's `X,Y`.
 
-use crate::record::RayTree;
+use crate::record::{EventKind, RayTree};
 use crate::scene::{Scene, Settings};
 
 use super::stepper::{self, Breakpoint};
@@ -11,6 +11,8 @@ use super::stepper::{self, Breakpoint};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Find {
     BlockedShadow,
+    /// A shadow ray blocked only by transparent surfaces: 0 < S < 1.
+    PartialShadow,
     Tir,
     /// A ray that hit a reflective or transparent surface at max_depth, so
     /// the child it would have cast (with its switch on) was not.
@@ -18,7 +20,8 @@ pub enum Find {
     /// A hit on the breakpoint object (`x`'s).
     BreakObject,
     /// A near miss: a ray crossed a polygon's plane inside its bounding box
-    /// but outside the polygon (an even crossing count), e.g. a notch.
+    /// but outside the polygon (an even crossing count), e.g. a notch; of
+    /// the breakpoint object only, once one is chosen.
     NearMiss,
 }
 
@@ -27,6 +30,7 @@ impl Find {
     pub fn what(self) -> &'static str {
         match self {
             Find::BlockedShadow => "a blocked shadow ray",
+            Find::PartialShadow => "a partly blocked shadow ray (0 < S < 1)",
             Find::Tir => "a total internal reflection",
             Find::DepthLimit => "a ray cut by the depth limit",
             Find::BreakObject => "a hit on the object",
@@ -36,26 +40,50 @@ impl Find {
 }
 
 /// The first event of `tree` that `find` looks for; `object` is the
-/// breakpoint object for `Find::BreakObject`. The depth limit needs the
+/// breakpoint object (`Find::BreakObject` needs one; `Find::NearMiss`
+/// looks at it alone when there is one). The depth limit needs the
 /// materials (the scene's) and the switches `tree` was recorded with.
 pub fn first_event(
     tree: &RayTree,
     scene: &Scene,
     settings: &Settings,
     find: Find,
-    object: usize,
+    object: Option<usize>,
 ) -> Option<usize> {
     let breakpoint = match find {
         Find::BlockedShadow => Breakpoint::BlockedShadow,
         Find::Tir => Breakpoint::Tir,
-        Find::BreakObject => Breakpoint::HitObject(object),
+        Find::BreakObject => Breakpoint::HitObject(object?),
         Find::DepthLimit => return depth_cut(tree, scene, settings),
+        Find::PartialShadow => {
+            return (0..tree.events.len()).find(|&i| {
+                stepper::matches(tree, i, Breakpoint::BlockedShadow) && partly_blocked(tree, i)
+            });
+        }
         Find::NearMiss => {
-            let node = tree.nodes.iter().position(|n| !n.near_misses.is_empty())?;
+            let node = tree.nodes.iter().position(|n| {
+                n.near_misses
+                    .iter()
+                    .any(|near| object.is_none_or(|o| near.object_index == o))
+            })?;
             return stepper::cast_event(tree, node);
         }
     };
     (0..tree.events.len()).find(|&i| stepper::matches(tree, i, breakpoint))
+}
+
+/// Whether the blocker event `i` is on a shadow ray with 0 < S < 1.
+fn partly_blocked(tree: &RayTree, i: usize) -> bool {
+    let event = &tree.events[i];
+    let EventKind::Blocker { light, .. } = event.kind else {
+        return false;
+    };
+    tree.nodes[event.node]
+        .lights
+        .iter()
+        .find(|l| l.light_index == light)
+        .and_then(|l| l.shadow.as_ref())
+        .is_some_and(|shadow| shadow.s > 0.0 && shadow.s < 1.0)
 }
 
 /// The cast event of the first ray whose children the depth limit cut.
