@@ -265,6 +265,7 @@ fn every_scene_in_the_repository_loads() {
             }
         }
     }
-    // 7 teaching scenes and 14 SPD files.
-    assert_eq!(count, 21);
+    // 9 teaching scenes (two-lights and prism for issue 16's five
+    // questions) and 14 SPD files.
+    assert_eq!(count, 23);
 }

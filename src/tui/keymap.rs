@@ -209,7 +209,7 @@ const PIXEL_AND_VIEW: &[Binding] = &[
     },
     Binding {
         inputs: &[(key('f'), act(Action::StartFind))],
-        what: "find across the image: then b, t, D or x (below)",
+        what: "find across the image: then b, p, t, D, x or n (below)",
         ..ROW
     },
     Binding {
@@ -456,7 +456,7 @@ const IN_FIND: &[Binding] = &[
     Binding {
         context: Context::Find,
         inputs: &[(key('p'), act(Action::Find(Find::PartialShadow)))],
-        what: "the next pixel with a partly blocked shadow ray (0 < S < 1)",
+        what: "the next pixel with a partly blocked shadow (0 < S < 1)",
         ..ROW
     },
     Binding {
@@ -480,7 +480,7 @@ const IN_FIND: &[Binding] = &[
     Binding {
         context: Context::Find,
         inputs: &[(key('n'), act(Action::Find(Find::NearMiss)))],
-        what: "the next pixel with a near miss (a polygon's plane crossed outside it; of X once chosen)",
+        what: "the next pixel with a near miss of a polygon (or of X)",
         ..ROW
     },
     Binding {
