@@ -39,7 +39,10 @@ fn snapshot(name: &str, text: &str) {
 
 /// The number after `prefix` in `text` (up to a space, comma or bracket).
 fn number_after(text: &str, prefix: &str) -> f64 {
-    let start = text.find(prefix).unwrap_or_else(|| panic!("{prefix} in {text}")) + prefix.len();
+    let start = text
+        .find(prefix)
+        .unwrap_or_else(|| panic!("{prefix} in {text}"))
+        + prefix.len();
     let rest = &text[start..];
     let end = rest
         .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
@@ -173,7 +176,10 @@ fn screen_text(app: &mut App) -> String {
 
 /// Types `keys` (each char one key) and checks the count.
 fn keys(app: &mut App, keys: &str, most: usize) {
-    assert!(keys.chars().count() <= most, "{keys}: more than {most} keys");
+    assert!(
+        keys.chars().count() <= most,
+        "{keys}: more than {most} keys"
+    );
     chars(app, keys);
     assert_eq!(app.mode(), Mode::Browsing);
 }
@@ -197,10 +203,7 @@ fn each_answer_is_in_the_debugger_within_five_keys_of_the_start() {
     keys(&mut app, "fp", 5);
     assert_eq!(app.cursor(), (0, 61));
     let text = screen_text(&mut app);
-    assert!(
-        text.contains("S = 0.288, blocked by glass ball"),
-        "{text}"
-    );
+    assert!(text.contains("S = 0.288, blocked by glass ball"), "{text}");
     assert!(text.contains("glass pane"), "{text}");
 
     // (c) no key: mirrors.toml's centre pixel is the right mirror, and the
@@ -209,16 +212,25 @@ fn each_answer_is_in_the_debugger_within_five_keys_of_the_start() {
     keys(&mut app, "", 5);
     let text = screen_text(&mut app);
     assert!(text.contains("r1 reflected → hit left mirror"), "{text}");
-    assert!(text.contains("reflected ray r1 adds (0.469, 0.493, 0.463)"), "{text}");
+    assert!(
+        text.contains("reflected ray r1 adds (0.469, 0.493, 0.463)"),
+        "{text}"
+    );
     assert!(text.contains("colour (0.569, 0.654, 0.644)"), "{text}");
 
     // (d) f t: the next pixel with TIR, its TIR event current. 2 keys.
     let mut app = open("prism.toml");
     keys(&mut app, "ft", 5);
     let text = screen_text(&mut app);
-    assert!(text.contains("total internal reflection: no transmitted ray"), "{text}");
+    assert!(
+        text.contains("total internal reflection: no transmitted ray"),
+        "{text}"
+    );
     assert!(text.contains("k = -"), "{text}");
-    assert!(text.contains("total internal reflection: kt goes to"), "{text}");
+    assert!(
+        text.contains("total internal reflection: kt goes to"),
+        "{text}"
+    );
 
     // (e) X X X f n: X chooses the centre's hit (back wall), then the floor,
     // then the star; f n goes to the next near miss of the star. 5 keys.

@@ -259,7 +259,10 @@ fn keys_are_answered_while_a_find_runs_and_a_cancelled_find_moves_nothing() {
     chars(&mut app, "ft");
     let (what, row, rows) = app.finding_progress().expect("the find runs");
     assert_eq!(what, "a total internal reflection");
-    assert!((1..=rows).contains(&row) && rows == 120, "row {row} of {rows}");
+    assert!(
+        (1..=rows).contains(&row) && rows == 120,
+        "row {row} of {rows}"
+    );
     let mut terminal = screen(&mut app, 120, 40);
     let status = row_text(&mut terminal, 39);
     assert!(

@@ -123,7 +123,10 @@ impl App {
             return;
         };
         let Some(Searching {
-            what, from, started, ..
+            what,
+            from,
+            started,
+            ..
         }) = self.searching.take()
         else {
             return;
