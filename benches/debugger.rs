@@ -1,5 +1,6 @@
 //! Criterion benchmark: how long the debugger takes to draw its image pane
-//! in a term view (issue 16 section 5: every key within 50 ms at 200x60).
+//! in a term view (issue 16 section 5: every key within 50 ms at 200x60),
+//! and the longest key during a fruitless image-wide find (`f t`).
 //! Run with `cargo bench --bench debugger`.
 
 use std::path::Path;

@@ -293,3 +293,36 @@ fn keys_are_answered_while_a_find_runs_and_a_cancelled_find_moves_nothing() {
     assert!(app.should_quit());
     assert!(app.finding_progress().is_none());
 }
+
+#[test]
+fn f_p_finds_the_next_pixel_with_a_partly_blocked_shadow() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/two-lights.toml");
+    let mut app = App::open(Some(path), true).unwrap();
+    let (width, height) = (app.scene().width, app.scene().height);
+    let (scene, settings) = (app.scene().clone(), *app.settings());
+    // Independently: the first pixel after the centre, in reading order,
+    // with a light whose S is strictly between 0 and 1 at any ray.
+    let partly = |x, y| {
+        record_pixel(&scene, &settings, x, y).nodes.iter().any(|n| {
+            n.lights
+                .iter()
+                .filter_map(|l| l.shadow.as_ref())
+                .any(|s| s.s > 0.0 && s.s < 1.0)
+        })
+    };
+    let start = app.cursor();
+    let expected = (start.1 * width + start.0 + 1..width * height)
+        .chain(0..=start.1 * width + start.0)
+        .map(|i| (i % width, i / width))
+        .find(|&(x, y)| partly(x, y))
+        .unwrap();
+    chars(&mut app, "fp");
+    assert_shows_pixel(&app, expected);
+    assert!(
+        matches!(
+            app.tree().events[app.current()].kind,
+            EventKind::Blocker { kt, .. } if kt > 0.0
+        ),
+        "a transparent blocker is the current event"
+    );
+}
