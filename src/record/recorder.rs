@@ -7,13 +7,13 @@ use crate::math::{Color, Interval, Ray};
 use crate::mistakes::Mistakes;
 use crate::render::viewport;
 use crate::scene::{Scene, Settings};
-use crate::shapes::Shape;
+use crate::shapes::{CrossingFigure, Polygon, RootChoice, Shape, Sphere, Working};
 use crate::trace::{
     Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace,
 };
 
 use super::tree::{
-    BlockerRecord, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node,
+    BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node,
     NodeId, RayTree, ShadowRecord,
 };
 
@@ -136,6 +136,7 @@ impl Recorder for TreeRecorder<'_> {
         let ray = Ray::new(node.origin, node.direction);
         node.cost = cost;
         node.near_misses = near_misses(scene, &ray, hit.t);
+        let working = object.shape.working(&ray, Interval::in_front());
         node.hit = Some(HitRecord {
             object: object.name.clone(),
             object_index: hit.object,
@@ -146,7 +147,8 @@ impl Recorder for TreeRecorder<'_> {
             geometric_normal: hit.geometric_normal,
             normal: hit.normal,
             entering: hit.entering,
-            working: object.shape.working(&ray, Interval::in_front()),
+            crossing_figure: crossing_figure(&object.shape, &ray, &working),
+            working,
             factors: MaterialFactors {
                 o_d: material.color,
                 ka: material.ka,
@@ -302,9 +304,12 @@ impl Recorder for TreeRecorder<'_> {
     }
 }
 
-/// Polygons and patches whose plane the ray meets in front of `before`,
+/// Objects the ray went past although it came near, each with its working:
+/// polygons and patches whose plane the ray meets in front of `before`,
 /// within the polygon's bounding box, but whose crossing test puts the point
-/// outside: a concave notch, or just past an edge.
+/// outside (a concave notch, or just past an edge); spheres whose bounding
+/// box the ray crosses in front of `before` but whose quadratic has no real
+/// roots, or only roots behind the origin (MODEL §3).
 fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
     if scene.objects.len() > NEAR_MISS_SCENE_LIMIT {
         return Vec::new();
@@ -312,23 +317,66 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
     let range = Interval::new(crate::math::EPS, before);
     let mut found = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
-        let polygon = match &object.shape {
-            Shape::Polygon(p) => p,
-            Shape::Patch(p) => &p.polygon,
-            _ => continue,
+        let missed = match &object.shape {
+            Shape::Polygon(p) => polygon_missed(p, ray, range),
+            Shape::Patch(p) => polygon_missed(&p.polygon, ray, range),
+            Shape::Sphere(s) => sphere_missed(s, ray, range),
+            _ => false,
         };
-        let working = polygon.solve(ray, range);
-        let in_box = working
-            .plane
-            .hit_t()
-            .is_some_and(|t| polygon.bounds().contains(ray.at(t)));
-        if in_box && working.crossing.is_some_and(|c| !c.inside) {
-            found.push(NearMiss {
-                object: object.name.clone(),
-                object_index: index,
-                working: object.shape.working(ray, range),
-            });
+        if !missed {
+            continue;
         }
+        let working = object.shape.working(ray, range);
+        found.push(NearMiss {
+            object: object.name.clone(),
+            object_index: index,
+            crossing_figure: crossing_figure(&object.shape, ray, &working),
+            closest_approach: match &object.shape {
+                Shape::Sphere(s) => Some(closest_approach(s, ray)),
+                _ => None,
+            },
+            working,
+        });
     }
     found
+}
+
+fn polygon_missed(polygon: &Polygon, ray: &Ray, range: Interval) -> bool {
+    let working = polygon.solve(ray, range);
+    let in_box = working
+        .plane
+        .hit_t()
+        .is_some_and(|t| polygon.bounds().contains(ray.at(t)));
+    in_box && working.crossing.is_some_and(|c| !c.inside)
+}
+
+/// Roots beyond `range` (behind the hit) are not a miss: the sphere is hidden.
+fn sphere_missed(sphere: &Sphere, ray: &Ray, range: Interval) -> bool {
+    let no_roots = matches!(
+        sphere.solve(ray, Interval::in_front()).choice,
+        RootChoice::NoRealRoots | RootChoice::BothBehind
+    );
+    no_roots && sphere.bounds().crossed_by(ray, range)
+}
+
+fn closest_approach(sphere: &Sphere, ray: &Ray) -> ClosestApproach {
+    let oc = ray.origin - sphere.center;
+    let t = -ray.direction.dot(oc) / ray.direction.length_squared();
+    ClosestApproach {
+        t,
+        distance: (oc + t * ray.direction).length(),
+        radius: sphere.radius,
+    }
+}
+
+/// The crossing test edge by edge, where `working` reached it.
+fn crossing_figure(shape: &Shape, ray: &Ray, working: &Working) -> Option<CrossingFigure> {
+    let (polygon, plane) = match (shape, working) {
+        (Shape::Polygon(p), Working::Polygon(w)) => (p, w),
+        (Shape::Patch(p), Working::Patch(w)) => (&p.polygon, &w.polygon),
+        _ => return None,
+    };
+    plane.crossing?;
+    let t = plane.plane.hit_t()?;
+    Some(polygon.crossing_figure(ray.at(t)))
 }

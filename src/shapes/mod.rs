@@ -3,6 +3,7 @@
 //! place a shadow segment crosses it, and the lecture's working for one ray.
 
 mod cone;
+mod crossing;
 mod patch;
 mod plane;
 mod polygon;
@@ -12,6 +13,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use cone::{Cone, ConeWorking};
+pub use crossing::{CrossingFigure, EdgeCrossing};
 pub use patch::{Patch, PatchWorking, blended_normal};
 pub use plane::{Plane, PlaneWorking};
 pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking, count_crossings, crosses};
@@ -200,6 +202,26 @@ impl Aabb {
     /// True when the point lies in the box, its faces included.
     pub fn contains(&self, point: DVec3) -> bool {
         point.cmpge(self.min).all() && point.cmple(self.max).all()
+    }
+
+    /// Whether the ray meets the box, faces included, for some t in `range`
+    /// (the slab test). Used by the recorder only, never by a render.
+    pub fn crossed_by(&self, ray: &Ray, range: Interval) -> bool {
+        let (mut near, mut far) = (range.min, range.max);
+        for axis in 0..3 {
+            let (o, d) = (ray.origin[axis], ray.direction[axis]);
+            let (lo, hi) = (self.min[axis], self.max[axis]);
+            if d == 0.0 {
+                if o < lo || o > hi {
+                    return false;
+                }
+                continue;
+            }
+            let (t0, t1) = ((lo - o) / d, (hi - o) / d);
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        near <= far
     }
 
     pub fn centroid(&self) -> DVec3 {
