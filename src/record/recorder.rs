@@ -3,7 +3,7 @@
 //! is the one the tracer used, so a tree cannot disagree with the image.
 
 use crate::accel::Cost;
-use crate::math::{Color, Interval, Ray};
+use crate::math::{Color, EPS, Interval, Ray};
 use crate::mistakes::Mistakes;
 use crate::render::viewport;
 use crate::scene::{Scene, Settings};
@@ -309,12 +309,12 @@ impl Recorder for TreeRecorder<'_> {
 /// within the polygon's bounding box, but whose crossing test puts the point
 /// outside (a concave notch, or just past an edge); spheres whose bounding
 /// box the ray crosses in front of `before` but whose quadratic has no real
-/// roots, or only roots behind the origin (MODEL §3).
+/// roots, or only roots more than EPS behind the origin (MODEL §3).
 fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
     if scene.objects.len() > NEAR_MISS_SCENE_LIMIT {
         return Vec::new();
     }
-    let range = Interval::new(crate::math::EPS, before);
+    let range = Interval::new(EPS, before);
     let mut found = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
         let missed = match &object.shape {
@@ -350,13 +350,17 @@ fn polygon_missed(polygon: &Polygon, ray: &Ray, range: Interval) -> bool {
     in_box && working.crossing.is_some_and(|c| !c.inside)
 }
 
-/// Roots beyond `range` (behind the hit) are not a miss: the sphere is hidden.
+/// Roots beyond `range` (behind the hit) are not a miss: the sphere is
+/// hidden. Nor is a root within EPS of the origin: that is the sphere a
+/// secondary ray leaves from, not one it passes by.
 fn sphere_missed(sphere: &Sphere, ray: &Ray, range: Interval) -> bool {
-    let no_roots = matches!(
-        sphere.solve(ray, Interval::in_front()).choice,
-        RootChoice::NoRealRoots | RootChoice::BothBehind
-    );
-    no_roots && sphere.bounds().crossed_by(ray, range)
+    let working = sphere.solve(ray, Interval::in_front());
+    let passed = match working.choice {
+        RootChoice::NoRealRoots => true,
+        RootChoice::BothBehind => working.t1.is_some_and(|t1| t1 < -EPS),
+        RootChoice::NearerRoot | RootChoice::FartherRoot => false,
+    };
+    passed && sphere.bounds().crossed_by(ray, range)
 }
 
 fn closest_approach(sphere: &Sphere, ray: &Ray) -> ClosestApproach {

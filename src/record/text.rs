@@ -227,16 +227,21 @@ fn near_miss_lines(near: &NearMiss) -> Vec<String> {
         lines.extend(crossing_lines(figure));
     }
     if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
+        lines.pop(); // the working's own verdict, said more fully here
         lines.push(if w.choice == RootChoice::NoRealRoots {
             format!(
-                "no real roots: the ray passes the sphere by: its line comes within {} of the \
-                 centre (at t = {}), more than the radius {}",
+                "negative discriminant, no real roots: the ray passes the sphere by: its line \
+                 comes within {} of the centre (at t = {}), more than the radius {}",
                 num(c.distance),
                 num(c.t),
                 num(c.radius)
             )
         } else {
-            "both roots behind the origin: the sphere is behind the ray".to_string()
+            format!(
+                "roots t0 = {}, t1 = {}: both behind the origin, the sphere is behind the ray",
+                num(w.t0.unwrap_or(0.0)),
+                num(w.t1.unwrap_or(0.0))
+            )
         });
     }
     lines
