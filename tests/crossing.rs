@@ -70,7 +70,10 @@ fn inspect_and_explain_name_the_edges_that_crossed() {
     let inspect = raystep(&["inspect", "scenes/polygons.toml", "--pixel", &pixel]);
     let text = String::from_utf8(inspect.stdout).unwrap();
     assert!(text.contains("edge 4→5: crosses +U at U = 0.362"), "{text}");
-    assert!(text.contains("edge 3→4: crosses V = 0 at U = -0.2"), "{text}");
+    assert!(
+        text.contains("edge 3→4: crosses V = 0 at U = -0.2"),
+        "{text}"
+    );
     let explain = raystep(&["explain", "scenes/polygons.toml", "--pixel", &pixel]);
     let text = String::from_utf8(explain.stdout).unwrap();
     assert!(
@@ -120,7 +123,10 @@ fn a_ray_through_a_spheres_box_past_the_sphere_is_a_near_miss() {
         text.contains("no real roots: the ray passes the sphere by"),
         "{text}"
     );
-    assert!(text.contains("comes within 1.2728 of the centre (at t = 5)"), "{text}");
+    assert!(
+        text.contains("comes within 1.2728 of the centre (at t = 5)"),
+        "{text}"
+    );
     // o = (1.5, 0, 5): outside the box's x range, never near: not listed.
     let tree = record(&unit_ball(), [1.5, 0.0, 5.0], [0.0, 0.0, -1.0]);
     assert!(tree.root().near_misses.is_empty());
@@ -186,7 +192,11 @@ fn the_crossing_figure_marks_each_crossing() {
     ] {
         assert!(texts.contains(&expected), "no {expected:?} in {texts:?}");
     }
-    assert!(texts.iter().any(|t| t.starts_with("dropped z: U = x, V = y")));
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.starts_with("dropped z: U = x, V = y"))
+    );
     // The lower left leg (32, 52), a hit: by polygons.toml's header, the
     // half-line crosses the leg's own edge 3→4 and both edges of the right
     // leg (4→5, 5→6): 3, inside; edge 2→3 meets V = 0 left of the point.

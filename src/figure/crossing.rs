@@ -272,7 +272,9 @@ impl View {
     fn fit(vertices: &[DVec2]) -> View {
         let (min, max) = vertices
             .iter()
-            .fold((DVec2::ZERO, DVec2::ZERO), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+            .fold((DVec2::ZERO, DVec2::ZERO), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
         let size = (max - min).max(DVec2::splat(1e-9));
         // Room on the right for the half-line to leave the polygon.
         let room = DVec2::new(WIDTH - 2.0 * MARGIN - 80.0, HEIGHT - TOP - BOTTOM - 60.0);
@@ -283,7 +285,10 @@ impl View {
     }
 
     fn map(&self, p: DVec2) -> DVec2 {
-        let middle = DVec2::new(WIDTH / 2.0 - 40.0, TOP + 30.0 + (HEIGHT - TOP - BOTTOM - 60.0) / 2.0);
+        let middle = DVec2::new(
+            WIDTH / 2.0 - 40.0,
+            TOP + 30.0 + (HEIGHT - TOP - BOTTOM - 60.0) / 2.0,
+        );
         let v = (p - self.centre) * self.scale;
         DVec2::new(middle.x + v.x, middle.y - v.y)
     }

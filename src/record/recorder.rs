@@ -13,8 +13,8 @@ use crate::trace::{
 };
 
 use super::tree::{
-    BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node,
-    NodeId, RayTree, ShadowRecord,
+    BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors,
+    NearMiss, Node, NodeId, RayTree, ShadowRecord,
 };
 
 /// Near misses are looked for in scenes up to this size, where they teach;

@@ -209,12 +209,17 @@ pub fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
         let verdict = if edge.counts {
             format!("crosses +U at U = {} (counts)", num(at))
         } else {
-            format!("crosses V = 0 at U = {}, left of the point (does not count)", num(at))
+            format!(
+                "crosses V = 0 at U = {}, left of the point (does not count)",
+                num(at)
+            )
         };
         lines.push(format!("   edge {}→{}: {verdict}", edge.from, edge.to));
     }
     if apart > 0 {
-        lines.push(format!("   {apart} other edge(s) stay on one side of V = 0"));
+        lines.push(format!(
+            "   {apart} other edge(s) stay on one side of V = 0"
+        ));
     }
     lines
 }

@@ -228,3 +228,23 @@ impl Aabb {
         0.5 * (self.min + self.max)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_ray_crosses_a_box_only_within_its_range() {
+        // The unit box [-1, 1]^3; a ray from (0.9, 0.9, 5) down -z is inside
+        // it for t in [4, 6]; from (1.5, 0, 5) it never is (x stays 1.5).
+        let b = Aabb::new(DVec3::splat(-1.0), DVec3::splat(1.0));
+        let down = |x, y| Ray::new(DVec3::new(x, y, 5.0), DVec3::new(0.0, 0.0, -1.0));
+        assert!(b.crossed_by(&down(0.9, 0.9), Interval::in_front()));
+        assert!(b.crossed_by(&down(0.9, 0.9), Interval::new(1e-4, 4.5)));
+        assert!(!b.crossed_by(&down(0.9, 0.9), Interval::new(1e-4, 3.5)));
+        assert!(!b.crossed_by(&down(1.5, 0.0), Interval::in_front()));
+        // Behind the origin: the ray from (0, 0, 5) up +z meets it at t in [-6, -4].
+        let up = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::Z);
+        assert!(!b.crossed_by(&up, Interval::in_front()));
+    }
+}
