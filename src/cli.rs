@@ -72,7 +72,8 @@ pub struct DiagramArgs {
     #[arg(short, long, value_name = "FIG.svg")]
     pub output: PathBuf,
     /// The plane drawn, in the camera's frame: from above, from the side,
-    /// or the primary ray's plane of incidence.
+    /// or the primary ray's plane of incidence; or `crossing`, the (U, V)
+    /// plane of the crossing test of the first polygon hit (or passed by).
     #[arg(long, value_enum, default_value_t = PlaneArg::Top)]
     pub plane: PlaneArg,
 }
@@ -82,6 +83,7 @@ pub enum PlaneArg {
     Top,
     Side,
     Ray,
+    Crossing,
 }
 
 #[derive(Args, Debug)]
@@ -351,9 +353,25 @@ fn diagram_command(args: &DiagramArgs) -> Result<ExitCode> {
         PlaneArg::Top => DiagramPlane::Top,
         PlaneArg::Side => DiagramPlane::Side,
         PlaneArg::Ray => DiagramPlane::Primary,
+        PlaneArg::Crossing => return crossing_figure(&recorded.tree, &target),
     };
     let figure = crate::figure::svg(&recorded.scene, &recorded.tree, plane);
     output::write_text(&target, &figure)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `--plane crossing`: the first polygon hit, or else passed by; none is an error.
+fn crossing_figure(tree: &RayTree, target: &Target) -> Result<ExitCode> {
+    use crate::figure::crossing;
+    let Some(subject) = crossing::subject(tree) else {
+        anyhow::bail!(
+            "pixel ({}, {}): no ray of its tree hits a polygon or patch or passes one by, \
+             so there is no crossing test to draw (try --plane top)",
+            tree.pixel.0,
+            tree.pixel.1
+        );
+    };
+    output::write_text(target, &crossing::svg(tree.pixel, &subject))?;
     Ok(ExitCode::SUCCESS)
 }
 

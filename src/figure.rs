@@ -4,6 +4,8 @@
 //! rays marked where they are blocked), with labels that never overlap and a
 //! legend.
 
+pub mod crossing;
+
 use std::fmt::Write;
 
 use glam::DVec2;

@@ -367,7 +367,7 @@ fn valid_scene() -> impl Strategy<Value = String> {
 
 /// Keys whose value is an `Option` in the recording, so may be `null` in
 /// its JSON; a `null` anywhere else is a number that was not finite.
-const OPTIONAL_KEYS: [&str; 12] = [
+const OPTIONAL_KEYS: [&str; 14] = [
     "hit",
     "refraction",
     "reflected",
@@ -380,6 +380,9 @@ const OPTIONAL_KEYS: [&str; 12] = [
     "t",
     "direction",
     "distance",
+    // A sphere's roots, absent for a near miss with no real roots.
+    "t0",
+    "t1",
 ];
 
 /// The path of the first `null` that stands where a number belongs.

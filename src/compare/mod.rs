@@ -186,11 +186,12 @@ fn objects(
 /// `explain`'s sentence on the primary ray and its three largest terms.
 fn brief(explained: &str) -> Vec<String> {
     let lines: Vec<&str> = explained.lines().collect();
+    // The sentence itself, not the near misses `explain` puts before it.
     let mut out: Vec<String> = lines
         .iter()
-        .skip(1)
-        .take(1)
+        .find(|l| l.starts_with("Its primary ray"))
         .map(|l| l.to_string())
+        .into_iter()
         .collect();
     if let Some(start) = lines
         .iter()

@@ -7,7 +7,7 @@ use super::shaping::shaping_events;
 use super::text::{color, fraction, kind_name, not_cast_reason, num, precise};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
-use crate::shapes::Working;
+use crate::shapes::{CrossingFigure, RootChoice, Working};
 use crate::trace::{PruneRule, RayKind};
 
 /// The brightness used to compare terms: the sum of the three channels.
@@ -51,6 +51,13 @@ pub fn explain(tree: &RayTree) -> String {
         num(hit.t),
         if hit.entering { "front" } else { "back" }
     );
+    if let Some(figure) = &hit.crossing_figure {
+        let _ = writeln!(
+            out,
+            "The crossing test puts the hit inside: {}, an odd number.",
+            counted_edges(figure)
+        );
+    }
     write_shares(&mut out, tree, 0);
     let _ = writeln!(out, "Lights:");
     for light in &root.lights {
@@ -276,22 +283,51 @@ fn write_not_cast(out: &mut String, tree: &RayTree) {
     }
 }
 
-/// Polygons the primary ray went past although it met their plane within
-/// their bounds: the crossing test said outside.
+/// What the primary ray went past although it came near: polygons whose
+/// plane it met within their bounds (the crossing test said outside), and
+/// spheres whose box it crossed (no real roots, or both behind).
 fn write_near_misses(out: &mut String, tree: &RayTree) {
     for near in &tree.root().near_misses {
-        let crossings = match near.working {
-            Working::Polygon(w) => w.crossing,
-            Working::Patch(w) => w.polygon.crossing,
-            _ => None,
-        };
-        if let Some(test) = crossings {
+        if let Some(figure) = &near.crossing_figure {
             let _ = writeln!(
                 out,
                 "On its way it passes through the plane of {} inside its bounding box, but the point \
-                 is outside the polygon: {} edge crossings, an even number.",
-                near.object, test.crossings
+                 is outside the polygon: {}, an even number.",
+                near.object,
+                counted_edges(figure)
             );
         }
+        if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
+            let why = if w.choice == RootChoice::NoRealRoots {
+                format!(
+                    "its line comes within {} of the centre, more than the radius {}: a negative \
+                     discriminant, no real roots",
+                    num(c.distance),
+                    num(c.radius)
+                )
+            } else {
+                "both roots of its quadratic lie behind the ray's origin".to_string()
+            };
+            let _ = writeln!(
+                out,
+                "On its way it crosses the bounding box of sphere {} but passes it by: {why}.",
+                near.object
+            );
+        }
+    }
+}
+
+/// "2 edge crossings of +U (edges 1→2 at U = 1.5 and 3→4 at U = 0.5)".
+fn counted_edges(figure: &CrossingFigure) -> String {
+    let edges: Vec<String> = figure
+        .edges
+        .iter()
+        .filter(|e| e.counts)
+        .map(|e| format!("{}→{} at U = {}", e.from, e.to, num(e.u.unwrap_or(0.0))))
+        .collect();
+    match edges.len() {
+        0 => "no edge crosses +U".to_string(),
+        1 => format!("1 edge crossing of +U (edge {})", edges[0]),
+        n => format!("{n} edge crossings of +U (edges {})", edges.join(", ")),
     }
 }

@@ -23,6 +23,6 @@ pub use text::{
     not_cast_reason, num, ray_header, text, vector, working_lines,
 };
 pub use tree::{
-    BlockerRecord, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node,
-    NodeId, RayTree, ShadowRecord,
+    BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors,
+    NearMiss, Node, NodeId, RayTree, ShadowRecord,
 };

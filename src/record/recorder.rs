@@ -3,18 +3,18 @@
 //! is the one the tracer used, so a tree cannot disagree with the image.
 
 use crate::accel::Cost;
-use crate::math::{Color, Interval, Ray};
+use crate::math::{Color, EPS, Interval, Ray};
 use crate::mistakes::Mistakes;
 use crate::render::viewport;
 use crate::scene::{Scene, Settings};
-use crate::shapes::Shape;
+use crate::shapes::{CrossingFigure, Polygon, RootChoice, Shape, Sphere, Working};
 use crate::trace::{
     Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace,
 };
 
 use super::tree::{
-    BlockerRecord, Event, EventKind, HitRecord, LightRecord, MaterialFactors, NearMiss, Node,
-    NodeId, RayTree, ShadowRecord,
+    BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors,
+    NearMiss, Node, NodeId, RayTree, ShadowRecord,
 };
 
 /// Near misses are looked for in scenes up to this size, where they teach;
@@ -136,6 +136,7 @@ impl Recorder for TreeRecorder<'_> {
         let ray = Ray::new(node.origin, node.direction);
         node.cost = cost;
         node.near_misses = near_misses(scene, &ray, hit.t);
+        let working = object.shape.working(&ray, Interval::in_front());
         node.hit = Some(HitRecord {
             object: object.name.clone(),
             object_index: hit.object,
@@ -146,7 +147,8 @@ impl Recorder for TreeRecorder<'_> {
             geometric_normal: hit.geometric_normal,
             normal: hit.normal,
             entering: hit.entering,
-            working: object.shape.working(&ray, Interval::in_front()),
+            crossing_figure: crossing_figure(&object.shape, &ray, &working),
+            working,
             factors: MaterialFactors {
                 o_d: material.color,
                 ka: material.ka,
@@ -302,33 +304,83 @@ impl Recorder for TreeRecorder<'_> {
     }
 }
 
-/// Polygons and patches whose plane the ray meets in front of `before`,
+/// Objects the ray went past although it came near, each with its working:
+/// polygons and patches whose plane the ray meets in front of `before`,
 /// within the polygon's bounding box, but whose crossing test puts the point
-/// outside: a concave notch, or just past an edge.
+/// outside (a concave notch, or just past an edge); spheres whose bounding
+/// box the ray crosses in front of `before` but whose quadratic has no real
+/// roots, or only roots more than EPS behind the origin (MODEL §3).
 fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
     if scene.objects.len() > NEAR_MISS_SCENE_LIMIT {
         return Vec::new();
     }
-    let range = Interval::new(crate::math::EPS, before);
+    let range = Interval::new(EPS, before);
     let mut found = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
-        let polygon = match &object.shape {
-            Shape::Polygon(p) => p,
-            Shape::Patch(p) => &p.polygon,
-            _ => continue,
+        let missed = match &object.shape {
+            Shape::Polygon(p) => polygon_missed(p, ray, range),
+            Shape::Patch(p) => polygon_missed(&p.polygon, ray, range),
+            Shape::Sphere(s) => sphere_missed(s, ray, range),
+            _ => false,
         };
-        let working = polygon.solve(ray, range);
-        let in_box = working
-            .plane
-            .hit_t()
-            .is_some_and(|t| polygon.bounds().contains(ray.at(t)));
-        if in_box && working.crossing.is_some_and(|c| !c.inside) {
-            found.push(NearMiss {
-                object: object.name.clone(),
-                object_index: index,
-                working: object.shape.working(ray, range),
-            });
+        if !missed {
+            continue;
         }
+        let working = object.shape.working(ray, range);
+        found.push(NearMiss {
+            object: object.name.clone(),
+            object_index: index,
+            crossing_figure: crossing_figure(&object.shape, ray, &working),
+            closest_approach: match &object.shape {
+                Shape::Sphere(s) => Some(closest_approach(s, ray)),
+                _ => None,
+            },
+            working,
+        });
     }
     found
+}
+
+fn polygon_missed(polygon: &Polygon, ray: &Ray, range: Interval) -> bool {
+    let working = polygon.solve(ray, range);
+    let in_box = working
+        .plane
+        .hit_t()
+        .is_some_and(|t| polygon.bounds().contains(ray.at(t)));
+    in_box && working.crossing.is_some_and(|c| !c.inside)
+}
+
+/// Roots beyond `range` (behind the hit) are not a miss: the sphere is
+/// hidden. Nor is a root within EPS of the origin: that is the sphere a
+/// secondary ray leaves from, not one it passes by.
+fn sphere_missed(sphere: &Sphere, ray: &Ray, range: Interval) -> bool {
+    let working = sphere.solve(ray, Interval::in_front());
+    let passed = match working.choice {
+        RootChoice::NoRealRoots => true,
+        RootChoice::BothBehind => working.t1.is_some_and(|t1| t1 < -EPS),
+        RootChoice::NearerRoot | RootChoice::FartherRoot => false,
+    };
+    passed && sphere.bounds().crossed_by(ray, range)
+}
+
+fn closest_approach(sphere: &Sphere, ray: &Ray) -> ClosestApproach {
+    let oc = ray.origin - sphere.center;
+    let t = -ray.direction.dot(oc) / ray.direction.length_squared();
+    ClosestApproach {
+        t,
+        distance: (oc + t * ray.direction).length(),
+        radius: sphere.radius,
+    }
+}
+
+/// The crossing test edge by edge, where `working` reached it.
+fn crossing_figure(shape: &Shape, ray: &Ray, working: &Working) -> Option<CrossingFigure> {
+    let (polygon, plane) = match (shape, working) {
+        (Shape::Polygon(p), Working::Polygon(w)) => (p, w),
+        (Shape::Patch(p), Working::Patch(w)) => (&p.polygon, &w.polygon),
+        _ => return None,
+    };
+    plane.crossing?;
+    let t = plane.plane.hit_t()?;
+    Some(polygon.crossing_figure(ray.at(t)))
 }

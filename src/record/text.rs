@@ -6,11 +6,13 @@ use std::fmt::Write;
 use glam::DVec3;
 
 use super::lines::{About, Line};
-use super::tree::{BlockerRecord, HitRecord, LightRecord, MaterialFactors, Node, NodeId, RayTree};
+use super::tree::{
+    BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
+};
 use crate::math::EPS;
 use crate::mistakes::Mistake;
 use crate::scene::SpecularModel;
-use crate::shapes::{ConeWorking, PolygonWorking, RootChoice, Working};
+use crate::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};
 use crate::trace::{NotCast, PruneRule, RayKind};
 
 /// A number with at most four decimals and no trailing zeros; one that
@@ -181,6 +183,71 @@ fn polygon_lines(w: &PolygonWorking) -> Vec<String> {
                 "even, outside"
             }
         ));
+    }
+    lines
+}
+
+/// The crossing test edge by edge: the edges that reach V = 0, where, and
+/// whether they count (MODEL §3).
+pub fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
+    let (_, u, v) = figure.axes();
+    let corners: Vec<String> = figure
+        .vertices
+        .iter()
+        .map(|[x, y]| format!("({}, {})", num(*x), num(*y)))
+        .collect();
+    let mut lines = vec![format!(
+        "   U = {u}, V = {v}; vertices from the hit point: {}",
+        corners.join(" ")
+    )];
+    let mut apart = 0;
+    for edge in &figure.edges {
+        let Some(at) = edge.u.filter(|_| edge.straddles) else {
+            apart += 1;
+            continue;
+        };
+        let verdict = if edge.counts {
+            format!("crosses +U at U = {} (counts)", num(at))
+        } else {
+            format!(
+                "crosses V = 0 at U = {}, left of the point (does not count)",
+                num(at)
+            )
+        };
+        lines.push(format!("   edge {}→{}: {verdict}", edge.from, edge.to));
+    }
+    if apart > 0 {
+        lines.push(format!(
+            "   {apart} other edge(s) stay on one side of V = 0"
+        ));
+    }
+    lines
+}
+
+/// A near miss's working, with why the ray went past: a sphere's closest
+/// approach, a polygon's crossing test edge by edge.
+fn near_miss_lines(near: &NearMiss) -> Vec<String> {
+    let mut lines = working_lines(&near.working);
+    if let Some(figure) = &near.crossing_figure {
+        lines.extend(crossing_lines(figure));
+    }
+    if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
+        lines.pop(); // the working's own verdict, said more fully here
+        lines.push(if w.choice == RootChoice::NoRealRoots {
+            format!(
+                "negative discriminant, no real roots: the ray passes the sphere by: its line \
+                 comes within {} of the centre (at t = {}), more than the radius {}",
+                num(c.distance),
+                num(c.t),
+                num(c.radius)
+            )
+        } else {
+            format!(
+                "roots t0 = {}, t1 = {}: both behind the origin, the sphere is behind the ray",
+                num(w.t0.unwrap_or(0.0)),
+                num(w.t1.unwrap_or(0.0))
+            )
+        });
     }
     lines
 }
@@ -396,7 +463,7 @@ pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
             None,
             format!("passed by {} (#{}):", near.object, near.object_index),
         ));
-        lines.extend(indented(None, working_lines(&near.working)));
+        lines.extend(indented(None, near_miss_lines(near)));
     }
     let Some(hit) = &node.hit else {
         lines.push(
@@ -468,6 +535,9 @@ fn hit_lines(node: &Node, hit: &HitRecord) -> Vec<Line> {
         ),
     ];
     lines.extend(indented(about, working_lines(&hit.working)));
+    if let Some(figure) = &hit.crossing_figure {
+        lines.extend(indented(about, crossing_lines(figure)));
+    }
     lines.push(Line::text(
         about,
         format!(

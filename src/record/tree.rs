@@ -9,7 +9,7 @@ use crate::accel::Cost;
 use crate::math::Color;
 use crate::mistakes::Mistakes;
 use crate::scene::SpecularModel;
-use crate::shapes::Working;
+use crate::shapes::{CrossingFigure, Working};
 use crate::trace::{NotCast, RayKind, Refraction};
 
 pub type NodeId = usize;
@@ -70,6 +70,9 @@ pub struct HitRecord {
     pub entering: bool,
     /// The intersection worked the way the course notes teach it.
     pub working: Working,
+    /// A polygon's or patch's crossing test edge by edge; absent for others.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crossing_figure: Option<CrossingFigure>,
     /// The material's numbers the terms were computed with (MODEL §4, §5).
     pub factors: MaterialFactors,
     /// I_a, the scene's ambient light (the ambient term is I_a k_a O_d).
@@ -96,6 +99,22 @@ pub struct NearMiss {
     pub object: String,
     pub object_index: usize,
     pub working: Working,
+    /// A polygon's or patch's crossing test edge by edge; absent for others.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crossing_figure: Option<CrossingFigure>,
+    /// A sphere's: how close the ray's line comes to its centre.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub closest_approach: Option<ClosestApproach>,
+}
+
+/// The point of the ray's line nearest a sphere's centre, t = -B / (2A).
+/// The discriminant is 4A^2 (r^2 - distance^2): negative exactly when
+/// `distance > radius`, the ray passing the sphere by.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ClosestApproach {
+    pub t: f64,
+    pub distance: f64,
+    pub radius: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]

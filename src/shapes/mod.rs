@@ -3,6 +3,7 @@
 //! place a shadow segment crosses it, and the lecture's working for one ray.
 
 mod cone;
+mod crossing;
 mod patch;
 mod plane;
 mod polygon;
@@ -12,6 +13,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use cone::{Cone, ConeWorking};
+pub use crossing::{CrossingFigure, EdgeCrossing};
 pub use patch::{Patch, PatchWorking, blended_normal};
 pub use plane::{Plane, PlaneWorking};
 pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking, count_crossings, crosses};
@@ -202,7 +204,47 @@ impl Aabb {
         point.cmpge(self.min).all() && point.cmple(self.max).all()
     }
 
+    /// Whether the ray meets the box, faces included, for some t in `range`
+    /// (the slab test). Used by the recorder only, never by a render.
+    pub fn crossed_by(&self, ray: &Ray, range: Interval) -> bool {
+        let (mut near, mut far) = (range.min, range.max);
+        for axis in 0..3 {
+            let (o, d) = (ray.origin[axis], ray.direction[axis]);
+            let (lo, hi) = (self.min[axis], self.max[axis]);
+            if d == 0.0 {
+                if o < lo || o > hi {
+                    return false;
+                }
+                continue;
+            }
+            let (t0, t1) = ((lo - o) / d, (hi - o) / d);
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        near <= far
+    }
+
     pub fn centroid(&self) -> DVec3 {
         0.5 * (self.min + self.max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_ray_crosses_a_box_only_within_its_range() {
+        // The unit box [-1, 1]^3; a ray from (0.9, 0.9, 5) down -z is inside
+        // it for t in [4, 6]; from (1.5, 0, 5) it never is (x stays 1.5).
+        let b = Aabb::new(DVec3::splat(-1.0), DVec3::splat(1.0));
+        let down = |x, y| Ray::new(DVec3::new(x, y, 5.0), DVec3::new(0.0, 0.0, -1.0));
+        assert!(b.crossed_by(&down(0.9, 0.9), Interval::in_front()));
+        assert!(b.crossed_by(&down(0.9, 0.9), Interval::new(1e-4, 4.5)));
+        assert!(!b.crossed_by(&down(0.9, 0.9), Interval::new(1e-4, 3.5)));
+        assert!(!b.crossed_by(&down(1.5, 0.0), Interval::in_front()));
+        // Behind the origin: the ray from (0, 0, 5) up +z meets it at t in [-6, -4].
+        let up = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::Z);
+        assert!(!b.crossed_by(&up, Interval::in_front()));
     }
 }

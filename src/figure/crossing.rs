@@ -1,0 +1,302 @@
+//! `raystep diagram --plane crossing`: the lecture's 2-D figure of the
+//! crossing test for one polygon. The polygon is projected by dropping an
+//! axis and moved so the hit point is the origin; the +U half-line leaves
+//! it, each edge it crosses is highlighted and its crossing numbered, and
+//! the count's parity is the verdict (MODEL §3).
+
+use std::fmt::Write;
+
+use glam::DVec2;
+
+use crate::record::{NodeId, RayTree};
+use crate::shapes::CrossingFigure;
+
+const WIDTH: f64 = 800.0;
+const HEIGHT: f64 = 600.0;
+const MARGIN: f64 = 50.0;
+/// The title's band at the top and the legend's at the bottom.
+const TOP: f64 = 70.0;
+const BOTTOM: f64 = 40.0;
+
+const RAY: &str = "#0077bb";
+const COUNTS: &str = "#ee7733";
+const LEFT: &str = "#999999";
+
+/// The polygon the figure is about, and how the ray met it.
+pub struct Subject<'a> {
+    pub object: &'a str,
+    pub object_index: usize,
+    pub node: NodeId,
+    /// True for a hit, false for a polygon the ray passed by.
+    pub hit: bool,
+    pub figure: &'a CrossingFigure,
+}
+
+/// The first polygon or patch hit in the tree, in event order; failing
+/// that, the first one a ray passed by (a near miss); else none.
+pub fn subject(tree: &RayTree) -> Option<Subject<'_>> {
+    let hit = tree.events.iter().find_map(|event| {
+        let hit = tree.nodes[event.node].hit.as_ref()?;
+        let figure = hit.crossing_figure.as_ref()?;
+        matches!(event.kind, crate::record::EventKind::Hit { .. }).then_some(Subject {
+            object: &hit.object,
+            object_index: hit.object_index,
+            node: event.node,
+            hit: true,
+            figure,
+        })
+    });
+    hit.or_else(|| {
+        tree.nodes.iter().enumerate().find_map(|(node, n)| {
+            n.near_misses.iter().find_map(|near| {
+                Some(Subject {
+                    object: &near.object,
+                    object_index: near.object_index,
+                    node,
+                    hit: false,
+                    figure: near.crossing_figure.as_ref()?,
+                })
+            })
+        })
+    })
+}
+
+/// The figure of `subject`'s crossing test, for pixel `pixel`.
+pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
+    let figure = subject.figure;
+    let vertices: Vec<DVec2> = figure.vertices.iter().map(|v| DVec2::from(*v)).collect();
+    let view = View::fit(&vertices);
+    let (dropped, u, v) = figure.axes();
+    let mut out = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{HEIGHT}\" \
+         viewBox=\"0 0 {WIDTH} {HEIGHT}\" font-family=\"Helvetica, Arial, sans-serif\" \
+         font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    let met = if subject.hit { "hit by" } else { "passed by" };
+    let ray = match subject.node {
+        0 => "the primary ray".to_string(),
+        n => format!("ray #{n}"),
+    };
+    let _ = writeln!(
+        out,
+        "<text x=\"{MARGIN}\" y=\"26\" font-size=\"15\">Pixel ({}, {}): the crossing test of {} (#{}), {met} {ray}</text>",
+        pixel.0,
+        pixel.1,
+        escape(subject.object),
+        subject.object_index
+    );
+    let _ = writeln!(
+        out,
+        "<text x=\"{MARGIN}\" y=\"46\">dropped {dropped}: U = {u}, V = {v}; the hit point moved to the origin</text>"
+    );
+    write_axes(&mut out, &view, u, v);
+    write_polygon(&mut out, &view, figure, &vertices);
+    write_crossings(&mut out, &view, figure);
+    let o = view.map(DVec2::ZERO);
+    let _ = writeln!(
+        out,
+        "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"4.5\" fill=\"black\"/>",
+        o.x, o.y
+    );
+    let _ = writeln!(
+        out,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">hit point</text>",
+        o.x - 8.0,
+        o.y - 8.0
+    );
+    let n = figure.crossings();
+    let verdict = if figure.inside() {
+        "odd, inside"
+    } else {
+        "even, outside"
+    };
+    let _ = writeln!(
+        out,
+        "<text x=\"{:.1}\" y=\"46\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
+        WIDTH - MARGIN,
+        if n == 1 { "" } else { "s" }
+    );
+    write_legend(&mut out);
+    out.push_str("</svg>\n");
+    out
+}
+
+/// The U and V axes through the hit point, and the +U half-line as the ray.
+fn write_axes(out: &mut String, view: &View, u: &str, v: &str) {
+    let o = view.map(DVec2::ZERO);
+    let (left, right) = (MARGIN / 2.0, WIDTH - MARGIN / 2.0);
+    let (top, bottom) = (TOP, HEIGHT - BOTTOM - 10.0);
+    let _ = writeln!(
+        out,
+        "<line x1=\"{left:.1}\" y1=\"{:.1}\" x2=\"{right:.1}\" y2=\"{:.1}\" stroke=\"#cccccc\"/>",
+        o.y, o.y
+    );
+    let _ = writeln!(
+        out,
+        "<line x1=\"{:.1}\" y1=\"{top:.1}\" x2=\"{:.1}\" y2=\"{bottom:.1}\" stroke=\"#cccccc\"/>",
+        o.x, o.x
+    );
+    let _ = writeln!(
+        out,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\" fill=\"#666666\">U = {u}</text>",
+        right,
+        o.y + 18.0
+    );
+    let _ = writeln!(
+        out,
+        "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#666666\">V = {v}</text>",
+        o.x + 6.0,
+        top + 10.0
+    );
+    // The +U half-line, with an arrow head at the figure's edge.
+    let end = right - 40.0;
+    let _ = writeln!(
+        out,
+        "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{end:.1}\" y2=\"{:.1}\" stroke=\"{RAY}\" stroke-width=\"2.5\"/>",
+        o.x, o.y, o.y
+    );
+    let _ = writeln!(
+        out,
+        "<path d=\"M{:.1} {:.1}l-10 -5v10z\" fill=\"{RAY}\"/>",
+        end + 4.0,
+        o.y
+    );
+}
+
+/// The polygon, its vertex numbers, and its counted edges highlighted.
+fn write_polygon(out: &mut String, view: &View, figure: &CrossingFigure, vertices: &[DVec2]) {
+    let points: Vec<String> = vertices
+        .iter()
+        .map(|p| view.map(*p))
+        .map(|p| format!("{:.1},{:.1}", p.x, p.y))
+        .collect();
+    let _ = writeln!(
+        out,
+        "<polygon points=\"{}\" fill=\"#f4ecd8\" stroke=\"#777777\" stroke-width=\"1.5\"/>",
+        points.join(" ")
+    );
+    for edge in figure.edges.iter().filter(|e| e.counts) {
+        let (a, b) = (view.map(vertices[edge.from]), view.map(vertices[edge.to]));
+        let _ = writeln!(
+            out,
+            "<line class=\"counted-edge\" x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{COUNTS}\" stroke-width=\"4\"/>",
+            a.x, a.y, b.x, b.y
+        );
+    }
+    let centre = vertices.iter().fold(DVec2::ZERO, |a, p| a + *p) / vertices.len() as f64;
+    for (i, p) in vertices.iter().enumerate() {
+        // Each number just outside its corner, away from the centroid.
+        let out_by = (*p - centre).normalize_or_zero() * 14.0;
+        let at = view.map(*p) + DVec2::new(out_by.x, -out_by.y);
+        let _ = writeln!(
+            out,
+            "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#555555\" text-anchor=\"middle\">{i}</text>",
+            at.x,
+            at.y + 4.0
+        );
+    }
+}
+
+/// Each edge meeting V = 0: numbered on +U when it counts, hollow when left.
+fn write_crossings(out: &mut String, view: &View, figure: &CrossingFigure) {
+    let mut number = 0;
+    for edge in figure.edges.iter().filter(|e| e.straddles) {
+        let Some(u) = edge.u else { continue };
+        let p = view.map(DVec2::new(u, 0.0));
+        if !edge.counts {
+            let _ = writeln!(
+                out,
+                "<circle class=\"left-crossing\" cx=\"{:.1}\" cy=\"{:.1}\" r=\"5\" fill=\"white\" stroke=\"{LEFT}\" stroke-width=\"2\"/>",
+                p.x, p.y
+            );
+            continue;
+        }
+        number += 1;
+        let _ = writeln!(
+            out,
+            "<circle class=\"crossing\" cx=\"{:.1}\" cy=\"{:.1}\" r=\"6\" fill=\"{COUNTS}\" stroke=\"black\"/>",
+            p.x, p.y
+        );
+        // Alternate above and below the axis so close crossings stay legible.
+        let dy = if number % 2 == 1 { -12.0 } else { 24.0 };
+        let _ = writeln!(
+            out,
+            "<text x=\"{:.1}\" y=\"{:.1}\" font-weight=\"bold\" text-anchor=\"middle\">{number}: edge {}→{}</text>",
+            p.x,
+            p.y + dy,
+            edge.from,
+            edge.to
+        );
+    }
+}
+
+fn write_legend(out: &mut String) {
+    let y = HEIGHT - BOTTOM / 2.0;
+    let mut x = MARGIN;
+    let items: [(&str, &str); 4] = [
+        (
+            "<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"#0077bb\" stroke-width=\"2.5\"/>",
+            "the +U half-line",
+        ),
+        (
+            "<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"#ee7733\" stroke-width=\"4\"/>",
+            "an edge that counts",
+        ),
+        (
+            "<circle cx=\"10\" cy=\"0\" r=\"6\" fill=\"#ee7733\" stroke=\"black\"/>",
+            "a crossing of +U, numbered",
+        ),
+        (
+            "<circle cx=\"10\" cy=\"0\" r=\"5\" fill=\"white\" stroke=\"#999999\" stroke-width=\"2\"/>",
+            "meets V = 0 left of the point: not counted",
+        ),
+    ];
+    for (mark, name) in items {
+        let _ = writeln!(
+            out,
+            "<g transform=\"translate({x:.1} {y:.1})\">{mark}</g>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\">{name}</text>",
+            x + 26.0,
+            y + 4.0
+        );
+        x += 26.0 + name.chars().count() as f64 * 6.0 + 18.0;
+    }
+}
+
+/// From (U, V) to the figure: uniform scale, V up, the origin kept in view.
+struct View {
+    centre: DVec2,
+    scale: f64,
+}
+
+impl View {
+    fn fit(vertices: &[DVec2]) -> View {
+        let (min, max) = vertices
+            .iter()
+            .fold((DVec2::ZERO, DVec2::ZERO), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let size = (max - min).max(DVec2::splat(1e-9));
+        // Room on the right for the half-line to leave the polygon.
+        let room = DVec2::new(WIDTH - 2.0 * MARGIN - 80.0, HEIGHT - TOP - BOTTOM - 60.0);
+        View {
+            centre: (min + max) / 2.0,
+            scale: (room.x / size.x).min(room.y / size.y),
+        }
+    }
+
+    fn map(&self, p: DVec2) -> DVec2 {
+        let middle = DVec2::new(
+            WIDTH / 2.0 - 40.0,
+            TOP + 30.0 + (HEIGHT - TOP - BOTTOM - 60.0) / 2.0,
+        );
+        let v = (p - self.centre) * self.scale;
+        DVec2::new(middle.x + v.x, middle.y - v.y)
+    }
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
