@@ -24,8 +24,8 @@ use super::job::Renderer;
 use super::keymap::Mode;
 use super::source::{FileWatcher, SceneSource, merge_settings};
 use super::view::layout::{self, Pane, Panes};
-use super::view::projection::DiagramPlane;
 use super::view::{help, tree};
+use crate::diagram::DiagramPlane;
 
 mod comparing;
 mod controls;

@@ -13,9 +13,10 @@ use crate::math::to_rgb8;
 use crate::record::RayTree;
 use crate::scene::Scene;
 
-use crate::tui::view::projection::{
+use crate::diagram::{
     DiagramPlane, Outline, Projection, Segment, Stroke, involved_objects, outline, ray_segments,
 };
+use crate::tui::view::stepper::progress;
 
 /// Scenes with more objects show only those the pixel's rays meet.
 const MAX_OUTLINES: usize = 300;
@@ -128,7 +129,7 @@ pub fn render(
 ) {
     let inner = block.inner(area);
     let projection = Projection::new(plane, scene, tree);
-    let (segments, blockers) = ray_segments(tree, scene, &projection, current);
+    let (segments, blockers) = ray_segments(tree, scene, &projection, progress(tree, current));
     let involved = involved_objects(tree);
     let shown: Vec<usize> = if scene.objects.len() <= MAX_OUTLINES {
         (0..scene.objects.len()).collect()

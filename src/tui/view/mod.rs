@@ -1,5 +1,5 @@
 //! What the panes show, worked out apart from drawing: the ray tree's rows,
-//! the step list, stepping, the diagram's projection, where image pixels
+//! the step list, stepping, where image pixels
 //! land in the image pane, the details' lines, the help's lines, and where
 //! each pane goes. Pure functions of the recording, the scene and sizes, so
 //! each file tests its own; the app (`app/`) and the panes (`pane/`) both
@@ -11,7 +11,6 @@ pub mod help;
 pub mod image_grid;
 pub mod layout;
 pub mod mistakes;
-pub mod projection;
 pub mod stepper;
 pub mod steps;
 pub mod tree;
