@@ -46,6 +46,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
         app.tree(),
         app.current(),
         app.plane(),
+        app.diagram_view(),
     );
     if let Some(error) = app.error() {
         let block = Block::bordered()
