@@ -4,20 +4,19 @@
 
 use glam::DVec2;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Style, Stylize};
+use ratatui::style::{Color, Style};
 use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Circle, Context, Line};
 use ratatui::widgets::{Block, Widget};
 
 use crate::math::to_rgb8;
-use crate::record::RayTree;
 use crate::scene::Scene;
 
 use crate::diagram::{
-    DiagramPlane, Outline, Projection, Segment, Stroke, involved_objects, outline, ray_segments,
+    Outline, Projection, Segment, Stroke, involved_objects, outline, ray_segments,
 };
+use crate::tui::App;
 use crate::tui::view::labels::{Wanted, cell, place};
-use crate::tui::view::pan_zoom::PanZoom;
 use crate::tui::view::stepper::progress;
 
 /// Scenes with more objects show only those the pixel's rays meet.
@@ -119,17 +118,11 @@ fn object_color(scene: &Scene, object: usize) -> Color {
     Color::Rgb(r, g, b)
 }
 
-/// Draws the diagram of `tree` into `area` (block included).
-pub fn render(
-    area: Rect,
-    buf: &mut ratatui::buffer::Buffer,
-    block: Block,
-    scene: &Scene,
-    tree: &RayTree,
-    current: usize,
-    plane: DiagramPlane,
-    view: PanZoom,
-) {
+/// Draws the app's diagram into `area` (block included): its pixel's tree
+/// at its current event, on its plane, panned and zoomed as it says.
+pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
+    let (scene, tree, current) = (app.scene(), app.tree(), app.current());
+    let (plane, view) = (app.plane(), app.diagram_view());
     let inner = block.inner(area);
     let projection = Projection::new(plane, scene, tree);
     let (segments, blockers) = ray_segments(tree, scene, &projection, progress(tree, current));
