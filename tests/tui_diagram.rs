@@ -128,6 +128,9 @@ fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
     }
     chars(&mut app, "0");
     assert!(app.diagram_view().is_fit());
+    chars(&mut app, "+");
+    press(&mut app, &[key(KeyCode::Home)]);
+    assert!(app.diagram_view().is_fit(), "Home fits it too");
     assert_eq!(diagram_rows(&mut app), fitted);
     // A pan, then another pixel: the diagram fits the new pixel's rays.
     press(&mut app, &[key(KeyCode::Right)]);

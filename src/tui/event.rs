@@ -54,6 +54,8 @@ fn in_pane(command: Command, pane: Pane) -> Option<Action> {
         (Command::Arrow(0, dy), Pane::Details) => Action::ScrollDetails(dy),
         (Command::Arrow(dx, dy), Pane::Diagram) => Action::PanDiagram(dx, dy),
         (Command::Arrow(dx, dy), _) => Action::Move(dx, dy),
+        (Command::Home, Pane::Diagram) => Action::FitDiagram,
+        (Command::Home, _) => Action::Step(Step::Start),
         (Command::Zoom(d), Pane::Diagram) => Action::ZoomDiagram(d),
         (Command::Zoom(d), _) if d > 0 => Action::ZoomIn,
         (Command::Zoom(_), _) => Action::ZoomOut,
@@ -75,7 +77,7 @@ mod tests {
     //! Since then: `M` (the mistakes menu), `w` (next region), `:` (go to)
     //! and `f` (find across the image) are new; with the diagram focused,
     //! the arrows pan it and + - and the wheel zoom it, and `0` fits it
-    //! (`since_then`).
+    //! (as does Home there: `since_then`).
 
     use crossterm::event::KeyModifiers;
 
@@ -155,6 +157,9 @@ mod tests {
         }
         if focus != Pane::Diagram {
             return old;
+        }
+        if code == KeyCode::Home {
+            return Some(Action::FitDiagram);
         }
         Some(match old? {
             Action::Move(dx, dy) if dx.abs() + dy.abs() == 1 => Action::PanDiagram(dx, dy),

@@ -72,6 +72,8 @@ pub enum Command {
     Do(Action),
     /// A step (dx, dy): the focused pane decides what moves (`event.rs`).
     Arrow(i32, i32),
+    /// The first event, or the whole diagram when it has the focus.
+    Home,
     /// Zoom in (1) or out (-1): the diagram when focused, else the image.
     Zoom(i32),
     /// Scroll the details by this many lines, when they have the focus.
@@ -195,7 +197,7 @@ const PIXEL_AND_VIEW: &[Binding] = &[
     },
     Binding {
         inputs: &[(key('0'), act(Action::FitDiagram))],
-        what: "show the whole diagram again (after panning or zooming it)",
+        what: "show the whole diagram again (Home too, diagram focused)",
         ..ROW
     },
     Binding {
@@ -280,7 +282,7 @@ const STEPPING: &[Binding] = &[
     Binding {
         inputs: &[
             (key('g'), act(Action::Step(Step::Start))),
-            (Input::Key(KeyCode::Home), act(Action::Step(Step::Start))),
+            (Input::Key(KeyCode::Home), Command::Home),
             (key('e'), act(Action::Step(Step::End))),
             (Input::Key(KeyCode::End), act(Action::Step(Step::End))),
         ],
