@@ -342,7 +342,7 @@ fn inspect_command(args: &InspectArgs) -> Result<ExitCode> {
 }
 
 fn diagram_command(args: &DiagramArgs) -> Result<ExitCode> {
-    use crate::tui::view::projection::DiagramPlane;
+    use crate::diagram::DiagramPlane;
     let target = output::file(&args.output)?;
     output::refuse_clashes(
         &args.pixel.scene,

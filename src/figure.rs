@@ -10,11 +10,11 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
+use crate::diagram::{
+    DiagramPlane, Outline, Progress, Projection, Stroke, involved_objects, outline, ray_segments,
+};
 use crate::record::{RayTree, light_label};
 use crate::scene::Scene;
-use crate::tui::view::projection::{
-    DiagramPlane, Outline, Projection, Stroke, involved_objects, outline, ray_segments,
-};
 
 /// The figure's size in SVG units (pixels), and its margin.
 const WIDTH: f64 = 800.0;
@@ -40,7 +40,7 @@ fn stroke_colour(stroke: Stroke) -> &'static str {
 pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane) -> String {
     let projection = Projection::new(plane, scene, tree);
     // Every event reached: each ray in its own kind's colour.
-    let (segments, blockers) = ray_segments(tree, scene, &projection, tree.events.len());
+    let (segments, blockers) = ray_segments(tree, scene, &projection, Progress::done(tree));
     let objects = involved_objects(tree);
     let outlines: Vec<(usize, Vec<Outline>)> = objects
         .iter()

@@ -7,6 +7,7 @@ pub mod accel;
 pub mod camera;
 pub mod cli;
 pub mod compare;
+pub mod diagram;
 pub mod figure;
 pub mod math;
 pub mod mistakes;

@@ -235,3 +235,18 @@ fn readme_layout_names_every_folder_of_the_debugger() {
         );
     }
 }
+
+#[test]
+fn only_the_command_line_reaches_into_the_debugger() {
+    // The SVG figure, the recording and the renderer are no part of the
+    // debugger; what they share with it (the diagram's projection) lives
+    // outside `src/tui/`. Only `cli.rs` launches the debugger.
+    let graph = module_graph(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
+    assert!(graph["cli"].contains("tui"), "the reader sees cli -> tui");
+    let users: Vec<_> = graph
+        .iter()
+        .filter(|(name, uses)| name.as_str() != "cli" && uses.contains("tui"))
+        .map(|(name, _)| name)
+        .collect();
+    assert!(users.is_empty(), "modules naming crate::tui: {users:?}");
+}

@@ -48,6 +48,12 @@ pub enum Action {
     /// With a comparison: the cursor to the next region's pixel.
     NextRegion,
     CyclePlane,
+    /// Pan the diagram by quarters of what it shows (arrows, diagram focused).
+    PanDiagram(i32, i32),
+    /// Zoom the diagram in (> 0) or out by steps.
+    ZoomDiagram(i32),
+    /// Show the whole diagram again.
+    FitDiagram,
     /// Open the go-to prompt in the status line (`:`).
     OpenPrompt,
     /// A character typed into the prompt.

@@ -52,11 +52,18 @@ fn in_pane(command: Command, pane: Pane) -> Option<Action> {
         (Command::Arrow(..), Pane::Tree) => Action::ToggleCollapse,
         (Command::Arrow(d, 0) | Command::Arrow(0, d), Pane::Steps) => step(d),
         (Command::Arrow(0, dy), Pane::Details) => Action::ScrollDetails(dy),
+        (Command::Arrow(dx, dy), Pane::Diagram) => Action::PanDiagram(dx, dy),
         (Command::Arrow(dx, dy), _) => Action::Move(dx, dy),
+        (Command::Home, Pane::Diagram) => Action::FitDiagram,
+        (Command::Home, _) => Action::Step(Step::Start),
+        (Command::Zoom(d), Pane::Diagram) => Action::ZoomDiagram(d),
+        (Command::Zoom(d), _) if d > 0 => Action::ZoomIn,
+        (Command::Zoom(_), _) => Action::ZoomOut,
         (Command::Page(lines), Pane::Details) => Action::ScrollDetails(lines),
         (Command::Wheel(d), Pane::Steps) => step(d),
         (Command::Wheel(d), Pane::Tree) => Action::SelectRow(d),
         (Command::Wheel(d), Pane::Details) => Action::ScrollDetails(3 * d),
+        (Command::Wheel(d), Pane::Diagram) => Action::ZoomDiagram(-d),
         (Command::Wheel(d), Pane::Image) if d < 0 => Action::ZoomIn,
         (Command::Wheel(_), Pane::Image) => Action::ZoomOut,
         _ => return None,
@@ -68,7 +75,9 @@ mod tests {
     //! The dispatch before the table (commit fc0f12c), kept as the oracle:
     //! every key, modifier, pane and help state must still do what it did.
     //! Since then: `M` (the mistakes menu), `w` (next region), `:` (go to)
-    //! and `f` (find across the image) are new.
+    //! and `f` (find across the image) are new; with the diagram focused,
+    //! the arrows pan it and + - and the wheel zoom it, and `0` fits it
+    //! (as does Home there: `since_then`).
 
     use crossterm::event::KeyModifiers;
 
@@ -138,6 +147,28 @@ mod tests {
         })
     }
 
+    /// What changed since the oracle: the diagram's pan and zoom.
+    fn since_then(old: Option<Action>, code: KeyCode, help: bool, focus: Pane) -> Option<Action> {
+        if help {
+            return old;
+        }
+        if code == KeyCode::Char('0') && old.is_none() {
+            return Some(Action::FitDiagram);
+        }
+        if focus != Pane::Diagram {
+            return old;
+        }
+        if code == KeyCode::Home {
+            return Some(Action::FitDiagram);
+        }
+        Some(match old? {
+            Action::Move(dx, dy) if dx.abs() + dy.abs() == 1 => Action::PanDiagram(dx, dy),
+            Action::ZoomIn => Action::ZoomDiagram(1),
+            Action::ZoomOut => Action::ZoomDiagram(-1),
+            other => other,
+        })
+    }
+
     fn old_arrow_action(code: KeyCode, shift: bool, focus: Pane) -> Option<Action> {
         let (dx, dy) = match code {
             KeyCode::Left | KeyCode::Char('h') => (-1, 0),
@@ -169,6 +200,9 @@ mod tests {
             (MouseEventKind::ScrollDown, Pane::Details) => Some(Action::ScrollDetails(3)),
             (MouseEventKind::ScrollUp, Pane::Details) => Some(Action::ScrollDetails(-3)),
             (MouseEventKind::ScrollUp, Pane::Image) => Some(Action::ZoomIn),
+            // Since then: the wheel zooms the diagram too.
+            (MouseEventKind::ScrollUp, Pane::Diagram) => Some(Action::ZoomDiagram(1)),
+            (MouseEventKind::ScrollDown, Pane::Diagram) => Some(Action::ZoomDiagram(-1)),
             (MouseEventKind::ScrollDown, Pane::Image) => Some(Action::ZoomOut),
             _ => None,
         }
@@ -212,7 +246,7 @@ mod tests {
                 let key = KeyEvent::new(code, mods);
                 for help in [false, true] {
                     for focus in Pane::ALL {
-                        let old = old_key_action(&key, help, focus);
+                        let old = since_then(old_key_action(&key, help, focus), code, help, focus);
                         let mode = if help { Mode::Help } else { Mode::Browsing };
                         assert_eq!(
                             key_action(&key, mode, focus),

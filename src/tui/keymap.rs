@@ -6,6 +6,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use super::action::Action;
 use super::view::find::Find;
+use super::view::layout::Pane;
 use super::view::stepper::{Breakpoint, Step};
 use crate::scene::Switch;
 
@@ -71,6 +72,10 @@ pub enum Command {
     Do(Action),
     /// A step (dx, dy): the focused pane decides what moves (`event.rs`).
     Arrow(i32, i32),
+    /// The first event, or the whole diagram when it has the focus.
+    Home,
+    /// Zoom in (1) or out (-1): the diagram when focused, else the image.
+    Zoom(i32),
     /// Scroll the details by this many lines, when they have the focus.
     Page(i32),
     /// The wheel, down (1) or up (-1): acts on the pane under the mouse.
@@ -143,7 +148,7 @@ const PIXEL_AND_VIEW: &[Binding] = &[
             (key('k'), Command::Arrow(0, -1)),
             (key('l'), Command::Arrow(1, 0)),
         ],
-        what: "move the pixel cursor, or within the tree, steps, details",
+        what: "move the pixel cursor; in other panes select, step, pan",
         hint: hint(2, "arrows", "pixel"),
         ..ROW
     },
@@ -177,17 +182,22 @@ const PIXEL_AND_VIEW: &[Binding] = &[
             (Input::WheelUp, Command::Wheel(-1)),
             (Input::WheelDown, Command::Wheel(1)),
         ],
-        what: "zoom the image, step, move in the tree, scroll the details",
+        what: "zoom the image or diagram, step, select a ray, scroll",
         ..ROW
     },
     Binding {
         inputs: &[
-            (key('+'), act(Action::ZoomIn)),
-            (key('='), act(Action::ZoomIn)),
-            (key('-'), act(Action::ZoomOut)),
-            (key('_'), act(Action::ZoomOut)),
+            (key('+'), Command::Zoom(1)),
+            (key('='), Command::Zoom(1)),
+            (key('-'), Command::Zoom(-1)),
+            (key('_'), Command::Zoom(-1)),
         ],
-        what: "zoom in (+ =) / out (- _), down to one pixel per half cell",
+        what: "zoom in (+ =) / out (- _): the image or focused diagram",
+        ..ROW
+    },
+    Binding {
+        inputs: &[(key('0'), act(Action::FitDiagram))],
+        what: "show the whole diagram again (Home too, diagram focused)",
         ..ROW
     },
     Binding {
@@ -272,7 +282,7 @@ const STEPPING: &[Binding] = &[
     Binding {
         inputs: &[
             (key('g'), act(Action::Step(Step::Start))),
-            (Input::Key(KeyCode::Home), act(Action::Step(Step::Start))),
+            (Input::Key(KeyCode::Home), Command::Home),
             (key('e'), act(Action::Step(Step::End))),
             (Input::Key(KeyCode::End), act(Action::Step(Step::End))),
         ],
@@ -596,6 +606,39 @@ pub fn hints() -> Vec<Hint> {
     let mut hints: Vec<Hint> = rows().filter_map(|row| row.hint).collect();
     hints.sort_by_key(|h| h.rank);
     hints
+}
+
+/// What the arrows and + - 0 do while the diagram has the focus.
+pub const DIAGRAM_HINTS: [Hint; 3] = [
+    Hint {
+        rank: 2,
+        keys: "arrows",
+        what: "pan diagram",
+    },
+    Hint {
+        rank: 2,
+        keys: "+/-",
+        what: "zoom",
+    },
+    Hint {
+        rank: 2,
+        keys: "0",
+        what: "fit",
+    },
+];
+
+/// The hints with `focus` on `pane`: in the diagram the arrows pan it.
+pub fn hints_in(pane: Pane) -> Vec<Hint> {
+    let hints = hints();
+    if pane != Pane::Diagram {
+        return hints;
+    }
+    let arrows = hints.iter().position(|h| h.keys == "arrows");
+    let (before, after) = hints.split_at(arrows.unwrap_or(hints.len()));
+    let mut shown = before.to_vec();
+    shown.extend(DIAGRAM_HINTS);
+    shown.extend(after.iter().skip(1));
+    shown
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@
 //!   status line also read); the main loop below adds `Action::Tick`, on
 //!   which the app takes in finished renders and reloads a changed file.
 //! - `view/`: what the panes show, worked out without drawing (tree rows,
-//!   the step list, stepping, the diagram's projection, the image grid,
+//!   the step list, stepping, the image grid,
 //!   layout). Pure and unit tested; the state uses it, it knows no pane.
 //! - `pane/`: the drawing, one file per pane; `pane::draw` only reads an `App`.
 //! - `job.rs` renders whole images on a background thread; picking a pixel
@@ -42,12 +42,12 @@ use crossterm::event::Event;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
+pub use crate::diagram::DiagramPlane;
 pub use crate::scene::Switch;
 pub use action::{Action, View};
 pub use app::{App, Compared};
 pub use keymap::Mode;
 pub use view::layout::Pane;
-pub use view::projection::DiagramPlane;
 pub use view::stepper::{Breakpoint, Step};
 
 /// Where terminal events come from: the real terminal, or a script in tests.

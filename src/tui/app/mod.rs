@@ -24,8 +24,9 @@ use super::job::Renderer;
 use super::keymap::Mode;
 use super::source::{FileWatcher, SceneSource, merge_settings};
 use super::view::layout::{self, Pane, Panes};
-use super::view::projection::DiagramPlane;
+use super::view::pan_zoom::PanZoom;
 use super::view::{help, tree};
+use crate::diagram::DiagramPlane;
 
 mod comparing;
 mod controls;
@@ -65,6 +66,8 @@ pub struct App {
     zoom: u32,
     view: View,
     plane: DiagramPlane,
+    /// The diagram's pan and zoom; fitted again for another pixel or plane.
+    diagram_view: PanZoom,
     help: bool,
     help_scroll: u16,
     /// Whether the mistakes menu is open, and its selected row.
@@ -159,6 +162,7 @@ impl App {
             zoom: 1,
             view: View::Image,
             plane: DiagramPlane::Top,
+            diagram_view: PanZoom::fit(),
             help: false,
             help_scroll: 0,
             menu: false,
@@ -254,7 +258,13 @@ impl App {
             Action::MenuToggle => self.toggle_mistake(Mistake::ALL[self.menu_row]),
             Action::ToggleMistake(mistake) => self.toggle_mistake(mistake),
             Action::NextRegion => self.next_region(),
-            Action::CyclePlane => self.plane = self.plane.next(),
+            Action::CyclePlane => {
+                self.plane = self.plane.next();
+                self.diagram_view = PanZoom::fit();
+            }
+            Action::PanDiagram(dx, dy) => self.diagram_view.pan(dx, dy),
+            Action::ZoomDiagram(steps) => self.diagram_view.zoom_by(steps),
+            Action::FitDiagram => self.diagram_view = PanZoom::fit(),
             Action::OpenPrompt => self.prompt = Some(String::new()),
             Action::PromptChar(c) => self.prompt_char(c),
             Action::PromptBackspace => self.prompt_backspace(),
@@ -337,6 +347,11 @@ impl App {
 
     pub fn plane(&self) -> DiagramPlane {
         self.plane
+    }
+
+    /// How the diagram is panned and zoomed.
+    pub fn diagram_view(&self) -> PanZoom {
+        self.diagram_view
     }
 
     /// Whether the help overlay is open, and how far it is scrolled.
@@ -501,6 +516,7 @@ impl App {
         self.cursor = (x, y);
         self.current = 0;
         self.what_if = None;
+        self.diagram_view = PanZoom::fit();
         self.retrace();
     }
 

@@ -117,7 +117,7 @@ pub(super) fn status(app: &App) -> Line<'static> {
         );
     }
     spans.push(Span::raw(" "));
-    for hint in keymap::hints() {
+    for hint in keymap::hints_in(app.focus()) {
         spans.push(Span::raw(hint.keys).bold().cyan());
         spans.push(Span::raw(format!(" {}  ", hint.what)));
     }

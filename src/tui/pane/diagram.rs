@@ -4,18 +4,20 @@
 
 use glam::DVec2;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Style, Stylize};
+use ratatui::style::{Color, Style};
 use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Circle, Context, Line};
 use ratatui::widgets::{Block, Widget};
 
 use crate::math::to_rgb8;
-use crate::record::RayTree;
 use crate::scene::Scene;
 
-use crate::tui::view::projection::{
-    DiagramPlane, Outline, Projection, Segment, Stroke, involved_objects, outline, ray_segments,
+use crate::diagram::{
+    Outline, Projection, Segment, Stroke, involved_objects, outline, ray_segments,
 };
+use crate::tui::App;
+use crate::tui::view::labels::{Wanted, cell, place};
+use crate::tui::view::stepper::progress;
 
 /// Scenes with more objects show only those the pixel's rays meet.
 const MAX_OUTLINES: usize = 300;
@@ -116,19 +118,14 @@ fn object_color(scene: &Scene, object: usize) -> Color {
     Color::Rgb(r, g, b)
 }
 
-/// Draws the diagram of `tree` into `area` (block included).
-pub fn render(
-    area: Rect,
-    buf: &mut ratatui::buffer::Buffer,
-    block: Block,
-    scene: &Scene,
-    tree: &RayTree,
-    current: usize,
-    plane: DiagramPlane,
-) {
+/// Draws the app's diagram into `area` (block included): its pixel's tree
+/// at its current event, on its plane, panned and zoomed as it says.
+pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
+    let (scene, tree, current) = (app.scene(), app.tree(), app.current());
+    let (plane, view) = (app.plane(), app.diagram_view());
     let inner = block.inner(area);
     let projection = Projection::new(plane, scene, tree);
-    let (segments, blockers) = ray_segments(tree, scene, &projection, current);
+    let (segments, blockers) = ray_segments(tree, scene, &projection, progress(tree, current));
     let involved = involved_objects(tree);
     let shown: Vec<usize> = if scene.objects.len() <= MAX_OUTLINES {
         (0..scene.objects.len()).collect()
@@ -154,6 +151,7 @@ pub fn render(
         }
     }
     let (x, y) = bounds(&points, inner);
+    let (x, y) = view.window(x, y);
     let paint = |ctx: &mut Context| {
         for (i, shapes) in &outlines {
             for shape in shapes {
@@ -179,22 +177,6 @@ pub fn render(
             .iter()
             .filter(|s| s.stroke == Stroke::Current)
             .for_each(|s| draw(ctx, s));
-        for (i, shapes) in outlines.iter().filter(|(i, _)| involved.contains(i)) {
-            if let Some(at) = shapes.first().and_then(label_point) {
-                ctx.print(
-                    at.x,
-                    at.y,
-                    Span::from(scene.objects[*i].name.clone()).dark_gray(),
-                );
-            }
-        }
-        for p in &blockers {
-            ctx.print(p.x, p.y, Span::from("×").red().bold());
-        }
-        for (p, name) in &lights {
-            ctx.print(p.x, p.y, Span::from(format!("☼ {name}")).yellow());
-        }
-        ctx.print(eye.x, eye.y, Span::from("◉ eye").cyan());
     };
     Canvas::default()
         .block(block)
@@ -202,4 +184,99 @@ pub fn render(
         .y_bounds(y)
         .paint(paint)
         .render(area, buf);
+    // Most important first: the eye, the lights, the blockers, then names;
+    // the eye's and lights' markers keep a blank cell before their name.
+    let mut labels = vec![Label::marker(eye, "◉ ", Color::Cyan)];
+    labels.extend(
+        lights
+            .iter()
+            .map(|(p, _)| Label::marker(*p, "☼ ", Color::Yellow)),
+    );
+    labels.extend(blockers.iter().map(|p| Label::marker(*p, "×", Color::Red)));
+    labels.push(Label::named(eye, "eye", 2, Color::Cyan));
+    labels.extend(
+        lights
+            .iter()
+            .map(|(p, name)| Label::named(*p, name, 2, Color::Yellow)),
+    );
+    for (i, shapes) in outlines.iter().filter(|(i, _)| involved.contains(i)) {
+        if let Some(at) = shapes.first().and_then(label_point) {
+            let name = &scene.objects[*i].name;
+            labels.push(Label::named(at, name, 0, Color::DarkGray));
+        }
+    }
+    write_labels(buf, inner, (x, y), &labels);
+}
+
+/// A label over the drawing: a marker on its point, or a name that many
+/// cells right of it (after the eye's or a light's marker and a space).
+struct Label<'a> {
+    point: DVec2,
+    text: &'a str,
+    marker: bool,
+    after: i32,
+    colour: Color,
+}
+
+impl<'a> Label<'a> {
+    fn marker(point: DVec2, text: &'a str, colour: Color) -> Self {
+        let (marker, after) = (true, 0);
+        Label {
+            point,
+            text,
+            marker,
+            after,
+            colour,
+        }
+    }
+
+    fn named(point: DVec2, text: &'a str, after: i32, colour: Color) -> Self {
+        let marker = false;
+        Label {
+            point,
+            text,
+            marker,
+            after,
+            colour,
+        }
+    }
+}
+
+/// Writes the labels over the drawing, none over another (`view::labels`);
+/// earlier ones win.
+fn write_labels(
+    buf: &mut ratatui::buffer::Buffer,
+    inner: Rect,
+    (x, y): ([f64; 2], [f64; 2]),
+    labels: &[Label],
+) {
+    let size = (inner.width, inner.height);
+    let shown: Vec<(Wanted, &Label)> = labels
+        .iter()
+        .filter(|l| !l.text.is_empty())
+        .filter_map(|l| {
+            let (col, row) = cell((l.point.x, l.point.y), x, y, size)?;
+            let at = (col + l.after, row);
+            Some((
+                Wanted {
+                    at,
+                    text: l.text,
+                    fixed: l.marker,
+                },
+                l,
+            ))
+        })
+        .collect();
+    let asked: Vec<Wanted> = shown.iter().map(|w| w.0).collect();
+    for (placed, (_, label)) in place(&asked, size).into_iter().zip(&shown) {
+        let Some(placed) = placed else { continue };
+        let style = Style::new().fg(label.colour);
+        let style = if label.marker { style.bold() } else { style };
+        buf.set_string(
+            inner.x + placed.at.0,
+            inner.y + placed.at.1,
+            &placed.text,
+            style,
+        );
+    }
 }

@@ -38,15 +38,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
         format!(" Diagram · {} · white: current ", app.plane().name()),
     );
     let block = block.title_bottom(diagram::legend());
-    diagram::render(
-        panes.diagram,
-        frame.buffer_mut(),
-        block,
-        app.scene(),
-        app.tree(),
-        app.current(),
-        app.plane(),
-    );
+    diagram::render(panes.diagram, frame.buffer_mut(), block, app);
     if let Some(error) = app.error() {
         let block = Block::bordered()
             .border_style(Style::new().fg(Color::Red))

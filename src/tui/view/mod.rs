@@ -1,7 +1,7 @@
 //! What the panes show, worked out apart from drawing: the ray tree's rows,
-//! the step list, stepping, the diagram's projection, where image pixels
-//! land in the image pane, the details' lines, the help's lines, and where
-//! each pane goes. Pure functions of the recording, the scene and sizes, so
+//! the step list, stepping, the diagram's labels and its pan and zoom, where
+//! image pixels land in the image pane, the details' lines, the help's
+//! lines, and where each pane goes. Pure functions of the recording, the scene and sizes, so
 //! each file tests its own; the app (`app/`) and the panes (`pane/`) both
 //! read them, and nothing here knows either.
 
@@ -9,9 +9,10 @@ pub mod details;
 pub mod find;
 pub mod help;
 pub mod image_grid;
+pub mod labels;
 pub mod layout;
 pub mod mistakes;
-pub mod projection;
+pub mod pan_zoom;
 pub mod stepper;
 pub mod steps;
 pub mod tree;

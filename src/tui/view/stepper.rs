@@ -3,6 +3,7 @@
 //! parent's `ChildReturned` event is where it returns. Every function takes
 //! the current event index and returns the new one; none changes the tree.
 
+use crate::diagram::{CurrentRay, Progress};
 use crate::record::{EventKind, RayTree};
 
 /// A way to move to another event.
@@ -103,6 +104,20 @@ pub fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<usize> {
             e.node == node && matches!(e.kind, EventKind::Light { light: l, .. } if l == light)
         })
     })
+}
+
+/// How far the step-through at event `current` has come, for the diagram:
+/// the current event's ray is its node's, or its shadow ray when the event
+/// is about a light.
+pub fn progress(tree: &RayTree, current: usize) -> Progress {
+    let ray = tree.events.get(current).map(|e| CurrentRay {
+        node: e.node,
+        light: event_light(&e.kind),
+    });
+    Progress {
+        reached: current,
+        current: ray,
+    }
 }
 
 /// The light an event is about, if any.

@@ -1,6 +1,8 @@
-//! The plane a pixel's rays are drawn on, and the 2-D shapes of the ray
-//! diagram: object outlines, the eye, the lights and every ray, each already
-//! projected, so the drawing code only paints.
+//! The ray diagram's geometry: the plane a pixel's rays are drawn on, and
+//! the 2-D shapes of the diagram (object outlines, the eye, the lights and
+//! every ray), each already projected, so the drawing code only paints. The
+//! debugger's diagram pane and the SVG figure of `raystep diagram` both draw
+//! these; neither the step-through nor any drawing lives here.
 
 use glam::{DVec2, DVec3};
 
@@ -108,18 +110,45 @@ pub struct Segment {
     pub stroke: Stroke,
 }
 
+/// How far a step-through has come, for the strokes: rays cast by the
+/// events up to `reached` (included) get their kind's colour, later ones are
+/// `Later`, and the ray of `current` is `Current`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    pub reached: usize,
+    pub current: Option<CurrentRay>,
+}
+
+/// The ray the step-through is at: a node's own ray, or (with `light`) its
+/// shadow ray to that light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CurrentRay {
+    pub node: NodeId,
+    pub light: Option<usize>,
+}
+
+impl Progress {
+    /// Every event reached and none current: each ray in its kind's colour.
+    pub fn done(tree: &RayTree) -> Progress {
+        Progress {
+            reached: tree.events.len(),
+            current: None,
+        }
+    }
+}
+
 /// The rays of a pixel as projected segments, plus blocker points.
 pub fn ray_segments(
     tree: &RayTree,
     scene: &Scene,
     projection: &Projection,
-    current: usize,
+    progress: Progress,
 ) -> (Vec<Segment>, Vec<DVec2>) {
-    let current_event = tree.events.get(current);
+    let current = progress.current;
     let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
         tree.events
             .iter()
-            .take(current + 1)
+            .take(progress.reached.saturating_add(1))
             .any(|e| test(&e.kind, e.node))
     };
     let miss_length = miss_length(tree, scene);
@@ -130,8 +159,11 @@ pub fn ray_segments(
             node.origin + node.direction.normalize() * miss_length,
             |h| h.point,
         );
-        let is_current = current_event
-            .is_some_and(|e| e.node == id && super::stepper::event_light(&e.kind).is_none());
+        let is_current = current
+            == Some(CurrentRay {
+                node: id,
+                light: None,
+            });
         let stroke = if is_current {
             Stroke::Current
         } else if !reached(&|k, n| n == id && matches!(k, EventKind::RayCast { .. })) {
@@ -163,9 +195,11 @@ pub fn ray_segments(
                 .lights
                 .get(light.light_index)
                 .map_or(hit.point, |l| l.position);
-            let is_current = current_event.is_some_and(|e| {
-                e.node == id && super::stepper::event_light(&e.kind) == Some(light.light_index)
-            });
+            let is_current = current
+                == Some(CurrentRay {
+                    node: id,
+                    light: Some(light.light_index),
+                });
             let cast = |k: &EventKind, n| {
                 n == id
                     && matches!(k, EventKind::ShadowCast { light: l } if *l == light.light_index)
@@ -315,6 +349,7 @@ pub fn involved_objects(tree: &RayTree) -> Vec<usize> {
 mod tests {
     use super::*;
     use crate::tui::view::fixture::ball;
+    use crate::tui::view::stepper::progress;
 
     fn close(a: DVec2, b: DVec2) -> bool {
         (a - b).length() < 1e-9
@@ -359,7 +394,7 @@ mod tests {
         let (scene, tree) = ball();
         let top = Projection::new(DiagramPlane::Top, &scene, &tree);
         let strokes = |current| {
-            let (segments, blockers) = ray_segments(&tree, &scene, &top, current);
+            let (segments, blockers) = ray_segments(&tree, &scene, &top, progress(&tree, current));
             assert!(blockers.is_empty(), "nothing blocks the lamp");
             segments.iter().map(|s| s.stroke).collect::<Vec<_>>()
         };
@@ -379,7 +414,7 @@ mod tests {
         // r1 misses: drawn half the scene's size long. The hit (0, 0, 1), the
         // eye (0, 0, 10) and the lamp (5, 0, 10) span (5, 0, 9): half of
         // √106 from (0, 0, 1) along +z, which the top view shows downward.
-        let (segments, _) = ray_segments(&tree, &scene, &top, 9);
+        let (segments, _) = ray_segments(&tree, &scene, &top, progress(&tree, 9));
         let r1 = &segments[3];
         assert!(close(r1.from, DVec2::ZERO));
         assert!(close(r1.to, DVec2::new(0.0, -(106f64.sqrt() / 2.0))));

@@ -1,0 +1,106 @@
+//! Panning and zooming the ray diagram: the window shown, worked out from
+//! the window that fits the whole figure. A step pans a quarter of what is
+//! shown, a zoom step shows 1.5 times less (or more), around the window's
+//! centre; the fitted window is zoom 0, no pan.
+
+/// How far the diagram is panned and zoomed from the fitted window.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PanZoom {
+    /// The window's centre from the fitted one's, in halves of the fitted
+    /// window (1 = half of it to the right or up).
+    pan: (f64, f64),
+    /// Zoom steps: positive shows less, bigger.
+    zoom: i32,
+}
+
+/// How much one zoom step magnifies.
+const FACTOR: f64 = 1.5;
+/// The zoom steps allowed, out and in.
+const ZOOM_OUT: i32 = -4;
+const ZOOM_IN: i32 = 12;
+
+impl PanZoom {
+    /// The fitted window: the whole figure.
+    pub fn fit() -> PanZoom {
+        PanZoom::default()
+    }
+
+    pub fn is_fit(&self) -> bool {
+        *self == PanZoom::fit()
+    }
+
+    /// The zoom steps, positive when zoomed in.
+    pub fn zoom(&self) -> i32 {
+        self.zoom
+    }
+
+    fn magnification(&self) -> f64 {
+        FACTOR.powi(self.zoom)
+    }
+
+    /// Moves the window by (dx, dy) quarters of what it shows: dx > 0 to
+    /// the right, dy > 0 down (as the arrow keys point).
+    pub fn pan(&mut self, dx: i32, dy: i32) {
+        let step = 0.5 / self.magnification();
+        self.pan.0 += f64::from(dx) * step;
+        self.pan.1 -= f64::from(dy) * step;
+    }
+
+    /// Zooms in (steps > 0) or out, within the allowed steps.
+    pub fn zoom_by(&mut self, steps: i32) {
+        self.zoom = (self.zoom + steps).clamp(ZOOM_OUT, ZOOM_IN);
+    }
+
+    /// The window shown, from the fitted window's x and y ranges.
+    pub fn window(&self, x: [f64; 2], y: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+        let m = self.magnification();
+        let axis = |range: [f64; 2], pan: f64| {
+            let half = (range[1] - range[0]) / 2.0;
+            let centre = (range[0] + range[1]) / 2.0 + pan * half;
+            [centre - half / m, centre + half / m]
+        };
+        (axis(x, self.pan.0), axis(y, self.pan.1))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const X: [f64; 2] = [-4.0, 4.0];
+    const Y: [f64; 2] = [0.0, 2.0];
+
+    #[test]
+    fn the_fitted_window_is_the_whole_figure() {
+        assert_eq!(PanZoom::fit().window(X, Y), (X, Y));
+    }
+
+    #[test]
+    fn a_step_right_moves_a_quarter_of_the_window() {
+        // x shows 8 units: a quarter is 2. Down moves y by a quarter of 2.
+        let mut view = PanZoom::fit();
+        view.pan(1, 0);
+        assert_eq!(view.window(X, Y), ([-2.0, 6.0], Y));
+        view.pan(-1, 1);
+        assert_eq!(view.window(X, Y), (X, [-0.5, 1.5]));
+        assert!(!view.is_fit());
+    }
+
+    #[test]
+    fn zooming_shows_less_around_the_centre_and_pans_less() {
+        // Zoom 2: 2.25 times bigger, x shows 8 / 2.25 around 0; a step
+        // right then moves a quarter of that.
+        let mut view = PanZoom::fit();
+        view.zoom_by(2);
+        let (x, _) = view.window(X, Y);
+        assert!((x[1] - 4.0 / 2.25).abs() < 1e-12, "{x:?}");
+        view.pan(1, 0);
+        let (panned, _) = view.window(X, Y);
+        assert!((panned[0] - x[0] - 8.0 / 2.25 / 4.0).abs() < 1e-12);
+        // Zooming stops at its limits.
+        view.zoom_by(100);
+        assert_eq!(view.zoom(), ZOOM_IN);
+        view.zoom_by(-100);
+        assert_eq!(view.zoom(), ZOOM_OUT);
+    }
+}

@@ -1,0 +1,146 @@
+//! Issue 16, sections 2 and 3: the debugger's diagram pane, its labels
+//! never written over one another, and panned and zoomed with the keys
+//! while it has the focus.
+
+use std::path::PathBuf;
+
+use crossterm::event::KeyCode;
+use ratatui::layout::Rect;
+use raystep::tui::{Action, App, Pane};
+
+mod common;
+
+use common::*;
+
+/// Seven-rays with its two lights replaced by two a hair apart, so that
+/// in the top view they land on one cell.
+fn two_lamps() -> PathBuf {
+    let path = scene_file("two-lamps.toml");
+    edit(
+        &path,
+        "name = \"key\"\nposition = [-4, 6, 6]",
+        "name = \"lamp A\"\nposition = [3, 3, 4]",
+    );
+    edit(
+        &path,
+        "name = \"fill\"\nposition = [5, 3, 4]",
+        "name = \"lamp B\"\nposition = [3.02, 3, 4]",
+    );
+    path
+}
+
+/// The diagram pane's rows, inside its border.
+fn diagram_rows(app: &mut App) -> Vec<String> {
+    let terminal = screen(app, 120, 40);
+    let buffer = terminal.backend().buffer();
+    let Rect {
+        x,
+        y,
+        width,
+        height,
+    } = app.panes().diagram;
+    (y + 1..y + height - 1)
+        .map(|row| {
+            (x + 1..x + width - 1)
+                .map(|col| buffer[(col, row)].symbol())
+                .collect()
+        })
+        .collect()
+}
+
+/// The (column, row) of the first cell holding `symbol`.
+fn find(rows: &[String], symbol: char) -> Option<(usize, usize)> {
+    rows.iter()
+        .enumerate()
+        .find_map(|(r, line)| line.chars().position(|c| c == symbol).map(|c| (c, r)))
+}
+
+fn focus_diagram(app: &mut App) {
+    while app.focus() != Pane::Diagram {
+        app.update(Action::FocusNext);
+    }
+}
+
+#[test]
+fn two_lights_on_one_cell_keep_both_names_readable() {
+    // Before: "☼ lamp B" was printed over "☼ lamp A" on the same cell, and
+    // only "lamp B" could be read. Now one ☼ marks the cell and each name
+    // has its own place.
+    let mut app = App::open(Some(two_lamps()), true).unwrap();
+    let rows = diagram_rows(&mut app);
+    let text = rows.join("\n");
+    assert!(text.contains("lamp A"), "{text}");
+    assert!(text.contains("lamp B"), "{text}");
+    assert!(text.contains("eye"), "{text}");
+    assert_eq!(text.matches('☼').count(), 1, "{text}");
+}
+
+#[test]
+fn with_the_diagram_focused_arrows_pan_it_and_keep_the_pixel() {
+    let mut app = app();
+    focus_diagram(&mut app);
+    let pixel = app.cursor();
+    // The status line says what the arrows do here.
+    let status = {
+        let terminal = screen(&mut app, 120, 40);
+        let buffer = terminal.backend().buffer();
+        (0..120)
+            .map(|x| buffer[(x, 39)].symbol())
+            .collect::<String>()
+    };
+    assert!(
+        status.contains("arrows pan diagram  +/- zoom  0 fit"),
+        "{status}"
+    );
+    let (eye_col, eye_row) = find(&diagram_rows(&mut app), '◉').expect("the eye is drawn");
+    press(&mut app, &[key(KeyCode::Right)]);
+    assert_eq!(app.cursor(), pixel, "the pixel stays");
+    // The window moved right by a quarter of its width: the eye a quarter
+    // of the pane's width left (within a cell of rounding).
+    let width = app.panes().diagram.width as usize - 2;
+    let (col, row) = find(&diagram_rows(&mut app), '◉').expect("still in view");
+    assert_eq!(row, eye_row);
+    assert!(
+        (eye_col - col).abs_diff(width / 4) <= 1,
+        "{eye_col} -> {col} in {width}"
+    );
+    // Back left, and the eye is where it was.
+    press(&mut app, &[key(KeyCode::Left)]);
+    assert_eq!(find(&diagram_rows(&mut app), '◉'), Some((eye_col, eye_row)));
+}
+
+#[test]
+fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
+    let mut app = app();
+    focus_diagram(&mut app);
+    let fitted = diagram_rows(&mut app);
+    let image_zoom = app.zoom();
+    chars(&mut app, "+");
+    assert_eq!(app.diagram_view().zoom(), 1);
+    assert_eq!(app.zoom(), image_zoom, "the image keeps its zoom");
+    // Zoomed around the window's centre: the eye, off centre, moves away
+    // from it (or out of view).
+    let centre = fitted[0].chars().count() as f64 / 2.0;
+    let (eye, _) = find(&fitted, '◉').unwrap();
+    let zoomed = diagram_rows(&mut app);
+    if let Some((col, _)) = find(&zoomed, '◉') {
+        assert!((col as f64 - centre).abs() > (eye as f64 - centre).abs());
+    }
+    chars(&mut app, "0");
+    assert!(app.diagram_view().is_fit());
+    chars(&mut app, "+");
+    press(&mut app, &[key(KeyCode::Home)]);
+    assert!(app.diagram_view().is_fit(), "Home fits it too");
+    assert_eq!(diagram_rows(&mut app), fitted);
+    // A pan, then another pixel: the diagram fits the new pixel's rays.
+    press(&mut app, &[key(KeyCode::Right)]);
+    chars(&mut app, "-");
+    assert!(!app.diagram_view().is_fit());
+    let (x, y) = app.cursor();
+    app.update(Action::Pick(x + 1, y));
+    assert!(app.diagram_view().is_fit());
+    // So does another plane.
+    chars(&mut app, "+");
+    chars(&mut app, "d");
+    assert!(app.diagram_view().is_fit());
+}
