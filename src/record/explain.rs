@@ -51,7 +51,9 @@ pub fn explain(tree: &RayTree) -> String {
         num(hit.t),
         if hit.entering { "front" } else { "back" }
     );
-    if let Some(figure) = &hit.crossing_figure {
+    // A convex hit's single crossing is routine (it is in `inspect`); several
+    // crossings mean a concave outline where the parity rule decided the hit.
+    if let Some(figure) = hit.crossing_figure.as_ref().filter(|f| counted(f) > 1) {
         let _ = writeln!(
             out,
             "The crossing test puts the hit inside: {}, an odd number.",
@@ -315,6 +317,10 @@ fn write_near_misses(out: &mut String, tree: &RayTree) {
             );
         }
     }
+}
+
+fn counted(figure: &CrossingFigure) -> usize {
+    figure.edges.iter().filter(|e| e.counts).count()
 }
 
 /// "2 edge crossings of +U (edges 1→2 at U = 1.5 and 3→4 at U = 0.5)".
