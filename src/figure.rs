@@ -5,11 +5,13 @@
 //! legend.
 
 pub mod crossing;
+mod labels;
 
 use std::fmt::Write;
 
 use glam::DVec2;
 
+use self::labels::Labels;
 use crate::diagram::{
     DiagramPlane, Outline, Progress, Projection, Stroke, involved_objects, outline, ray_segments,
 };
@@ -72,13 +74,18 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane) -> String {
         tree.pixel.1,
         plane.name()
     );
-    let mut labels = Labels::default();
+    let mut labels = Labels::new(FONT_SIZE, MARGIN);
     for (object, shapes) in &outlines {
         for shape in shapes {
             write_outline(&mut out, &view, shape);
         }
         if let Some(at) = shapes.first().and_then(|s| label_anchor(s, &view)) {
-            labels.place(&mut out, at, &scene.objects[*object].name, "#444444");
+            labels.place(
+                &mut out,
+                at,
+                &scene.objects[*object].name,
+                "fill=\"#444444\"",
+            );
         }
     }
     for segment in &segments {
@@ -113,7 +120,7 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane) -> String {
         "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"5\" fill=\"black\"/>",
         e.x, e.y
     );
-    labels.place(&mut out, e, "eye", "black");
+    labels.place(&mut out, e, "eye", "fill=\"black\"");
     for (name, at) in &lights {
         let p = view.map(*at);
         let _ = writeln!(
@@ -121,7 +128,7 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane) -> String {
             "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"7\" fill=\"#ffdd44\" stroke=\"#aa8800\"/>",
             p.x, p.y
         );
-        labels.place(&mut out, p, &light_label(name), "#886600");
+        labels.place(&mut out, p, &light_label(name), "fill=\"#886600\"");
     }
     write_legend(&mut out);
     out.push_str("</svg>\n");
@@ -210,67 +217,6 @@ fn label_anchor(outline: &Outline, view: &View) -> Option<DVec2> {
     }
 }
 
-/// Placed labels' boxes, so that a new one goes where it overlaps none.
-#[derive(Default)]
-struct Labels {
-    boxes: Vec<(DVec2, DVec2)>,
-}
-
-impl Labels {
-    /// Writes `text` near `at`: right, left, above or below it, or further
-    /// out, at the first place whose box meets no placed label.
-    fn place(&mut self, out: &mut String, at: DVec2, text: &str, colour: &str) {
-        let size = DVec2::new(text.chars().count() as f64 * FONT_SIZE * 0.6, FONT_SIZE);
-        let candidates = (1..=6).flat_map(|ring| {
-            let d = 10.0 * ring as f64;
-            [
-                DVec2::new(d, 4.0),
-                DVec2::new(-d - size.x, 4.0),
-                DVec2::new(-size.x / 2.0, -d),
-                DVec2::new(-size.x / 2.0, d + size.y),
-                DVec2::new(d, -d),
-                DVec2::new(d, d + size.y),
-            ]
-        });
-        let mut chosen = None;
-        for offset in candidates {
-            let corner = at + offset; // the text's baseline start
-            let b = (
-                corner - DVec2::new(0.0, size.y),
-                corner + DVec2::new(size.x, 3.0),
-            );
-            if !self.boxes.iter().any(|o| overlap(*o, b)) {
-                chosen = Some((corner, b));
-                break;
-            }
-        }
-        // Crowded everywhere: below all the others, at the left.
-        let (corner, b) = chosen.unwrap_or_else(|| {
-            let y = self.boxes.iter().map(|b| b.1.y).fold(MARGIN, f64::max) + size.y + 4.0;
-            let corner = DVec2::new(MARGIN, y);
-            (
-                corner,
-                (
-                    corner - DVec2::new(0.0, size.y),
-                    corner + DVec2::new(size.x, 3.0),
-                ),
-            )
-        });
-        self.boxes.push(b);
-        let _ = writeln!(
-            out,
-            "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"{colour}\">{}</text>",
-            corner.x,
-            corner.y,
-            escape(text)
-        );
-    }
-}
-
-fn overlap(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
-    a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
-}
-
 fn write_legend(out: &mut String) {
     let y = HEIGHT - LEGEND / 2.0;
     let items = [
@@ -305,43 +251,5 @@ fn write_legend(out: &mut String) {
             y + 4.0
         );
         x += 24.0 + name.chars().count() as f64 * 6.2 + 14.0;
-    }
-}
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn labels_never_overlap() {
-        // Ten labels asked for at one point: each lands in its own box.
-        let mut labels = Labels::default();
-        let mut out = String::new();
-        for i in 0..10 {
-            labels.place(
-                &mut out,
-                DVec2::new(400.0, 300.0),
-                &format!("label {i}"),
-                "black",
-            );
-        }
-        for (i, a) in labels.boxes.iter().enumerate() {
-            for b in &labels.boxes[i + 1..] {
-                assert!(!overlap(*a, *b), "{a:?} {b:?}");
-            }
-        }
-        assert_eq!(out.matches("<text").count(), 10);
-    }
-
-    #[test]
-    fn names_are_escaped() {
-        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
     }
 }

@@ -8,6 +8,7 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
+use super::labels::{Labels, escape};
 use crate::record::{NodeId, RayTree};
 use crate::shapes::CrossingFigure;
 
@@ -89,21 +90,20 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
         out,
         "<text x=\"{MARGIN}\" y=\"46\">dropped {dropped}: U = {u}, V = {v}; the hit point moved to the origin</text>"
     );
-    write_axes(&mut out, &view, u, v);
+    // Marks first, then the labels around them, none over another or a mark.
+    let mut labels = Labels::new(13.0, MARGIN);
+    write_axes(&mut out, &view, u, v, &mut labels);
     write_polygon(&mut out, &view, figure, &vertices);
-    write_crossings(&mut out, &view, figure);
     let o = view.map(DVec2::ZERO);
+    labels.reserve(o, 4.5);
+    write_crossings(&mut out, &view, figure, &mut labels);
     let _ = writeln!(
         out,
         "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"4.5\" fill=\"black\"/>",
         o.x, o.y
     );
-    let _ = writeln!(
-        out,
-        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">hit point</text>",
-        o.x - 8.0,
-        o.y - 8.0
-    );
+    labels.place_centred(&mut out, o + DVec2::new(0.0, 20.0), "hit point", "");
+    write_vertex_numbers(&mut out, &view, &vertices, &mut labels);
     let n = figure.crossings();
     let verdict = if figure.inside() {
         "odd, inside"
@@ -122,7 +122,7 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
 }
 
 /// The U and V axes through the hit point, and the +U half-line as the ray.
-fn write_axes(out: &mut String, view: &View, u: &str, v: &str) {
+fn write_axes(out: &mut String, view: &View, u: &str, v: &str, labels: &mut Labels) {
     let o = view.map(DVec2::ZERO);
     let (left, right) = (MARGIN / 2.0, WIDTH - MARGIN / 2.0);
     let (top, bottom) = (TOP, HEIGHT - BOTTOM - 10.0);
@@ -148,6 +148,12 @@ fn write_axes(out: &mut String, view: &View, u: &str, v: &str) {
         o.x + 6.0,
         top + 10.0
     );
+    let v_name = format!("V = {v}");
+    labels.reserve_text(DVec2::new(o.x + 6.0, top + 10.0), &v_name);
+    // U's name ends at the right edge (text-anchor end): 0.6 em a character.
+    let u_name = format!("U = {u}");
+    let u_width = u_name.chars().count() as f64 * 13.0 * 0.6;
+    labels.reserve_text(DVec2::new(right - u_width, o.y + 18.0), &u_name);
     // The +U half-line, with an arrow head at the figure's edge.
     let end = right - 40.0;
     let _ = writeln!(
@@ -163,7 +169,7 @@ fn write_axes(out: &mut String, view: &View, u: &str, v: &str) {
     );
 }
 
-/// The polygon, its vertex numbers, and its counted edges highlighted.
+/// The polygon, and its counted edges highlighted.
 fn write_polygon(out: &mut String, view: &View, figure: &CrossingFigure, vertices: &[DVec2]) {
     let points: Vec<String> = vertices
         .iter()
@@ -183,50 +189,50 @@ fn write_polygon(out: &mut String, view: &View, figure: &CrossingFigure, vertice
             a.x, a.y, b.x, b.y
         );
     }
+}
+
+/// Each vertex's number just outside its corner, away from the centroid.
+fn write_vertex_numbers(out: &mut String, view: &View, vertices: &[DVec2], labels: &mut Labels) {
+    labels.set_font_size(11.0);
     let centre = vertices.iter().fold(DVec2::ZERO, |a, p| a + *p) / vertices.len() as f64;
     for (i, p) in vertices.iter().enumerate() {
-        // Each number just outside its corner, away from the centroid.
         let out_by = (*p - centre).normalize_or_zero() * 14.0;
         let at = view.map(*p) + DVec2::new(out_by.x, -out_by.y);
-        let _ = writeln!(
-            out,
-            "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#555555\" text-anchor=\"middle\">{i}</text>",
-            at.x,
-            at.y + 4.0
-        );
+        let text = i.to_string();
+        labels.place_centred(out, at, &text, "font-size=\"11\" fill=\"#555555\"");
     }
 }
 
 /// Each edge meeting V = 0: numbered on +U when it counts, hollow when left.
-fn write_crossings(out: &mut String, view: &View, figure: &CrossingFigure) {
-    let mut number = 0;
-    for edge in figure.edges.iter().filter(|e| e.straddles) {
-        let Some(u) = edge.u else { continue };
-        let p = view.map(DVec2::new(u, 0.0));
-        if !edge.counts {
-            let _ = writeln!(
+fn write_crossings(out: &mut String, view: &View, figure: &CrossingFigure, labels: &mut Labels) {
+    let marks: Vec<(DVec2, bool, usize, usize)> = figure
+        .edges
+        .iter()
+        .filter(|e| e.straddles)
+        .filter_map(|e| Some((view.map(DVec2::new(e.u?, 0.0)), e.counts, e.from, e.to)))
+        .collect();
+    for (p, counts, ..) in &marks {
+        labels.reserve(*p, 6.0);
+        let _ = if *counts {
+            writeln!(
+                out,
+                "<circle class=\"crossing\" cx=\"{:.1}\" cy=\"{:.1}\" r=\"6\" fill=\"{COUNTS}\" stroke=\"black\"/>",
+                p.x, p.y
+            )
+        } else {
+            writeln!(
                 out,
                 "<circle class=\"left-crossing\" cx=\"{:.1}\" cy=\"{:.1}\" r=\"5\" fill=\"white\" stroke=\"{LEFT}\" stroke-width=\"2\"/>",
                 p.x, p.y
-            );
-            continue;
-        }
-        number += 1;
-        let _ = writeln!(
-            out,
-            "<circle class=\"crossing\" cx=\"{:.1}\" cy=\"{:.1}\" r=\"6\" fill=\"{COUNTS}\" stroke=\"black\"/>",
-            p.x, p.y
-        );
+            )
+        };
+    }
+    let counted = marks.iter().filter(|m| m.1);
+    for (number, (p, _, from, to)) in (1..).zip(counted) {
         // Alternate above and below the axis so close crossings stay legible.
-        let dy = if number % 2 == 1 { -12.0 } else { 24.0 };
-        let _ = writeln!(
-            out,
-            "<text x=\"{:.1}\" y=\"{:.1}\" font-weight=\"bold\" text-anchor=\"middle\">{number}: edge {}→{}</text>",
-            p.x,
-            p.y + dy,
-            edge.from,
-            edge.to
-        );
+        let dy = if number % 2 == 1 { -16.0 } else { 20.0 };
+        let text = format!("{number}: edge {from}→{to}");
+        labels.place_centred(out, *p + DVec2::new(0.0, dy), &text, "font-weight=\"bold\"");
     }
 }
 
@@ -292,11 +298,4 @@ impl View {
         let v = (p - self.centre) * self.scale;
         DVec2::new(middle.x + v.x, middle.y - v.y)
     }
-}
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
