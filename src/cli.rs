@@ -33,7 +33,7 @@ pub struct Cli {
     #[arg(long, value_name = "IMAGE.png")]
     pub compare: Option<PathBuf>,
     /// Open the debugger on the pixel X,Y (x to the right, y downward, from 0).
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
     pub pixel: Option<(u32, u32)>,
 }
 
@@ -48,7 +48,7 @@ pub enum Command {
         #[arg(long, value_name = "IMAGE.png")]
         compare: Option<PathBuf>,
         /// Open on the pixel X,Y (x to the right, y downward, from 0).
-        #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+        #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
         pixel: Option<(u32, u32)>,
     },
     /// Render a whole image to PNG.
@@ -117,7 +117,7 @@ pub struct PixelArgs {
     /// Scene file (.toml or .nff).
     pub scene: PathBuf,
     /// The pixel X,Y (x to the right, y downward, from 0).
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
     pub pixel: (u32, u32),
     #[command(flatten)]
     pub size: SizeArg,
@@ -232,10 +232,15 @@ pub fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
     let bad =
         || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 160,120");
     let (x, y) = text.split_once(',').ok_or_else(bad)?;
-    Ok((
-        x.trim().parse().map_err(|_| bad())?,
-        y.trim().parse().map_err(|_| bad())?,
-    ))
+    let coordinate = |c: &str| -> Result<u32, String> {
+        match c.trim().parse::<i64>() {
+            Ok(n) if n < 0 => Err(format!(
+                "`{text}` is not a pixel: {n} is negative, and pixels are counted from 0"
+            )),
+            _ => c.trim().parse().map_err(|_| bad()),
+        }
+    };
+    Ok((coordinate(x)?, coordinate(y)?))
 }
 
 /// Loads a scene (or the built-in one) and applies `--size`.

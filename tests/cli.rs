@@ -269,6 +269,16 @@ fn pixel_outside_the_image_and_malformed_pixel() {
             stderr(&output)
         );
     }
+    // Written as a separate argument, a negative coordinate is the pixel's
+    // value (not taken for an option) and the message says what is wrong.
+    let output = raystep(&["explain", scene, "--pixel", "-1,2"]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(
+        stderr(&output)
+            .contains("`-1,2` is not a pixel: -1 is negative, and pixels are counted from 0"),
+        "{}",
+        stderr(&output)
+    );
 }
 
 #[test]

@@ -35,22 +35,26 @@ pub fn apply(scene: &mut Scene, assignment: &str) -> Result<(), String> {
     }
 }
 
+/// A whole number from 1 to `limit`; -3 is out of range, not "not whole".
+fn whole(value: &str, name: &str, limit: u32) -> Result<u32, String> {
+    let range = || format!("{name} must be between 1 and {limit}, got {}", value.trim());
+    match value.trim().parse::<i64>() {
+        Ok(n) => u32::try_from(n)
+            .ok()
+            .filter(|n| (1..=limit).contains(n))
+            .ok_or_else(range),
+        Err(_) => Err(format!("{name} is a whole number, e.g. {}", limit.min(3))),
+    }
+}
+
 fn setting(scene: &mut Scene, name: &str, value: &str) -> Result<(), String> {
     let s = &mut scene.settings;
     match name {
         "max_depth" => {
-            let depth: u32 = value.parse().map_err(|_| "max_depth is a whole number")?;
-            if !(1..=MAX_DEPTH_LIMIT).contains(&depth) {
-                return Err(format!("max_depth must be between 1 and {MAX_DEPTH_LIMIT}"));
-            }
-            s.max_depth = depth;
+            s.max_depth = whole(value, "max_depth", MAX_DEPTH_LIMIT)?;
         }
         "max_rays" => {
-            let rays: u32 = value.parse().map_err(|_| "max_rays is a whole number")?;
-            if !(1..=MAX_RAYS_LIMIT).contains(&rays) {
-                return Err(format!("max_rays must be between 1 and {MAX_RAYS_LIMIT}"));
-            }
-            s.max_rays = rays;
+            s.max_rays = whole(value, "max_rays", MAX_RAYS_LIMIT)?;
         }
         "min_weight" => s.min_weight = number(value, limits::WEIGHT)?,
         "specular" => {
@@ -129,6 +133,12 @@ mod tests {
         assert_eq!(scene.materials[0].ior, 1.0);
         for (bad, says) in [
             ("settings.max_depth=0", "between 1 and 64"),
+            // A negative number is a whole number out of range, not "not whole".
+            (
+                "settings.max_depth=-3",
+                "max_depth must be between 1 and 64, got -3",
+            ),
+            ("settings.max_rays=2.5", "max_rays is a whole number"),
             ("materials.nowhere.kd=1", "no material \"nowhere\""),
             ("settings.colour=1", "settings are"),
             ("max_depth 2", "not KEY=VALUE"),
