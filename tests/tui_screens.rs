@@ -127,3 +127,32 @@ fn snapshot_mistakes_menu() {
     chars(&mut app, "Mjjjjjjjjj ");
     snapshot!("mistakes_menu", screen(&mut app, 120, 40));
 }
+
+#[test]
+fn a_narrow_header_shortens_the_switches_before_the_scene_name() {
+    // The scene is named as given: here "scenes/glass.toml", relative to the
+    // crate. At 80 columns the long header (" raystep " 9 + " scenes/glass.toml
+    // 160x120" 26 + " · shadows reflection transmission ambient · Blinn ·
+    // depth 5" 59) needs 94; with the short names (" · shad refl trans amb ·
+    // Blinn · depth 5", 38) it needs 73, so the scene's name stays whole.
+    let mut app = App::open(Some(PathBuf::from("scenes/glass.toml")), true).unwrap();
+    let mut terminal = screen(&mut app, 80, 24);
+    let buffer = terminal.backend_mut().buffer().clone();
+    let header: String = (0..80)
+        .map(|x| buffer[(x, 0)].symbol().to_string())
+        .collect();
+    assert!(
+        header.starts_with(" raystep  scenes/glass.toml 160x120 · shad refl trans amb · Blinn"),
+        "{header}"
+    );
+    // Wide enough, the names are whole.
+    let mut terminal = screen(&mut app, 120, 24);
+    let buffer = terminal.backend_mut().buffer().clone();
+    let header: String = (0..120)
+        .map(|x| buffer[(x, 0)].symbol().to_string())
+        .collect();
+    assert!(
+        header.contains("scenes/glass.toml 160x120 · shadows reflection transmission ambient"),
+        "{header}"
+    );
+}

@@ -15,26 +15,69 @@ fn on_off(name: &str, on: bool) -> Span<'static> {
     }
 }
 
-/// The top line: the scene (shortened first when space is short) and the
-/// model's settings as the toggles left them.
+/// The switches' names, long or (when the header is short of room) short.
+const SWITCH_NAMES: [(&str, &str); 4] = [
+    ("shadows", "shad"),
+    ("reflection", "refl"),
+    ("transmission", "trans"),
+    ("ambient", "amb"),
+];
+
+/// The top line: the scene and the model's settings as the toggles left
+/// them. Short of room, the switches' names shorten first, then the scene's.
 pub(super) fn header(app: &App, width: u16) -> Line<'static> {
+    let scene = format!(
+        " {} {}x{}",
+        app.source().name(),
+        app.scene().width,
+        app.scene().height
+    );
+    let long = settings_spans(app, false);
+    let room = |right: &[Span]| {
+        (width as usize).saturating_sub(9 + right.iter().map(|s| s.width()).sum::<usize>())
+    };
+    let right = if scene.chars().count() <= room(&long) {
+        long
+    } else {
+        settings_spans(app, true)
+    };
+    let room = room(&right);
+    let scene = if scene.chars().count() <= room {
+        scene
+    } else {
+        let tail: String = scene
+            .chars()
+            .rev()
+            .take(room.saturating_sub(2))
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
+        format!(" …{tail}")
+    };
+    let mut spans = vec![Span::raw(" raystep ").bold().reversed(), Span::raw(scene)];
+    spans.extend(right);
+    Line::from(spans)
+}
+
+fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
     let settings = app.settings();
     let s = settings.switches;
     let sep = || Span::raw(" · ").dark_gray();
-    let mut right = vec![
-        sep(),
-        on_off("shadows", s.shadows),
-        Span::raw(" "),
-        on_off("reflection", s.reflection),
-        Span::raw(" "),
-        on_off("transmission", s.transmission),
-        Span::raw(" "),
-        on_off("ambient", s.ambient),
+    let on = [s.shadows, s.reflection, s.transmission, s.ambient];
+    let mut right = vec![sep()];
+    for (i, ((long, brief), on)) in SWITCH_NAMES.iter().zip(on).enumerate() {
+        if i > 0 {
+            right.push(Span::raw(" "));
+        }
+        right.push(on_off(if short { brief } else { long }, on));
+    }
+    right.extend([
         sep(),
         Span::raw(if app.phong() { "Phong" } else { "Blinn" }),
         sep(),
         Span::raw(format!("depth {}", settings.max_depth)),
-    ];
+    ]);
     if !settings.mistakes.is_empty() {
         // A teacher must not forget a mistake is on: it changes every pixel.
         right.extend([
@@ -53,30 +96,7 @@ pub(super) fn header(app: &App, width: u16) -> Line<'static> {
     if let Some(view) = view {
         right.extend([sep(), Span::raw(format!("view: {view}")).bold().yellow()]);
     }
-    let used: usize = 9 + right.iter().map(|s| s.width()).sum::<usize>();
-    let scene = format!(
-        " {} {}x{}",
-        app.source().name(),
-        app.scene().width,
-        app.scene().height
-    );
-    let room = (width as usize).saturating_sub(used);
-    let scene = if scene.chars().count() <= room {
-        scene
-    } else {
-        let tail: String = scene
-            .chars()
-            .rev()
-            .take(room.saturating_sub(2))
-            .collect::<Vec<_>>()
-            .into_iter()
-            .rev()
-            .collect();
-        format!(" …{tail}")
-    };
-    let mut spans = vec![Span::raw(" raystep ").bold().reversed(), Span::raw(scene)];
-    spans.extend(right);
-    Line::from(spans)
+    right
 }
 
 pub(super) fn status(app: &App) -> Line<'static> {
