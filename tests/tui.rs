@@ -549,6 +549,15 @@ fn help_closes_on_any_key_and_esc_quits() {
 }
 
 #[test]
+fn q_in_the_help_closes_it_and_only_then_quits() {
+    let mut app = app();
+    chars(&mut app, "?q");
+    assert!(!app.help() && !app.should_quit(), "q closed the help");
+    chars(&mut app, "q");
+    assert!(app.should_quit());
+}
+
+#[test]
 fn a_newcomer_sees_the_welcome_at_any_terminal_size() {
     // Regression: the first draw in a terminal other than 120x40 resized
     // the app, and the resize cleared the welcome before anyone saw it.

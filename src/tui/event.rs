@@ -147,10 +147,14 @@ mod tests {
         })
     }
 
-    /// What changed since the oracle: the diagram's pan and zoom.
+    /// What changed since the oracle: `q` closes the help (a newcomer's
+    /// guess, as in `less`); the diagram's pan and zoom.
     fn since_then(old: Option<Action>, code: KeyCode, help: bool, focus: Pane) -> Option<Action> {
         if help {
-            return old;
+            return match code {
+                KeyCode::Char('q') => Some(Action::CloseHelp),
+                _ => old,
+            };
         }
         if code == KeyCode::Char('0') && old.is_none() {
             return Some(Action::FitDiagram);

@@ -385,14 +385,8 @@ const IN_HELP: &[Binding] = &[
     },
     Binding {
         context: Context::Help,
-        inputs: &[(key('q'), act(Action::Quit))],
-        what: "quit",
-        ..ROW
-    },
-    Binding {
-        context: Context::Help,
         inputs: &[(Input::AnyKey, act(Action::CloseHelp))],
-        what: "close this help (Esc too)",
+        what: "close this help (q and Esc too)",
         ..ROW
     },
 ];
