@@ -103,7 +103,8 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
         });
     let mut spans = vec![Span::raw(format!(" {}: {here} ", term.name())).bold()];
     if matches!(term, Term::Rays | Term::Cost) {
-        spans.push(Span::raw("0 "));
+        // Apart from the value here, so "2" and the scale's "0" never run together.
+        spans.push(Span::raw("· scale: 0 ").dark_gray());
         for i in 0..8 {
             spans.push(rgb_swatch(false_color(i as f64 / 7.0)));
         }
