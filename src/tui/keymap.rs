@@ -372,7 +372,7 @@ const OTHER: &[Binding] = &[
     Binding {
         context: Context::Always,
         inputs: &[(Input::Ctrl(KeyCode::Char('z')), act(Action::Suspend))],
-        what: "suspend: back to the shell; fg comes back to the same screen",
+        what: "suspend: back to the shell until fg",
         ..ROW
     },
 ];
