@@ -1,7 +1,8 @@
 //! The debugger gives the terminal back on SIGTERM, SIGHUP, SIGINT and
-//! SIGQUIT, as it does on quit: the real binary runs in a pseudo-terminal,
-//! is signalled once its first screen is up, and then the pty's modes and
-//! the bytes it wrote are checked.
+//! SIGQUIT, as it does on quit, and while stopped by Ctrl+Z or SIGTSTP: the
+//! real binary runs in a pseudo-terminal, is signalled (or sent keys) once
+//! its first screen is up, and then the pty's modes and the bytes it wrote
+//! are checked.
 #![cfg(unix)]
 
 use std::fs::File;
@@ -37,8 +38,25 @@ struct Session {
     output: Arc<Mutex<Vec<u8>>>,
 }
 
+/// How the debugger's process is placed, as whatever starts it would.
+#[derive(Clone, Copy)]
+enum Start {
+    /// A new session whose controlling terminal is the pty, as under a
+    /// terminal emulator.
+    Session,
+    /// A process group of its own in our session, as a job-control shell
+    /// runs a job. Its group is then not orphaned (its parent, this test, is
+    /// in another group of the same session), so the kernel carries out
+    /// SIGTSTP's stop; in a new session it would discard it.
+    Job,
+}
+
 impl Session {
     fn start(args: &[&str]) -> Session {
+        Session::start_as(Start::Session, args)
+    }
+
+    fn start_as(start: Start, args: &[&str]) -> Session {
         let (master, tty) = open_pty(120, 40);
         let stdio = || Stdio::from(tty.try_clone().unwrap());
         let mut command = Command::new(env!("CARGO_BIN_EXE_raystep"));
@@ -47,13 +65,18 @@ impl Session {
             .stdin(stdio())
             .stdout(stdio())
             .stderr(stdio());
-        // SAFETY: only async-signal-safe calls between fork and exec. The
-        // child leads a new session whose controlling terminal is the pty,
-        // as under a terminal emulator.
+        // SAFETY: only async-signal-safe calls between fork and exec.
         unsafe {
-            command.pre_exec(|| {
-                libc::setsid();
-                libc::ioctl(0, libc::TIOCSCTTY, 0);
+            command.pre_exec(move || {
+                match start {
+                    Start::Session => {
+                        libc::setsid();
+                        libc::ioctl(0, libc::TIOCSCTTY, 0);
+                    }
+                    Start::Job => {
+                        libc::setpgid(0, 0);
+                    }
+                }
                 Ok(())
             });
         }
@@ -88,6 +111,73 @@ impl Session {
         while !done(&self.text()) {
             assert!(Instant::now() < deadline, "no {what} in {:?}", self.text());
             std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+
+    /// What was written after the first `from` bytes.
+    fn text_from(&self, from: usize) -> String {
+        String::from_utf8_lossy(&self.output.lock().unwrap()[from..]).into_owned()
+    }
+
+    /// Polls until `done` holds for what was written after the first `from`
+    /// bytes; panics after `PATIENCE`.
+    fn wait_for_from(&self, from: usize, what: &str, done: impl Fn(&str) -> bool) {
+        let deadline = Instant::now() + PATIENCE;
+        while !done(&self.text_from(from)) {
+            let text = self.text_from(from);
+            assert!(Instant::now() < deadline, "no {what} in {text:?}");
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+
+    fn written(&self) -> usize {
+        self.output.lock().unwrap().len()
+    }
+
+    fn signal(&self, signal: i32) {
+        // SAFETY: a plain kill(2) of our own child.
+        assert_eq!(unsafe { libc::kill(self.child.id() as i32, signal) }, 0);
+    }
+
+    /// Waits until the child is stopped, and returns the signal that stopped it.
+    fn wait_for_stop(&self) -> i32 {
+        let deadline = Instant::now() + PATIENCE;
+        loop {
+            let mut status = 0;
+            let pid = self.child.id() as i32;
+            // SAFETY: waitpid on our own child; WNOHANG, so it never blocks,
+            // and without WEXITED-only flags it reaps nothing but a stop.
+            let found = unsafe { libc::waitpid(pid, &mut status, libc::WUNTRACED | libc::WNOHANG) };
+            if found == pid && libc::WIFSTOPPED(status) {
+                return libc::WSTOPSIG(status);
+            }
+            assert_eq!(found, 0, "the debugger ended instead: status {status:#x}");
+            assert!(Instant::now() < deadline, "the debugger did not stop");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+
+    /// Polls until the terminal's (canonical input, echo) are `modes`.
+    fn wait_for_modes(&self, what: &str, modes: (bool, bool)) {
+        let deadline = Instant::now() + PATIENCE;
+        while self.cooked_and_echo() != modes {
+            assert!(Instant::now() < deadline, "not {what}");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+
+    /// Sets the terminal to cooked and echoing, as a shell does when it
+    /// takes the terminal back from a stopped job.
+    fn cook(&self) {
+        let mut modes: libc::termios = unsafe { std::mem::zeroed() };
+        // SAFETY: `tty` is an open terminal and `modes` a valid termios.
+        unsafe {
+            assert_eq!(libc::tcgetattr(self.tty.as_raw_fd(), &mut modes), 0);
+            modes.c_lflag |= libc::ICANON | libc::ECHO | libc::ISIG;
+            assert_eq!(
+                libc::tcsetattr(self.tty.as_raw_fd(), libc::TCSANOW, &modes),
+                0
+            );
         }
     }
 
@@ -229,4 +319,104 @@ fn quit_restores_the_terminal_too() {
     assert_eq!(status.code(), Some(0), "{status:?}");
     assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
     session.wait_for("restore of every mode", all_modes_reset);
+}
+
+/// The image pane's title once `l` moved the cursor to pixel (81, 60) of
+/// the built-in scene; ratatui redraws only the changed characters of it.
+const PIXEL_81_60: &str = "rgb(102,113,144)";
+
+/// Every mode the debugger sets, set again in `text`, and a whole screen
+/// drawn after a clear: the image pane's title (which a redraw of changes
+/// alone would not send again) with `title` in it, and the status line's keys.
+fn retaken_and_redrawn(text: &str, title: &str) -> bool {
+    let Some(clear) = text.find("\x1b[2J") else {
+        return false;
+    };
+    MODES[..5].iter().all(|(set, _)| text.contains(set))
+        && text[clear..].contains(title)
+        && text[clear..].contains("help")
+}
+
+/// Starts the debugger as a job, moves the pixel cursor one to the right,
+/// stops it with `stop`, and checks that it gave the terminal back before
+/// stopping with `signal`; continues it and checks that the terminal is
+/// taken again and the screen redrawn as it was; then quits with `q`.
+fn stop_gives_the_terminal_back_until_continued(stop: impl Fn(&mut Session), signal: i32) {
+    let mut session = Session::start_as(Start::Job, &[]);
+    session.wait_for("first screen", |text| {
+        text.contains("\x1b[?1006h") && text.contains("help")
+    });
+    // The built-in scene opens on pixel (80, 60): `l` moves it to (81, 60),
+    // whose colour the title then shows (as seen on screen).
+    session.keyboard.write_all(b"l").unwrap();
+    session.wait_for("pixel moved", |text| text.contains(PIXEL_81_60));
+    assert_eq!(
+        session.cooked_and_echo(),
+        (false, false),
+        "raw while running"
+    );
+
+    let before_stop = session.written();
+    stop(&mut session);
+    assert_eq!(session.wait_for_stop(), signal);
+    assert_eq!(
+        session.cooked_and_echo(),
+        (true, true),
+        "cooked while stopped"
+    );
+    let given_back = session.text_from(before_stop);
+    assert!(all_modes_reset(&session.text()), "{given_back:?}");
+    for (_, reset) in MODES {
+        assert!(given_back.contains(reset), "{reset:?} in {given_back:?}");
+    }
+
+    let before_continue = session.written();
+    session.signal(libc::SIGCONT);
+    session.wait_for_modes("raw again", (false, false));
+    session.wait_for_from(before_continue, "the screen again", |text| {
+        retaken_and_redrawn(text, PIXEL_81_60)
+    });
+
+    session.keyboard.write_all(b"q").unwrap();
+    let status = session.wait_for_exit();
+    assert_eq!(status.code(), Some(0), "{status:?}");
+    assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
+    session.wait_for("restore of every mode", all_modes_reset);
+}
+
+#[test]
+fn ctrl_z_suspends_with_the_terminal_given_back_and_fg_redraws() {
+    // Raw mode turns ISIG off: Ctrl+Z arrives as the byte 0x1a, a key.
+    let type_ctrl_z = |session: &mut Session| session.keyboard.write_all(b"\x1a").unwrap();
+    stop_gives_the_terminal_back_until_continued(type_ctrl_z, libc::SIGTSTP);
+}
+
+#[test]
+fn sigtstp_from_outside_suspends_the_same_way() {
+    let kill_tstp = |session: &mut Session| session.signal(libc::SIGTSTP);
+    stop_gives_the_terminal_back_until_continued(kill_tstp, libc::SIGTSTP);
+}
+
+#[test]
+fn after_sigstop_and_a_shell_cooking_the_terminal_continue_takes_it_again() {
+    // SIGSTOP cannot be caught: the terminal stays raw while stopped. A shell
+    // then sets its own modes; SIGCONT must set the debugger's again.
+    let mut session = Session::start_as(Start::Job, &[]);
+    session.wait_for("first screen", |text| {
+        text.contains("\x1b[?1006h") && text.contains("help")
+    });
+    session.signal(libc::SIGSTOP);
+    assert_eq!(session.wait_for_stop(), libc::SIGSTOP);
+    assert_eq!(session.cooked_and_echo(), (false, false), "untouched");
+    session.cook();
+
+    let before_continue = session.written();
+    session.signal(libc::SIGCONT);
+    session.wait_for_modes("raw again", (false, false));
+    session.wait_for_from(before_continue, "the screen again", |text| {
+        retaken_and_redrawn(text, "Pixel (80, 60) rgb(105,123,143)")
+    });
+    session.keyboard.write_all(b"q").unwrap();
+    assert_eq!(session.wait_for_exit().code(), Some(0));
+    assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
 }

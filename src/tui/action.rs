@@ -12,6 +12,9 @@ use super::view::stepper::{Breakpoint, Step};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
     Quit,
+    /// Ctrl+Z: back to the shell until `fg`. The main loop carries it out
+    /// (it is the terminal's, not the app's); the state stays as it is.
+    Suspend,
     ToggleHelp,
     CloseHelp,
     ScrollHelp(i32),

@@ -75,7 +75,8 @@ mod tests {
     //! The dispatch before the table (commit fc0f12c), kept as the oracle:
     //! every key, modifier, pane and help state must still do what it did.
     //! Since then: `M` (the mistakes menu), `w` (next region), `:` (go to)
-    //! and `f` (find across the image) are new; with the diagram focused,
+    //! and `f` (find across the image) are new, and Ctrl+Z (suspend), help
+    //! open or not; with the diagram focused,
     //! the arrows pan it and + - and the wheel zoom it, and `0` fits it
     //! (as does Home there: `since_then`).
 
@@ -147,9 +148,13 @@ mod tests {
         })
     }
 
-    /// What changed since the oracle: `q` closes the help (a newcomer's
-    /// guess, as in `less`); the diagram's pan and zoom.
-    fn since_then(old: Option<Action>, code: KeyCode, help: bool, focus: Pane) -> Option<Action> {
+    /// What changed since the oracle: Ctrl+Z suspends; `q` closes the help
+    /// (a newcomer's guess, as in `less`); the diagram's pan and zoom.
+    fn since_then(key: &KeyEvent, old: Option<Action>, help: bool, focus: Pane) -> Option<Action> {
+        let code = key.code;
+        if code == KeyCode::Char('z') && key.modifiers.contains(KeyModifiers::CONTROL) {
+            return Some(Action::Suspend);
+        }
         if help {
             return match code {
                 KeyCode::Char('q') => Some(Action::CloseHelp),
@@ -250,7 +255,7 @@ mod tests {
                 let key = KeyEvent::new(code, mods);
                 for help in [false, true] {
                     for focus in Pane::ALL {
-                        let old = since_then(old_key_action(&key, help, focus), code, help, focus);
+                        let old = since_then(&key, old_key_action(&key, help, focus), help, focus);
                         let mode = if help { Mode::Help } else { Mode::Browsing };
                         assert_eq!(
                             key_action(&key, mode, focus),

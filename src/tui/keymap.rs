@@ -369,6 +369,12 @@ const OTHER: &[Binding] = &[
         what: "quit, also in this help",
         ..ROW
     },
+    Binding {
+        context: Context::Always,
+        inputs: &[(Input::Ctrl(KeyCode::Char('z')), act(Action::Suspend))],
+        what: "suspend: back to the shell until fg",
+        ..ROW
+    },
 ];
 
 const IN_HELP: &[Binding] = &[
@@ -659,6 +665,7 @@ mod tests {
         row("g Home e End");
         row("mouse wheel");
         row("Ctrl+C");
+        row("Ctrl+Z");
         row("Up Down k j");
         row("any other key");
         row("Space Enter");
@@ -706,6 +713,12 @@ mod tests {
         // Ctrl+C beats the help's "any other key".
         assert_eq!(key_command(&ctrl_c, Mode::Help), Some(act(Action::Quit)));
         assert_eq!(key_command(&ctrl_c, Mode::Menu), Some(act(Action::Quit)));
+        // Ctrl+Z too, and it beats the prompt's typing (`z` types a z).
+        let ctrl_z = key(KeyCode::Char('z'), KeyModifiers::CONTROL);
+        for mode in Mode::ALL {
+            let suspend = Some(act(Action::Suspend));
+            assert_eq!(key_command(&ctrl_z, mode), suspend, "{mode:?}");
+        }
         let shift_h = key(KeyCode::Char('h'), KeyModifiers::SHIFT);
         assert_eq!(
             key_command(&shift_h, Mode::Browsing),

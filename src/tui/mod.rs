@@ -54,6 +54,16 @@ pub use view::stepper::{Breakpoint, Step};
 pub trait Input {
     /// The next event, waiting at most `timeout`; `None` when none came.
     fn next(&mut self, timeout: Duration) -> io::Result<Option<Event>>;
+
+    /// Ctrl+Z: give the terminal back and stop until continued. A script
+    /// has no terminal to give back: nothing happens.
+    fn suspend(&mut self) {}
+
+    /// Whether the process was stopped and continued since the last call,
+    /// so that the screen must be cleared and drawn whole.
+    fn continued(&mut self) -> bool {
+        false
+    }
 }
 
 /// crossterm's event queue.
@@ -66,6 +76,14 @@ impl Input for TerminalInput {
         } else {
             Ok(None)
         }
+    }
+
+    fn suspend(&mut self) {
+        terminal::suspend();
+    }
+
+    fn continued(&mut self) -> bool {
+        terminal::continued()
     }
 }
 
@@ -93,9 +111,24 @@ where
     Ok(())
 }
 
+/// Clears the screen, which after a stop may hold anything (the shell's
+/// prompt), so that the next frame is drawn whole. Not `Terminal::clear`:
+/// it asks the terminal where the cursor is, a round trip that fails the
+/// debugger when nothing answers.
+fn clear<B: Backend>(terminal: &mut Terminal<B>) -> Result<()>
+where
+    B::Error: Send + Sync + 'static,
+{
+    terminal.backend_mut().clear()?;
+    // An empty frame: the next one then differs from it in every cell it fills.
+    terminal.draw(|_| {})?;
+    Ok(())
+}
+
 /// The main loop: draw, wait for an event or for background work, and turn
 /// both into actions. It redraws after an event, and after a tick while
-/// background work is under way (or has just ended).
+/// background work is under way (or has just ended); after a stop (Ctrl+Z,
+/// SIGTSTP, SIGSTOP) and continue, it clears the screen and draws it whole.
 pub fn run_loop<B: Backend>(
     terminal: &mut Terminal<B>,
     app: &mut App,
@@ -106,6 +139,10 @@ where
 {
     let mut dirty = true;
     while !app.should_quit() {
+        if input.continued() {
+            clear(terminal)?;
+            dirty = true;
+        }
         if dirty {
             draw(terminal, app)?;
         }
@@ -113,8 +150,10 @@ where
         let timeout = Duration::from_millis(if busy { 50 } else { 250 });
         dirty = false;
         if let Some(event) = input.next(timeout)? {
-            if let Some(action) = event::action(&event, app) {
-                app.update(action);
+            match event::action(&event, app) {
+                Some(Action::Suspend) => input.suspend(),
+                Some(action) => app.update(action),
+                None => {}
             }
             dirty = true;
         }

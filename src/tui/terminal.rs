@@ -2,12 +2,16 @@
 //! (quit, an error, a panic of the UI thread, or SIGTERM, SIGHUP, SIGINT or
 //! SIGQUIT) leaves through `restore`, so the shell always gets back a cooked,
 //! echoing terminal on its main screen, cursor shown, mouse reporting off.
+//! A stop (Ctrl+Z, or SIGTSTP from the shell or `kill`) goes through
+//! `suspend`, which gives the terminal back the same way, stops, and takes
+//! it again when continued; the main loop then redraws the whole screen.
 //!
 //! Signals are handled on a thread of their own rather than by the event
 //! loop: the loop may be blocked in a read, a long draw or a reload, and the
 //! terminal must come back at once whatever it is doing.
 
 use std::io::{self, Stdout, Write, stdout};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, PoisonError};
 
 use anyhow::{Context, Result};
@@ -20,7 +24,7 @@ use crossterm::terminal::{
 use crossterm::{execute, queue};
 use ratatui::Terminal;
 use ratatui::backend::CrosstermBackend;
-use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+use signal_hook::consts::{SIGCONT, SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGTSTP};
 use signal_hook::iterator::Signals;
 
 /// The signals that end the debugger; each exits with 128 + its number,
@@ -31,6 +35,14 @@ pub const SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
 /// that is under way finish before a second one (a signal during quit) exits.
 static TAKEN: Mutex<bool> = Mutex::new(false);
 
+/// Set when the process was continued after a stop: the screen must be
+/// redrawn whole (`continued` reads and clears it).
+static CONTINUED: AtomicBool = AtomicBool::new(false);
+
+/// Set by `suspend` just before it stops the process: the SIGCONT that
+/// continues it needs nothing more, `suspend` takes the terminal again.
+static OWN_STOP: AtomicBool = AtomicBool::new(false);
+
 /// Raw mode, the alternate screen and mouse capture, with the signal thread
 /// and the panic hook that undo them.
 pub fn take() -> Result<Terminal<CrosstermBackend<Stdout>>> {
@@ -40,9 +52,7 @@ pub fn take() -> Result<Terminal<CrosstermBackend<Stdout>>> {
     {
         let mut taken = TAKEN.lock().unwrap_or_else(PoisonError::into_inner);
         *taken = true;
-        enable_raw_mode().context("cannot set up the terminal")?;
-        execute!(stdout(), EnterAlternateScreen, EnableMouseCapture)
-            .context("cannot set up the terminal")?;
+        enter(&mut stdout()).context("cannot set up the terminal")?;
     }
     Terminal::new(CrosstermBackend::new(stdout())).context("cannot set up the terminal")
 }
@@ -62,6 +72,113 @@ pub fn restore() {
     let _ = disable_raw_mode();
 }
 
+/// Raw mode, the alternate screen and mouse capture.
+fn enter(out: &mut impl Write) -> io::Result<()> {
+    enable_raw_mode()?;
+    execute!(out, EnterAlternateScreen, EnableMouseCapture)
+}
+
+/// Ctrl+Z or SIGTSTP: gives the terminal back as `restore` does, stops the
+/// process as SIGTSTP's default action would (the shell says "Stopped"),
+/// and when continued takes the terminal again and asks for a redraw. The
+/// app's state is untouched; background renders stop with the process and
+/// go on after.
+///
+/// Continued in the background (`bg`), setting the terminal's modes stops
+/// the process again (SIGTTOU, "Stopped (tty output)") until `fg`: it
+/// neither hangs nor spins, and nothing is drawn over the shell meanwhile,
+/// as stdout stays locked until the terminal is ours again.
+pub fn suspend() {
+    let taken = TAKEN.lock().unwrap_or_else(PoisonError::into_inner);
+    if !*taken {
+        return;
+    }
+    let mut out = stdout().lock();
+    let _ = write_restore(&mut out);
+    let _ = disable_raw_mode();
+    OWN_STOP.store(true, Ordering::SeqCst);
+    stop();
+    let _ = enter(&mut out);
+    CONTINUED.store(true, Ordering::SeqCst);
+}
+
+/// Stops the process with SIGTSTP's default action, and returns once it is
+/// continued. The handler signal-hook installed is set aside meanwhile and
+/// put back as it was. In an orphaned process group (no job-control shell
+/// that could continue it, as when a terminal emulator or tmux runs the
+/// debugger directly) the kernel discards the signal: no stop, no hang.
+fn stop() {
+    // SAFETY: sigaction and raise with valid pointers; the action read back
+    // is the one put back.
+    unsafe {
+        let mut default: libc::sigaction = std::mem::zeroed();
+        default.sa_sigaction = libc::SIG_DFL;
+        let mut installed: libc::sigaction = std::mem::zeroed();
+        libc::sigaction(SIGTSTP, &default, &mut installed);
+        // A signal to this thread: the stop happens before `raise` returns.
+        libc::raise(SIGTSTP);
+        libc::sigaction(SIGTSTP, &installed, std::ptr::null_mut());
+    }
+}
+
+/// What a SIGCONT asks of the terminal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum OnContinue {
+    /// `suspend` stopped us and takes the terminal again itself.
+    Nothing,
+    /// Still raw, but a stop we could not see (SIGSTOP) let the shell write
+    /// on the screen ("Stopped", its prompt): draw it all again.
+    Redraw,
+    /// The shell set its own modes while we were stopped: set ours again.
+    Retake,
+}
+
+/// The answer to a SIGCONT, from whether the terminal is back in cooked mode
+/// and whether the stop was `suspend`'s own.
+fn on_continue(cooked: bool, own_stop: bool) -> OnContinue {
+    match (cooked, own_stop) {
+        (true, _) => OnContinue::Retake,
+        (false, true) => OnContinue::Nothing,
+        (false, false) => OnContinue::Redraw,
+    }
+}
+
+/// SIGCONT: after a stop `suspend` did not make (SIGSTOP, which cannot be
+/// caught, so the terminal stayed raw in the shell's hands), makes sure the
+/// modes are ours and asks for a redraw.
+fn resume() {
+    let taken = TAKEN.lock().unwrap_or_else(PoisonError::into_inner);
+    if !*taken {
+        return;
+    }
+    match on_continue(cooked(), OWN_STOP.swap(false, Ordering::SeqCst)) {
+        OnContinue::Nothing => return,
+        OnContinue::Redraw => {}
+        OnContinue::Retake => {
+            let mut out = stdout().lock();
+            // crossterm remembers raw mode as on and would do nothing.
+            let _ = disable_raw_mode();
+            let _ = enter(&mut out);
+        }
+    }
+    CONTINUED.store(true, Ordering::SeqCst);
+}
+
+/// Whether the terminal (stdin, which `run` checked is one) reads lines.
+fn cooked() -> bool {
+    // SAFETY: tcgetattr on a descriptor with a valid termios to fill.
+    unsafe {
+        let mut modes: libc::termios = std::mem::zeroed();
+        libc::tcgetattr(libc::STDIN_FILENO, &mut modes) == 0 && modes.c_lflag & libc::ICANON != 0
+    }
+}
+
+/// Whether the process was continued after a stop since the last call: the
+/// screen must then be cleared and drawn whole.
+pub fn continued() -> bool {
+    CONTINUED.swap(false, Ordering::SeqCst)
+}
+
 /// The escape sequences that undo `take`'s: mouse reporting off, colours
 /// reset, the main screen back, the cursor shown.
 pub fn write_restore(out: &mut impl Write) -> io::Result<()> {
@@ -75,15 +192,22 @@ pub fn write_restore(out: &mut impl Write) -> io::Result<()> {
     out.flush()
 }
 
-/// A thread that, on any of `SIGNALS`, restores the terminal and exits.
+/// A thread that, on any of `SIGNALS`, restores the terminal and exits; on
+/// SIGTSTP suspends, and on SIGCONT takes the terminal again if need be.
 fn watch_signals() -> io::Result<()> {
-    let mut signals = Signals::new(SIGNALS)?;
+    let mut signals = Signals::new(SIGNALS.iter().chain(&[SIGTSTP, SIGCONT]))?;
     std::thread::Builder::new()
         .name("raystep-signals".into())
         .spawn(move || {
-            if let Some(signal) = signals.forever().next() {
-                restore();
-                std::process::exit(128 + signal);
+            for signal in signals.forever() {
+                match signal {
+                    SIGTSTP => suspend(),
+                    SIGCONT => resume(),
+                    _ => {
+                        restore();
+                        std::process::exit(128 + signal);
+                    }
+                }
             }
         })?;
     Ok(())
@@ -122,5 +246,16 @@ mod tests {
             );
         }
         assert!(text.contains("\x1b[?25h"), "cursor shown in {text:?}");
+    }
+
+    #[test]
+    fn a_continue_retakes_a_cooked_terminal_and_redraws_after_a_stop_not_ours() {
+        // Cooked again: the shell set its modes, whoever stopped us.
+        assert_eq!(on_continue(true, true), OnContinue::Retake);
+        assert_eq!(on_continue(true, false), OnContinue::Retake);
+        // Raw after our own stop: `suspend` already took it back.
+        assert_eq!(on_continue(false, true), OnContinue::Nothing);
+        // Raw after SIGSTOP: the modes are ours, the screen maybe not.
+        assert_eq!(on_continue(false, false), OnContinue::Redraw);
     }
 }

@@ -228,6 +228,7 @@ impl App {
                 self.searching = None;
                 self.cancel_renders();
             }
+            Action::Suspend => {}
             Action::ToggleHelp => (self.help, self.help_scroll) = (!self.help, 0),
             Action::CloseHelp => self.help = false,
             Action::ScrollHelp(delta) => {
