@@ -87,7 +87,9 @@ pub struct DiagramArgs {
 fn zoom_factor(text: &str) -> std::result::Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(f) if f.is_finite() && f >= 1.0 => Ok(f),
-        _ => Err(format!("{text:?} is not a zoom factor: give a number of at least 1, such as 3")),
+        _ => Err(format!(
+            "{text:?} is not a zoom factor: give a number of at least 1, such as 3"
+        )),
     }
 }
 

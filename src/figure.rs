@@ -94,10 +94,13 @@ impl Marks {
                     _ => continue,
                 };
                 // n·(o + t d) + d0 = 0 (MODEL §1's plane/ray).
-                let t = -(plane.normal.dot(node.origin) + plane.d) / plane.normal.dot(node.direction);
+                let t =
+                    -(plane.normal.dot(node.origin) + plane.d) / plane.normal.dot(node.direction);
                 if t.is_finite() {
                     let at = p(node.origin + node.direction * t);
-                    marks.passed.push((near.object_index, near.object.clone(), at));
+                    marks
+                        .passed
+                        .push((near.object_index, near.object.clone(), at));
                 }
             }
             let Some(hit) = &node.hit else { continue };
@@ -163,7 +166,15 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     }
     out.push_str("</g>\n");
     for (from, to) in &marks.faces_away {
-        write_line(&mut out, &mut labels, &view, (*from, *to), FACES_AWAY, " stroke-dasharray=\"2 4\"", None);
+        write_line(
+            &mut out,
+            &mut labels,
+            &view,
+            (*from, *to),
+            FACES_AWAY,
+            " stroke-dasharray=\"2 4\"",
+            None,
+        );
     }
     for segment in &segments {
         let dash = match segment.stroke {
@@ -172,11 +183,31 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
         };
         let colour = stroke_colour(segment.stroke);
         let ends = (segment.from, segment.to);
-        write_line(&mut out, &mut labels, &view, ends, colour, dash, arrow(segment.stroke));
+        write_line(
+            &mut out,
+            &mut labels,
+            &view,
+            ends,
+            colour,
+            dash,
+            arrow(segment.stroke),
+        );
     }
     write_marks(&mut out, &mut labels, &view, &marks, &blockers);
-    write_labels(&mut out, &mut labels, &view, scene, &outlines, &marks, &objects);
-    legend::write(&mut out, !marks.passed.is_empty(), !marks.faces_away.is_empty());
+    write_labels(
+        &mut out,
+        &mut labels,
+        &view,
+        scene,
+        &outlines,
+        &marks,
+        &objects,
+    );
+    legend::write(
+        &mut out,
+        !marks.passed.is_empty(),
+        !marks.faces_away.is_empty(),
+    );
     out.push_str("</svg>\n");
     out
 }
@@ -249,7 +280,7 @@ fn write_line(
     };
     labels.reserve_ray(a, b);
     let head = match arrow {
-        Some(id) if (b - a).length() > 30.0 => format!(" marker-end=\"url(#{id})\""),
+        Some(id) if (b - a).length() > 24.0 => format!(" marker-end=\"url(#{id})\""),
         _ => String::new(),
     };
     let _ = writeln!(
@@ -267,7 +298,13 @@ fn framed(view: &View, p: DVec2) -> Option<DVec2> {
 
 /// The blockers' ×, the hits' dots, the passed-by rings, the eye and the
 /// lights, each reserved so no label covers it.
-fn write_marks(out: &mut String, labels: &mut Labels, view: &View, marks: &Marks, blockers: &[DVec2]) {
+fn write_marks(
+    out: &mut String,
+    labels: &mut Labels,
+    view: &View,
+    marks: &Marks,
+    blockers: &[DVec2],
+) {
     let colour = stroke_colour(Stroke::ShadowBlocked);
     for p in blockers.iter().filter_map(|b| framed(view, *b)) {
         labels.reserve(p, 5.0);
@@ -280,7 +317,11 @@ fn write_marks(out: &mut String, labels: &mut Labels, view: &View, marks: &Marks
     }
     for p in marks.hits.iter().filter_map(|h| framed(view, *h)) {
         labels.reserve(p, 4.0);
-        let _ = writeln!(out, "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"black\"/>", p.x, p.y);
+        let _ = writeln!(
+            out,
+            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"black\"/>",
+            p.x, p.y
+        );
     }
     for p in marks.passed.iter().filter_map(|m| framed(view, m.2)) {
         labels.reserve(p, 7.0);
@@ -292,7 +333,11 @@ fn write_marks(out: &mut String, labels: &mut Labels, view: &View, marks: &Marks
     }
     if let Some(e) = framed(view, marks.eye) {
         labels.reserve(e, 6.0);
-        let _ = writeln!(out, "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"5\" fill=\"black\"/>", e.x, e.y);
+        let _ = writeln!(
+            out,
+            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"5\" fill=\"black\"/>",
+            e.x, e.y
+        );
     }
     for p in marks.lights.iter().filter_map(|l| framed(view, l.1)) {
         labels.reserve(p, 8.0);
@@ -367,11 +412,13 @@ impl View {
         }
     }
 
-    /// Magnified `zoom` times about `fixed`, which keeps its place.
-    fn zoomed(self, zoom: f64, fixed: DVec2) -> View {
+    /// Magnified `zoom` times about `focus`, which moves toward the middle
+    /// as it grows (its offset from the middle divided by `zoom`): kept in
+    /// place, a hit near the edge would leave the figure on the first zoom.
+    fn zoomed(self, zoom: f64, focus: DVec2) -> View {
         let zoom = zoom.max(1.0);
         View {
-            centre: fixed + (self.centre - fixed) / zoom,
+            centre: focus + (self.centre - focus) / (zoom * zoom),
             scale: self.scale * zoom,
         }
     }

@@ -87,14 +87,21 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
         subject.object_index
     );
     // Passed by, the ray meets the polygon's plane but not the polygon.
-    let point = if subject.hit { "hit point" } else { "plane point" };
+    let point = if subject.hit {
+        "hit point"
+    } else {
+        "plane point"
+    };
     let _ = writeln!(
         out,
         "<text x=\"{MARGIN}\" y=\"46\">dropped {dropped}: U = {u}, V = {v}; the {point} moved to the origin</text>"
     );
     // Marks first, then the labels around them, none over another or a
     // mark, all between the title and the legend.
-    let bounds = (DVec2::new(4.0, 52.0), DVec2::new(WIDTH - 4.0, HEIGHT - BOTTOM - 4.0));
+    let bounds = (
+        DVec2::new(4.0, 52.0),
+        DVec2::new(WIDTH - 4.0, HEIGHT - BOTTOM - 4.0),
+    );
     let mut labels = Labels::new(13.0, bounds);
     write_axes(&mut out, &view, u, v, &mut labels);
     write_polygon(&mut out, &view, figure, &vertices);
@@ -116,7 +123,7 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     };
     let _ = writeln!(
         out,
-        "<text x=\"{:.1}\" y=\"46\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
+        "<text x=\"{:.1}\" y=\"66\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
         WIDTH - MARGIN,
         if n == 1 { "" } else { "s" }
     );

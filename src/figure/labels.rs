@@ -119,7 +119,8 @@ impl Labels {
                     .take_while(move |c| c.x + size.x <= hi.x)
             });
             let mut scan = row_starts;
-            scan.find(|c| fits(c, false)).unwrap_or(lo + DVec2::new(1.0, size.y + 1.0))
+            scan.find(|c| fits(c, false))
+                .unwrap_or(lo + DVec2::new(1.0, size.y + 1.0))
         })
     }
 
@@ -150,7 +151,10 @@ fn overlap(a: Box2, b: Box2) -> bool {
 
 /// `inner` lies wholly inside `outer`.
 pub fn contains(outer: Box2, inner: Box2) -> bool {
-    outer.0.x <= inner.0.x && outer.0.y <= inner.0.y && inner.1.x <= outer.1.x && inner.1.y <= outer.1.y
+    outer.0.x <= inner.0.x
+        && outer.0.y <= inner.0.y
+        && inner.1.x <= outer.1.x
+        && inner.1.y <= outer.1.y
 }
 
 /// The part of the segment from `a` to `b` inside `frame` (Liang-Barsky:
@@ -302,12 +306,21 @@ mod tests {
         // y = 50 from x -10 to 110 through the box 0..100: cut at x 0 and 100.
         let frame = (DVec2::ZERO, DVec2::splat(100.0));
         let inside = clip(DVec2::new(-10.0, 50.0), DVec2::new(110.0, 50.0), frame);
-        assert_eq!(inside, Some((DVec2::new(0.0, 50.0), DVec2::new(100.0, 50.0))));
+        assert_eq!(
+            inside,
+            Some((DVec2::new(0.0, 50.0), DVec2::new(100.0, 50.0)))
+        );
         // The diagonal from (50, 50) to (150, 150) leaves at (100, 100).
         let out = clip(DVec2::splat(50.0), DVec2::splat(150.0), frame);
         assert_eq!(out, Some((DVec2::splat(50.0), DVec2::splat(100.0))));
         // Wholly beside it, or parallel outside: none.
-        assert_eq!(clip(DVec2::new(120.0, 0.0), DVec2::new(130.0, 90.0), frame), None);
-        assert_eq!(clip(DVec2::new(-5.0, 0.0), DVec2::new(-5.0, 90.0), frame), None);
+        assert_eq!(
+            clip(DVec2::new(120.0, 0.0), DVec2::new(130.0, 90.0), frame),
+            None
+        );
+        assert_eq!(
+            clip(DVec2::new(-5.0, 0.0), DVec2::new(-5.0, 90.0), frame),
+            None
+        );
     }
 }
