@@ -107,6 +107,9 @@ fn the_figure_is_svg_with_every_ray_light_and_blocker() {
         arrows += usize::from(arrow);
     }
     assert!(arrows > tree.nodes.len(), "{arrows}");
+    // An × per blocker, a dot per hit (and one in the legend).
+    assert_eq!(svg.matches("l8 8m0 -8l-8 8").count(), blockers);
+    assert_eq!(svg.matches("r=\"3\" fill=\"black\"").count(), hits + 1);
 }
 
 #[test]
