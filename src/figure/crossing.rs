@@ -121,9 +121,11 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     } else {
         "even, outside"
     };
+    // On its own row: its box (y 49..67) lies between the subtitle's
+    // (ending at 49) and the V axis name's (from TOP + 10 - 13 = 67).
     let _ = writeln!(
         out,
-        "<text x=\"{:.1}\" y=\"66\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
+        "<text x=\"{:.1}\" y=\"64\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
         WIDTH - MARGIN,
         if n == 1 { "" } else { "s" }
     );
