@@ -76,6 +76,21 @@ pub struct DiagramArgs {
     /// plane of the crossing test of the first polygon hit (or passed by).
     #[arg(long, value_enum, default_value_t = PlaneArg::Top)]
     pub plane: PlaneArg,
+    /// Magnify the figure F times (F >= 1) about the primary ray's first
+    /// hit; what falls outside is cut at the edge. 1 shows everything.
+    /// Not for `crossing`.
+    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = zoom_factor)]
+    pub zoom: f64,
+}
+
+/// `--zoom`: a finite factor of at least 1.
+fn zoom_factor(text: &str) -> std::result::Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(f) if f.is_finite() && f >= 1.0 => Ok(f),
+        _ => Err(format!(
+            "{text:?} is not a zoom factor: give a number of at least 1, such as 3"
+        )),
+    }
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -360,7 +375,7 @@ fn diagram_command(args: &DiagramArgs) -> Result<ExitCode> {
         PlaneArg::Ray => DiagramPlane::Primary,
         PlaneArg::Crossing => return crossing_figure(&recorded.tree, &target),
     };
-    let figure = crate::figure::svg(&recorded.scene, &recorded.tree, plane);
+    let figure = crate::figure::svg(&recorded.scene, &recorded.tree, plane, args.zoom);
     output::write_text(&target, &figure)?;
     Ok(ExitCode::SUCCESS)
 }

@@ -197,6 +197,9 @@ fn the_crossing_figure_marks_each_crossing() {
             .iter()
             .any(|t| t.starts_with("dropped z: U = x, V = y"))
     );
+    // Passed by: the origin is where the ray meets the plane, not a hit.
+    assert!(texts.contains(&"plane point"), "{texts:?}");
+    assert!(!texts.contains(&"hit point"), "{texts:?}");
     // The lower left leg (32, 52), a hit: by polygons.toml's header, the
     // half-line crosses the leg's own edge 3→4 and both edges of the right
     // leg (4→5, 5→6): 3, inside; edge 2→3 meets V = 0 left of the point.
@@ -205,6 +208,7 @@ fn the_crossing_figure_marks_each_crossing() {
     assert_eq!(count_class(&doc, "crossing"), 3);
     assert_eq!(count_class(&doc, "left-crossing"), 1);
     assert!(svg.contains("3 crossings: odd, inside"));
+    assert!(svg.contains(">hit point</text>"));
 }
 
 #[test]

@@ -68,12 +68,48 @@ fn the_figure_is_svg_with_every_ray_light_and_blocker() {
         .map(|s| s.blockers.len())
         .sum();
     let hits = tree.nodes.iter().filter(|n| n.hit.is_some()).count();
+    let faces_away = tree
+        .nodes
+        .iter()
+        .flat_map(|n| &n.lights)
+        .filter(|l| l.faces_away)
+        .count();
+    assert_eq!(faces_away, 2);
     let svg = figure(dir.path(), "top");
     // Lines: a ray and a normal per hit, a ray per miss, the shadow rays,
-    // and six in the legend.
+    // a dotted line per light facing away, and seven in the legend (six
+    // kinds of ray and the dotted line).
     let lines = svg.matches("<line ").count();
-    assert_eq!(lines, tree.nodes.len() + hits + shadows + 6, "{svg}");
+    assert_eq!(
+        lines,
+        tree.nodes.len() + hits + shadows + faces_away + 7,
+        "{svg}"
+    );
+    assert_eq!(
+        svg.matches("stroke-dasharray=\"2 4\"").count(),
+        faces_away + 1
+    );
+    // An arrowhead on each ray long enough to hold one (24 units: its tip
+    // 8 short of the end, its base 18), none on a normal.
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let mut arrows = 0;
+    for line in doc
+        .root_element()
+        .children()
+        .filter(|n| n.has_tag_name("line"))
+    {
+        let at = |name| line.attribute(name).unwrap().parse::<f64>().unwrap();
+        let length = (at("x2") - at("x1")).hypot(at("y2") - at("y1"));
+        let normal = line.attribute("stroke") == Some("#009988");
+        let dotted = line.attribute("stroke-dasharray") == Some("2 4");
+        let arrow = line.attribute("marker-end").is_some();
+        assert_eq!(arrow, !normal && !dotted && length > 24.0, "{line:?}");
+        arrows += usize::from(arrow);
+    }
+    assert!(arrows > tree.nodes.len(), "{arrows}");
+    // An × per blocker, a dot per hit (and one in the legend).
     assert_eq!(svg.matches("l8 8m0 -8l-8 8").count(), blockers);
+    assert_eq!(svg.matches("r=\"3\" fill=\"black\"").count(), hits + 1);
 }
 
 #[test]
@@ -83,4 +119,156 @@ fn the_figure_is_pinned() {
     insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
         insta::assert_snapshot!("figure__glass_135_58_top", svg);
     });
+}
+
+/// Each figure the tester reviewed: scene, pixel, plane and extra arguments.
+const REVIEWED: [(&str, &str, &str, &[&str]); 10] = [
+    ("prism", "90,60", "top", &[]),
+    ("prism", "90,60", "side", &[]),
+    ("prism", "90,60", "ray", &[]),
+    ("prism", "90,60", "top", &["--zoom", "4"]),
+    ("glass", "135,58", "top", &[]),
+    ("glass", "135,58", "top", &["--zoom", "4"]),
+    ("two-lights", "3,64", "top", &[]),
+    ("two-lights", "92,61", "side", &[]),
+    ("polygons", "40,54", "top", &[]),
+    ("polygons", "40,54", "crossing", &[]),
+];
+
+fn reviewed(
+    dir: &std::path::Path,
+    (scene, pixel, plane, extra): (&str, &str, &str, &[&str]),
+) -> String {
+    let out = dir.join("reviewed.svg");
+    let scene = format!("scenes/{scene}.toml");
+    let mut args = vec!["diagram", &scene, "--pixel", pixel, "--plane", plane];
+    args.extend_from_slice(extra);
+    args.extend(["-o", out.to_str().unwrap()]);
+    let output = raystep(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
+    std::fs::read_to_string(out).unwrap()
+}
+
+/// A text element's estimated box (0.6 em a character, the font size high,
+/// 3 below the baseline for descenders), as the label placer estimates it.
+fn text_box(node: roxmltree::Node, root_size: f64) -> [f64; 4] {
+    let number = |name| {
+        node.attribute(name)
+            .map(|v: &str| v.parse::<f64>().unwrap())
+    };
+    let size = number("font-size").unwrap_or(root_size);
+    let width = node.text().unwrap_or("").chars().count() as f64 * size * 0.6;
+    let (x, y) = (number("x").unwrap(), number("y").unwrap());
+    let left = match node.attribute("text-anchor") {
+        Some("end") => x - width,
+        Some("middle") => x - width / 2.0,
+        _ => x,
+    };
+    [left, y - size, left + width, y + 3.0]
+}
+
+#[test]
+fn every_label_is_inside_the_figure_and_none_overlaps_another() {
+    let dir = tempfile::tempdir().unwrap();
+    for case in REVIEWED {
+        let svg = reviewed(dir.path(), case);
+        let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+        let root = doc.root_element();
+        let view: Vec<f64> = (root.attribute("viewBox").unwrap().split(' '))
+            .map(|v| v.parse().unwrap())
+            .collect();
+        let root_size: f64 = root.attribute("font-size").unwrap().parse().unwrap();
+        let texts: Vec<(&str, [f64; 4])> = root
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .map(|n| (n.text().unwrap_or(""), text_box(n, root_size)))
+            .collect();
+        assert!(texts.len() > 5, "{case:?}: {texts:?}");
+        for (text, b) in &texts {
+            let inside = b[0] >= view[0]
+                && b[1] >= view[1]
+                && b[2] <= view[0] + view[2]
+                && b[3] <= view[1] + view[3];
+            assert!(inside, "{case:?}: {text:?} at {b:?} leaves the figure");
+        }
+        for (i, (a, p)) in texts.iter().enumerate() {
+            for (b, q) in &texts[i + 1..] {
+                let overlap = p[0] < q[2] && q[0] < p[2] && p[1] < q[3] && q[1] < p[3];
+                assert!(!overlap, "{case:?}: {a:?} at {p:?} overlaps {b:?} at {q:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_polygon_passed_by_is_ringed_not_hit() {
+    // polygons.toml's pixel (40, 54): the primary ray passes the star by
+    // (its plane met inside the star's box, the crossing test even) on its
+    // way to the backdrop: a ring where it crosses the plane, "passed by"
+    // beside it and in the legend.
+    let dir = tempfile::tempdir().unwrap();
+    let svg = reviewed(dir.path(), REVIEWED[8]);
+    let scene = raystep::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 40, 54);
+    let passed = tree
+        .root()
+        .near_misses
+        .iter()
+        .filter(|n| n.crossing_figure.is_some())
+        .count();
+    assert!(passed >= 1);
+    assert!(tree.root().near_misses.iter().any(|n| n.object == "star"));
+    assert_eq!(svg.matches("class=\"passed-by\"").count(), passed, "{svg}");
+    assert!(
+        svg.contains(">passed by</text>") || svg.contains(": passed by</text>"),
+        "{svg}"
+    );
+    assert!(
+        svg.contains(">passed by: ray crosses a polygon's plane</text>"),
+        "{svg}"
+    );
+}
+
+#[test]
+fn zoom_magnifies_about_the_first_hit_and_cuts_at_the_frame() {
+    // prism.toml's pixel (90, 60) at --zoom 4: the lights and the far wall
+    // fall outside, so some rays are cut at the frame's edge, and no label
+    // names what is off it; every line's ends stay inside the figure.
+    let dir = tempfile::tempdir().unwrap();
+    let whole = reviewed(dir.path(), REVIEWED[0]);
+    let zoomed = reviewed(dir.path(), REVIEWED[3]);
+    assert!(whole.contains(">light lamp</text>") && whole.contains(">eye</text>"));
+    assert!(!zoomed.contains(">light lamp</text>"), "{zoomed}");
+    assert!(!zoomed.contains(">eye</text>"), "{zoomed}");
+    assert!(zoomed.contains("magnified 4×"));
+    let doc = roxmltree::Document::parse(&zoomed).unwrap();
+    // The rays are the root's own lines (outlines sit in the clipped
+    // group, the legend's samples in theirs).
+    let root = doc.root_element();
+    for line in root.children().filter(|n| n.has_tag_name("line")) {
+        for (x, y) in [("x1", "y1"), ("x2", "y2")] {
+            let x: f64 = line.attribute(x).unwrap().parse().unwrap();
+            let y: f64 = line.attribute(y).unwrap().parse().unwrap();
+            let in_frame = (6.0..=794.0).contains(&x) && (34.0..=552.0).contains(&y);
+            assert!(in_frame, "{line:?}");
+        }
+    }
+    // Less than 1 is refused with the value named.
+    let out = dir.path().join("no.svg");
+    let output = raystep(&[
+        "diagram",
+        "scenes/prism.toml",
+        "--pixel",
+        "90,60",
+        "--zoom",
+        "0.5",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("\"0.5\" is not a zoom factor"),
+        "{}",
+        stderr(&output)
+    );
 }

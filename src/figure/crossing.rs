@@ -86,12 +86,23 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
         escape(subject.object),
         subject.object_index
     );
+    // Passed by, the ray meets the polygon's plane but not the polygon.
+    let point = if subject.hit {
+        "hit point"
+    } else {
+        "plane point"
+    };
     let _ = writeln!(
         out,
-        "<text x=\"{MARGIN}\" y=\"46\">dropped {dropped}: U = {u}, V = {v}; the hit point moved to the origin</text>"
+        "<text x=\"{MARGIN}\" y=\"46\">dropped {dropped}: U = {u}, V = {v}; the {point} moved to the origin</text>"
     );
-    // Marks first, then the labels around them, none over another or a mark.
-    let mut labels = Labels::new(13.0, MARGIN);
+    // Marks first, then the labels around them, none over another or a
+    // mark, all between the title and the legend.
+    let bounds = (
+        DVec2::new(4.0, 52.0),
+        DVec2::new(WIDTH - 4.0, HEIGHT - BOTTOM - 4.0),
+    );
+    let mut labels = Labels::new(13.0, bounds);
     write_axes(&mut out, &view, u, v, &mut labels);
     write_polygon(&mut out, &view, figure, &vertices);
     let o = view.map(DVec2::ZERO);
@@ -102,7 +113,7 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
         "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"4.5\" fill=\"black\"/>",
         o.x, o.y
     );
-    labels.place_centred(&mut out, o + DVec2::new(0.0, 20.0), "hit point", "");
+    labels.place_centred(&mut out, o + DVec2::new(0.0, 20.0), point, "");
     write_vertex_numbers(&mut out, &view, &vertices, &mut labels);
     let n = figure.crossings();
     let verdict = if figure.inside() {
@@ -110,9 +121,11 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     } else {
         "even, outside"
     };
+    // On its own row: its box (y 49..67) lies between the subtitle's
+    // (ending at 49) and the V axis name's (from TOP + 10 - 13 = 67).
     let _ = writeln!(
         out,
-        "<text x=\"{:.1}\" y=\"46\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
+        "<text x=\"{:.1}\" y=\"64\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
         WIDTH - MARGIN,
         if n == 1 { "" } else { "s" }
     );
@@ -237,8 +250,7 @@ fn write_crossings(out: &mut String, view: &View, figure: &CrossingFigure, label
 }
 
 fn write_legend(out: &mut String) {
-    let y = HEIGHT - BOTTOM / 2.0;
-    let mut x = MARGIN;
+    let (mut x, mut y) = (MARGIN, HEIGHT - BOTTOM + 10.0);
     let items: [(&str, &str); 4] = [
         (
             "<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"#0077bb\" stroke-width=\"2.5\"/>",
@@ -258,13 +270,19 @@ fn write_legend(out: &mut String) {
         ),
     ];
     for (mark, name) in items {
+        // 0.6 em a character at 11, the labels' estimate; a second row
+        // when the first is full.
+        let width = 26.0 + name.chars().count() as f64 * 6.6;
+        if x + width > WIDTH - 10.0 {
+            (x, y) = (MARGIN, y + 18.0);
+        }
         let _ = writeln!(
             out,
             "<g transform=\"translate({x:.1} {y:.1})\">{mark}</g>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\">{name}</text>",
             x + 26.0,
             y + 4.0
         );
-        x += 26.0 + name.chars().count() as f64 * 6.0 + 18.0;
+        x += width + 18.0;
     }
 }
 

@@ -1,29 +1,32 @@
 //! Where a figure's text goes: each label at the first place near its
-//! anchor whose box meets no label or mark already placed, so no two ever
-//! overlap on a slide. Boxes are estimated from the character count, as an
-//! SVG has no text metrics before it is drawn.
+//! anchor whose box lies inside the figure and meets no label, mark or ray
+//! already placed, so no two ever overlap on a slide and none is cut at
+//! the edge. Boxes are estimated from the character count, as an SVG has
+//! no text metrics before it is drawn.
 
 use std::fmt::Write;
 
 use glam::DVec2;
 
 /// A box as its (top-left, bottom-right) corners.
-type Box2 = (DVec2, DVec2);
+pub type Box2 = (DVec2, DVec2);
 
-/// Placed labels' and marks' boxes.
+/// Placed labels' and marks' boxes, and the rays to keep labels off.
 pub struct Labels {
     font_size: f64,
-    /// Where the crowded-out labels start, at the left.
-    margin: f64,
+    /// Where labels may go: the figure less its title and legend.
+    bounds: Box2,
     boxes: Vec<Box2>,
+    rays: Vec<(DVec2, DVec2)>,
 }
 
 impl Labels {
-    pub fn new(font_size: f64, margin: f64) -> Labels {
+    pub fn new(font_size: f64, bounds: Box2) -> Labels {
         Labels {
             font_size,
-            margin,
+            bounds,
             boxes: Vec::new(),
+            rays: Vec::new(),
         }
     }
 
@@ -46,12 +49,18 @@ impl Labels {
         self.boxes.push((centre - r, centre + r));
     }
 
+    /// Keeps labels off a drawn ray from `a` to `b` where there is room;
+    /// unlike a mark, a label may cross a ray when nothing near is free.
+    pub fn reserve_ray(&mut self, a: DVec2, b: DVec2) {
+        self.rays.push((a, b));
+    }
+
     /// Writes `text` near `at`: right, left, above or below it, or further
     /// out, at the first place whose box meets nothing placed. `attrs` are
     /// the text element's other attributes (`fill="..."`).
     pub fn place(&mut self, out: &mut String, at: DVec2, text: &str, attrs: &str) {
         let size = self.size(text);
-        let corner = self.free(self.rings(at, size), size);
+        let corner = self.free(&self.rings(at, size).collect::<Vec<_>>(), size);
         self.write(out, corner, size, text, attrs);
     }
 
@@ -60,7 +69,10 @@ impl Labels {
     pub fn place_centred(&mut self, out: &mut String, at: DVec2, text: &str, attrs: &str) {
         let size = self.size(text);
         let centred = at + DVec2::new(-size.x / 2.0, size.y / 2.0 - 2.0);
-        let corner = self.free(std::iter::once(centred).chain(self.rings(at, size)), size);
+        let candidates: Vec<DVec2> = std::iter::once(centred)
+            .chain(self.rings(at, size))
+            .collect();
+        let corner = self.free(&candidates, size);
         self.write(out, corner, size, text, attrs);
     }
 
@@ -71,7 +83,7 @@ impl Labels {
 
     /// Baseline starts around `at`, ring after ring.
     fn rings(&self, at: DVec2, size: DVec2) -> impl Iterator<Item = DVec2> {
-        (1..=6).flat_map(move |ring| {
+        (1..=8).flat_map(move |ring| {
             let d = 10.0 * ring as f64;
             [
                 DVec2::new(d, 4.0),
@@ -80,26 +92,36 @@ impl Labels {
                 DVec2::new(-size.x / 2.0, d + size.y),
                 DVec2::new(d, -d),
                 DVec2::new(d, d + size.y),
+                DVec2::new(-d - size.x, -d),
+                DVec2::new(-d - size.x, d + size.y),
             ]
             .map(|offset| at + offset)
         })
     }
 
-    /// The first candidate baseline start whose box is free; crowded
-    /// everywhere, below all the others at the left.
-    fn free(&self, candidates: impl Iterator<Item = DVec2>, size: DVec2) -> DVec2 {
-        let mut candidates = candidates;
-        candidates
-            .find(|corner| {
-                !self
-                    .boxes
-                    .iter()
-                    .any(|o| overlap(*o, text_box(*corner, size)))
-            })
-            .unwrap_or_else(|| {
-                let lowest = self.boxes.iter().map(|b| b.1.y).fold(self.margin, f64::max);
-                DVec2::new(self.margin, lowest + size.y + 4.0)
-            })
+    /// The first candidate whose box is inside the figure and free of
+    /// marks, labels and rays; else the first free of marks and labels;
+    /// crowded everywhere near, the first free place row by row.
+    fn free(&self, candidates: &[DVec2], size: DVec2) -> DVec2 {
+        let fits = |corner: &DVec2, rays: bool| {
+            let b = text_box(*corner, size);
+            contains(self.bounds, b)
+                && !self.boxes.iter().any(|o| overlap(*o, b))
+                && !(rays && self.rays.iter().any(|r| clip(r.0, r.1, b).is_some()))
+        };
+        let first = |rays| candidates.iter().copied().find(|c| fits(c, rays));
+        first(true).or_else(|| first(false)).unwrap_or_else(|| {
+            let (lo, hi) = self.bounds;
+            let rows = (0..).map(|i| lo.y + size.y + 1.0 + i as f64 * 4.0);
+            let row_starts = rows.take_while(|y| *y + 3.0 <= hi.y).flat_map(|y| {
+                (0..)
+                    .map(move |i| DVec2::new(lo.x + 1.0 + i as f64 * 8.0, y))
+                    .take_while(move |c| c.x + size.x <= hi.x)
+            });
+            let mut scan = row_starts;
+            scan.find(|c| fits(c, false))
+                .unwrap_or(lo + DVec2::new(1.0, size.y + 1.0))
+        })
     }
 
     fn write(&mut self, out: &mut String, corner: DVec2, size: DVec2, text: &str, attrs: &str) {
@@ -127,6 +149,42 @@ fn overlap(a: Box2, b: Box2) -> bool {
     a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
 }
 
+/// `inner` lies wholly inside `outer`.
+pub fn contains(outer: Box2, inner: Box2) -> bool {
+    outer.0.x <= inner.0.x
+        && outer.0.y <= inner.0.y
+        && inner.1.x <= outer.1.x
+        && inner.1.y <= outer.1.y
+}
+
+/// The part of the segment from `a` to `b` inside `frame` (Liang-Barsky:
+/// the segment's parameter range narrowed by each of the four edges), or
+/// none when it misses the box.
+pub fn clip(a: DVec2, b: DVec2, frame: Box2) -> Option<(DVec2, DVec2)> {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-d.x, a.x - frame.0.x),
+        (d.x, frame.1.x - a.x),
+        (-d.y, a.y - frame.0.y),
+        (d.y, frame.1.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+            continue;
+        }
+        let t = q / p;
+        if p < 0.0 {
+            t0 = t0.max(t);
+        } else {
+            t1 = t1.min(t);
+        }
+    }
+    (t0 <= t1).then(|| (a + d * t0, a + d * t1))
+}
+
 pub fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
@@ -138,10 +196,13 @@ pub fn escape(text: &str) -> String {
 mod tests {
     use super::*;
 
+    /// A figure large enough that its edges never matter.
+    const WIDE: Box2 = (DVec2::new(0.0, 0.0), DVec2::new(800.0, 600.0));
+
     #[test]
     fn labels_never_overlap() {
         // Ten labels asked for at one point: each lands in its own box.
-        let mut labels = Labels::new(13.0, 40.0);
+        let mut labels = Labels::new(13.0, WIDE);
         let mut out = String::new();
         for i in 0..10 {
             let text = format!("label {i}");
@@ -161,7 +222,7 @@ mod tests {
         // spans x 96.7..103.3, y 93.5..106.5; a mark of radius 6 at (100, 100)
         // takes 94..106 both ways, so the label goes to the first ring:
         // right of the anchor, baseline start (110, 104).
-        let mut labels = Labels::new(11.0, 40.0);
+        let mut labels = Labels::new(11.0, WIDE);
         labels.reserve(DVec2::new(100.0, 100.0), 6.0);
         let mut out = String::new();
         labels.place_centred(&mut out, DVec2::new(100.0, 100.0), "4", "fill=\"grey\"");
@@ -170,7 +231,7 @@ mod tests {
             "<text x=\"110.0\" y=\"104.0\" fill=\"grey\">4</text>\n"
         );
         // Nothing reserved: it stays centred, baseline start (96.7, 103.5).
-        let mut free = Labels::new(11.0, 40.0);
+        let mut free = Labels::new(11.0, WIDE);
         let mut out = String::new();
         free.place_centred(&mut out, DVec2::new(100.0, 100.0), "4", "fill=\"grey\"");
         assert_eq!(out, "<text x=\"96.7\" y=\"103.5\" fill=\"grey\">4</text>\n");
@@ -179,5 +240,87 @@ mod tests {
     #[test]
     fn names_are_escaped() {
         assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+    }
+
+    #[test]
+    fn a_label_stays_inside_the_figure() {
+        // "abcdefghij" at 13 px: 10 x 7.8 = 78 wide. Anchored at (190, 100)
+        // in a 200 x 200 figure, the first ring's right place (baseline
+        // start (200, 104)) runs to x 278, outside; its left place starts at
+        // 190 - 10 - 78 = 102 and spans x 102..180, y 91..107: inside.
+        let mut labels = Labels::new(13.0, (DVec2::ZERO, DVec2::splat(200.0)));
+        let mut out = String::new();
+        labels.place(&mut out, DVec2::new(190.0, 100.0), "abcdefghij", "");
+        assert_eq!(out, "<text x=\"102.0\" y=\"104.0\">abcdefghij</text>\n");
+    }
+
+    #[test]
+    fn a_label_moves_off_a_ray_when_it_can() {
+        // "ab" at 13 px is 15.6 wide. Anchored at (100, 100) with a ray
+        // running right from it along y = 100: the right place's box
+        // (110..125.6, 91..107) crosses it; the left place, x 74.4..90,
+        // ends before the ray starts at x 100.
+        let at = DVec2::new(100.0, 100.0);
+        let mut labels = Labels::new(13.0, WIDE);
+        labels.reserve_ray(at, DVec2::new(300.0, 100.0));
+        let mut out = String::new();
+        labels.place(&mut out, at, "ab", "");
+        assert_eq!(out, "<text x=\"74.4\" y=\"104.0\">ab</text>\n");
+        // The ray through the anchor both ways: left and right are crossed;
+        // above, the baseline start (100 - 7.8, 100 - 10) = (92.2, 90) gives
+        // the box y 77..93, clear of y = 100.
+        let mut labels = Labels::new(13.0, WIDE);
+        labels.reserve_ray(DVec2::new(0.0, 100.0), DVec2::new(300.0, 100.0));
+        let mut out = String::new();
+        labels.place(&mut out, at, "ab", "");
+        assert_eq!(out, "<text x=\"92.2\" y=\"90.0\">ab</text>\n");
+    }
+
+    #[test]
+    fn a_label_crosses_a_ray_rather_than_a_mark_when_all_near_is_crossed() {
+        // Horizontal rays every 5 px cover every place near (100, 100): the
+        // label takes the first place free of marks, the first ring's right
+        // (110, 104), unless a mark is there: then its left (74.4, 104).
+        let rays = |labels: &mut Labels| {
+            for i in 0..120 {
+                let y = i as f64 * 5.0;
+                labels.reserve_ray(DVec2::new(0.0, y), DVec2::new(800.0, y));
+            }
+        };
+        let at = DVec2::new(100.0, 100.0);
+        let mut labels = Labels::new(13.0, WIDE);
+        rays(&mut labels);
+        let mut out = String::new();
+        labels.place(&mut out, at, "ab", "");
+        assert_eq!(out, "<text x=\"110.0\" y=\"104.0\">ab</text>\n");
+        let mut labels = Labels::new(13.0, WIDE);
+        rays(&mut labels);
+        labels.reserve(DVec2::new(115.0, 100.0), 3.0);
+        let mut out = String::new();
+        labels.place(&mut out, at, "ab", "");
+        assert_eq!(out, "<text x=\"74.4\" y=\"104.0\">ab</text>\n");
+    }
+
+    #[test]
+    fn a_segment_is_clipped_to_the_frame() {
+        // y = 50 from x -10 to 110 through the box 0..100: cut at x 0 and 100.
+        let frame = (DVec2::ZERO, DVec2::splat(100.0));
+        let inside = clip(DVec2::new(-10.0, 50.0), DVec2::new(110.0, 50.0), frame);
+        assert_eq!(
+            inside,
+            Some((DVec2::new(0.0, 50.0), DVec2::new(100.0, 50.0)))
+        );
+        // The diagonal from (50, 50) to (150, 150) leaves at (100, 100).
+        let out = clip(DVec2::splat(50.0), DVec2::splat(150.0), frame);
+        assert_eq!(out, Some((DVec2::splat(50.0), DVec2::splat(100.0))));
+        // Wholly beside it, or parallel outside: none.
+        assert_eq!(
+            clip(DVec2::new(120.0, 0.0), DVec2::new(130.0, 90.0), frame),
+            None
+        );
+        assert_eq!(
+            clip(DVec2::new(-5.0, 0.0), DVec2::new(-5.0, 90.0), frame),
+            None
+        );
     }
 }

@@ -1,0 +1,65 @@
+//! The ray diagram's legend: a sample of each kind of mark and its meaning,
+//! in rows across the band below the figure.
+
+use std::fmt::Write;
+
+use super::{FACES_AWAY, HEIGHT, LEGEND, MARGIN, PASSED, WIDTH, stroke_colour};
+use crate::diagram::Stroke;
+
+/// The legend's text size, and its width a character (0.6 em, the
+/// estimate the labels use).
+const SIZE: f64 = 11.0;
+const CHAR: f64 = SIZE * 0.6;
+
+/// Writes the legend; the passed-by ring and the faces-away line only when
+/// the figure has one.
+pub fn write(out: &mut String, passed: bool, faces_away: bool) {
+    let line = |stroke: Stroke, dash: &str| {
+        format!(
+            "<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"{}\" stroke-width=\"2\"{dash}/>",
+            stroke_colour(stroke)
+        )
+    };
+    let dashed = " stroke-dasharray=\"6 4\"";
+    let mut items = vec![
+        (line(Stroke::Primary, ""), "primary"),
+        (line(Stroke::Reflected, ""), "reflected"),
+        (line(Stroke::Transmitted, ""), "transmitted"),
+        (line(Stroke::ShadowLit, dashed), "shadow ray, lit"),
+        (
+            line(Stroke::ShadowBlocked, dashed),
+            "shadow ray, blocked (× at the blocker)",
+        ),
+        (line(Stroke::Normal, ""), "normal N"),
+        (
+            "<circle cx=\"10\" cy=\"0\" r=\"3\" fill=\"black\"/>".to_string(),
+            "hit",
+        ),
+    ];
+    if passed {
+        items.push((
+            format!("<circle cx=\"10\" cy=\"0\" r=\"6\" fill=\"none\" stroke=\"{PASSED}\" stroke-width=\"2\"/>"),
+            "passed by: ray crosses a polygon's plane",
+        ));
+    }
+    if faces_away {
+        items.push((
+            format!("<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"{FACES_AWAY}\" stroke-width=\"2\" stroke-dasharray=\"2 4\"/>"),
+            "light facing away (no shadow ray)",
+        ));
+    }
+    let (mut x, mut y) = (MARGIN, HEIGHT - LEGEND + 14.0);
+    for (mark, name) in items {
+        let width = 24.0 + name.chars().count() as f64 * CHAR;
+        if x + width > WIDTH - 10.0 {
+            (x, y) = (MARGIN, y + 18.0);
+        }
+        let _ = writeln!(
+            out,
+            "<g transform=\"translate({x:.1} {y:.1})\">{mark}</g>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"{SIZE}\">{name}</text>",
+            x + 24.0,
+            y + 4.0
+        );
+        x += width + 16.0;
+    }
+}
