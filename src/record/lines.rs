@@ -125,6 +125,12 @@ impl Line {
     /// are indented four past the line's own indentation. `inspect` wraps
     /// with no swatch; the details pane with its swatch's width.
     pub fn wrap(&self, room: usize, swatch: usize) -> Vec<Row> {
+        self.wrap_hanging(room, swatch, 4)
+    }
+
+    /// Like `wrap`, with continuations indented `hang` past the line's own
+    /// indentation (`explain` hangs them under the text after a number).
+    pub fn wrap_hanging(&self, room: usize, swatch: usize, hang: usize) -> Vec<Row> {
         let mut words = self.words();
         // A line of spaces keeps its last (empty) word.
         let lead = (words.iter().take_while(|w| w.text.is_empty()).count()).min(words.len() - 1);
@@ -143,10 +149,10 @@ impl Line {
                 used += len;
             } else if used + 1 + len > room {
                 rows.push(Row {
-                    indent: lead + 4,
+                    indent: lead + hang,
                     words: Vec::new(),
                 });
-                used = lead + 4 + len;
+                used = lead + hang + len;
             } else {
                 used += 1 + len;
             }
