@@ -154,12 +154,16 @@ fn write_sources(out: &mut String, tree: &RayTree) {
     let rest = &all[top.len()..];
     if !rest.is_empty() {
         let sum = rest.iter().fold(Color::ZERO, |sum, s| sum + s.color);
+        let (rays, add) = match (rest.len(), top.is_empty()) {
+            (1, true) => ("1 ray".to_string(), "adds"),
+            (1, false) => ("1 other ray".to_string(), "adds"),
+            (n, true) => (format!("{n} rays"), "add"),
+            (n, false) => (format!("{n} other rays"), "add"),
+        };
         let _ = writeln!(
             out,
-            "  {:>5.1}%  {} {}: add {}",
+            "  {:>5.1}%  {rays} {add} {}",
             share(sum),
-            if top.is_empty() { "the" } else { "the other" },
-            count(rest.len() as u64, "ray", "rays"),
             color(sum)
         );
     }

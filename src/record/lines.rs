@@ -275,6 +275,16 @@ mod tests {
     }
 
     #[test]
+    fn a_hanging_indent_puts_continuations_under_the_text() {
+        // "  0.5  aaaa bbbb cccc dddd eeee ffff" with room 30 and hang 5: the
+        // lead is 2, "0.5  aaaa ... eeee" ends at 2 + 3 + 2 + 24 = 31 > 30,
+        // so "eeee" starts a row indented 2 + 5 = 7, under "aaaa".
+        let line = Line::text(None, "  0.5  aaaa bbbb cccc dddd eeee ffff");
+        let rows: Vec<String> = line.wrap_hanging(30, 0, 5).iter().map(Row::text).collect();
+        assert_eq!(rows, ["  0.5  aaaa bbbb cccc dddd", "       eeee ffff"]);
+    }
+
+    #[test]
     fn a_row_never_gets_narrower_than_24_past_the_indentation() {
         // Room 10 is raised to 0 + 24: "aaaa bbbb cccc dddd eeee" is 24 long.
         let line = Line::text(None, "aaaa bbbb cccc dddd eeee ffff");
