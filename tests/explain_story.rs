@@ -324,7 +324,10 @@ fn explain_wraps_at_100_columns_and_hides_invisible_events() {
         "{story}"
     );
     // Continuations of a ranked event hang under its text, past "  0.516  ".
-    let at = story.lines().position(|l| l.starts_with("  0.516  ")).unwrap();
+    let at = story
+        .lines()
+        .position(|l| l.starts_with("  0.516  "))
+        .unwrap();
     let next = story.lines().nth(at + 1).unwrap();
     assert!(next.starts_with("         -0.7648"), "{story}");
 }

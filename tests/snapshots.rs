@@ -154,6 +154,8 @@ fn graphviz_of_a_pixel_with_total_internal_reflection() {
     // both its rays are cut, each a grey dashed box; r6's square is opaque
     // and matte (k_s = k_t = 0), so it had nothing to cut.
     assert_eq!(dot.matches("not cast: max_depth").count(), 2);
-    assert!(dot.contains("label=\"transmitted ray\\nnot cast: max_depth\\nweight 0.9, max_depth = 5\""));
+    assert!(
+        dot.contains("label=\"transmitted ray\\nnot cast: max_depth\\nweight 0.9, max_depth = 5\"")
+    );
     settings().bind(|| insta::assert_snapshot!("glass_135_58_dot", dot));
 }

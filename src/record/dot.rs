@@ -54,10 +54,7 @@ fn write_not_cast(out: &mut String, name: &str, parent: NodeId, kind: RayKind, w
          label=\"{} ray\\n{why}\"];",
         kind_name(kind)
     );
-    let _ = writeln!(
-        out,
-        "  n{parent} -> {name} [style=dashed, color=\"grey\"];"
-    );
+    let _ = writeln!(out, "  n{parent} -> {name} [style=dashed, color=\"grey\"];");
 }
 
 /// A ray's box, filled with its colour, and the edge from its parent.

@@ -132,7 +132,11 @@ fn write_sources(out: &mut String, tree: &RayTree) {
     }
     let all = sources(tree);
     let share = |c: Color| 100.0 * weight(c) / total;
-    let top: Vec<_> = all.iter().take(3).filter(|s| share(s.color) > 5.0).collect();
+    let top: Vec<_> = all
+        .iter()
+        .take(3)
+        .filter(|s| share(s.color) > 5.0)
+        .collect();
     let _ = writeln!(
         out,
         "Where the colour comes from: each surface's own ambient + diffuse + specular, times the \
@@ -160,12 +164,7 @@ fn write_sources(out: &mut String, tree: &RayTree) {
             (n, true) => (format!("{n} rays"), "add"),
             (n, false) => (format!("{n} other rays"), "add"),
         };
-        let _ = writeln!(
-            out,
-            "  {:>5.1}%  {rays} {add} {}",
-            share(sum),
-            color(sum)
-        );
+        let _ = writeln!(out, "  {:>5.1}%  {rays} {add} {}", share(sum), color(sum));
     }
 }
 
