@@ -205,7 +205,10 @@ fn each_answer_is_in_the_debugger_within_five_keys_of_the_start() {
     keys(&mut app, "fp", 5);
     assert_eq!(app.cursor(), (0, 61));
     let text = screen_text(&mut app);
-    assert!(text.contains("S = 0.288, blocked by glass ball"), "{text}");
+    assert!(
+        text.contains("S = 0.288, partly blocked by glass ball"),
+        "{text}"
+    );
     assert!(text.contains("glass pane"), "{text}");
 
     // (c) no key: mirrors.toml's centre pixel is the right mirror, and the

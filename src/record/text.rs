@@ -322,9 +322,14 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
                 .iter()
                 .map(|b| format!("{} (t = {}, k_t = {})", b.object, precise(b.t), num(b.kt)))
                 .collect();
+            let how = if s.s > 0.0 {
+                "partly blocked"
+            } else {
+                "blocked"
+            };
             (
                 s.s,
-                format!("S = {}, blocked by {}", num(s.s), names.join("; ")),
+                format!("S = {}, {how} by {}", num(s.s), names.join("; ")),
             )
         }
     };
