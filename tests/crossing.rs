@@ -75,7 +75,9 @@ fn inspect_and_explain_name_the_edges_that_crossed() {
         "{text}"
     );
     let explain = raystep(&["explain", "scenes/polygons.toml", "--pixel", &pixel]);
+    // explain wraps at 100 columns: compare with its line breaks undone.
     let text = String::from_utf8(explain.stdout).unwrap();
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
         text.contains("outside the polygon: 2 edge crossings of +U (edges 4→5 at U = 0.362"),
         "{text}"

@@ -195,7 +195,7 @@ fn a_missed_ray_highlights_its_miss_when_done() {
     // The reflected ray r1 misses; its colour is the background, on the
     // miss line, which its miss and its done events both highlight (done
     // used to highlight nothing: a miss has no "colour" line).
-    let missed = "missed everything (1 primitives tested): background (0.100, 0.200, 0.300)";
+    let missed = "missed everything (1 primitive tested): background (0.100, 0.200, 0.300)";
     let done = event(&app, 1, |k| matches!(k, EventKind::RayDone { .. }));
     let buffer = pane(&mut app, done);
     assert_rows(&highlighted(&buffer), &[missed]);

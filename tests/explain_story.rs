@@ -140,9 +140,9 @@ fn a_shadow_below_the_first_hit_is_told_with_what_it_cost() {
     assert_eq!(events[0].node, 1);
     let story = explain(&tree);
     assert!(
-        story.contains(
-            "0.400  light 0 is blocked at r1 (primary → reflected, depth 2) by ball \
-             (t = 0.4, root t0, k_t 0), ball (t = 0.6, root t1, k_t 0): S = 0; unblocked it \
+        flat(&story).contains(
+            "0.400 light 0 is blocked at r1 (primary → reflected, depth 2) by ball \
+             (t = 0.4, root t0, k_t = 0), ball (t = 0.6, root t1, k_t = 0): S = 0; unblocked it \
              would add (0.400, 0.400, 0.400) more to the pixel"
         ),
         "{story}"
@@ -220,7 +220,7 @@ fn the_glass_scenes_tir_example_is_told_below_the_first_hit() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
     let scene = load(&path).unwrap();
     let tree = record_pixel(&scene, &scene.settings, 132, 88);
-    let story = explain(&tree);
+    let story = flat(&explain(&tree));
     assert!(
         story.contains(
             "total internal reflection at r2 (primary → transmitted, depth 2) on glass block \
@@ -234,4 +234,105 @@ fn the_glass_scenes_tir_example_is_told_below_the_first_hit() {
             .text
             .starts_with("total internal reflection at r2")
     );
+}
+
+/// A grey mirror (k_s = 0.8, no diffuse) at z = -1 facing the eye at the
+/// origin, and behind the eye, at z = 2, `behind`; ambient 0.2, no lights,
+/// so every surface's own colour is its ambient term I_a · k_a · O_d.
+fn mirror_before(behind: &str) -> Scene {
+    scene(&format!(
+        "[camera]
+        eye = [0, 0, 0]
+        look_at = [0, 0, -1]
+        [settings]
+        ambient = [0.2, 0.2, 0.2]
+        background = [0, 0, 0.5]
+        [materials.mirror]
+        color = [0.5, 0.5, 0.5]
+        kd = 0
+        ks = 0.8
+        [materials.green]
+        color = [0, 1, 0]
+        kd = 0
+        [[object]]
+        name = \"mirror\"
+        material = \"mirror\"
+        plane = {{ normal = [0, 0, 1], point = [0, 0, -1] }}
+        {behind}"
+    ))
+}
+
+#[test]
+fn the_colour_is_traced_to_the_surfaces_it_comes_from() {
+    let wall = "[[object]]
+        name = \"wall\"
+        material = \"green\"
+        plane = { normal = [0, 0, -1], point = [0, 0, 2] }";
+    let tree = record(&mirror_before(wall), [0.0; 3], [0.0, 0.0, -1.0]);
+    // The mirror's own term: 0.2 · 1 · 0.5 = (0.1, 0.1, 0.1). Its reflected
+    // ray (weight 0.8, attenuation 1) meets the wall at t = 3, whose own
+    // term is 0.2 · (0, 1, 0), reaching the pixel as 0.8 · (0, 0.2, 0) =
+    // (0, 0.16, 0). Pixel (0.1, 0.26, 0.1), brightness 0.46: the mirror
+    // 0.3 / 0.46 = 65.2%, the wall 0.16 / 0.46 = 34.8%, summing to all of it.
+    let story = explain(&tree);
+    let expected = "Where the colour comes from: each surface's own ambient + diffuse + \
+        specular, times the weights and attenuations of the rays leading to it, as a share \
+        of the brightness:\n   65.2%  mirror, hit by r0 (primary, depth 1): adds \
+        (0.100, 0.100, 0.100)\n   34.8%  wall, hit by r1 (primary → reflected, depth 2): adds \
+        (0.000, 0.160, 0.000)\n";
+    assert!(flat(&story).contains(&flat(expected)), "{story}");
+}
+
+#[test]
+fn a_miss_to_the_background_is_a_source_too() {
+    // No wall: the reflected ray misses and brings the background
+    // (0, 0, 0.5) unattenuated, 0.8 · 0.5 = 0.4 of blue. Pixel (0.1, 0.1,
+    // 0.5), brightness 0.7: background 0.4 / 0.7 = 57.1%, mirror 42.9%.
+    let tree = record(&mirror_before(""), [0.0; 3], [0.0, 0.0, -1.0]);
+    let story = explain(&tree);
+    let expected = "   57.1%  the background, seen by r1 (primary → reflected, depth 2): \
+        adds (0.000, 0.000, 0.400)\n   42.9%  mirror, hit by r0 (primary, depth 1): adds \
+        (0.100, 0.100, 0.100)\nWhat shaped";
+    assert!(flat(&story).contains(&flat(expected)), "{story}");
+}
+
+#[test]
+fn the_prism_is_green_because_of_the_wall() {
+    // scenes/prism.toml's header: the green comes from the wall behind the
+    // camera, seen after two total internal reflections.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/prism.toml");
+    let scene = load(&path).unwrap();
+    let tree = record_pixel(&scene, &scene.settings, 90, 60);
+    let story = flat(&explain(&tree));
+    let sources = story.split("Where the colour comes from").nth(1).unwrap();
+    let first = sources.split('%').nth(1).unwrap();
+    assert!(first.starts_with(" green wall, hit by r4 (primary → transmitted → reflected → reflected → transmitted, depth 5)"), "{story}");
+}
+
+#[test]
+fn explain_wraps_at_100_columns_and_hides_invisible_events() {
+    // glass.toml 135,58 had lines of 317 characters and an event that
+    // moved the pixel by 0.000.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
+    let scene = load(&path).unwrap();
+    let tree = record_pixel(&scene, &scene.settings, 135, 58);
+    let story = explain(&tree);
+    assert!(story.lines().all(|l| l.chars().count() <= 100), "{story}");
+    assert!(!story.contains("0.000  "), "{story}");
+    assert!(
+        story.contains("  1 more event changed nothing visible"),
+        "{story}"
+    );
+    // Continuations of a ranked event hang under its text, past "  0.516  ".
+    let at = story
+        .lines()
+        .position(|l| l.starts_with("  0.516  "))
+        .unwrap();
+    let next = story.lines().nth(at + 1).unwrap();
+    assert!(next.starts_with("         -0.7648"), "{story}");
+}
+
+/// The story with its wrapping undone: every run of whitespace one space.
+fn flat(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }

@@ -12,7 +12,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use raystep::record::{explain, record_pixel};
+use raystep::record::{explain, explain_unwrapped, record_pixel};
 use raystep::scene::load;
 use raystep::tui::{App, Mode};
 
@@ -24,10 +24,12 @@ fn scene_path(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// `raystep explain scenes/NAME --pixel X,Y`, as the library writes it.
-fn explain_pixel(name: &str, (x, y): (u32, u32)) -> String {
+/// `raystep explain scenes/NAME --pixel X,Y` before wrapping, one line per
+/// sentence, so that a test finds a sentence on one line; and as printed.
+fn explain_pixel(name: &str, (x, y): (u32, u32)) -> (String, String) {
     let scene = load(&scene_path(name)).unwrap();
-    explain(&record_pixel(&scene, &scene.settings, x, y))
+    let tree = record_pixel(&scene, &scene.settings, x, y);
+    (explain_unwrapped(&tree), explain(&tree))
 }
 
 fn snapshot(name: &str, text: &str) {
@@ -60,7 +62,7 @@ fn a_an_opaque_shadow_from_one_of_two_lights() {
     // and leaves the ball (two crossings, k_t 0 each), S = 0. Towards the
     // left light (-12, 6, -0.5) it rises over the picture's left side, far
     // above the glass ball and the pane: S = 1.
-    let text = explain_pixel("two-lights.toml", (92, 61));
+    let (text, printed) = explain_pixel("two-lights.toml", (92, 61));
     assert!(text.contains("hits floor"), "{text}");
     assert!(
         text.contains("right: in shadow, blocked by red ball (opaque)"),
@@ -70,7 +72,7 @@ fn a_an_opaque_shadow_from_one_of_two_lights() {
     assert!(text.contains("left: lit, nothing in the way"), "{text}");
     assert!(text.contains("diffuse from left"), "{text}");
     assert!(!text.contains("diffuse from right"), "{text}");
-    snapshot("a_opaque_shadow", &text);
+    snapshot("a_opaque_shadow", &printed);
 }
 
 #[test]
@@ -81,15 +83,15 @@ fn b_a_fractional_shadow_through_glass_and_a_pane() {
     // the plane x = -6.75 at a fraction 1.83 / 7.08 = 0.26 of the way, at
     // y = 1.55, z = -0.44: inside the pane (y 0.8..2.4, z -1.4..0.4),
     // k_t 0.8. S = 0.6 x 0.6 x 0.8 = 0.288.
-    let text = explain_pixel("two-lights.toml", (3, 64));
+    let (text, printed) = explain_pixel("two-lights.toml", (3, 64));
     assert!(
         text.contains(
-            "left: partly blocked through glass ball (k_t 0.6, crossed 2 times), glass pane (k_t 0.8): S = 0.288"
+            "left: partly blocked through glass ball (k_t = 0.6, crossed 2 times), glass pane (k_t = 0.8): S = 0.288"
         ),
         "{text}"
     );
     assert!(text.contains("right: lit, nothing in the way"), "{text}");
-    snapshot("b_fractional_shadow", &text);
+    snapshot("b_fractional_shadow", &printed);
 }
 
 #[test]
@@ -98,7 +100,7 @@ fn c_a_pixel_lit_mostly_by_a_reflection() {
     // brings I_r = (0.761, 0.135, 0.103), so k_s I_r = (0.647, 0.115,
     // 0.088), sum 0.850, of a pixel (0.751, 0.282, 0.276), sum 1.309:
     // 0.850 / 1.309 = 64.9% of the brightness, the largest term.
-    let text = explain_pixel("mirrors.toml", (97, 50));
+    let (text, printed) = explain_pixel("mirrors.toml", (97, 50));
     let terms = text
         .lines()
         .skip_while(|l| !l.starts_with("Its colour is the sum"))
@@ -111,7 +113,7 @@ fn c_a_pixel_lit_mostly_by_a_reflection() {
         text.contains("Reflected ray (weight 0.85): hits red ball"),
         "{text}"
     );
-    snapshot("c_mostly_reflection", &text);
+    snapshot("c_mostly_reflection", &printed);
 }
 
 #[test]
@@ -122,7 +124,7 @@ fn d_total_internal_reflection_in_a_prism() {
     // from inside, is (-1, 0, 1)/sqrt 2: cos_i = 0.7287 (43.2 degrees, past
     // the critical 41.8), and with eta = 1.5,
     // k = 1 - 2.25 (1 - 0.7287^2) = -0.0552 < 0: TIR.
-    let text = explain_pixel("prism.toml", (90, 60));
+    let (text, printed) = explain_pixel("prism.toml", (90, 60));
     let line = text
         .lines()
         .find(|l| l.contains("total internal reflection at r1"))
@@ -134,7 +136,7 @@ fn d_total_internal_reflection_in_a_prism() {
         text.contains("total internal reflection at r2") && text.contains("on prism left"),
         "{text}"
     );
-    snapshot("d_prism_tir", &text);
+    snapshot("d_prism_tir", &printed);
 }
 
 #[test]
@@ -142,7 +144,7 @@ fn e_a_ray_through_the_notch_of_a_concave_polygon() {
     // Left of the star's top tip the +U half-line from the hit point in
     // the star's plane crosses the tip's two edges: 2, even, outside; the
     // ray goes on to the back wall.
-    let text = explain_pixel("polygons.toml", (30, 30));
+    let (text, printed) = explain_pixel("polygons.toml", (30, 30));
     let line = text
         .lines()
         .find(|l| l.contains("star") && l.contains("outside"))
@@ -150,7 +152,7 @@ fn e_a_ray_through_the_notch_of_a_concave_polygon() {
     assert!(line.contains("2 edge crossings"), "{line}");
     assert!(line.contains("even"), "{line}");
     assert!(text.contains("hits back wall"), "{text}");
-    snapshot("e_concave_notch", &text);
+    snapshot("e_concave_notch", &printed);
 }
 
 // In the debugger, from the start: each answer in the details pane after
@@ -203,7 +205,10 @@ fn each_answer_is_in_the_debugger_within_five_keys_of_the_start() {
     keys(&mut app, "fp", 5);
     assert_eq!(app.cursor(), (0, 61));
     let text = screen_text(&mut app);
-    assert!(text.contains("S = 0.288, blocked by glass ball"), "{text}");
+    assert!(
+        text.contains("S = 0.288, partly blocked by glass ball"),
+        "{text}"
+    );
     assert!(text.contains("glass pane"), "{text}");
 
     // (c) no key: mirrors.toml's centre pixel is the right mirror, and the

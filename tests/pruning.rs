@@ -76,9 +76,10 @@ fn the_third_reflection_between_mirrors_of_ks_one_tenth_is_not_cast() {
     assert!(
         text(&tree).contains("reflected ray not cast: accumulated weight 0.001 < min_weight 1/512")
     );
-    // Graphviz puts the ray and the reason on two lines of one box.
+    // Graphviz puts the ray, the rule and the reason on three lines of one
+    // grey dashed box.
     assert!(raystep::record::dot(&tree).contains(
-        "n2p0 [shape=box, style=dashed, label=\"reflected ray not cast\\naccumulated weight 0.001 < min_weight 1/512\"];"
+        "n2p0 [shape=box, style=dashed, color=\"grey\", fontcolor=\"grey40\", label=\"reflected ray\\nnot cast: min_weight\\naccumulated weight 0.001 < min_weight 1/512\"];"
     ));
 }
 
@@ -119,7 +120,7 @@ fn perfect_mirrors_stop_at_the_ray_budget() {
         text(&tree)
             .contains("reflected ray not cast: the pixel's tree already has max_rays = 3 rays")
     );
-    assert!(explain(&tree).contains("Deeper in the tree 1 secondary ray(s) were not cast"));
+    assert!(explain(&tree).contains("Deeper in the tree 1 secondary ray was not cast"));
 }
 
 /// The glass-planes scene with ks = kt = 1: no weight ever falls.

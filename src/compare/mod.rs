@@ -20,7 +20,7 @@ pub use ranking::{MIN_FIT, Ranked};
 pub use report::text;
 pub use student::StudentImage;
 
-use crate::record::{RayTree, explain, record_pixel};
+use crate::record::{RayTree, explain_unwrapped, record_pixel};
 use crate::scene::Scene;
 
 /// The regions a report describes; the rest are only counted.
@@ -140,7 +140,7 @@ fn describe(
         pixel: [x, y],
         yours: yours.get_pixel(x, y).0,
         reference: reference.image.get_pixel(x, y).0,
-        explain: brief(&explain(&tree)),
+        explain: brief(&explain_unwrapped(&tree)),
         diagnosis: diagnosis::diagnose(&samples(scene, yours, region)),
     }
 }

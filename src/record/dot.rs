@@ -5,10 +5,11 @@
 
 use std::fmt::Write;
 
+use super::shaping::depth_cut_rays;
 use super::text::{color, kind_name, not_cast_reason, num};
 use super::tree::{LightRecord, Node, NodeId, RayTree};
 use crate::math::{Color, to_rgb8};
-use crate::trace::RayKind;
+use crate::trace::{PruneRule, RayKind};
 
 /// The one font of every label.
 const FONT: &str = "fontname=\"Helvetica\", fontsize=10";
@@ -24,17 +25,36 @@ pub fn dot(tree: &RayTree) -> String {
             write_light(&mut out, id, i, light);
         }
         for (i, ray) in node.not_cast.iter().enumerate() {
-            let kind = format!("{} ray not cast", kind_name(ray.kind));
-            let why = not_cast_reason(ray);
-            let _ = writeln!(
-                out,
-                "  n{id}p{i} [shape=box, style=dashed, label=\"{kind}\\n{why}\"];"
+            let rule = match ray.rule {
+                PruneRule::MinWeight { .. } => "min_weight",
+                PruneRule::MaxRays { .. } => "max_rays",
+            };
+            let why = format!("not cast: {rule}\\n{}", not_cast_reason(ray));
+            write_not_cast(&mut out, &format!("n{id}p{i}"), id, ray.kind, &why);
+        }
+        for (i, (kind, weight)) in depth_cut_rays(tree, id).into_iter().enumerate() {
+            let why = format!(
+                "not cast: max_depth\\nweight {}, max_depth = {}",
+                num(weight),
+                tree.max_depth
             );
-            let _ = writeln!(out, "  n{id} -> n{id}p{i} [style=dotted];");
+            write_not_cast(&mut out, &format!("n{id}d{i}"), id, kind, &why);
         }
     }
     out.push_str("}\n");
     out
+}
+
+/// A secondary ray a rule or the depth limit kept from being cast: a grey
+/// dashed box under the ray it would have come from.
+fn write_not_cast(out: &mut String, name: &str, parent: NodeId, kind: RayKind, why: &str) {
+    let _ = writeln!(
+        out,
+        "  {name} [shape=box, style=dashed, color=\"grey\", fontcolor=\"grey40\", \
+         label=\"{} ray\\n{why}\"];",
+        kind_name(kind)
+    );
+    let _ = writeln!(out, "  n{parent} -> {name} [style=dashed, color=\"grey\"];");
 }
 
 /// A ray's box, filled with its colour, and the edge from its parent.
@@ -82,9 +102,17 @@ fn write_light(out: &mut String, id: NodeId, i: usize, light: &LightRecord) {
         _ if light.faces_away => format!("faces away (N·L = {})", num(light.n_dot_l)),
         None => "shadows off".to_string(),
         Some(s) if s.blockers.is_empty() => "S = 1, nothing in the way".to_string(),
-        Some(s) => {
+        Some(s) if s.s == 0.0 => {
             let names: Vec<String> = s.blockers.iter().map(|b| escape(&b.object)).collect();
-            format!("S = {}, blocked by {}", num(s.s), names.join(", "))
+            format!("S = 0, blocked by {}", names.join(", "))
+        }
+        Some(s) => {
+            let names: Vec<String> = s
+                .blockers
+                .iter()
+                .map(|b| format!("{} (k_t = {})", escape(&b.object), num(b.kt)))
+                .collect();
+            format!("S = {}, partly blocked by {}", num(s.s), names.join(", "))
         }
     };
     let _ = writeln!(

@@ -3,19 +3,49 @@
 
 use std::fmt::Write;
 
-use super::shaping::shaping_events;
-use super::text::{color, fraction, kind_name, not_cast_reason, num, precise};
+use super::lines::Line;
+use super::shaping::{place, shaping_events};
+use super::sources::{brightness as weight, sources};
+use super::text::{color, count, fraction, kind_name, not_cast_reason, num, precise};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
 use crate::shapes::{CrossingFigure, RootChoice, Working};
 use crate::trace::{PruneRule, RayKind};
 
-/// The brightness used to compare terms: the sum of the three channels.
-fn weight(c: Color) -> f64 {
-    c.x + c.y + c.z
+/// `explain` wraps its lines at 100 columns.
+const WIDTH: usize = 100;
+
+/// The story wrapped for a terminal.
+pub fn explain(tree: &RayTree) -> String {
+    wrapped(&explain_unwrapped(tree))
 }
 
-pub fn explain(tree: &RayTree) -> String {
+/// Each line broken at `WIDTH`, continuations hung under the line's text:
+/// past a leading number ("  0.372  total internal ..." or "  61.0%  green
+/// wall ..."), else four past its indentation.
+fn wrapped(story: &str) -> String {
+    let mut out = String::new();
+    for line in story.lines() {
+        let body = line.trim_start_matches(' ');
+        let hang = match body.split_once("  ") {
+            Some((number, rest))
+                if number.starts_with(|c: char| c.is_ascii_digit())
+                    && !number.contains(' ')
+                    && !rest.starts_with(' ') =>
+            {
+                number.chars().count() + 2
+            }
+            _ => 4,
+        };
+        for row in Line::text(None, line).wrap_hanging(WIDTH, 0, hang) {
+            let _ = writeln!(out, "{}", row.text());
+        }
+    }
+    out
+}
+
+/// The story, one line per sentence or list entry (for JSON and briefs).
+pub fn explain_unwrapped(tree: &RayTree) -> String {
     let mut out = String::new();
     let root = tree.root();
     let c = tree.color();
@@ -88,8 +118,54 @@ pub fn explain(tree: &RayTree) -> String {
             "No secondary rays: max_depth is 1, so the primary ray spawns none."
         );
     }
+    write_sources(&mut out, tree);
     write_shaping(&mut out, tree);
     out
+}
+
+/// The rays whose own terms make most of the pixel: at most three, each
+/// over 5% of its brightness, then what the rest add together.
+fn write_sources(out: &mut String, tree: &RayTree) {
+    let total = weight(tree.color());
+    if total <= 0.0 {
+        return;
+    }
+    let all = sources(tree);
+    let share = |c: Color| 100.0 * weight(c) / total;
+    let top: Vec<_> = all
+        .iter()
+        .take(3)
+        .filter(|s| share(s.color) > 5.0)
+        .collect();
+    let _ = writeln!(
+        out,
+        "Where the colour comes from: each surface's own ambient + diffuse + specular, times the \
+         weights and attenuations of the rays leading to it, as a share of the brightness:"
+    );
+    for source in &top {
+        let what = match &source.object {
+            Some(object) => format!("{object}, hit by"),
+            None => "the background, seen by".to_string(),
+        };
+        let _ = writeln!(
+            out,
+            "  {:>5.1}%  {what} {}: adds {}",
+            share(source.color),
+            place(tree, source.node),
+            color(source.color)
+        );
+    }
+    let rest = &all[top.len()..];
+    if !rest.is_empty() {
+        let sum = rest.iter().fold(Color::ZERO, |sum, s| sum + s.color);
+        let (rays, add) = match (rest.len(), top.is_empty()) {
+            (1, true) => ("1 ray".to_string(), "adds"),
+            (1, false) => ("1 other ray".to_string(), "adds"),
+            (n, true) => (format!("{n} rays"), "add"),
+            (n, false) => (format!("{n} other rays"), "add"),
+        };
+        let _ = writeln!(out, "  {:>5.1}%  {rays} {add} {}", share(sum), color(sum));
+    }
 }
 
 /// The events anywhere in the tree that shaped the colour, largest first.
@@ -105,11 +181,25 @@ fn write_shaping(out: &mut String, tree: &RayTree) {
     }
     let _ = writeln!(
         out,
-        "What shaped the colour, at any depth of the tree (largest first; the number is how \
-         much of a channel it moved in the pixel, on average):"
+        "What shaped the colour, at any depth of the tree, largest first; the number is how \
+         much of a channel it moved in the pixel, on average:"
     );
-    for event in events {
+    // An event that moved the pixel by less than 0.0005 prints as 0.000.
+    let (visible, invisible): (Vec<_>, Vec<_>) =
+        events.into_iter().partition(|e| e.matters >= 0.0005);
+    for event in &visible {
         let _ = writeln!(out, "  {:.3}  {}", event.matters, event.text);
+    }
+    if !invisible.is_empty() {
+        let _ = writeln!(
+            out,
+            "  {} changed nothing visible (less than 0.0005 on average).",
+            if visible.is_empty() {
+                count(invisible.len() as u64, "event", "events")
+            } else {
+                count(invisible.len() as u64, "more event", "more events")
+            }
+        );
     }
 }
 
@@ -169,10 +259,10 @@ fn light_fate(light: &LightRecord) -> String {
     };
     let distance = if light.f_att < 1.0 {
         format!(
-            " At distance {} attenuation f_att = {} lets {}% of its light arrive.",
+            " At distance {} attenuation f_att = {} lets {:.1}% of its light arrive.",
             num(light.distance),
             num(light.f_att),
-            num(100.0 * light.f_att)
+            100.0 * light.f_att
         )
     } else {
         String::new()
@@ -186,7 +276,7 @@ fn light_fate(light: &LightRecord) -> String {
     }
     if let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0) {
         return format!(
-            "{}: in shadow, blocked by {} (opaque) at distance {} of {}.",
+            "{}: in shadow, blocked by {} (opaque) at distance {} along the {} to the light.",
             light.light,
             opaque.object,
             precise(opaque.t),
@@ -202,23 +292,23 @@ fn light_fate(light: &LightRecord) -> String {
             .count();
         let entry = if crossings > 1 {
             format!(
-                "{} (k_t {}, crossed {crossings} times)",
+                "{} (k_t = {}, crossed {crossings} times)",
                 b.object,
                 num(b.kt)
             )
         } else {
-            format!("{} (k_t {})", b.object, num(b.kt))
+            format!("{} (k_t = {})", b.object, num(b.kt))
         };
         if !through.contains(&entry) {
             through.push(entry);
         }
     }
     format!(
-        "{}: partly blocked through {}: S = {}, so it gives {}% of its light.{distance}",
+        "{}: partly blocked through {}: S = {}, so it gives {:.1}% of its light.{distance}",
         light.light,
         through.join(", "),
         num(shadow.s),
-        num(100.0 * shadow.s)
+        100.0 * shadow.s
     )
 }
 
@@ -255,7 +345,7 @@ fn write_not_cast(out: &mut String, tree: &RayTree) {
     }
     let deeper = tree.nodes[1..].iter().flat_map(|n| &n.not_cast);
     let (mut light, mut budget) = (None, None);
-    let (mut lighter, mut over) = (0, 0);
+    let (mut lighter, mut over) = (0u64, 0u64);
     for ray in deeper {
         match ray.rule {
             PruneRule::MinWeight { min_weight } => {
@@ -271,16 +361,22 @@ fn write_not_cast(out: &mut String, tree: &RayTree) {
     if let Some(min_weight) = light {
         let _ = writeln!(
             out,
-            "Deeper in the tree {lighter} secondary ray(s) were not cast: their accumulated \
-             weight was below min_weight {}.",
+            "Deeper in the tree {} not cast: {} below min_weight {}.",
+            count(lighter, "secondary ray was", "secondary rays were"),
+            if lighter == 1 {
+                "its accumulated weight was"
+            } else {
+                "their accumulated weight was"
+            },
             fraction(min_weight)
         );
     }
     if let Some(max_rays) = budget {
         let _ = writeln!(
             out,
-            "Deeper in the tree {over} secondary ray(s) were not cast: the pixel's tree had \
-             reached max_rays = {max_rays} rays."
+            "Deeper in the tree {} not cast: the pixel's tree had reached max_rays = \
+             {max_rays} rays.",
+            count(over, "secondary ray was", "secondary rays were")
         );
     }
 }

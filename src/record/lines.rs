@@ -125,6 +125,12 @@ impl Line {
     /// are indented four past the line's own indentation. `inspect` wraps
     /// with no swatch; the details pane with its swatch's width.
     pub fn wrap(&self, room: usize, swatch: usize) -> Vec<Row> {
+        self.wrap_hanging(room, swatch, 4)
+    }
+
+    /// Like `wrap`, with continuations indented `hang` past the line's own
+    /// indentation (`explain` hangs them under the text after a number).
+    pub fn wrap_hanging(&self, room: usize, swatch: usize, hang: usize) -> Vec<Row> {
         let mut words = self.words();
         // A line of spaces keeps its last (empty) word.
         let lead = (words.iter().take_while(|w| w.text.is_empty()).count()).min(words.len() - 1);
@@ -143,10 +149,10 @@ impl Line {
                 used += len;
             } else if used + 1 + len > room {
                 rows.push(Row {
-                    indent: lead + 4,
+                    indent: lead + hang,
                     words: Vec::new(),
                 });
-                used = lead + 4 + len;
+                used = lead + hang + len;
             } else {
                 used += 1 + len;
             }
@@ -266,6 +272,16 @@ mod tests {
         // Without the swatch the same line fits in 2 + 3 + 1 + 21 + 1 + 1 = 29.
         assert_eq!(line.wrap(30, 0).len(), 1);
         assert_eq!(line.wrap(30, 0)[0].text(), "  k_d (0.100, 0.200, 0.300) x");
+    }
+
+    #[test]
+    fn a_hanging_indent_puts_continuations_under_the_text() {
+        // "  0.5  aaaa bbbb cccc dddd eeee ffff" with room 30 and hang 5: the
+        // lead is 2, "0.5  aaaa ... eeee" ends at 2 + 3 + 2 + 24 = 31 > 30,
+        // so "eeee" starts a row indented 2 + 5 = 7, under "aaaa".
+        let line = Line::text(None, "  0.5  aaaa bbbb cccc dddd eeee ffff");
+        let rows: Vec<String> = line.wrap_hanging(30, 0, 5).iter().map(Row::text).collect();
+        assert_eq!(rows, ["  0.5  aaaa bbbb cccc dddd", "       eeee ffff"]);
     }
 
     #[test]

@@ -8,16 +8,18 @@ mod finite;
 mod lines;
 mod recorder;
 mod shaping;
+mod sources;
 mod text;
 mod tree;
 
 pub use diff::diff;
 pub use dot::dot;
-pub use explain::explain;
+pub use explain::{explain, explain_unwrapped};
 pub use finite::{NonFinite, check_finite};
 pub use lines::{About, Line, Piece, Row, Word};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use shaping::{Shaping, place, reach, shaping_events};
+pub use sources::{Source, brightness, sources};
 pub use text::{
     Children, color, fraction, kind_name, light_label, light_lines, node_lines, not_cast_line,
     not_cast_reason, num, ray_header, text, vector, working_lines,

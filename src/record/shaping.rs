@@ -39,7 +39,7 @@ pub fn shaping_events(tree: &RayTree) -> Vec<Shaping> {
                 events.push(event);
             }
         }
-        events.extend(depth_cut(tree, id, reach, &hit.factors));
+        events.extend(depth_cut(tree, id, reach));
         for ray in &node.not_cast {
             let matters = reach * ray.weight;
             events.push(Shaping {
@@ -165,13 +165,24 @@ fn blocked(
         .map(|b| {
             let root = b.root.map(|r| format!(", root {r}")).unwrap_or_default();
             format!(
-                "{} (t = {}{root}, k_t {})",
+                "{} (t = {}{root}, k_t = {})",
                 b.object,
                 precise(b.t),
                 num(b.kt)
             )
         })
         .collect();
+    // With k_s = 0 the light only ever gave a diffuse term.
+    let terms = if f.ks == 0.0 {
+        format!("its diffuse term with N·L = {}", num(light.n_dot_l))
+    } else {
+        format!(
+            "diffuse with N·L = {}, specular with {} = {}",
+            num(light.n_dot_l),
+            cosine_name(light.specular_model),
+            num(light.specular_cosine)
+        )
+    };
     let how = if shadow.s == 0.0 {
         "blocked"
     } else {
@@ -182,14 +193,12 @@ fn blocked(
         node: id,
         text: format!(
             "{} is {how} at {} by {}: S = {}; unblocked it would add {} more to the pixel \
-             (diffuse and specular with {} = {}).",
+             ({terms}).",
             light.light,
             place(tree, id),
             by.join(", "),
             num(shadow.s),
-            color(lost),
-            cosine_name(light.specular_model),
-            num(light.specular_cosine)
+            color(lost)
         ),
     })
 }
@@ -197,15 +206,9 @@ fn blocked(
 /// A hit whose material reflects or transmits but which spawned nothing and
 /// had no ray kept back by a rule: the depth limit stopped it (refraction is
 /// only evaluated where rays may be spawned, MODEL §5).
-fn depth_cut(tree: &RayTree, id: NodeId, reach: f64, f: &MaterialFactors) -> Vec<Shaping> {
-    let node = &tree.nodes[id];
-    let spawned = node.reflected.is_some() || node.transmitted.is_some();
-    if spawned || node.refraction.is_some() || !node.not_cast.is_empty() {
-        return Vec::new();
-    }
-    [(RayKind::Reflected, f.ks), (RayKind::Transmitted, f.kt)]
+fn depth_cut(tree: &RayTree, id: NodeId, reach: f64) -> Vec<Shaping> {
+    depth_cut_rays(tree, id)
         .into_iter()
-        .filter(|(_, weight)| *weight > 0.0)
         .map(|(kind, weight)| Shaping {
             matters: reach * weight,
             node: id,
@@ -219,6 +222,25 @@ fn depth_cut(tree: &RayTree, id: NodeId, reach: f64, f: &MaterialFactors) -> Vec
                 num(reach * weight)
             ),
         })
+        .collect()
+}
+
+/// The secondary rays the depth limit kept a hit from spawning, with their
+/// weights k_s and k_t: none when it spawned any, evaluated refraction or
+/// had a ray kept back by a rule (those are recorded themselves).
+pub fn depth_cut_rays(tree: &RayTree, id: NodeId) -> Vec<(RayKind, f64)> {
+    let node = &tree.nodes[id];
+    let spawned = node.reflected.is_some() || node.transmitted.is_some();
+    let Some(hit) = node.hit.as_ref() else {
+        return Vec::new();
+    };
+    if spawned || node.refraction.is_some() || !node.not_cast.is_empty() {
+        return Vec::new();
+    }
+    let f = &hit.factors;
+    [(RayKind::Reflected, f.ks), (RayKind::Transmitted, f.kt)]
+        .into_iter()
+        .filter(|(_, weight)| *weight > 0.0)
         .collect()
 }
 

@@ -59,6 +59,12 @@ pub fn fraction(x: f64) -> String {
     }
 }
 
+/// "1 primitive", "2 primitives": a count with its noun.
+pub fn count(n: impl Into<u64>, singular: &str, plural: &str) -> String {
+    let n = n.into();
+    format!("{n} {}", if n == 1 { singular } else { plural })
+}
+
 /// A secondary ray a rule kept from being cast, and the rule, in one line.
 pub fn not_cast_line(ray: &NotCast) -> String {
     format!(
@@ -172,11 +178,11 @@ fn polygon_lines(w: &PolygonWorking) -> Vec<String> {
     if let Some(test) = &w.crossing {
         let [u, v] = test.projected_point;
         lines.push(format!(
-            "2. drop {:?}: hit point at (U, V) = ({}, {}); {} edge crossings of +U: {}",
+            "2. drop {:?}: hit point at (U, V) = ({}, {}); {} of +U: {}",
             test.dropped_axis,
             num(u),
             num(v),
-            test.crossings,
+            count(test.crossings, "edge crossing", "edge crossings"),
             if test.inside {
                 "odd, inside"
             } else {
@@ -200,7 +206,7 @@ pub fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
         "   U = {u}, V = {v}; vertices from the hit point: {}",
         corners.join(" ")
     )];
-    let mut apart = 0;
+    let mut apart = 0u32;
     for edge in &figure.edges {
         let Some(at) = edge.u.filter(|_| edge.straddles) else {
             apart += 1;
@@ -217,9 +223,8 @@ pub fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
         lines.push(format!("   edge {}→{}: {verdict}", edge.from, edge.to));
     }
     if apart > 0 {
-        lines.push(format!(
-            "   {apart} other edge(s) stay on one side of V = 0"
-        ));
+        let edges = count(apart, "other edge stays", "other edges stay");
+        lines.push(format!("   {edges} on one side of V = 0"));
     }
     lines
 }
@@ -315,11 +320,16 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
             let names: Vec<String> = s
                 .blockers
                 .iter()
-                .map(|b| format!("{} t={} kt={}", b.object, precise(b.t), num(b.kt)))
+                .map(|b| format!("{} (t = {}, k_t = {})", b.object, precise(b.t), num(b.kt)))
                 .collect();
+            let how = if s.s > 0.0 {
+                "partly blocked"
+            } else {
+                "blocked"
+            };
             (
                 s.s,
-                format!("S = {}, blocked by {}", num(s.s), names.join("; ")),
+                format!("S = {}, {how} by {}", num(s.s), names.join("; ")),
             )
         }
     };
@@ -470,8 +480,8 @@ pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
             Line::text(
                 Some(About::Miss),
                 format!(
-                    "missed everything ({} primitives tested): background ",
-                    node.cost.primitives
+                    "missed everything ({} tested): background ",
+                    count(node.cost.primitives, "primitive", "primitives")
                 ),
             )
             .color(node.color),
@@ -487,10 +497,16 @@ pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
     if children == Children::Listed {
         lines.extend(tree.children(id).map(|c| child_line(tree, c)));
     }
+    // The text tree prints child rays as branches below this ray's lines.
+    let below = children == Children::Omitted && tree.children(id).next().is_some();
     lines.push(
         Line::text(Some(About::Colour), "colour ")
             .color(node.color)
-            .then(" = sum of the terms above and below"),
+            .then(if below {
+                " = sum of the terms above and of the rays below"
+            } else {
+                " = sum of the terms above"
+            }),
     );
     if node.kind != RayKind::Primary {
         lines.push(child_term(tree, id));
@@ -541,8 +557,9 @@ fn hit_lines(node: &Node, hit: &HitRecord) -> Vec<Line> {
     lines.push(Line::text(
         about,
         format!(
-            "  tested {} nodes, {} primitives",
-            node.cost.nodes, node.cost.primitives
+            "  tested {}, {}",
+            count(node.cost.nodes, "node", "nodes"),
+            count(node.cost.primitives, "primitive", "primitives")
         ),
     ));
     lines
