@@ -221,13 +221,23 @@ fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
         out,
         "Its colour is the sum of these terms (largest first, share of the brightness):"
     );
-    for (name, term) in terms.iter().filter(|(_, c)| weight(*c) > 0.0) {
+    // A term that prints as (0.000, 0.000, 0.000) is only named, in one line.
+    let (shown, tiny): (Vec<_>, Vec<_>) = terms
+        .iter()
+        .filter(|(_, c)| weight(*c) > 0.0)
+        .partition(|(_, c)| c.max_element() >= 0.0005);
+    for (name, term) in shown {
         let share = if total > 0.0 {
             100.0 * weight(*term) / total
         } else {
             0.0
         };
         let _ = writeln!(out, "  {name:<28} {}  {share:>5.1}%", color(*term));
+    }
+    if !tiny.is_empty() {
+        let names: Vec<&str> = tiny.iter().map(|(name, _)| name.as_str()).collect();
+        let each = if names.len() == 1 { "" } else { "each " };
+        let _ = writeln!(out, "  and {} ({each}under 0.0005)", names.join(", "));
     }
     if total <= 0.0 {
         let _ = writeln!(out, "  every term is zero: nothing lights this point.");
