@@ -1,0 +1,126 @@
+//! The figure's view of the diagram's plane: the uniform mapping from the
+//! plane to the figure (fitted, then magnified), and objects' outlines
+//! drawn, laid out for label placement and labelled in it.
+
+use std::fmt::Write;
+
+use glam::DVec2;
+
+use super::{FRAME, HEIGHT, MARGIN, WIDTH};
+use crate::diagram::Outline;
+
+/// The mapping from the plane to the figure: uniform scale, y up.
+pub(super) struct View {
+    pub(super) centre: DVec2,
+    pub(super) scale: f64,
+}
+
+impl View {
+    pub(super) fn fit(points: &[DVec2]) -> View {
+        let finite: Vec<DVec2> = points.iter().copied().filter(|p| p.is_finite()).collect();
+        let min = finite.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
+        let max = finite.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
+        let (min, max) = if finite.is_empty() {
+            (DVec2::splat(-1.0), DVec2::splat(1.0))
+        } else {
+            (min, max)
+        };
+        let size = (max - min).max(DVec2::splat(1e-3));
+        let room = FRAME.1 - FRAME.0 - DVec2::splat(2.0 * MARGIN);
+        View {
+            centre: (min + max) / 2.0,
+            scale: (room.x / size.x).min(room.y / size.y),
+        }
+    }
+
+    /// Magnified `zoom` times about `focus`, which moves toward the middle
+    /// as it grows (its offset from the middle divided by `zoom`): kept in
+    /// place, a hit near the edge would leave the figure on the first zoom.
+    pub(super) fn zoomed(self, zoom: f64, focus: DVec2) -> View {
+        let zoom = zoom.max(1.0);
+        View {
+            centre: focus + (self.centre - focus) / (zoom * zoom),
+            scale: self.scale * zoom,
+        }
+    }
+
+    pub(super) fn map(&self, p: DVec2) -> DVec2 {
+        let middle = (FRAME.0 + FRAME.1) / 2.0;
+        let v = (p - self.centre) * self.scale;
+        DVec2::new(middle.x + v.x, middle.y - v.y)
+    }
+}
+
+pub(super) fn write_outline(out: &mut String, view: &View, outline: &Outline) {
+    let style = "fill=\"none\" stroke=\"#999999\" stroke-width=\"1.5\"";
+    match outline {
+        Outline::Circle { center, radius } => {
+            let c = view.map(*center);
+            let _ = writeln!(
+                out,
+                "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"{:.1}\" {style}/>",
+                c.x,
+                c.y,
+                radius * view.scale
+            );
+        }
+        Outline::Polyline(points) => {
+            let list: Vec<String> = points
+                .iter()
+                .map(|&p| view.map(p))
+                .map(|p| format!("{:.1},{:.1}", p.x, p.y))
+                .collect();
+            let _ = writeln!(out, "<polyline points=\"{}\" {style}/>", list.join(" "));
+        }
+        Outline::Line { normal, c } => {
+            let (a, b) = line_ends(*normal, *c, view);
+            let _ = writeln!(
+                out,
+                "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" {style}/>",
+                a.x, a.y, b.x, b.y
+            );
+        }
+    }
+}
+
+/// An outline as straight pieces in the figure, for keeping labels off it:
+/// a circle as a 24-gon, an infinite line across the figure.
+pub(super) fn outline_segments(outline: &Outline, view: &View) -> Vec<(DVec2, DVec2)> {
+    let points: Vec<DVec2> = match outline {
+        Outline::Circle { center, radius } => (0..=24)
+            .map(|i| {
+                let angle = std::f64::consts::TAU * i as f64 / 24.0;
+                view.map(*center + DVec2::from_angle(angle) * *radius)
+            })
+            .collect(),
+        Outline::Polyline(points) => points.iter().map(|&p| view.map(p)).collect(),
+        Outline::Line { normal, c } => {
+            let (a, b) = line_ends(*normal, *c, view);
+            vec![a, b]
+        }
+    };
+    points.windows(2).map(|w| (w[0], w[1])).collect()
+}
+
+/// Where an object's name goes: beside its outline.
+pub(super) fn label_anchor(outline: &Outline, view: &View) -> Option<DVec2> {
+    match outline {
+        Outline::Circle { center, radius } => {
+            Some(view.map(*center + DVec2::new(radius * 0.7, radius * 0.7)))
+        }
+        Outline::Polyline(points) => {
+            let sum = points.iter().fold(DVec2::ZERO, |a, &p| a + p);
+            (!points.is_empty()).then(|| view.map(sum / points.len() as f64))
+        }
+        Outline::Line { .. } => None,
+    }
+}
+
+/// The line a·x + c = 0 as two ends beyond the figure: the point nearest
+/// the view's centre, then far both ways along the line.
+fn line_ends(normal: DVec2, c: f64, view: &View) -> (DVec2, DVec2) {
+    let n = normal / normal.length_squared();
+    let foot = view.centre - n * (normal.dot(view.centre) + c);
+    let along = normal.perp().normalize() * (WIDTH + HEIGHT) / view.scale;
+    (view.map(foot - along), view.map(foot + along))
+}
