@@ -250,7 +250,6 @@ fn write_crossings(out: &mut String, view: &View, figure: &CrossingFigure, label
 }
 
 fn write_legend(out: &mut String) {
-    let (mut x, mut y) = (MARGIN, HEIGHT - BOTTOM + 10.0);
     let items: [(&str, &str); 4] = [
         (
             "<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"#0077bb\" stroke-width=\"2.5\"/>",
@@ -269,21 +268,7 @@ fn write_legend(out: &mut String) {
             "meets V = 0 left of the point: not counted",
         ),
     ];
-    for (mark, name) in items {
-        // 0.6 em a character at 11, the labels' estimate; a second row
-        // when the first is full.
-        let width = 26.0 + name.chars().count() as f64 * 6.6;
-        if x + width > WIDTH - 10.0 {
-            (x, y) = (MARGIN, y + 18.0);
-        }
-        let _ = writeln!(
-            out,
-            "<g transform=\"translate({x:.1} {y:.1})\">{mark}</g>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\">{name}</text>",
-            x + 26.0,
-            y + 4.0
-        );
-        x += width + 18.0;
-    }
+    super::legend::write_rows(out, &items, HEIGHT - BOTTOM + 10.0);
 }
 
 /// From (U, V) to the figure: uniform scale, V up, the origin kept in view.

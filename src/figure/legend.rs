@@ -48,7 +48,15 @@ pub fn write(out: &mut String, passed: bool, faces_away: bool) {
             "light facing away (no shadow ray)",
         ));
     }
-    let (mut x, mut y) = (MARGIN, HEIGHT - LEGEND + 14.0);
+    let items: Vec<(&str, &str)> = items.iter().map(|(m, n)| (m.as_str(), *n)).collect();
+    write_rows(out, &items, HEIGHT - LEGEND + 14.0);
+}
+
+/// Each (mark, meaning) pair left to right from the margin at height `y`,
+/// a new row when one is full; a mark is drawn in a 20-unit box at its
+/// row's middle height.
+pub fn write_rows(out: &mut String, items: &[(&str, &str)], y: f64) {
+    let (mut x, mut y) = (MARGIN, y);
     for (mark, name) in items {
         let width = 24.0 + name.chars().count() as f64 * CHAR;
         if x + width > WIDTH - 10.0 {

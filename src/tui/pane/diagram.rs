@@ -220,18 +220,14 @@ struct Label<'a> {
 
 impl<'a> Label<'a> {
     fn marker(point: DVec2, text: &'a str, colour: Color) -> Self {
-        let (marker, after) = (true, 0);
-        Label {
-            point,
-            text,
-            marker,
-            after,
-            colour,
-        }
+        Self::new(point, text, true, 0, colour)
     }
 
     fn named(point: DVec2, text: &'a str, after: i32, colour: Color) -> Self {
-        let marker = false;
+        Self::new(point, text, false, after, colour)
+    }
+
+    fn new(point: DVec2, text: &'a str, marker: bool, after: i32, colour: Color) -> Self {
         Label {
             point,
             text,
