@@ -136,23 +136,24 @@ fn a_narrow_header_shortens_the_switches_before_the_scene_name() {
     // depth 5" 59) needs 94; with the short names (" · shad refl trans amb ·
     // Blinn · depth 5", 38) it needs 73, so the scene's name stays whole.
     let mut app = App::open(Some(PathBuf::from("scenes/glass.toml")), true).unwrap();
-    let mut terminal = screen(&mut app, 80, 24);
-    let buffer = terminal.backend_mut().buffer().clone();
-    let header: String = (0..80)
-        .map(|x| buffer[(x, 0)].symbol().to_string())
-        .collect();
+    let header = header_row(&mut app, 80);
     assert!(
         header.starts_with(" raystep  scenes/glass.toml 160x120 · shad refl trans amb · Blinn"),
         "{header}"
     );
     // Wide enough, the names are whole.
-    let mut terminal = screen(&mut app, 120, 24);
-    let buffer = terminal.backend_mut().buffer().clone();
-    let header: String = (0..120)
-        .map(|x| buffer[(x, 0)].symbol().to_string())
-        .collect();
+    let header = header_row(&mut app, 120);
     assert!(
         header.contains("scenes/glass.toml 160x120 · shadows reflection transmission ambient"),
         "{header}"
     );
+}
+
+/// The screen's top line at `width` columns.
+fn header_row(app: &mut App, width: u16) -> String {
+    let terminal = screen(app, width, 24);
+    let buffer = terminal.backend().buffer();
+    (0..width)
+        .map(|x| buffer[(x, 0)].symbol().to_string())
+        .collect()
 }
