@@ -79,16 +79,20 @@ pub struct DiagramArgs {
     /// Magnify the figure F times (F >= 1) about the primary ray's first
     /// hit; what falls outside is cut at the edge. 1 shows everything.
     /// Not for `crossing`.
-    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = zoom_factor)]
+    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = zoom_factor, allow_hyphen_values = true)]
     pub zoom: f64,
 }
 
-/// `--zoom`: a finite factor of at least 1.
+/// The largest `--zoom`: far past any slide's need, and small enough that
+/// every coordinate in the figure stays finite (1e308 made NaNs).
+pub const MAX_ZOOM: f64 = 1e4;
+
+/// `--zoom`: a factor from 1 to `MAX_ZOOM`.
 fn zoom_factor(text: &str) -> std::result::Result<f64, String> {
     match text.trim().parse::<f64>() {
-        Ok(f) if f.is_finite() && f >= 1.0 => Ok(f),
+        Ok(f) if (1.0..=MAX_ZOOM).contains(&f) => Ok(f),
         _ => Err(format!(
-            "{text:?} is not a zoom factor: give a number of at least 1, such as 3"
+            "{text:?} is not a zoom factor: give a number from 1 to {MAX_ZOOM}, such as 3"
         )),
     }
 }
@@ -368,6 +372,11 @@ fn diagram_command(args: &DiagramArgs) -> Result<ExitCode> {
         &args.pixel.scene,
         &[(&target, "the figure (-o)".to_owned())],
     )?;
+    if args.plane == PlaneArg::Crossing && args.zoom != 1.0 {
+        bail!(
+            "--zoom magnifies the top, side and ray diagrams; the crossing figure is always fitted to its polygon"
+        );
+    }
     let recorded = record(&args.pixel)?;
     let plane = match args.plane {
         PlaneArg::Top => DiagramPlane::Top,

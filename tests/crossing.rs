@@ -184,6 +184,15 @@ fn the_crossing_figure_marks_each_crossing() {
     assert_eq!(count_class(&doc, "crossing"), 2);
     assert_eq!(count_class(&doc, "left-crossing"), 2);
     assert_eq!(count_class(&doc, "counted-edge"), 2);
+    // The +U half-line (the ray's colour, 2.5 wide) is drawn after the
+    // polygon's fill, so it shows inside the polygon.
+    let order: Vec<&str> = doc.descendants().map(|n| n.tag_name().name()).collect();
+    let polygon = order.iter().position(|&t| t == "polygon").unwrap();
+    let half_line = doc
+        .descendants()
+        .position(|n| n.has_tag_name("line") && n.attribute("stroke-width") == Some("2.5"))
+        .unwrap();
+    assert!(polygon < half_line, "the fill would hide the half-line");
     let texts: Vec<&str> = doc.descendants().filter_map(|n| n.text()).collect();
     for expected in [
         "2 crossings: even, outside",

@@ -253,22 +253,43 @@ fn zoom_magnifies_about_the_first_hit_and_cuts_at_the_frame() {
             assert!(in_frame, "{line:?}");
         }
     }
-    // Less than 1 is refused with the value named.
+    // Out of 1..=1e4 is refused with the value named: below 1, negative
+    // (not taken for an option), or so large the coordinates overflow.
     let out = dir.path().join("no.svg");
+    for zoom in ["0.5", "-1", "1e308"] {
+        let output = raystep(&[
+            "diagram",
+            "scenes/prism.toml",
+            "--pixel",
+            "90,60",
+            "--zoom",
+            zoom,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(output.status.code(), Some(2), "{zoom}");
+        assert!(
+            stderr(&output).contains(&format!(
+                "\"{zoom}\" is not a zoom factor: give a number from 1 to 10000"
+            )),
+            "{}",
+            stderr(&output)
+        );
+    }
+    // The crossing figure has no zoom: refused, not silently ignored.
     let output = raystep(&[
         "diagram",
-        "scenes/prism.toml",
+        "scenes/polygons.toml",
         "--pixel",
-        "90,60",
+        "40,54",
+        "--plane",
+        "crossing",
         "--zoom",
-        "0.5",
+        "2",
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(!output.status.success());
-    assert!(
-        stderr(&output).contains("\"0.5\" is not a zoom factor"),
-        "{}",
-        stderr(&output)
-    );
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("--zoom magnifies the top, side and ray diagrams"));
+    assert!(!out.exists(), "nothing written");
 }

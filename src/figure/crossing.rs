@@ -103,8 +103,9 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
         DVec2::new(WIDTH - 4.0, HEIGHT - BOTTOM - 4.0),
     );
     let mut labels = Labels::new(13.0, bounds);
-    write_axes(&mut out, &view, u, v, &mut labels);
+    // The polygon's fill first: the +U half-line must show inside it.
     write_polygon(&mut out, &view, figure, &vertices);
+    write_axes(&mut out, &view, u, v, &mut labels);
     let o = view.map(DVec2::ZERO);
     labels.reserve(o, 4.5);
     write_crossings(&mut out, &view, figure, &mut labels);
