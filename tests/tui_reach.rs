@@ -326,3 +326,30 @@ fn f_p_finds_the_next_pixel_with_a_partly_blocked_shadow() {
         "a transparent blocker is the current event"
     );
 }
+
+#[test]
+fn f_n_on_a_scene_too_big_for_near_misses_says_so() {
+    // 2001 spheres: one more than NEAR_MISS_SCENE_LIMIT, so no recording has
+    // near misses, and "none in the image" would claim there are none.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("many.nff");
+    let mut text = String::from(
+        "b 0 0 0\nv\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n\
+         l 0 10 10\nf 1 0 0 1 0 0 0 0\n",
+    );
+    for i in 0..=raystep::record::NEAR_MISS_SCENE_LIMIT {
+        let (x, y) = ((i % 50) as f64 * 0.1 - 2.5, (i / 50) as f64 * 0.1 - 2.0);
+        text.push_str(&format!("s {x} {y} 0 0.01\n"));
+    }
+    std::fs::write(&path, text).unwrap();
+    let mut app = App::open(Some(path), true).unwrap();
+    chars(&mut app, "fn");
+    let message = app.message().unwrap();
+    assert!(
+        message.contains(
+            "near misses are recorded only in scenes of at most 2000 objects; this one has 2001"
+        ),
+        "{message}"
+    );
+    assert!(app.finding_progress().is_none(), "no scan started");
+}

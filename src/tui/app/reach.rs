@@ -4,6 +4,7 @@
 use std::time::Instant;
 
 use super::App;
+use crate::record::NEAR_MISS_SCENE_LIMIT;
 use crate::tui::find_job::FindJob;
 use crate::tui::view::find::{self, Find};
 
@@ -75,6 +76,14 @@ impl App {
                     return;
                 }
             },
+            Find::NearMiss if self.scene.objects.len() > NEAR_MISS_SCENE_LIMIT => {
+                // Not recorded on big scenes: "none in the image" would mislead.
+                self.message = Some(format!(
+                    "near misses are recorded only in scenes of at most {NEAR_MISS_SCENE_LIMIT} objects; this one has {}",
+                    self.scene.objects.len()
+                ));
+                return;
+            }
             Find::NearMiss => self.break_object,
             _ => None,
         };
