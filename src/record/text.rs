@@ -570,10 +570,12 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
     let node = &tree.nodes[id];
     let mut lines = Vec::new();
     if let Some(r) = &node.refraction {
-        let outcome = if r.tir {
-            "total internal reflection: kt goes to the reflected ray"
-        } else {
-            "transmitted"
+        // At the depth limit (recorded on TIR only) no ray is cast; the line
+        // below says so.
+        let outcome = match (r.tir, tree.at_depth_limit(id)) {
+            (true, false) => "total internal reflection: kt goes to the reflected ray",
+            (true, true) => "total internal reflection: no transmitted ray",
+            (false, _) => "transmitted",
         };
         lines.push(Line::text(
             Some(About::Refraction),
