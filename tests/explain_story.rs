@@ -273,6 +273,45 @@ fn tir_at_the_depth_limit_casts_one_reflected_ray_of_weight_ks_plus_kt() {
     assert!(!story.contains("stops its transmitted ray"), "{story}");
 }
 
+fn explain_file(file: &str, x: u32, y: u32) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+    let scene = load(&path).unwrap();
+    explain(&record_pixel(&scene, &scene.settings, x, y))
+}
+
+#[test]
+fn an_nff_sphere_near_miss_is_named_once() {
+    // NFF objects are named by kind and number already ("sphere 3").
+    let story = flat(&explain_file("scenes/spd/balls-small.nff", 200, 300));
+    assert!(story.contains("the bounding box of sphere 3 but passes it by"), "{story}");
+    assert!(!story.contains("sphere sphere"), "{story}");
+}
+
+#[test]
+fn rays_that_add_nothing_visible_get_no_share_line() {
+    // attenuation.toml (135, 58): r0's surface is 100.0% of the colour; its
+    // two other rays add under 0.0005 per channel, so no "other rays" line.
+    let story = explain_file("scenes/attenuation.toml", 135, 58);
+    assert!(story.contains("100.0%  right pillar 1, hit by r0"), "{story}");
+    assert!(!story.contains("other rays add"), "{story}");
+}
+
+#[test]
+fn a_passed_by_polygon_is_tested_at_its_plane_point() {
+    // polygons.toml (40, 54): between the star's lower legs the ray meets
+    // the star's plane outside the outline (2 crossings) and hits the wall.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/polygons.toml");
+    let scene = load(&path).unwrap();
+    let tree = record_pixel(&scene, &scene.settings, 40, 54);
+    let lines: Vec<String> = node_lines(&tree, 0, Children::Listed)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    let text = lines.join("\n");
+    assert!(text.contains("drop Z: plane point at (U, V)"), "{text}");
+    assert!(text.contains("vertices from the plane point"), "{text}");
+}
+
 /// A grey mirror (k_s = 0.8, no diffuse) at z = -1 facing the eye at the
 /// origin, and behind the eye, at z = 2, `behind`; ambient 0.2, no lights,
 /// so every surface's own colour is its ambient term I_a · k_a · O_d.
