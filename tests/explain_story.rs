@@ -283,7 +283,10 @@ fn explain_file(file: &str, x: u32, y: u32) -> String {
 fn an_nff_sphere_near_miss_is_named_once() {
     // NFF objects are named by kind and number already ("sphere 3").
     let story = flat(&explain_file("scenes/spd/balls-small.nff", 200, 300));
-    assert!(story.contains("the bounding box of sphere 3 but passes it by"), "{story}");
+    assert!(
+        story.contains("the bounding box of sphere 3 but passes it by"),
+        "{story}"
+    );
     assert!(!story.contains("sphere sphere"), "{story}");
 }
 
@@ -292,7 +295,10 @@ fn rays_that_add_nothing_visible_get_no_share_line() {
     // attenuation.toml (135, 58): r0's surface is 100.0% of the colour; its
     // two other rays add under 0.0005 per channel, so no "other rays" line.
     let story = explain_file("scenes/attenuation.toml", 135, 58);
-    assert!(story.contains("100.0%  right pillar 1, hit by r0"), "{story}");
+    assert!(
+        story.contains("100.0%  right pillar 1, hit by r0"),
+        "{story}"
+    );
     assert!(!story.contains("other rays add"), "{story}");
 }
 
