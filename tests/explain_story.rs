@@ -242,7 +242,7 @@ fn tir_at_the_depth_limit_casts_one_reflected_ray_of_weight_ks_plus_kt() {
     // TIR at r2 (depth 2). With max_depth 2 the limit stops r2's children.
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
     let scene = load(&path).unwrap();
-    let mut settings = scene.settings.clone();
+    let mut settings = scene.settings;
     settings.max_depth = 2;
     let tree = record_pixel(&scene, &settings, 135, 58);
     let r2 = tree.root().transmitted.unwrap();
