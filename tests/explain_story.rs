@@ -236,6 +236,88 @@ fn the_glass_scenes_tir_example_is_told_below_the_first_hit() {
     );
 }
 
+#[test]
+fn tir_at_the_depth_limit_casts_one_reflected_ray_of_weight_ks_plus_kt() {
+    // scenes/glass.toml's pixel (135, 58): into the block's top face, then
+    // TIR at r2 (depth 2). With max_depth 2 the limit stops r2's children.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
+    let scene = load(&path).unwrap();
+    let mut settings = scene.settings;
+    settings.max_depth = 2;
+    let tree = record_pixel(&scene, &settings, 135, 58);
+    let r2 = tree.root().transmitted.unwrap();
+    let node = &tree.nodes[r2];
+    let hit = node.hit.as_ref().unwrap();
+    // Leaving the glass: eta = ior / 1 = 1.5, cos_i = -d·N from the recorded
+    // ray and normal, k = 1 - eta^2 (1 - cos_i^2); at (135, 58) cos_i is
+    // about 0.4644, so k = 1 - 2.25 · 0.7843 = -0.7648 < 0: TIR.
+    assert!(!hit.entering);
+    let cos_i = -node.direction.dot(hit.normal);
+    let k = 1.0 - 1.5 * 1.5 * (1.0 - cos_i * cos_i);
+    assert!((k - -0.7648).abs() < 1e-4, "k = {k}");
+    let refraction = node.refraction.expect("TIR is decided at the limit too");
+    assert!(refraction.tir);
+    assert!((refraction.k - k).abs() < 1e-12);
+    // No ray is cast, so the colour is that of the default-depth tree's r2
+    // without its children: the same as before the TIR was recorded.
+    assert!(node.reflected.is_none() && node.transmitted.is_none());
+    // The one ray not cast is reflected, weight k_s + k_t = 0.1 + 0.9 = 1.
+    let story = flat(&explain(&tree));
+    assert!(
+        story.contains(
+            "the depth limit (max_depth 2) stops its reflected ray (weight 1, total internal \
+             reflection)"
+        ),
+        "{story}"
+    );
+    assert!(!story.contains("stops its transmitted ray"), "{story}");
+}
+
+fn explain_file(file: &str, x: u32, y: u32) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+    let scene = load(&path).unwrap();
+    explain(&record_pixel(&scene, &scene.settings, x, y))
+}
+
+#[test]
+fn an_nff_sphere_near_miss_is_named_once() {
+    // NFF objects are named by kind and number already ("sphere 3").
+    let story = flat(&explain_file("scenes/spd/balls-small.nff", 200, 300));
+    assert!(
+        story.contains("the bounding box of sphere 3 but passes it by"),
+        "{story}"
+    );
+    assert!(!story.contains("sphere sphere"), "{story}");
+}
+
+#[test]
+fn rays_that_add_nothing_visible_get_no_share_line() {
+    // attenuation.toml (135, 58): r0's surface is 100.0% of the colour; its
+    // two other rays add under 0.0005 per channel, so no "other rays" line.
+    let story = explain_file("scenes/attenuation.toml", 135, 58);
+    assert!(
+        story.contains("100.0%  right pillar 1, hit by r0"),
+        "{story}"
+    );
+    assert!(!story.contains("other rays add"), "{story}");
+}
+
+#[test]
+fn a_passed_by_polygon_is_tested_at_its_plane_point() {
+    // polygons.toml (40, 54): between the star's lower legs the ray meets
+    // the star's plane outside the outline (2 crossings) and hits the wall.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/polygons.toml");
+    let scene = load(&path).unwrap();
+    let tree = record_pixel(&scene, &scene.settings, 40, 54);
+    let lines: Vec<String> = node_lines(&tree, 0, Children::Listed)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    let text = lines.join("\n");
+    assert!(text.contains("drop Z: plane point at (U, V)"), "{text}");
+    assert!(text.contains("vertices from the plane point"), "{text}");
+}
+
 /// A grey mirror (k_s = 0.8, no diffuse) at z = -1 facing the eye at the
 /// origin, and behind the eye, at z = 2, `behind`; ambient 0.2, no lights,
 /// so every surface's own colour is its ambient term I_a · k_a · O_d.

@@ -150,12 +150,14 @@ fn graphviz_of_a_pixel_with_total_internal_reflection() {
     let tree = record_pixel(&scene, &scene.settings, 135, 58);
     let dot = raystep::record::dot(&tree);
     assert_eq!(dot.matches("(TIR)").count(), 2);
-    // r5 hits the glass block (k_s 0.1, k_t 0.9) at depth 5 = max_depth:
-    // both its rays are cut, each a grey dashed box; r6's square is opaque
-    // and matte (k_s = k_t = 0), so it had nothing to cut.
-    assert_eq!(dot.matches("not cast: max_depth").count(), 2);
+    // r5 hits the glass block (k_s 0.1, k_t 0.9) from inside at depth 5 =
+    // max_depth with k = -0.7648 (cos_i = 0.4644, eta = 1.5): TIR, so the
+    // one ray cut is reflected, weight k_s + k_t = 1, a grey dashed box; no
+    // transmitted ray exists to cut. r6's square is opaque and matte
+    // (k_s = k_t = 0), so it had nothing to cut.
+    assert_eq!(dot.matches("not cast: max_depth").count(), 1);
     assert!(
-        dot.contains("label=\"transmitted ray\\nnot cast: max_depth\\nweight 0.9, max_depth = 5\"")
+        dot.contains("label=\"reflected ray\\nnot cast: max_depth\\nweight 1, max_depth = 5\"")
     );
     settings().bind(|| insta::assert_snapshot!("glass_135_58_dot", dot));
 }

@@ -164,7 +164,11 @@ fn write_sources(out: &mut String, tree: &RayTree) {
             (n, true) => (format!("{n} rays"), "add"),
             (n, false) => (format!("{n} other rays"), "add"),
         };
-        let _ = writeln!(out, "  {:>5.1}%  {rays} {add} {}", share(sum), color(sum));
+        let (pct, added) = (format!("{:>5.1}%", share(sum)), color(sum));
+        // Rays that add nothing visible are not worth a line.
+        if pct.trim() != "0.0%" || added != "(0.000, 0.000, 0.000)" {
+            let _ = writeln!(out, "  {pct}  {rays} {add} {added}");
+        }
     }
 }
 
@@ -286,7 +290,8 @@ fn light_fate(light: &LightRecord) -> String {
     }
     if let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0) {
         return format!(
-            "{}: in shadow, blocked by {} (opaque) at distance {} along the {} to the light.",
+            "{}: in shadow, blocked by {} (opaque) at distance {} along the shadow ray, of {} \
+             to the light.",
             light.light,
             opaque.object,
             precise(opaque.t),
@@ -416,10 +421,15 @@ fn write_near_misses(out: &mut String, tree: &RayTree) {
             } else {
                 "both roots of its quadratic lie behind the ray's origin".to_string()
             };
+            // NFF spheres are already named "sphere 3".
+            let name = if near.object.starts_with("sphere") {
+                near.object.clone()
+            } else {
+                format!("sphere {}", near.object)
+            };
             let _ = writeln!(
                 out,
-                "On its way it crosses the bounding box of sphere {} but passes it by: {why}.",
-                near.object
+                "On its way it crosses the bounding box of {name} but passes it by: {why}."
             );
         }
     }

@@ -92,6 +92,7 @@ impl<'a> TreeRecorder<'a> {
 
 impl Recorder for TreeRecorder<'_> {
     const RECORDS_ALL_BLOCKERS: bool = true;
+    const RECORDS_DEPTH_LIMIT: bool = true;
 
     fn ray_cast(&mut self, kind: RayKind, depth: u32, ray: &Ray, weight: f64) {
         let parent = self.stack.last().copied();

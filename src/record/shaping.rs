@@ -6,6 +6,7 @@
 use super::text::{color, cosine_name, kind_name, not_cast_reason, num, precise};
 use super::tree::{LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use crate::math::Color;
+use crate::mistakes::Mistake;
 use crate::trace::RayKind;
 
 /// One event and how much it matters to the pixel: the mean over the three
@@ -31,7 +32,8 @@ pub fn shaping_events(tree: &RayTree) -> Vec<Shaping> {
             }
             continue;
         };
-        if node.tir() {
+        // At the depth limit TIR is told with the reflected ray it does not cast.
+        if node.tir() && !tree.at_depth_limit(id) {
             events.push(tir(tree, id, reach, &hit.object));
         }
         for light in &node.lights {
@@ -203,22 +205,27 @@ fn blocked(
     })
 }
 
-/// A hit whose material reflects or transmits but which spawned nothing and
-/// had no ray kept back by a rule: the depth limit stopped it (refraction is
-/// only evaluated where rays may be spawned, MODEL §5).
+/// A hit whose material reflects or transmits at the depth limit: the rays
+/// it would have spawned are not cast (MODEL §5).
 fn depth_cut(tree: &RayTree, id: NodeId, reach: f64) -> Vec<Shaping> {
+    let tir = tree.nodes[id].tir();
     depth_cut_rays(tree, id)
         .into_iter()
         .map(|(kind, weight)| Shaping {
             matters: reach * weight,
             node: id,
             text: format!(
-                "at {} the depth limit (max_depth {}) stops its {} ray (weight {}): it could \
+                "at {} the depth limit (max_depth {}) stops its {} ray (weight {}{}): it could \
                  have added up to {} to each channel.",
                 place(tree, id),
                 tree.max_depth,
                 kind_name(kind),
                 num(weight),
+                if tir {
+                    ", total internal reflection"
+                } else {
+                    ""
+                },
                 num(reach * weight)
             ),
         })
@@ -226,20 +233,28 @@ fn depth_cut(tree: &RayTree, id: NodeId, reach: f64) -> Vec<Shaping> {
 }
 
 /// The secondary rays the depth limit kept a hit from spawning, with their
-/// weights k_s and k_t: none when it spawned any, evaluated refraction or
-/// had a ray kept back by a rule (those are recorded themselves).
+/// weights: k_s and k_t, or on total internal reflection (recorded at the
+/// limit too) one reflected ray of k_s + k_t (k_s under `tir-dropped`).
+/// None below the limit, where every ray is cast or recorded as not cast.
 pub fn depth_cut_rays(tree: &RayTree, id: NodeId) -> Vec<(RayKind, f64)> {
-    let node = &tree.nodes[id];
-    let spawned = node.reflected.is_some() || node.transmitted.is_some();
-    let Some(hit) = node.hit.as_ref() else {
+    let Some(hit) = tree.nodes[id].hit.as_ref() else {
         return Vec::new();
     };
-    if spawned || node.refraction.is_some() || !node.not_cast.is_empty() {
+    if !tree.at_depth_limit(id) {
         return Vec::new();
     }
     let f = &hit.factors;
-    [(RayKind::Reflected, f.ks), (RayKind::Transmitted, f.kt)]
-        .into_iter()
+    let rays = if tree.nodes[id].tir() {
+        let moved = if tree.mistakes.contains(Mistake::TirDropped) {
+            0.0
+        } else {
+            f.kt
+        };
+        vec![(RayKind::Reflected, f.ks + moved)]
+    } else {
+        vec![(RayKind::Reflected, f.ks), (RayKind::Transmitted, f.kt)]
+    };
+    rays.into_iter()
         .filter(|(_, weight)| *weight > 0.0)
         .collect()
 }

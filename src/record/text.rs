@@ -178,8 +178,9 @@ fn polygon_lines(w: &PolygonWorking) -> Vec<String> {
     if let Some(test) = &w.crossing {
         let [u, v] = test.projected_point;
         lines.push(format!(
-            "2. drop {:?}: hit point at (U, V) = ({}, {}); {} of +U: {}",
+            "2. drop {:?}: {} at (U, V) = ({}, {}); {} of +U: {}",
             test.dropped_axis,
+            point_name(test.inside),
             num(u),
             num(v),
             count(test.crossings, "edge crossing", "edge crossings"),
@@ -193,6 +194,12 @@ fn polygon_lines(w: &PolygonWorking) -> Vec<String> {
     lines
 }
 
+/// What the crossing test tests: the hit point, or for a polygon passed by
+/// the point where the ray meets its plane.
+fn point_name(inside: bool) -> &'static str {
+    if inside { "hit point" } else { "plane point" }
+}
+
 /// The crossing test edge by edge: the edges that reach V = 0, where, and
 /// whether they count (MODEL §3).
 pub fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
@@ -203,7 +210,8 @@ pub fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
         .map(|[x, y]| format!("({}, {})", num(*x), num(*y)))
         .collect();
     let mut lines = vec![format!(
-        "   U = {u}, V = {v}; vertices from the hit point: {}",
+        "   U = {u}, V = {v}; vertices from the {}: {}",
+        point_name(figure.inside()),
         corners.join(" ")
     )];
     let mut apart = 0u32;
@@ -570,10 +578,12 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
     let node = &tree.nodes[id];
     let mut lines = Vec::new();
     if let Some(r) = &node.refraction {
-        let outcome = if r.tir {
-            "total internal reflection: kt goes to the reflected ray"
-        } else {
-            "transmitted"
+        // At the depth limit (recorded on TIR only) no ray is cast; the line
+        // below says so.
+        let outcome = match (r.tir, tree.at_depth_limit(id)) {
+            (true, false) => "total internal reflection: kt goes to the reflected ray",
+            (true, true) => "total internal reflection: no transmitted ray",
+            (false, _) => "transmitted",
         };
         lines.push(Line::text(
             Some(About::Refraction),

@@ -7,7 +7,7 @@ use serde_json::Value;
 
 use crate::accel::Cost;
 use crate::math::Color;
-use crate::mistakes::Mistakes;
+use crate::mistakes::{Mistake, Mistakes};
 use crate::scene::SpecularModel;
 use crate::shapes::{CrossingFigure, Working};
 use crate::trace::{NotCast, RayKind, Refraction};
@@ -264,6 +264,17 @@ impl RayTree {
     /// The pixel's colour before clamping.
     pub fn color(&self) -> Color {
         self.root().color
+    }
+
+    /// Whether node `id` is at the depth limit, where no secondary ray is
+    /// spawned: max_depth, or one less under `depth-off-by-one` (MODEL §5, §8).
+    pub fn at_depth_limit(&self, id: NodeId) -> bool {
+        let limit = if self.mistakes.contains(Mistake::DepthOffByOne) {
+            self.max_depth.saturating_sub(1)
+        } else {
+            self.max_depth
+        };
+        self.nodes[id].depth >= limit
     }
 
     /// The pixel's bytes, as the render stores them with the same mistakes.

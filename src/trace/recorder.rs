@@ -125,12 +125,16 @@ pub struct NotCast {
 
 /// Callbacks in execution order. For one ray: `ray_cast`, then `hit` or `miss`;
 /// after a hit `ambient`, per light `shadow_cast` and its `blocker`s then
-/// `light`, then `refraction`, each child's whole subtree followed by `child`
+/// `light`, then `refraction` (at the depth limit only on TIR
+/// and if `RECORDS_DEPTH_LIMIT`), each child's whole subtree followed by `child`
 /// (or, for a child that is not cast, `not_cast`); last `ray_done`.
 pub trait Recorder {
     /// When true, shadow queries report every blocker instead of stopping at
     /// the first opaque one. S is the same either way.
     const RECORDS_ALL_BLOCKERS: bool = false;
+    /// When true, a hit the depth limit keeps from spawning still gets its
+    /// `refraction` if it is TIR, though no colour depends on it.
+    const RECORDS_DEPTH_LIMIT: bool = false;
 
     #[inline]
     fn ray_cast(&mut self, _kind: RayKind, _depth: u32, _ray: &Ray, _weight: f64) {}

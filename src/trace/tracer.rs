@@ -137,8 +137,26 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         }
         if depth < self.rules.spawn_below_depth() {
             color = self.secondary_rays(ray, hit, material, (depth, path_weight), color);
+        } else if R::RECORDS_DEPTH_LIMIT {
+            self.refraction_at_depth_limit(ray, hit, material);
         }
         color
+    }
+
+    /// Snell's law at a hit the depth limit keeps from spawning, for the
+    /// recording only, which keeps it on TIR: then the ray not cast is one
+    /// reflected ray, not a reflected and a transmitted one (MODEL §5). No
+    /// colour depends on it, so a render (`NoRecorder`) skips it at compile time.
+    #[cold]
+    #[inline(never)]
+    fn refraction_at_depth_limit(&mut self, ray: &Ray, hit: &SurfaceHit, material: &Material) {
+        if material.kt > 0.0 && self.settings.switches.transmission {
+            let eta = self.rules.eta(hit.entering, material.ior);
+            let refraction = refract(ray.direction, hit, eta);
+            if refraction.tir {
+                self.rec.refraction(&refraction);
+            }
+        }
     }
 
     /// Light `index`'s diffuse and specular terms at `point`, lit on the side

@@ -490,7 +490,7 @@ const IN_FIND: &[Binding] = &[
     Binding {
         context: Context::Find,
         inputs: &[(key('n'), act(Action::Find(Find::NearMiss)))],
-        what: "the next pixel with a near miss of a polygon (or of X)",
+        what: "the next pixel with a near miss, polygon or sphere (or X)",
         ..ROW
     },
     Binding {

@@ -1,6 +1,6 @@
 //! Finding across the image (`f` then a key): which pixel's recording has a
 //! blocked (or partly blocked) shadow ray, a total internal reflection, a ray cut by the depth
-//! limit, a hit on the breakpoint object, or a near miss of a polygon; and the go-to prompt's `X,Y`.
+//! limit, a hit on the breakpoint object, or a near miss (polygon or sphere); and the go-to prompt's `X,Y`.
 
 use crate::record::{EventKind, RayTree};
 use crate::scene::{Scene, Settings};
@@ -20,7 +20,9 @@ pub enum Find {
     /// A hit on the breakpoint object (`x`'s).
     BreakObject,
     /// A near miss: a ray crossed a polygon's plane inside its bounding box
-    /// but outside the polygon (an even crossing count), e.g. a notch; of
+    /// but outside the polygon (an even crossing count), e.g. a notch, or a
+    /// sphere's bounding box without hitting the sphere (no real roots, or
+    /// both roots behind); any recorded `near_misses` entry counts. Of
     /// the breakpoint object only, once one is chosen.
     NearMiss,
 }
@@ -34,7 +36,9 @@ impl Find {
             Find::Tir => "a total internal reflection",
             Find::DepthLimit => "a ray cut by the depth limit",
             Find::BreakObject => "a hit on the object",
-            Find::NearMiss => "a near miss (a polygon's plane crossed outside it)",
+            Find::NearMiss => {
+                "a near miss (a polygon's plane crossed outside it, or a sphere's box crossed without a hit)"
+            }
         }
     }
 }
