@@ -18,7 +18,8 @@ use glam::DVec2;
 use self::labels::{Box2, Labels, clip};
 use self::view::{View, label_anchor, outline_segments, write_outline};
 use crate::diagram::{
-    DiagramPlane, Outline, Progress, Projection, Stroke, involved_objects, outline, ray_segments,
+    BlockerMark, DiagramPlane, Outline, Progress, Projection, Stroke, involved_objects, outline,
+    ray_segments,
 };
 use crate::record::{RayTree, light_label};
 use crate::scene::Scene;
@@ -46,6 +47,7 @@ fn stroke_colour(stroke: Stroke) -> &'static str {
         Stroke::Reflected => "#cc3399",
         Stroke::Transmitted => "#33bbee",
         Stroke::ShadowLit => "#ddaa33",
+        Stroke::ShadowPartial => "#ee7733",
         Stroke::ShadowBlocked => "#cc3311",
         Stroke::Normal => "#009988",
         Stroke::Later | Stroke::Current => "#777777",
@@ -59,6 +61,7 @@ fn arrow(stroke: Stroke) -> Option<&'static str> {
         Stroke::Reflected => Some("arrow-reflected"),
         Stroke::Transmitted => Some("arrow-transmitted"),
         Stroke::ShadowLit => Some("arrow-lit"),
+        Stroke::ShadowPartial => Some("arrow-partial"),
         Stroke::ShadowBlocked => Some("arrow-blocked"),
         _ => None,
     }
@@ -123,6 +126,7 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     let projection = Projection::new(plane, scene, tree);
     // Every event reached: each ray in its own kind's colour.
     let (segments, blockers) = ray_segments(tree, scene, &projection, Progress::done(tree));
+    let partial = segments.iter().any(|s| s.stroke == Stroke::ShadowPartial);
     let objects = involved_objects(tree);
     let outlines: Vec<(usize, Vec<Outline>)> = objects
         .iter()
@@ -180,7 +184,9 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     }
     for segment in &segments {
         let dash = match segment.stroke {
-            Stroke::ShadowLit | Stroke::ShadowBlocked => " stroke-dasharray=\"6 4\"",
+            Stroke::ShadowLit | Stroke::ShadowPartial | Stroke::ShadowBlocked => {
+                " stroke-dasharray=\"6 4\""
+            }
             _ => "",
         };
         let colour = stroke_colour(segment.stroke);
@@ -207,6 +213,7 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     );
     legend::write(
         &mut out,
+        partial,
         !marks.passed.is_empty(),
         !marks.faces_away.is_empty(),
     );
@@ -240,6 +247,7 @@ fn header() -> String {
         Stroke::Reflected,
         Stroke::Transmitted,
         Stroke::ShadowLit,
+        Stroke::ShadowPartial,
         Stroke::ShadowBlocked,
     ] {
         // The tip stops 8 units short of the line's end, clear of a light's
@@ -305,10 +313,13 @@ fn write_marks(
     labels: &mut Labels,
     view: &View,
     marks: &Marks,
-    blockers: &[DVec2],
+    blockers: &[BlockerMark],
 ) {
-    let colour = stroke_colour(Stroke::ShadowBlocked);
-    for p in blockers.iter().filter_map(|b| framed(view, *b)) {
+    for (p, b) in blockers
+        .iter()
+        .filter_map(|b| Some((framed(view, b.at)?, b)))
+    {
+        let colour = stroke_colour(b.stroke);
         labels.reserve(p, 5.0);
         let _ = writeln!(
             out,

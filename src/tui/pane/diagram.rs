@@ -28,6 +28,7 @@ pub fn stroke_color(stroke: Stroke) -> Color {
         Stroke::Reflected => Color::Magenta,
         Stroke::Transmitted => Color::LightBlue,
         Stroke::ShadowLit => Color::Yellow,
+        Stroke::ShadowPartial => Color::Rgb(0xee, 0x77, 0x33),
         Stroke::ShadowBlocked => Color::Red,
         Stroke::Normal => Color::Green,
         Stroke::Later => Color::DarkGray,
@@ -45,6 +46,7 @@ pub fn legend() -> TextLine<'static> {
         item("reflected", Stroke::Reflected),
         item("transmitted", Stroke::Transmitted),
         item("shadow", Stroke::ShadowLit),
+        item("partly", Stroke::ShadowPartial),
         item("blocked ", Stroke::ShadowBlocked),
     ])
 }
@@ -192,7 +194,11 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
             .iter()
             .map(|(p, _)| Label::marker(*p, "☼ ", Color::Yellow)),
     );
-    labels.extend(blockers.iter().map(|p| Label::marker(*p, "×", Color::Red)));
+    labels.extend(
+        blockers
+            .iter()
+            .map(|b| Label::marker(b.at, "×", stroke_color(b.stroke))),
+    );
     labels.push(Label::named(eye, "eye", 2, Color::Cyan));
     labels.extend(
         lights
