@@ -2,7 +2,8 @@
 //! the same projection the debugger's diagram pane draws (objects cut by the
 //! plane, the eye, the lights, every ray coloured by kind with an arrowhead
 //! showing its direction, blocked shadow rays marked where they are
-//! blocked, polygons passed by ringed where the ray crosses their plane,
+//! blocked, polygons passed by ringed where the ray crosses their plane, spheres
+//! passed by where it comes nearest,
 //! lights facing away from a hit dotted), with labels that never overlap,
 //! never sit on a mark and stay inside the figure, and a legend.
 
@@ -13,7 +14,7 @@ mod view;
 
 use std::fmt::Write;
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 use self::labels::{Box2, Labels, clip};
 use self::view::{View, label_anchor, outline_segments, write_outline};
@@ -21,7 +22,7 @@ use crate::diagram::{
     BlockerMark, DiagramPlane, Outline, Progress, Projection, Stroke, involved_objects, outline,
     ray_segments,
 };
-use crate::record::{RayTree, light_label};
+use crate::record::{NearMiss, Node, RayTree, light_label};
 use crate::scene::Scene;
 use crate::shapes::Shape;
 
@@ -72,7 +73,8 @@ struct Marks {
     eye: DVec2,
     lights: Vec<(String, DVec2)>,
     hits: Vec<DVec2>,
-    /// A polygon a ray passed by, its name, and where the ray crosses its plane.
+    /// A polygon or sphere a ray passed by, its name, and where: where the
+    /// ray crosses the polygon's plane, or comes nearest the sphere.
     passed: Vec<(usize, String, DVec2)>,
     /// From a hit to a light that faces away from it (no shadow ray).
     faces_away: Vec<(DVec2, DVec2)>,
@@ -93,19 +95,10 @@ impl Marks {
         for node in &tree.nodes {
             for near in &node.near_misses {
                 let shape = scene.objects.get(near.object_index).map(|o| &o.shape);
-                let plane = match shape {
-                    Some(Shape::Polygon(polygon)) => &polygon.plane,
-                    Some(Shape::Patch(patch)) => &patch.polygon.plane,
-                    _ => continue,
-                };
-                // n·(o + t d) + d0 = 0 (MODEL §1's plane/ray).
-                let t =
-                    -(plane.normal.dot(node.origin) + plane.d) / plane.normal.dot(node.direction);
-                if t.is_finite() {
-                    let at = p(node.origin + node.direction * t);
+                if let Some(at) = passed_point(node, near, shape) {
                     marks
                         .passed
-                        .push((near.object_index, near.object.clone(), at));
+                        .push((near.object_index, near.object.clone(), p(at)));
                 }
             }
             let Some(hit) = &node.hit else { continue };
@@ -118,6 +111,22 @@ impl Marks {
         }
         marks
     }
+}
+
+/// Where a ray passed an object by: where it crosses a polygon's plane,
+/// or its point nearest a sphere's centre (o + t d, t = -B / 2A).
+fn passed_point(node: &Node, near: &NearMiss, shape: Option<&Shape>) -> Option<DVec3> {
+    let plane = match shape {
+        Some(Shape::Polygon(polygon)) => &polygon.plane,
+        Some(Shape::Patch(patch)) => &patch.polygon.plane,
+        _ => {
+            let closest = near.closest_approach?;
+            return Some(node.origin + node.direction * closest.t);
+        }
+    };
+    // n·(o + t d) + d0 = 0 (MODEL §1's plane/ray).
+    let t = -(plane.normal.dot(node.origin) + plane.d) / plane.normal.dot(node.direction);
+    t.is_finite().then(|| node.origin + node.direction * t)
 }
 
 /// The whole figure of `tree` (recorded in `scene`) on `plane`, magnified
@@ -221,11 +230,11 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     out
 }
 
-/// The polygons a ray passed by that no ray hit: drawn, named at their ring.
+/// The polygons and spheres a ray passed by that no ray hit: drawn, named at their ring.
 fn passed_objects(tree: &RayTree, involved: &[usize]) -> Vec<usize> {
     let mut passed: Vec<usize> = (tree.nodes.iter())
         .flat_map(|n| n.near_misses.iter())
-        .filter(|n| n.crossing_figure.is_some())
+        .filter(|n| n.crossing_figure.is_some() || n.closest_approach.is_some())
         .map(|n| n.object_index)
         .filter(|o| !involved.contains(o))
         .collect();

@@ -231,7 +231,7 @@ fn a_polygon_passed_by_is_ringed_not_hit() {
         "{svg}"
     );
     assert!(
-        svg.contains(">passed by: ray crosses a polygon's plane</text>"),
+        svg.contains(">passed by: ray crosses a polygon's plane, or comes nearest a sphere</text>"),
         "{svg}"
     );
 }
@@ -335,4 +335,33 @@ fn a_partly_blocked_shadow_ray_has_its_own_colour() {
     };
     assert_eq!(crosses("#ee7733"), blockers);
     assert_eq!(crosses("#cc3311"), 0);
+}
+
+#[test]
+fn a_sphere_passed_by_is_ringed_where_the_ray_comes_nearest() {
+    // balls-small 200,300: the recording's near misses are spheres (each
+    // with its closest approach, distance > radius). Each gets a ring in
+    // the fitted figure, which holds every ring's point.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("balls.svg");
+    let output = raystep(&[
+        "diagram",
+        "scenes/spd/balls-small.nff",
+        "--pixel",
+        "200,300",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let svg = std::fs::read_to_string(out).unwrap();
+    let scene = raystep::scene::load(std::path::Path::new("scenes/spd/balls-small.nff")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 200, 300);
+    let near: Vec<_> = tree.nodes.iter().flat_map(|n| &n.near_misses).collect();
+    assert!(!near.is_empty());
+    for n in &near {
+        let c = n.closest_approach.expect("a sphere's near miss");
+        assert!(c.distance > c.radius, "passed by, not hit");
+    }
+    assert_eq!(svg.matches("class=\"passed-by\"").count(), near.len());
+    assert!(svg.contains("comes nearest a sphere"));
 }

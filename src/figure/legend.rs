@@ -48,7 +48,7 @@ pub fn write(out: &mut String, partial: bool, passed: bool, faces_away: bool) {
     if passed {
         items.push((
             format!("<circle cx=\"10\" cy=\"0\" r=\"6\" fill=\"none\" stroke=\"{PASSED}\" stroke-width=\"2\"/>"),
-            "passed by: ray crosses a polygon's plane",
+            "passed by: ray crosses a polygon's plane, or comes nearest a sphere",
         ));
     }
     if faces_away {
