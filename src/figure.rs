@@ -72,7 +72,8 @@ fn arrow(stroke: Stroke) -> Option<&'static str> {
 struct Marks {
     eye: DVec2,
     lights: Vec<(String, DVec2)>,
-    hits: Vec<DVec2>,
+    /// Each hit: the object hit, and where.
+    hits: Vec<(usize, DVec2)>,
     /// A polygon or sphere a ray passed by, its name, and where: where the
     /// ray crosses the polygon's plane, or comes nearest the sphere.
     passed: Vec<(usize, String, DVec2)>,
@@ -102,7 +103,7 @@ impl Marks {
                 }
             }
             let Some(hit) = &node.hit else { continue };
-            marks.hits.push(p(hit.point));
+            marks.hits.push((hit.object_index, p(hit.point)));
             for light in node.lights.iter().filter(|l| l.faces_away) {
                 if let Some(l) = scene.lights.get(light.light_index) {
                     marks.faces_away.push((p(hit.point), p(l.position)));
@@ -337,7 +338,7 @@ fn write_marks(
             p.y - 4.0
         );
     }
-    for p in marks.hits.iter().filter_map(|h| framed(view, *h)) {
+    for p in marks.hits.iter().filter_map(|h| framed(view, h.1)) {
         labels.reserve(p, 4.0);
         let _ = writeln!(
             out,
@@ -391,7 +392,11 @@ fn write_labels(
         }
     }
     for (object, shapes) in outlines.iter().filter(|o| involved.contains(&o.0)) {
-        let anchor = shapes.first().and_then(|s| label_anchor(s, view));
+        // A plane is named where a ray hits it, if one does in the frame.
+        let hit = (marks.hits.iter())
+            .filter(|h| h.0 == *object)
+            .find_map(|h| framed(view, h.1));
+        let anchor = shapes.first().and_then(|s| label_anchor(s, view, hit));
         if let Some(at) = anchor.filter(|a| labels::contains(FRAME, (*a, *a))) {
             let name = &scene.objects[*object].name;
             labels.place(out, at, name, "fill=\"#444444\"");

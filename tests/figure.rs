@@ -365,3 +365,19 @@ fn a_sphere_passed_by_is_ringed_where_the_ray_comes_nearest() {
     assert_eq!(svg.matches("class=\"passed-by\"").count(), near.len());
     assert!(svg.contains("comes nearest a sphere"));
 }
+
+#[test]
+fn planes_are_named() {
+    // Before, a plane's line had no label. prism 90,60's rays end on the
+    // green wall, polygons 40,54's on the back wall, two-lights 3,64's
+    // primary on the floor (all planes, as the scene files say).
+    let dir = tempfile::tempdir().unwrap();
+    for (case, name) in [
+        (REVIEWED[0], "green wall"),
+        (REVIEWED[8], "back wall"),
+        (REVIEWED[6], "floor"),
+    ] {
+        let svg = reviewed(dir.path(), case);
+        assert!(svg.contains(&format!(">{name}</text>")), "{case:?}: {svg}");
+    }
+}
