@@ -153,7 +153,9 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
         }
     }
     let (x, y) = bounds(&points, inner);
-    let (x, y) = view.window(x, y);
+    // The projection's origin is the primary ray's first hit (the eye on
+    // a miss): the zoom magnifies about it, as `raystep diagram --zoom`.
+    let (x, y) = view.window(x, y, (0.0, 0.0));
     let paint = |ctx: &mut Context| {
         for (i, shapes) in &outlines {
             for shape in shapes {
