@@ -168,3 +168,13 @@ fn zooming_the_diagram_keeps_the_hit_object_in_view() {
     let text = diagram_rows(&mut app).join("\n");
     assert!(text.contains("prism"), "{text}");
 }
+
+#[test]
+fn a_plane_hit_by_a_ray_is_named() {
+    // polygons.toml's pixel (40, 54): the primary ray ends on the back
+    // wall, a plane, which had no name in the pane.
+    let mut app = App::open(Some(PathBuf::from("scenes/polygons.toml")), true).unwrap();
+    app.update(Action::Pick(40, 54));
+    let text = diagram_rows(&mut app).join("\n");
+    assert!(text.contains("back wall"), "{text}");
+}

@@ -76,12 +76,13 @@ fn bounds(points: &[DVec2], area: Rect) -> ([f64; 2], [f64; 2]) {
     )
 }
 
-/// Where an object's name goes: above a circle, at a polygon's first corner.
-fn label_point(outline: &Outline) -> Option<DVec2> {
+/// Where an object's name goes: above a circle, at a polygon's first
+/// corner, on a plane's line where a ray hits it (`hit`; none if no ray does).
+fn label_point(outline: &Outline, hit: Option<DVec2>) -> Option<DVec2> {
     match outline {
         Outline::Circle { center, radius } => Some(*center + DVec2::new(-radius / 2.0, *radius)),
         Outline::Polyline(points) => points.first().copied(),
-        Outline::Line { .. } => None,
+        Outline::Line { .. } => hit,
     }
 }
 
@@ -208,7 +209,11 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
             .map(|(p, name)| Label::named(*p, name, 2, Color::Yellow)),
     );
     for (i, shapes) in outlines.iter().filter(|(i, _)| involved.contains(i)) {
-        if let Some(at) = shapes.first().and_then(label_point) {
+        let hit = (tree.nodes.iter())
+            .filter_map(|n| n.hit.as_ref())
+            .find(|h| h.object_index == *i)
+            .map(|h| projection.project(h.point));
+        if let Some(at) = shapes.first().and_then(|s| label_point(s, hit)) {
             let name = &scene.objects[*i].name;
             labels.push(Label::named(at, name, 0, Color::DarkGray));
         }
