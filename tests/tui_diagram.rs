@@ -53,7 +53,9 @@ fn diagram_title(app: &mut App) -> String {
     let terminal = screen(app, 120, 40);
     let buffer = terminal.backend().buffer();
     let Rect { x, y, width, .. } = app.panes().diagram;
-    (x..x + width).map(|col| buffer[(col, y)].symbol()).collect()
+    (x..x + width)
+        .map(|col| buffer[(col, y)].symbol())
+        .collect()
 }
 
 /// The (column, row) of the first cell holding `symbol`.

@@ -3,8 +3,8 @@
 
 use std::fmt::Write;
 
-use super::{FACES_AWAY, HEIGHT, LEGEND, MARGIN, PASSED, WIDTH, stroke_colour};
 use super::labels::escape;
+use super::{FACES_AWAY, HEIGHT, LEGEND, MARGIN, PASSED, WIDTH, stroke_colour};
 use crate::diagram::Stroke;
 
 /// The legend's text size, and its width a character (0.6 em, the

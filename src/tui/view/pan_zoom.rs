@@ -68,12 +68,7 @@ impl PanZoom {
     /// by the magnification squared: shown magnified, it is divided by the
     /// magnification), so a hit near the edge stays in view; zoomed out,
     /// the window keeps its centre.
-    pub fn window(
-        &self,
-        x: [f64; 2],
-        y: [f64; 2],
-        focus: (f64, f64),
-    ) -> ([f64; 2], [f64; 2]) {
+    pub fn window(&self, x: [f64; 2], y: [f64; 2], focus: (f64, f64)) -> ([f64; 2], [f64; 2]) {
         let m = self.magnification();
         let pull = m.max(1.0) * m.max(1.0);
         let axis = |range: [f64; 2], pan: f64, focus: f64| {
