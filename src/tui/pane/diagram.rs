@@ -45,9 +45,10 @@ pub fn legend() -> TextLine<'static> {
         item("primary", Stroke::Primary),
         item("reflected", Stroke::Reflected),
         item("transmitted", Stroke::Transmitted),
-        item("shadow", Stroke::ShadowLit),
-        item("partly", Stroke::ShadowPartial),
-        item("blocked ", Stroke::ShadowBlocked),
+        // Shadow rays by S (MODEL §4), short enough for a narrow pane.
+        item("S=1", Stroke::ShadowLit),
+        item("0<S<1", Stroke::ShadowPartial),
+        item("S=0 ", Stroke::ShadowBlocked),
     ])
 }
 
