@@ -96,6 +96,8 @@ pub enum Stroke {
     Reflected,
     Transmitted,
     ShadowLit,
+    /// 0 < S < 1: only transparent blockers (MODEL §4's Kt product).
+    ShadowPartial,
     ShadowBlocked,
     Normal,
     /// Not yet reached by the step-through.
@@ -137,13 +139,33 @@ impl Progress {
     }
 }
 
+/// What a shadow ray's S makes it: lit at 1, blocked at 0, partly
+/// blocked between (transparent blockers only).
+pub fn shadow_stroke(s: f64) -> Stroke {
+    if s >= 1.0 {
+        Stroke::ShadowLit
+    } else if s <= 0.0 {
+        Stroke::ShadowBlocked
+    } else {
+        Stroke::ShadowPartial
+    }
+}
+
+/// A shadow ray's blocker, where it crosses, and its ray's kind (blocked
+/// or partly blocked), for the colour of its ×.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlockerMark {
+    pub at: DVec2,
+    pub stroke: Stroke,
+}
+
 /// The rays of a pixel as projected segments, plus blocker points.
 pub fn ray_segments(
     tree: &RayTree,
     scene: &Scene,
     projection: &Projection,
     progress: Progress,
-) -> (Vec<Segment>, Vec<DVec2>) {
+) -> (Vec<Segment>, Vec<BlockerMark>) {
     let current = progress.current;
     let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
         tree.events
@@ -207,20 +229,23 @@ pub fn ray_segments(
             let stroke = match () {
                 _ if is_current => Stroke::Current,
                 _ if !reached(&cast) => Stroke::Later,
-                _ if shadow.blockers.is_empty() => Stroke::ShadowLit,
-                _ => Stroke::ShadowBlocked,
+                _ => shadow_stroke(shadow.s),
             };
             segments.push(Segment {
                 from: projection.project(hit.point),
                 to: projection.project(target),
                 stroke,
             });
-            blockers.extend(
-                shadow
-                    .blockers
-                    .iter()
-                    .map(|b| projection.project(shadow.origin + shadow.direction * b.t)),
-            );
+            // A blocker of a ray S = 1 lets all through (Kt = 1): its × as
+            // a partly blocked one's.
+            let kind = match shadow_stroke(shadow.s) {
+                Stroke::ShadowBlocked => Stroke::ShadowBlocked,
+                _ => Stroke::ShadowPartial,
+            };
+            blockers.extend(shadow.blockers.iter().map(|b| BlockerMark {
+                at: projection.project(shadow.origin + shadow.direction * b.t),
+                stroke: kind,
+            }));
         }
     }
     (segments, blockers)

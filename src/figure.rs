@@ -2,7 +2,8 @@
 //! the same projection the debugger's diagram pane draws (objects cut by the
 //! plane, the eye, the lights, every ray coloured by kind with an arrowhead
 //! showing its direction, blocked shadow rays marked where they are
-//! blocked, polygons passed by ringed where the ray crosses their plane,
+//! blocked, polygons passed by ringed where the ray crosses their plane, spheres
+//! passed by where it comes nearest,
 //! lights facing away from a hit dotted), with labels that never overlap,
 //! never sit on a mark and stay inside the figure, and a legend.
 
@@ -13,14 +14,15 @@ mod view;
 
 use std::fmt::Write;
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 use self::labels::{Box2, Labels, clip};
 use self::view::{View, label_anchor, outline_segments, write_outline};
 use crate::diagram::{
-    DiagramPlane, Outline, Progress, Projection, Stroke, involved_objects, outline, ray_segments,
+    BlockerMark, DiagramPlane, Outline, Progress, Projection, Stroke, involved_objects, outline,
+    ray_segments,
 };
-use crate::record::{RayTree, light_label};
+use crate::record::{NearMiss, Node, RayTree, light_label};
 use crate::scene::Scene;
 use crate::shapes::Shape;
 
@@ -46,6 +48,7 @@ fn stroke_colour(stroke: Stroke) -> &'static str {
         Stroke::Reflected => "#cc3399",
         Stroke::Transmitted => "#33bbee",
         Stroke::ShadowLit => "#ddaa33",
+        Stroke::ShadowPartial => "#ee7733",
         Stroke::ShadowBlocked => "#cc3311",
         Stroke::Normal => "#009988",
         Stroke::Later | Stroke::Current => "#777777",
@@ -59,6 +62,7 @@ fn arrow(stroke: Stroke) -> Option<&'static str> {
         Stroke::Reflected => Some("arrow-reflected"),
         Stroke::Transmitted => Some("arrow-transmitted"),
         Stroke::ShadowLit => Some("arrow-lit"),
+        Stroke::ShadowPartial => Some("arrow-partial"),
         Stroke::ShadowBlocked => Some("arrow-blocked"),
         _ => None,
     }
@@ -68,8 +72,10 @@ fn arrow(stroke: Stroke) -> Option<&'static str> {
 struct Marks {
     eye: DVec2,
     lights: Vec<(String, DVec2)>,
-    hits: Vec<DVec2>,
-    /// A polygon a ray passed by, its name, and where the ray crosses its plane.
+    /// Each hit: the object hit, and where.
+    hits: Vec<(usize, DVec2)>,
+    /// A polygon or sphere a ray passed by, its name, and where: where the
+    /// ray crosses the polygon's plane, or comes nearest the sphere.
     passed: Vec<(usize, String, DVec2)>,
     /// From a hit to a light that faces away from it (no shadow ray).
     faces_away: Vec<(DVec2, DVec2)>,
@@ -90,23 +96,14 @@ impl Marks {
         for node in &tree.nodes {
             for near in &node.near_misses {
                 let shape = scene.objects.get(near.object_index).map(|o| &o.shape);
-                let plane = match shape {
-                    Some(Shape::Polygon(polygon)) => &polygon.plane,
-                    Some(Shape::Patch(patch)) => &patch.polygon.plane,
-                    _ => continue,
-                };
-                // n·(o + t d) + d0 = 0 (MODEL §1's plane/ray).
-                let t =
-                    -(plane.normal.dot(node.origin) + plane.d) / plane.normal.dot(node.direction);
-                if t.is_finite() {
-                    let at = p(node.origin + node.direction * t);
+                if let Some(at) = passed_point(node, near, shape) {
                     marks
                         .passed
-                        .push((near.object_index, near.object.clone(), at));
+                        .push((near.object_index, near.object.clone(), p(at)));
                 }
             }
             let Some(hit) = &node.hit else { continue };
-            marks.hits.push(p(hit.point));
+            marks.hits.push((hit.object_index, p(hit.point)));
             for light in node.lights.iter().filter(|l| l.faces_away) {
                 if let Some(l) = scene.lights.get(light.light_index) {
                     marks.faces_away.push((p(hit.point), p(l.position)));
@@ -117,12 +114,29 @@ impl Marks {
     }
 }
 
+/// Where a ray passed an object by: where it crosses a polygon's plane,
+/// or its point nearest a sphere's centre (o + t d, t = -B / 2A).
+fn passed_point(node: &Node, near: &NearMiss, shape: Option<&Shape>) -> Option<DVec3> {
+    let plane = match shape {
+        Some(Shape::Polygon(polygon)) => &polygon.plane,
+        Some(Shape::Patch(patch)) => &patch.polygon.plane,
+        _ => {
+            let closest = near.closest_approach?;
+            return Some(node.origin + node.direction * closest.t);
+        }
+    };
+    // n·(o + t d) + d0 = 0 (MODEL §1's plane/ray).
+    let t = -(plane.normal.dot(node.origin) + plane.d) / plane.normal.dot(node.direction);
+    t.is_finite().then(|| node.origin + node.direction * t)
+}
+
 /// The whole figure of `tree` (recorded in `scene`) on `plane`, magnified
 /// `zoom` times (at least 1) about the primary ray's first hit.
 pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> String {
     let projection = Projection::new(plane, scene, tree);
     // Every event reached: each ray in its own kind's colour.
     let (segments, blockers) = ray_segments(tree, scene, &projection, Progress::done(tree));
+    let partial = segments.iter().any(|s| s.stroke == Stroke::ShadowPartial);
     let objects = involved_objects(tree);
     let outlines: Vec<(usize, Vec<Outline>)> = objects
         .iter()
@@ -180,7 +194,9 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     }
     for segment in &segments {
         let dash = match segment.stroke {
-            Stroke::ShadowLit | Stroke::ShadowBlocked => " stroke-dasharray=\"6 4\"",
+            Stroke::ShadowLit | Stroke::ShadowPartial | Stroke::ShadowBlocked => {
+                " stroke-dasharray=\"6 4\""
+            }
             _ => "",
         };
         let colour = stroke_colour(segment.stroke);
@@ -207,6 +223,7 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     );
     legend::write(
         &mut out,
+        partial,
         !marks.passed.is_empty(),
         !marks.faces_away.is_empty(),
     );
@@ -214,11 +231,11 @@ pub fn svg(scene: &Scene, tree: &RayTree, plane: DiagramPlane, zoom: f64) -> Str
     out
 }
 
-/// The polygons a ray passed by that no ray hit: drawn, named at their ring.
+/// The polygons and spheres a ray passed by that no ray hit: drawn, named at their ring.
 fn passed_objects(tree: &RayTree, involved: &[usize]) -> Vec<usize> {
     let mut passed: Vec<usize> = (tree.nodes.iter())
         .flat_map(|n| n.near_misses.iter())
-        .filter(|n| n.crossing_figure.is_some())
+        .filter(|n| n.crossing_figure.is_some() || n.closest_approach.is_some())
         .map(|n| n.object_index)
         .filter(|o| !involved.contains(o))
         .collect();
@@ -240,6 +257,7 @@ fn header() -> String {
         Stroke::Reflected,
         Stroke::Transmitted,
         Stroke::ShadowLit,
+        Stroke::ShadowPartial,
         Stroke::ShadowBlocked,
     ] {
         // The tip stops 8 units short of the line's end, clear of a light's
@@ -305,10 +323,13 @@ fn write_marks(
     labels: &mut Labels,
     view: &View,
     marks: &Marks,
-    blockers: &[DVec2],
+    blockers: &[BlockerMark],
 ) {
-    let colour = stroke_colour(Stroke::ShadowBlocked);
-    for p in blockers.iter().filter_map(|b| framed(view, *b)) {
+    for (p, b) in blockers
+        .iter()
+        .filter_map(|b| Some((framed(view, b.at)?, b)))
+    {
+        let colour = stroke_colour(b.stroke);
         labels.reserve(p, 5.0);
         let _ = writeln!(
             out,
@@ -317,7 +338,7 @@ fn write_marks(
             p.y - 4.0
         );
     }
-    for p in marks.hits.iter().filter_map(|h| framed(view, *h)) {
+    for p in marks.hits.iter().filter_map(|h| framed(view, h.1)) {
         labels.reserve(p, 4.0);
         let _ = writeln!(
             out,
@@ -371,7 +392,11 @@ fn write_labels(
         }
     }
     for (object, shapes) in outlines.iter().filter(|o| involved.contains(&o.0)) {
-        let anchor = shapes.first().and_then(|s| label_anchor(s, view));
+        // A plane is named where a ray hits it, if one does in the frame.
+        let hit = (marks.hits.iter())
+            .filter(|h| h.0 == *object)
+            .find_map(|h| framed(view, h.1));
+        let anchor = shapes.first().and_then(|s| label_anchor(s, view, hit));
         if let Some(at) = anchor.filter(|a| labels::contains(FRAME, (*a, *a))) {
             let name = &scene.objects[*object].name;
             labels.place(out, at, name, "fill=\"#444444\"");

@@ -77,12 +77,19 @@ fn the_figure_is_svg_with_every_ray_light_and_blocker() {
     assert_eq!(faces_away, 2);
     let svg = figure(dir.path(), "top");
     // Lines: a ray and a normal per hit, a ray per miss, the shadow rays,
-    // a dotted line per light facing away, and seven in the legend (six
-    // kinds of ray and the dotted line).
+    // a dotted line per light facing away, and eight in the legend (seven
+    // kinds of ray, partly blocked among them as glass passes some light
+    // at S = 0.81 and 0.9, and the dotted line).
+    let partial = (tree.nodes.iter())
+        .flat_map(|n| &n.lights)
+        .filter_map(|l| l.shadow.as_ref())
+        .filter(|s| s.s > 0.0 && s.s < 1.0)
+        .count();
+    assert!(partial > 0);
     let lines = svg.matches("<line ").count();
     assert_eq!(
         lines,
-        tree.nodes.len() + hits + shadows + faces_away + 7,
+        tree.nodes.len() + hits + shadows + faces_away + 8,
         "{svg}"
     );
     assert_eq!(
@@ -224,7 +231,7 @@ fn a_polygon_passed_by_is_ringed_not_hit() {
         "{svg}"
     );
     assert!(
-        svg.contains(">passed by: ray crosses a polygon's plane</text>"),
+        svg.contains(">passed by: ray crosses a polygon's plane, or comes nearest a sphere</text>"),
         "{svg}"
     );
 }
@@ -292,4 +299,106 @@ fn zoom_magnifies_about_the_first_hit_and_cuts_at_the_frame() {
     assert_eq!(output.status.code(), Some(1));
     assert!(stderr(&output).contains("--zoom magnifies the top, side and ray diagrams"));
     assert!(!out.exists(), "nothing written");
+}
+
+#[test]
+fn a_partly_blocked_shadow_ray_has_its_own_colour() {
+    // two-lights 3,64: the left light's shadow ray passes the glass ball
+    // and pane (S = 0.288, between 0 and 1), the right one's nothing
+    // (S = 1). Each kind counts its rays from the recording's S values;
+    // the legend adds one line of each (the partly blocked one only when
+    // the figure has such a ray).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("two.svg");
+    let output = raystep(&[
+        "diagram",
+        "scenes/two-lights.toml",
+        "--pixel",
+        "3,64",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let svg = std::fs::read_to_string(out).unwrap();
+    roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let scene = raystep::scene::load(std::path::Path::new("scenes/two-lights.toml")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 3, 64);
+    let shadows: Vec<_> = (tree.nodes.iter())
+        .flat_map(|n| &n.lights)
+        .filter_map(|l| l.shadow.as_ref())
+        .collect();
+    let count = |test: &dyn Fn(f64) -> bool| shadows.iter().filter(|s| test(s.s)).count();
+    let (lit, partial, blocked) = (
+        count(&|s| s >= 1.0),
+        count(&|s| s > 0.0 && s < 1.0),
+        count(&|s| s <= 0.0),
+    );
+    assert_eq!((lit, partial, blocked), (1, 1, 0), "the pixel as described");
+    let lines = |colour: &str| {
+        let stroke = format!("<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"{colour}\"");
+        let legend = svg.matches(&stroke).count();
+        let rays = (svg.lines())
+            .filter(|l| l.starts_with("<line") && l.contains(&format!("stroke=\"{colour}\"")))
+            .count();
+        rays + legend
+    };
+    assert_eq!(lines("#ddaa33"), lit + 1, "lit, yellow");
+    assert_eq!(lines("#ee7733"), partial + 1, "partly blocked, orange");
+    assert_eq!(lines("#cc3311"), blocked + 1, "blocked, red");
+    assert!(svg.contains("shadow ray, partly blocked (0 &lt; S &lt; 1)"));
+    // An orange × at each blocker of the partly blocked ray, no red one.
+    let blockers: usize = shadows.iter().map(|s| s.blockers.len()).sum();
+    assert!(blockers >= 2, "ball and pane");
+    let crosses = |colour: &str| {
+        svg.lines()
+            .filter(|l| l.contains("l8 8m0 -8l-8 8") && l.contains(colour))
+            .count()
+    };
+    assert_eq!(crosses("#ee7733"), blockers);
+    assert_eq!(crosses("#cc3311"), 0);
+}
+
+#[test]
+fn a_sphere_passed_by_is_ringed_where_the_ray_comes_nearest() {
+    // balls-small 200,300: the recording's near misses are spheres (each
+    // with its closest approach, distance > radius). Each gets a ring in
+    // the fitted figure, which holds every ring's point.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("balls.svg");
+    let output = raystep(&[
+        "diagram",
+        "scenes/spd/balls-small.nff",
+        "--pixel",
+        "200,300",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let svg = std::fs::read_to_string(out).unwrap();
+    let scene = raystep::scene::load(std::path::Path::new("scenes/spd/balls-small.nff")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 200, 300);
+    let near: Vec<_> = tree.nodes.iter().flat_map(|n| &n.near_misses).collect();
+    assert!(!near.is_empty());
+    for n in &near {
+        let c = n.closest_approach.expect("a sphere's near miss");
+        assert!(c.distance > c.radius, "passed by, not hit");
+    }
+    assert_eq!(svg.matches("class=\"passed-by\"").count(), near.len());
+    assert!(svg.contains("comes nearest a sphere"));
+}
+
+#[test]
+fn planes_are_named() {
+    // Before, a plane's line had no label. prism 90,60's rays end on the
+    // green wall, polygons 40,54's on the back wall, two-lights 3,64's
+    // primary on the floor (all planes, as the scene files say).
+    let dir = tempfile::tempdir().unwrap();
+    for (case, name) in [
+        (REVIEWED[0], "green wall"),
+        (REVIEWED[8], "back wall"),
+        (REVIEWED[6], "floor"),
+    ] {
+        let svg = reviewed(dir.path(), case);
+        assert!(svg.contains(&format!(">{name}</text>")), "{case:?}: {svg}");
+    }
 }

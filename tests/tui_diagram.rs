@@ -48,6 +48,16 @@ fn diagram_rows(app: &mut App) -> Vec<String> {
         .collect()
 }
 
+/// The diagram pane's top border, with its title.
+fn diagram_title(app: &mut App) -> String {
+    let terminal = screen(app, 120, 40);
+    let buffer = terminal.backend().buffer();
+    let Rect { x, y, width, .. } = app.panes().diagram;
+    (x..x + width)
+        .map(|col| buffer[(col, y)].symbol())
+        .collect()
+}
+
 /// The (column, row) of the first cell holding `symbol`.
 fn find(rows: &[String], symbol: char) -> Option<(usize, usize)> {
     rows.iter()
@@ -118,16 +128,16 @@ fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
     chars(&mut app, "+");
     assert_eq!(app.diagram_view().zoom(), 1);
     assert_eq!(app.zoom(), image_zoom, "the image keeps its zoom");
-    // Zoomed around the window's centre: the eye, off centre, moves away
-    // from it (or out of view).
-    let centre = fitted[0].chars().count() as f64 / 2.0;
-    let (eye, _) = find(&fitted, '◉').unwrap();
-    let zoomed = diagram_rows(&mut app);
-    if let Some((col, _)) = find(&zoomed, '◉') {
-        assert!((col as f64 - centre).abs() > (eye as f64 - centre).abs());
-    }
+    // Zoomed about the primary ray's first hit, not the window's centre
+    // (as `raystep diagram --zoom`); the title says by how much (1.5).
+    assert!(
+        diagram_title(&mut app).contains("· zoom 1.5× ·"),
+        "{}",
+        diagram_title(&mut app)
+    );
     chars(&mut app, "0");
     assert!(app.diagram_view().is_fit());
+    assert!(!diagram_title(&mut app).contains("zoom"), "none at 1");
     chars(&mut app, "+");
     press(&mut app, &[key(KeyCode::Home)]);
     assert!(app.diagram_view().is_fit(), "Home fits it too");
@@ -143,4 +153,30 @@ fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
     chars(&mut app, "+");
     chars(&mut app, "d");
     assert!(app.diagram_view().is_fit());
+}
+
+#[test]
+fn zooming_the_diagram_keeps_the_hit_object_in_view() {
+    // prism.toml's middle pixel hits the prism, far from the middle of the
+    // fitted window (which also holds the eye, the lamp and the green
+    // wall behind them). Zoomed about the window's centre, three steps
+    // (3.375×) pushed the prism out; zoomed about the hit, its outline
+    // and its name stay.
+    let mut app = App::open(Some(PathBuf::from("scenes/prism.toml")), true).unwrap();
+    focus_diagram(&mut app);
+    assert!(diagram_rows(&mut app).join("\n").contains("prism"));
+    chars(&mut app, "+++");
+    assert!(diagram_title(&mut app).contains("zoom 3.375×"));
+    let text = diagram_rows(&mut app).join("\n");
+    assert!(text.contains("prism"), "{text}");
+}
+
+#[test]
+fn a_plane_hit_by_a_ray_is_named() {
+    // polygons.toml's pixel (40, 54): the primary ray ends on the back
+    // wall, a plane, which had no name in the pane.
+    let mut app = App::open(Some(PathBuf::from("scenes/polygons.toml")), true).unwrap();
+    app.update(Action::Pick(40, 54));
+    let text = diagram_rows(&mut app).join("\n");
+    assert!(text.contains("back wall"), "{text}");
 }

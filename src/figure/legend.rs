@@ -3,6 +3,7 @@
 
 use std::fmt::Write;
 
+use super::labels::escape;
 use super::{FACES_AWAY, HEIGHT, LEGEND, MARGIN, PASSED, WIDTH, stroke_colour};
 use crate::diagram::Stroke;
 
@@ -11,9 +12,9 @@ use crate::diagram::Stroke;
 const SIZE: f64 = 11.0;
 const CHAR: f64 = SIZE * 0.6;
 
-/// Writes the legend; the passed-by ring and the faces-away line only when
-/// the figure has one.
-pub fn write(out: &mut String, passed: bool, faces_away: bool) {
+/// Writes the legend; the partly blocked shadow ray, the passed-by ring
+/// and the faces-away line only when the figure has one.
+pub fn write(out: &mut String, partial: bool, passed: bool, faces_away: bool) {
     let line = |stroke: Stroke, dash: &str| {
         format!(
             "<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"{}\" stroke-width=\"2\"{dash}/>",
@@ -30,16 +31,24 @@ pub fn write(out: &mut String, passed: bool, faces_away: bool) {
             line(Stroke::ShadowBlocked, dashed),
             "shadow ray, blocked (× at the blocker)",
         ),
+    ];
+    if partial {
+        items.push((
+            line(Stroke::ShadowPartial, dashed),
+            "shadow ray, partly blocked (0 < S < 1)",
+        ));
+    }
+    items.extend([
         (line(Stroke::Normal, ""), "normal N"),
         (
             "<circle cx=\"10\" cy=\"0\" r=\"3\" fill=\"black\"/>".to_string(),
             "hit",
         ),
-    ];
+    ]);
     if passed {
         items.push((
             format!("<circle cx=\"10\" cy=\"0\" r=\"6\" fill=\"none\" stroke=\"{PASSED}\" stroke-width=\"2\"/>"),
-            "passed by: ray crosses a polygon's plane",
+            "passed by: ray crosses a polygon's plane, or comes nearest a sphere",
         ));
     }
     if faces_away {
@@ -66,7 +75,8 @@ pub fn write_rows(out: &mut String, items: &[(&str, &str)], y: f64) {
             out,
             "<g transform=\"translate({x:.1} {y:.1})\">{mark}</g>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"{SIZE}\">{name}</text>",
             x + 24.0,
-            y + 4.0
+            y + 4.0,
+            name = escape(name)
         );
         x += width + 16.0;
     }

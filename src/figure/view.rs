@@ -6,6 +6,7 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
+use super::labels::clip;
 use super::{FRAME, HEIGHT, MARGIN, WIDTH};
 use crate::diagram::Outline;
 
@@ -102,8 +103,10 @@ pub(super) fn outline_segments(outline: &Outline, view: &View) -> Vec<(DVec2, DV
     points.windows(2).map(|w| (w[0], w[1])).collect()
 }
 
-/// Where an object's name goes: beside its outline.
-pub(super) fn label_anchor(outline: &Outline, view: &View) -> Option<DVec2> {
+/// Where an object's name goes: beside its outline; for a plane's line,
+/// at `hit` (where a ray meets it in the frame) if given, else just inside
+/// where the line enters the frame.
+pub(super) fn label_anchor(outline: &Outline, view: &View, hit: Option<DVec2>) -> Option<DVec2> {
     match outline {
         Outline::Circle { center, radius } => {
             Some(view.map(*center + DVec2::new(radius * 0.7, radius * 0.7)))
@@ -112,7 +115,19 @@ pub(super) fn label_anchor(outline: &Outline, view: &View) -> Option<DVec2> {
             let sum = points.iter().fold(DVec2::ZERO, |a, &p| a + p);
             (!points.is_empty()).then(|| view.map(sum / points.len() as f64))
         }
-        Outline::Line { .. } => None,
+        Outline::Line { normal, c } => hit.or_else(|| {
+            let (a, b) = line_ends(*normal, *c, view);
+            let (enter, leave) = clip(a, b, FRAME)?;
+            // 40 units in along the line (or halfway, for a short cut), so
+            // the name has room on either side.
+            let inward = (leave - enter).clamp_length_max(40.0);
+            let step = if (leave - enter).length() < 80.0 {
+                (leave - enter) / 2.0
+            } else {
+                inward
+            };
+            Some(enter + step)
+        }),
     }
 }
 
@@ -123,4 +138,35 @@ fn line_ends(normal: DVec2, c: f64, view: &View) -> (DVec2, DVec2) {
     let foot = view.centre - n * (normal.dot(view.centre) + c);
     let along = normal.perp().normalize() * (WIDTH + HEIGHT) / view.scale;
     (view.map(foot - along), view.map(foot + along))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_plane_is_named_at_its_hit_or_where_it_enters_the_frame() {
+        // Unit scale about the origin: the plane's point (0, 0) maps to the
+        // frame's middle (400, 293). The line y = 0 runs across the frame
+        // at y 293, entering from the right edge x 794 (line_ends runs
+        // along perp((0, 1)) = (-1, 0) from +x); 40 units in: (754, 293).
+        let view = View {
+            centre: DVec2::ZERO,
+            scale: 1.0,
+        };
+        let line = Outline::Line {
+            normal: DVec2::new(0.0, 1.0),
+            c: 0.0,
+        };
+        let at = label_anchor(&line, &view, None).unwrap();
+        assert!((at - DVec2::new(754.0, 293.0)).length() < 1e-9, "{at}");
+        let hit = DVec2::new(500.0, 293.0);
+        assert_eq!(label_anchor(&line, &view, Some(hit)), Some(hit));
+        // The line y = 1000 lies off the frame: no name.
+        let off = Outline::Line {
+            normal: DVec2::new(0.0, 1.0),
+            c: -1000.0,
+        };
+        assert_eq!(label_anchor(&off, &view, None), None);
+    }
 }

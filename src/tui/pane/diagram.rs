@@ -28,6 +28,7 @@ pub fn stroke_color(stroke: Stroke) -> Color {
         Stroke::Reflected => Color::Magenta,
         Stroke::Transmitted => Color::LightBlue,
         Stroke::ShadowLit => Color::Yellow,
+        Stroke::ShadowPartial => Color::Rgb(0xee, 0x77, 0x33),
         Stroke::ShadowBlocked => Color::Red,
         Stroke::Normal => Color::Green,
         Stroke::Later => Color::DarkGray,
@@ -44,8 +45,10 @@ pub fn legend() -> TextLine<'static> {
         item("primary", Stroke::Primary),
         item("reflected", Stroke::Reflected),
         item("transmitted", Stroke::Transmitted),
-        item("shadow", Stroke::ShadowLit),
-        item("blocked ", Stroke::ShadowBlocked),
+        // Shadow rays by S (MODEL §4), short enough for a narrow pane.
+        item("S=1", Stroke::ShadowLit),
+        item("0<S<1", Stroke::ShadowPartial),
+        item("S=0 ", Stroke::ShadowBlocked),
     ])
 }
 
@@ -74,12 +77,13 @@ fn bounds(points: &[DVec2], area: Rect) -> ([f64; 2], [f64; 2]) {
     )
 }
 
-/// Where an object's name goes: above a circle, at a polygon's first corner.
-fn label_point(outline: &Outline) -> Option<DVec2> {
+/// Where an object's name goes: above a circle, at a polygon's first
+/// corner, on a plane's line where a ray hits it (`hit`; none if no ray does).
+fn label_point(outline: &Outline, hit: Option<DVec2>) -> Option<DVec2> {
     match outline {
         Outline::Circle { center, radius } => Some(*center + DVec2::new(-radius / 2.0, *radius)),
         Outline::Polyline(points) => points.first().copied(),
-        Outline::Line { .. } => None,
+        Outline::Line { .. } => hit,
     }
 }
 
@@ -151,7 +155,9 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
         }
     }
     let (x, y) = bounds(&points, inner);
-    let (x, y) = view.window(x, y);
+    // The projection's origin is the primary ray's first hit (the eye on
+    // a miss): the zoom magnifies about it, as `raystep diagram --zoom`.
+    let (x, y) = view.window(x, y, (0.0, 0.0));
     let paint = |ctx: &mut Context| {
         for (i, shapes) in &outlines {
             for shape in shapes {
@@ -192,7 +198,11 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
             .iter()
             .map(|(p, _)| Label::marker(*p, "☼ ", Color::Yellow)),
     );
-    labels.extend(blockers.iter().map(|p| Label::marker(*p, "×", Color::Red)));
+    labels.extend(
+        blockers
+            .iter()
+            .map(|b| Label::marker(b.at, "×", stroke_color(b.stroke))),
+    );
     labels.push(Label::named(eye, "eye", 2, Color::Cyan));
     labels.extend(
         lights
@@ -200,7 +210,11 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
             .map(|(p, name)| Label::named(*p, name, 2, Color::Yellow)),
     );
     for (i, shapes) in outlines.iter().filter(|(i, _)| involved.contains(i)) {
-        if let Some(at) = shapes.first().and_then(label_point) {
+        let hit = (tree.nodes.iter())
+            .filter_map(|n| n.hit.as_ref())
+            .find(|h| h.object_index == *i)
+            .map(|h| projection.project(h.point));
+        if let Some(at) = shapes.first().and_then(|s| label_point(s, hit)) {
             let name = &scene.objects[*i].name;
             labels.push(Label::named(at, name, 0, Color::DarkGray));
         }

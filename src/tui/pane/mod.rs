@@ -35,7 +35,11 @@ pub fn draw(frame: &mut Frame, app: &App) {
     let block = pane_block(
         app,
         Pane::Diagram,
-        format!(" Diagram · {} · white: current ", app.plane().name()),
+        format!(
+            " Diagram · {}{} · white: current ",
+            app.plane().name(),
+            (app.diagram_view().label()).map_or(String::new(), |z| format!(" · {z}"))
+        ),
     );
     let block = block.title_bottom(diagram::legend());
     diagram::render(panes.diagram, frame.buffer_mut(), block, app);

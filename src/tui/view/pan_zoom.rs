@@ -1,7 +1,8 @@
 //! Panning and zooming the ray diagram: the window shown, worked out from
 //! the window that fits the whole figure. A step pans a quarter of what is
-//! shown, a zoom step shows 1.5 times less (or more), around the window's
-//! centre; the fitted window is zoom 0, no pan.
+//! shown, a zoom step shows 1.5 times less (or more), about a focus (the
+//! primary ray's first hit, as `raystep diagram --zoom` magnifies); the
+//! fitted window is zoom 0, no pan.
 
 /// How far the diagram is panned and zoomed from the fitted window.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -34,8 +35,18 @@ impl PanZoom {
         self.zoom
     }
 
-    fn magnification(&self) -> f64 {
+    /// How many times bigger than the fitted window the figure is shown.
+    pub fn magnification(&self) -> f64 {
         FACTOR.powi(self.zoom)
+    }
+
+    /// The magnification for a title ("zoom 2.25×"), none when 1.
+    pub fn label(&self) -> Option<String> {
+        (self.zoom != 0).then(|| {
+            let factor = format!("{:.3}", self.magnification());
+            let factor = factor.trim_end_matches('0').trim_end_matches('.');
+            format!("zoom {factor}×")
+        })
     }
 
     /// Moves the window by (dx, dy) quarters of what it shows: dx > 0 to
@@ -51,15 +62,22 @@ impl PanZoom {
         self.zoom = (self.zoom + steps).clamp(ZOOM_OUT, ZOOM_IN);
     }
 
-    /// The window shown, from the fitted window's x and y ranges.
-    pub fn window(&self, x: [f64; 2], y: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+    /// The window shown, from the fitted window's x and y ranges,
+    /// magnified about `focus`. Zoomed in, the focus moves toward the
+    /// middle as the SVG figure's does (its offset from the middle divided
+    /// by the magnification squared: shown magnified, it is divided by the
+    /// magnification), so a hit near the edge stays in view; zoomed out,
+    /// the window keeps its centre.
+    pub fn window(&self, x: [f64; 2], y: [f64; 2], focus: (f64, f64)) -> ([f64; 2], [f64; 2]) {
         let m = self.magnification();
-        let axis = |range: [f64; 2], pan: f64| {
+        let pull = m.max(1.0) * m.max(1.0);
+        let axis = |range: [f64; 2], pan: f64, focus: f64| {
             let half = (range[1] - range[0]) / 2.0;
-            let centre = (range[0] + range[1]) / 2.0 + pan * half;
+            let middle = (range[0] + range[1]) / 2.0;
+            let centre = focus + (middle - focus) / pull + pan * half;
             [centre - half / m, centre + half / m]
         };
-        (axis(x, self.pan.0), axis(y, self.pan.1))
+        (axis(x, self.pan.0, focus.0), axis(y, self.pan.1, focus.1))
     }
 }
 
@@ -69,10 +87,12 @@ mod tests {
 
     const X: [f64; 2] = [-4.0, 4.0];
     const Y: [f64; 2] = [0.0, 2.0];
+    /// The fitted window's middle: zoom about it keeps the centre.
+    const MIDDLE: (f64, f64) = (0.0, 1.0);
 
     #[test]
     fn the_fitted_window_is_the_whole_figure() {
-        assert_eq!(PanZoom::fit().window(X, Y), (X, Y));
+        assert_eq!(PanZoom::fit().window(X, Y, MIDDLE), (X, Y));
     }
 
     #[test]
@@ -80,9 +100,9 @@ mod tests {
         // x shows 8 units: a quarter is 2. Down moves y by a quarter of 2.
         let mut view = PanZoom::fit();
         view.pan(1, 0);
-        assert_eq!(view.window(X, Y), ([-2.0, 6.0], Y));
+        assert_eq!(view.window(X, Y, MIDDLE), ([-2.0, 6.0], Y));
         view.pan(-1, 1);
-        assert_eq!(view.window(X, Y), (X, [-0.5, 1.5]));
+        assert_eq!(view.window(X, Y, MIDDLE), (X, [-0.5, 1.5]));
         assert!(!view.is_fit());
     }
 
@@ -92,15 +112,34 @@ mod tests {
         // right then moves a quarter of that.
         let mut view = PanZoom::fit();
         view.zoom_by(2);
-        let (x, _) = view.window(X, Y);
+        let (x, _) = view.window(X, Y, MIDDLE);
         assert!((x[1] - 4.0 / 2.25).abs() < 1e-12, "{x:?}");
         view.pan(1, 0);
-        let (panned, _) = view.window(X, Y);
+        let (panned, _) = view.window(X, Y, MIDDLE);
         assert!((panned[0] - x[0] - 8.0 / 2.25 / 4.0).abs() < 1e-12);
         // Zooming stops at its limits.
         view.zoom_by(100);
         assert_eq!(view.zoom(), ZOOM_IN);
         view.zoom_by(-100);
         assert_eq!(view.zoom(), ZOOM_OUT);
+    }
+
+    #[test]
+    fn zooming_magnifies_about_the_focus_and_keeps_it_in_view() {
+        // Focus (3, 0) in x -4..4: zoom 2 (m = 2.25) puts the window's
+        // centre at 3 + (0 - 3) / 2.25² = 3 - 0.5926 = 2.4074, half-width
+        // 4 / 2.25 = 1.7778: x 0.6296..4.1852, holding 3 where the fitted
+        // window's centre would have shown -1.78..1.78 (3 out of view).
+        let mut view = PanZoom::fit();
+        view.zoom_by(2);
+        let (x, _) = view.window(X, Y, (3.0, 0.0));
+        let centre = 3.0 - 3.0 / (2.25 * 2.25);
+        assert!((x[0] - (centre - 4.0 / 2.25)).abs() < 1e-12, "{x:?}");
+        assert!((x[1] - (centre + 4.0 / 2.25)).abs() < 1e-12, "{x:?}");
+        assert!(x[0] < 3.0 && 3.0 < x[1]);
+        assert_eq!(view.label().as_deref(), Some("zoom 2.25×"));
+        view.zoom_by(-3);
+        assert_eq!(view.label().as_deref(), Some("zoom 0.667×"));
+        assert_eq!(PanZoom::fit().label(), None);
     }
 }
