@@ -339,37 +339,29 @@ fn write_marks(
         );
     }
     for p in marks.hits.iter().filter_map(|h| framed(view, h.1)) {
-        labels.reserve(p, 4.0);
-        let _ = writeln!(
-            out,
-            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"black\"/>",
-            p.x, p.y
-        );
+        circle(out, labels, p, 3.0, "fill=\"black\"");
     }
     for p in marks.passed.iter().filter_map(|m| framed(view, m.2)) {
-        labels.reserve(p, 7.0);
-        let _ = writeln!(
-            out,
-            "<circle class=\"passed-by\" cx=\"{:.1}\" cy=\"{:.1}\" r=\"6\" fill=\"none\" stroke=\"{PASSED}\" stroke-width=\"2\"/>",
-            p.x, p.y
-        );
+        let ring =
+            format!("class=\"passed-by\" fill=\"none\" stroke=\"{PASSED}\" stroke-width=\"2\"");
+        circle(out, labels, p, 6.0, &ring);
     }
     if let Some(e) = framed(view, marks.eye) {
-        labels.reserve(e, 6.0);
-        let _ = writeln!(
-            out,
-            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"5\" fill=\"black\"/>",
-            e.x, e.y
-        );
+        circle(out, labels, e, 5.0, "fill=\"black\"");
     }
     for p in marks.lights.iter().filter_map(|l| framed(view, l.1)) {
-        labels.reserve(p, 8.0);
-        let _ = writeln!(
-            out,
-            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"7\" fill=\"#ffdd44\" stroke=\"#aa8800\"/>",
-            p.x, p.y
-        );
+        circle(out, labels, p, 7.0, "fill=\"#ffdd44\" stroke=\"#aa8800\"");
     }
+}
+
+/// A round mark of radius `r`, kept free of labels (with a unit to spare).
+fn circle(out: &mut String, labels: &mut Labels, p: DVec2, r: f64, attrs: &str) {
+    labels.reserve(p, r + 1.0);
+    let _ = writeln!(
+        out,
+        "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"{r}\" {attrs}/>",
+        p.x, p.y
+    );
 }
 
 /// The names, once every mark and ray is down: the eye's, the lights', the
