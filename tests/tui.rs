@@ -602,3 +602,11 @@ fn a_toggle_shows_what_changed_for_the_pixel_until_another_is_picked() {
     app.update(Action::Pick(0, 0));
     assert!(app.what_if().is_none());
 }
+
+#[test]
+fn the_first_pixel_is_timed_too() {
+    // The status line's "pixel traced in N µs" said 0 µs until the first
+    // pick: the opening recording was not timed.
+    let app = app();
+    assert!(app.pick_time() > std::time::Duration::ZERO);
+}

@@ -148,7 +148,9 @@ impl App {
         let scene = Arc::new(scene);
         let settings = scene.settings;
         let cursor = (scene.width / 2, scene.height / 2);
+        let started = Instant::now();
         let tree = record_pixel(&scene, &settings, cursor.0, cursor.1);
+        let pick_time = started.elapsed();
         let mut app = App {
             source,
             scene,
@@ -187,7 +189,7 @@ impl App {
             renderer: Renderer::new(sync),
             watcher: None,
             reload_due: None,
-            pick_time: Duration::ZERO,
+            pick_time,
             render_time: None,
             show_timings: !sync,
         };
