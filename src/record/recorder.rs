@@ -7,7 +7,9 @@ use crate::math::{Color, EPS, Interval, Ray};
 use crate::mistakes::Mistakes;
 use crate::render::viewport;
 use crate::scene::{Scene, Settings};
-use crate::shapes::{CrossingFigure, Polygon, RootChoice, Shape, Sphere, Working};
+use crate::shapes::{
+    CrossingFigure, Polygon, PolygonWorking, Shape, Sphere, SphereWorking, Working,
+};
 use crate::trace::{
     Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace,
 };
@@ -318,16 +320,24 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
     let range = Interval::new(EPS, before);
     let mut found = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
-        let missed = match &object.shape {
-            Shape::Polygon(p) => polygon_missed(p, ray, range),
-            Shape::Patch(p) => polygon_missed(&p.polygon, ray, range),
-            Shape::Sphere(s) => sphere_missed(s, ray, range),
-            _ => false,
+        // Each candidate solved once; a patch's fan is located only when
+        // its polygon was missed.
+        let working = match &object.shape {
+            Shape::Polygon(p) => {
+                let w = p.solve(ray, range);
+                polygon_missed(p, ray, &w).then_some(Working::Polygon(w))
+            }
+            Shape::Patch(p) => polygon_missed(&p.polygon, ray, &p.polygon.solve(ray, range))
+                .then(|| object.shape.working(ray, range)),
+            Shape::Sphere(s) => {
+                let w = s.solve(ray, range);
+                sphere_missed(s, ray, range, &w).then_some(Working::Sphere(w))
+            }
+            _ => None,
         };
-        if !missed {
+        let Some(working) = working else {
             continue;
-        }
-        let working = object.shape.working(ray, range);
+        };
         found.push(NearMiss {
             object: object.name.clone(),
             object_index: index,
@@ -342,8 +352,7 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
     found
 }
 
-fn polygon_missed(polygon: &Polygon, ray: &Ray, range: Interval) -> bool {
-    let working = polygon.solve(ray, range);
+fn polygon_missed(polygon: &Polygon, ray: &Ray, working: &PolygonWorking) -> bool {
     let in_box = working
         .plane
         .hit_t()
@@ -351,16 +360,13 @@ fn polygon_missed(polygon: &Polygon, ray: &Ray, range: Interval) -> bool {
     in_box && working.crossing.is_some_and(|c| !c.inside)
 }
 
-/// Roots beyond `range` (behind the hit) are not a miss: the sphere is
-/// hidden. Nor is a root within EPS of the origin: that is the sphere a
-/// secondary ray leaves from, not one it passes by.
-fn sphere_missed(sphere: &Sphere, ray: &Ray, range: Interval) -> bool {
-    let working = sphere.solve(ray, Interval::in_front());
-    let passed = match working.choice {
-        RootChoice::NoRealRoots => true,
-        RootChoice::BothBehind => working.t1.is_some_and(|t1| t1 < -EPS),
-        RootChoice::NearerRoot | RootChoice::FartherRoot => false,
-    };
+/// No real roots, or both roots more than EPS behind the origin (the roots
+/// do not depend on the range `working` was solved in). Roots beyond
+/// `range` (behind the hit) are not a miss: the sphere is hidden. Nor is a
+/// root within EPS of the origin: that is the sphere a secondary ray
+/// leaves from, not one it passes by.
+fn sphere_missed(sphere: &Sphere, ray: &Ray, range: Interval, working: &SphereWorking) -> bool {
+    let passed = working.t1.is_none_or(|t1| t1 < -EPS);
     passed && sphere.bounds().crossed_by(ray, range)
 }
 
