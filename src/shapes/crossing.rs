@@ -6,7 +6,7 @@
 use glam::{DVec2, DVec3};
 use serde::Serialize;
 
-use super::polygon::{Axis, Polygon, crosses};
+use super::polygon::{Axis, Polygon, crosses, straddles, u_at_axis};
 
 /// The projected polygon around the hit point, and every edge's verdict.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -64,12 +64,12 @@ impl Polygon {
         let edges = (0..n)
             .map(|i| {
                 let (a, b) = (moved[i], moved[(i + 1) % n]);
-                let straddles = (a.y >= 0.0) != (b.y >= 0.0);
+                let straddles = straddles(a, b);
                 EdgeCrossing {
                     from: i,
                     to: (i + 1) % n,
                     straddles,
-                    u: straddles.then(|| a.x - a.y * (b.x - a.x) / (b.y - a.y)),
+                    u: straddles.then(|| u_at_axis(a, b)),
                     counts: crosses(a, b),
                 }
             })

@@ -79,10 +79,24 @@ impl Axis {
     }
 }
 
+/// Whether the edge from a to b (relative to the point) meets the line
+/// V = 0: one end has V >= 0 and the other V < 0, so a vertex on the line
+/// counts as above it.
+#[inline]
+pub fn straddles(a: DVec2, b: DVec2) -> bool {
+    (a.y >= 0.0) != (b.y >= 0.0)
+}
+
+/// The U where a straddling edge from a to b meets V = 0.
+#[inline]
+pub fn u_at_axis(a: DVec2, b: DVec2) -> f64 {
+    a.x - a.y * (b.x - a.x) / (b.y - a.y)
+}
+
 /// Whether the edge from a to b (relative to the point) crosses the +U axis.
 #[inline]
 pub fn crosses(a: DVec2, b: DVec2) -> bool {
-    (a.y >= 0.0) != (b.y >= 0.0) && a.x - a.y * (b.x - a.x) / (b.y - a.y) > 0.0
+    straddles(a, b) && u_at_axis(a, b) > 0.0
 }
 
 /// How many edges of the projected polygon cross the +U axis from `p`.
