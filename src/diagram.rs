@@ -355,6 +355,16 @@ fn closed(mut points: Vec<DVec2>) -> Outline {
     Outline::Polyline(points)
 }
 
+/// The centre of a view of `centre` magnified `m` times about `focus` (the
+/// projection's origin, the first hit): the focus moves toward the middle,
+/// its offset divided by m² (shown magnified, by m), so a hit near the edge
+/// stays in view. Below 1 the view keeps its centre. The SVG's `--zoom` and
+/// the debugger's pane zoom both use it.
+pub fn magnified_centre(centre: DVec2, focus: DVec2, m: f64) -> DVec2 {
+    let m = m.max(1.0);
+    focus + (centre - focus) / (m * m)
+}
+
 /// The objects this pixel's rays meet: hit by a ray or blocking a shadow ray.
 pub fn involved_objects(tree: &RayTree) -> Vec<usize> {
     let mut objects: Vec<usize> = tree

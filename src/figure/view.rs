@@ -8,7 +8,7 @@ use glam::DVec2;
 
 use super::labels::clip;
 use super::{FRAME, HEIGHT, MARGIN, WIDTH};
-use crate::diagram::Outline;
+use crate::diagram::{Outline, magnified_centre};
 
 /// The mapping from the plane to the figure: uniform scale, y up.
 pub(super) struct View {
@@ -38,10 +38,9 @@ impl View {
     /// as it grows (its offset from the middle divided by `zoom`): kept in
     /// place, a hit near the edge would leave the figure on the first zoom.
     pub(super) fn zoomed(self, zoom: f64, focus: DVec2) -> View {
-        let zoom = zoom.max(1.0);
         View {
-            centre: focus + (self.centre - focus) / (zoom * zoom),
-            scale: self.scale * zoom,
+            centre: magnified_centre(self.centre, focus, zoom),
+            scale: self.scale * zoom.max(1.0),
         }
     }
 

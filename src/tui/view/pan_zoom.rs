@@ -4,6 +4,10 @@
 //! primary ray's first hit, as `raystep diagram --zoom` magnifies); the
 //! fitted window is zoom 0, no pan.
 
+use glam::DVec2;
+
+use crate::diagram::magnified_centre;
+
 /// How far the diagram is panned and zoomed from the fitted window.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PanZoom {
@@ -70,14 +74,11 @@ impl PanZoom {
     /// the window keeps its centre.
     pub fn window(&self, x: [f64; 2], y: [f64; 2], focus: (f64, f64)) -> ([f64; 2], [f64; 2]) {
         let m = self.magnification();
-        let pull = m.max(1.0) * m.max(1.0);
-        let axis = |range: [f64; 2], pan: f64, focus: f64| {
-            let half = (range[1] - range[0]) / 2.0;
-            let middle = (range[0] + range[1]) / 2.0;
-            let centre = focus + (middle - focus) / pull + pan * half;
-            [centre - half / m, centre + half / m]
-        };
-        (axis(x, self.pan.0, focus.0), axis(y, self.pan.1, focus.1))
+        let half = DVec2::new(x[1] - x[0], y[1] - y[0]) / 2.0;
+        let middle = DVec2::new(x[0] + x[1], y[0] + y[1]) / 2.0;
+        let centre = magnified_centre(middle, DVec2::from(focus), m) + DVec2::from(self.pan) * half;
+        let (lo, hi) = (centre - half / m, centre + half / m);
+        ([lo.x, hi.x], [lo.y, hi.y])
     }
 }
 
