@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use super::lines::Line;
 use super::shaping::{place, shaping_events};
-use super::sources::{brightness as weight, sources};
+use super::sources::{brightness, sources};
 use super::text::{color, count, fraction, kind_name, not_cast_reason, num, precise};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
@@ -126,12 +126,12 @@ pub fn explain_unwrapped(tree: &RayTree) -> String {
 /// The rays whose own terms make most of the pixel: at most three, each
 /// over 5% of its brightness, then what the rest add together.
 fn write_sources(out: &mut String, tree: &RayTree) {
-    let total = weight(tree.color());
+    let total = brightness(tree.color());
     if total <= 0.0 {
         return;
     }
     let all = sources(tree);
-    let share = |c: Color| 100.0 * weight(c) / total;
+    let share = |c: Color| 100.0 * brightness(c) / total;
     let top: Vec<_> = all
         .iter()
         .take(3)
@@ -219,8 +219,8 @@ fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
         let child = &tree.nodes[child];
         terms.push((format!("{} ray", kind_name(child.kind)), child.contribution));
     }
-    let total: f64 = terms.iter().map(|(_, c)| weight(*c)).sum();
-    terms.sort_by(|a, b| weight(b.1).total_cmp(&weight(a.1)));
+    let total: f64 = terms.iter().map(|(_, c)| brightness(*c)).sum();
+    terms.sort_by(|a, b| brightness(b.1).total_cmp(&brightness(a.1)));
     let _ = writeln!(
         out,
         "Its colour is the sum of these terms (largest first, share of the brightness):"
@@ -228,11 +228,11 @@ fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
     // A term that prints as (0.000, 0.000, 0.000) is only named, in one line.
     let (shown, tiny): (Vec<_>, Vec<_>) = terms
         .iter()
-        .filter(|(_, c)| weight(*c) > 0.0)
+        .filter(|(_, c)| brightness(*c) > 0.0)
         .partition(|(_, c)| c.max_element() >= 0.0005);
     for (name, term) in shown {
         let share = if total > 0.0 {
-            100.0 * weight(*term) / total
+            100.0 * brightness(*term) / total
         } else {
             0.0
         };
