@@ -9,7 +9,7 @@ use std::fmt::Write;
 use glam::DVec2;
 
 use super::labels::{Labels, escape};
-use crate::record::{NodeId, RayTree};
+use crate::record::{NodeId, RayTree, count};
 use crate::shapes::CrossingFigure;
 
 const WIDTH: f64 = 800.0;
@@ -126,9 +126,9 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     // (ending at 49) and the V axis name's (from TOP + 10 - 13 = 67).
     let _ = writeln!(
         out,
-        "<text x=\"{:.1}\" y=\"64\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{n} crossing{}: {verdict}</text>",
+        "<text x=\"{:.1}\" y=\"64\" font-size=\"15\" font-weight=\"bold\" text-anchor=\"end\">{}: {verdict}</text>",
         WIDTH - MARGIN,
-        if n == 1 { "" } else { "s" }
+        count(n as u64, "crossing", "crossings")
     );
     write_legend(&mut out);
     out.push_str("</svg>\n");
