@@ -287,9 +287,12 @@ impl RayTree {
         node.reflected.into_iter().chain(node.transmitted)
     }
 
-    /// The sum of a node's stored terms, in the tracer's order; equals its colour.
-    pub fn sum_of_terms(&self, id: NodeId) -> Color {
+    /// The sum of a hit node's stored terms, in the tracer's order; equals
+    /// its colour. `None` for a miss: it has no terms, its colour is the
+    /// background.
+    pub fn sum_of_terms(&self, id: NodeId) -> Option<Color> {
         let node = &self.nodes[id];
+        node.hit.as_ref()?;
         let mut sum = node.ambient;
         for light in &node.lights {
             sum += light.diffuse + light.specular;
@@ -297,7 +300,7 @@ impl RayTree {
         for child in self.children(id) {
             sum += self.nodes[child].contribution;
         }
-        if node.hit.is_none() { node.color } else { sum }
+        Some(sum)
     }
 
     /// Ok if every number of the recording is finite; else names the first

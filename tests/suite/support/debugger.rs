@@ -1,8 +1,6 @@
 //! Helpers shared by the debugger's test files: an app on the built-in
 //! scene, keys fed through the real key mapping, and screens on `TestBackend`.
 
-#![allow(dead_code)]
-
 use std::path::{Path, PathBuf};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -49,7 +47,7 @@ pub fn scene_file(name: &str) -> PathBuf {
     let dir = Path::new("target/tui-tests");
     std::fs::create_dir_all(dir).unwrap();
     let path = dir.join(name);
-    std::fs::write(&path, include_str!("../../scenes/seven-rays.toml")).unwrap();
+    std::fs::write(&path, include_str!("../../../scenes/seven-rays.toml")).unwrap();
     path
 }
 

@@ -2,11 +2,9 @@
 //! false-colour counts, and `shadow.png` tells S = 0 (black), a point no
 //! light faces (purple) and the background (dark blue) apart.
 
-mod support;
-
+use crate::support::{raystep, stderr};
 use raystep::record::record_pixel;
 use raystep::terms::{NO_LIGHT_FACES, SHADOW_BACKGROUND};
-use support::{raystep, stderr};
 
 #[test]
 fn stats_give_the_count_images_scales_and_shadow_png_its_three_colours() {

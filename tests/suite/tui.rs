@@ -14,9 +14,7 @@ use raystep::scene::SpecularModel;
 use raystep::terms::Term;
 use raystep::tui::{self, Action, App, Breakpoint, Pane, Step, View};
 
-mod common;
-
-use common::*;
+use crate::support::debugger::*;
 
 #[test]
 fn starts_on_the_centre_pixel_with_its_tree() {
@@ -227,30 +225,20 @@ fn object_breakpoint_uses_the_selected_rays_object_and_cycles() {
 
 #[test]
 fn tir_breakpoint_stops_at_total_internal_reflection() {
+    // glass.toml names (135, 58) for TIR: into the glass block's top face,
+    // then total internal reflection inside it. `T` runs to the first one.
+    let glass = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/glass.toml");
+    let mut glass = App::open(Some(glass), true).unwrap();
+    glass.update(Action::Pick(135, 58));
+    let is_tir = |kind: &EventKind| matches!(kind, EventKind::Refraction { tir: true });
+    let first_tir = glass.tree().events.iter().position(|e| is_tir(&e.kind));
+    let first_tir = first_tir.expect("glass.toml 135,58 has a total internal reflection");
+    assert!(first_tir > 0, "the primary ray's hit comes first");
+    chars(&mut glass, "T");
+    assert_eq!(glass.current(), first_tir);
+
+    // The built-in scene's centre pixel has none: `T` stays and says so.
     let mut app = app();
-    let scene = app.scene().clone();
-    let tir_pixel = (0..scene.height)
-        .flat_map(|y| (0..scene.width).map(move |x| (x, y)))
-        .find(|&(x, y)| {
-            record_pixel(&scene, &scene.settings, x, y)
-                .events
-                .iter()
-                .any(|e| matches!(e.kind, EventKind::Refraction { tir: true }))
-        });
-    match tir_pixel {
-        Some((x, y)) => {
-            app.update(Action::Pick(x, y));
-            chars(&mut app, "T");
-            assert!(matches!(
-                app.tree().events[app.current()].kind,
-                EventKind::Refraction { tir: true }
-            ));
-        }
-        None => {
-            chars(&mut app, "T");
-            assert_eq!(app.current(), 0);
-        }
-    }
     app.update(Action::Pick(80, 60));
     app.update(Action::RunTo(Breakpoint::Tir));
     assert_eq!(app.current(), 0, "the centre pixel has no TIR");
@@ -606,7 +594,15 @@ fn a_toggle_shows_what_changed_for_the_pixel_until_another_is_picked() {
 #[test]
 fn the_first_pixel_is_timed_too() {
     // The status line's "pixel traced in N µs" said 0 µs until the first
-    // pick: the opening recording was not timed.
+    // pick: the opening recording was not timed. It is a part of opening,
+    // so it is more than nothing and no more than the whole opening took.
+    let started = Instant::now();
     let app = app();
-    assert!(app.pick_time() > std::time::Duration::ZERO);
+    let opening = started.elapsed();
+    assert!(app.pick_time() > Duration::ZERO);
+    assert!(
+        app.pick_time() <= opening,
+        "{:?} > {opening:?}",
+        app.pick_time()
+    );
 }

@@ -2,14 +2,12 @@
 //! with its factors, and the events deep in the tree that shaped the pixel,
 //! ranked by how much each moved it. Values derived by hand in comments.
 
-mod support;
-
 use std::path::Path;
 
 use raystep::record::{Children, explain, node_lines, record_pixel, shaping_events};
 use raystep::scene::{Scene, load};
 
-use support::{record, scene};
+use crate::support::{record, scene};
 
 /// A plane z = -1 facing the camera at the origin; one white light at
 /// (0.6, 0, -0.2), so from the hit (0, 0, -1) L = (0.6, 0, 0.8), d_L = 1.

@@ -3,8 +3,6 @@
 //! Regression tests for issue 13: a valid scene must neither hang nor exhaust
 //! memory.
 
-mod support;
-
 use std::path::Path;
 use std::process::Command;
 
@@ -14,9 +12,9 @@ use raystep::render::render;
 use raystep::scene::{Scene, parse};
 use raystep::trace::{NotCast, PruneRule, RayKind, RayStats};
 
-use support::{record, scene};
+use crate::support::{record, scene};
 
-const GLASS_PLANES: &str = include_str!("scenes/three-glass-planes.toml");
+const GLASS_PLANES: &str = include_str!("../scenes/three-glass-planes.toml");
 
 /// Two facing mirrors z = -1 and z = 1 of reflectance `ks`, with `settings`
 /// lines added to `[settings]`; no lights.

@@ -8,15 +8,13 @@
 //! (d) total internal reflection in a prism        prism.toml 90,60
 //! (e) a ray through the notch of a concave polygon   polygons.toml 30,30
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
 use raystep::record::{explain, explain_unwrapped, record_pixel};
 use raystep::scene::load;
 use raystep::tui::{App, Mode};
 
-use common::*;
+use crate::support::debugger::*;
 
 fn scene_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -30,13 +28,6 @@ fn explain_pixel(name: &str, (x, y): (u32, u32)) -> (String, String) {
     let scene = load(&scene_path(name)).unwrap();
     let tree = record_pixel(&scene, &scene.settings, x, y);
     (explain_unwrapped(&tree), explain(&tree))
-}
-
-fn snapshot(name: &str, text: &str) {
-    let mut settings = insta::Settings::clone_current();
-    settings.set_snapshot_path("../snapshots");
-    settings.set_prepend_module_to_snapshot(true);
-    settings.bind(|| insta::assert_snapshot!(name, text));
 }
 
 /// The number after `prefix` in `text` (up to a space, comma or bracket).
@@ -72,7 +63,7 @@ fn a_an_opaque_shadow_from_one_of_two_lights() {
     assert!(text.contains("left: lit, nothing in the way"), "{text}");
     assert!(text.contains("diffuse from left"), "{text}");
     assert!(!text.contains("diffuse from right"), "{text}");
-    snapshot("a_opaque_shadow", &printed);
+    snapshot!("a_opaque_shadow", &printed);
 }
 
 #[test]
@@ -91,7 +82,7 @@ fn b_a_fractional_shadow_through_glass_and_a_pane() {
         "{text}"
     );
     assert!(text.contains("right: lit, nothing in the way"), "{text}");
-    snapshot("b_fractional_shadow", &printed);
+    snapshot!("b_fractional_shadow", &printed);
 }
 
 #[test]
@@ -113,7 +104,7 @@ fn c_a_pixel_lit_mostly_by_a_reflection() {
         text.contains("Reflected ray (weight 0.85): hits red ball"),
         "{text}"
     );
-    snapshot("c_mostly_reflection", &printed);
+    snapshot!("c_mostly_reflection", &printed);
 }
 
 #[test]
@@ -136,7 +127,7 @@ fn d_total_internal_reflection_in_a_prism() {
         text.contains("total internal reflection at r2") && text.contains("on prism left"),
         "{text}"
     );
-    snapshot("d_prism_tir", &printed);
+    snapshot!("d_prism_tir", &printed);
 }
 
 #[test]
@@ -152,7 +143,7 @@ fn e_a_ray_through_the_notch_of_a_concave_polygon() {
     assert!(line.contains("2 edge crossings"), "{line}");
     assert!(line.contains("even"), "{line}");
     assert!(text.contains("hits back wall"), "{text}");
-    snapshot("e_concave_notch", &printed);
+    snapshot!("e_concave_notch", &printed);
 }
 
 // In the debugger, from the start: each answer in the details pane after

@@ -2,7 +2,8 @@
 //! modules of src/ (a circle means neither module can be read, tested or
 //! moved without the other; the shared thing belongs in the lower one); in
 //! the debugger, the state and the views know no pane; README's Layout
-//! section names every folder of the debugger.
+//! section names every folder of the debugger. Issue 25: no circle between
+//! the files of any one folder either (`super::` and `crate::<folder>::`).
 //!
 //! Module A depends on B when any file of A names `crate::B` (in a `use`,
 //! a path or a doc link) outside its unit tests. This reads the source, not
@@ -31,6 +32,12 @@ fn rust_files(path: &Path) -> Vec<PathBuf> {
 /// The modules named right after each `crate::` in `text`, including each
 /// head of a `crate::{a, b::c}` group.
 fn crate_references(text: &str) -> BTreeSet<String> {
+    references_after(text, "crate::")
+}
+
+/// The names right after each `prefix` in `text`, including each head of a
+/// `prefix{a, b::c}` group.
+fn references_after(text: &str, prefix: &str) -> BTreeSet<String> {
     let ident = |s: &str| -> String {
         s.trim_start()
             .chars()
@@ -38,8 +45,8 @@ fn crate_references(text: &str) -> BTreeSet<String> {
             .collect()
     };
     let mut names = BTreeSet::new();
-    for (at, _) in text.match_indices("crate::") {
-        let rest = &text[at + "crate::".len()..];
+    for (at, _) in text.match_indices(prefix) {
+        let rest = &text[at + prefix.len()..];
         let Some(group) = rest.strip_prefix('{') else {
             names.insert(ident(rest));
             continue;
@@ -79,16 +86,74 @@ fn module_graph(src: &Path) -> Graph {
     for (name, path) in &modules {
         let mut uses = BTreeSet::new();
         for file in rust_files(path) {
-            let text = fs::read_to_string(&file).unwrap();
-            // A file's unit tests (its `#[cfg(test)]` module, last by custom)
-            // may build a whole scene: they are not the library's layout.
-            let library = text.split("#[cfg(test)]").next().unwrap_or_default();
-            uses.extend(crate_references(library));
+            uses.extend(crate_references(&library_part(&file)));
         }
         uses.retain(|used| used != name && modules.contains_key(used));
         graph.insert(name.clone(), uses);
     }
     graph
+}
+
+/// The library part of a file: its unit tests (its `#[cfg(test)]` module,
+/// last by custom) may build a whole scene and are not the layout.
+fn library_part(file: &Path) -> String {
+    let text = fs::read_to_string(file).unwrap();
+    text.split("#[cfg(test)]")
+        .next()
+        .unwrap_or_default()
+        .to_string()
+}
+
+/// Within one folder of src/ (module path `module`, e.g. `record` or
+/// `tui::app`): each file or subfolder -> the siblings it names, through
+/// `super::` or `crate::<module>::`. `mod.rs` is the folder itself, not a
+/// sibling. A `super::` from deeper down may be read as naming a sibling
+/// it does not: this errs towards seeing a dependency.
+fn folder_graph(folder: &Path, module: &str) -> Graph {
+    let mut siblings: BTreeMap<String, PathBuf> = BTreeMap::new();
+    for entry in fs::read_dir(folder).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let is_module = path.is_dir() || path.extension().is_some_and(|e| e == "rs");
+        if is_module && name != "mod" {
+            siblings.insert(name, path);
+        }
+    }
+    let absolute = format!("crate::{module}::");
+    let mut graph = Graph::new();
+    for (name, path) in &siblings {
+        let mut uses = BTreeSet::new();
+        for file in rust_files(path) {
+            let library = library_part(&file);
+            uses.extend(references_after(&library, "super::"));
+            uses.extend(references_after(&library, &absolute));
+        }
+        uses.retain(|used| used != name && siblings.contains_key(used));
+        graph.insert(name.clone(), uses);
+    }
+    graph
+}
+
+/// Every folder under `src/` (src itself has its own test), with its module path.
+fn folders(src: &Path) -> Vec<(PathBuf, String)> {
+    let mut found = Vec::new();
+    let mut stack = vec![(src.to_path_buf(), String::new())];
+    while let Some((dir, module)) = stack.pop() {
+        for entry in fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                let name = path.file_name().unwrap().to_string_lossy().into_owned();
+                let inner = if module.is_empty() {
+                    name
+                } else {
+                    format!("{module}::{name}")
+                };
+                found.push((path.clone(), inner.clone()));
+                stack.push((path, inner));
+            }
+        }
+    }
+    found
 }
 
 /// One circle through `start`, as the path back to it, if there is one.
@@ -126,6 +191,43 @@ fn no_import_circle_between_top_level_modules() {
     assert!(
         found.is_empty(),
         "import circles in src/: {found:#?}\ngraph: {graph:#?}"
+    );
+}
+
+#[test]
+fn no_import_circle_between_the_files_of_a_folder() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let folders = folders(&src);
+    assert!(folders.iter().any(|(_, m)| m == "tui::app"), "{folders:?}");
+    let mut found = Vec::new();
+    for (folder, module) in &folders {
+        let graph = folder_graph(folder, module);
+        found.extend(
+            circles(&graph)
+                .into_iter()
+                .map(|c| format!("{module}: {c}")),
+        );
+    }
+    assert!(
+        found.is_empty(),
+        "import circles inside folders: {found:#?}"
+    );
+}
+
+#[test]
+fn the_folder_reader_sees_super_and_absolute_paths() {
+    // record/dot.rs names its siblings both ways; its unit tests don't count.
+    let graph = folder_graph(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src/record"),
+        "record",
+    );
+    assert!(graph.contains_key("dot") && !graph.contains_key("mod"));
+    let text = "use super::{tree::RayTree, text};\nlet x = crate::record::lines::f();\n";
+    let mut names = references_after(text, "super::");
+    names.extend(references_after(text, "crate::record::"));
+    assert_eq!(
+        names.into_iter().collect::<Vec<_>>(),
+        ["lines", "text", "tree"]
     );
 }
 

@@ -1,8 +1,7 @@
 //! Bad input through the command line: a clear message, a non-zero exit,
 //! never a panic, and nothing already written damaged.
 
-mod support;
-use support::{raystep, stderr};
+use crate::support::{raystep, stderr};
 
 use std::path::{Path, PathBuf};
 

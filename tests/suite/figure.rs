@@ -1,9 +1,7 @@
 //! `raystep diagram`: a pixel's rays as an SVG figure. The figure parses as
 //! XML, holds what the recording holds, and is pinned by a reviewed snapshot.
 
-mod support;
-
-use support::{raystep, stderr};
+use crate::support::{raystep, stderr};
 
 /// Writes the figure of glass.toml's TIR pixel and returns its text.
 fn figure(dir: &std::path::Path, plane: &str) -> String {
@@ -123,9 +121,7 @@ fn the_figure_is_svg_with_every_ray_light_and_blocker() {
 fn the_figure_is_pinned() {
     let dir = tempfile::tempdir().unwrap();
     let svg = figure(dir.path(), "top");
-    insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
-        insta::assert_snapshot!("figure__glass_135_58_top", svg);
-    });
+    snapshot!("glass_135_58_top", svg);
 }
 
 /// Each figure the tester reviewed: scene, pixel, plane and extra arguments.

@@ -14,21 +14,21 @@ use serde_json::Value;
 // ---------- (a) mutated scene text ----------
 
 const TOML_SCENES: [&str; 7] = [
-    include_str!("../scenes/attenuation.toml"),
-    include_str!("../scenes/glass.toml"),
-    include_str!("../scenes/highlights.toml"),
-    include_str!("../scenes/mirrors.toml"),
-    include_str!("../scenes/polygons.toml"),
-    include_str!("../scenes/seven-rays.toml"),
-    include_str!("../scenes/shadows.toml"),
+    include_str!("../../scenes/attenuation.toml"),
+    include_str!("../../scenes/glass.toml"),
+    include_str!("../../scenes/highlights.toml"),
+    include_str!("../../scenes/mirrors.toml"),
+    include_str!("../../scenes/polygons.toml"),
+    include_str!("../../scenes/seven-rays.toml"),
+    include_str!("../../scenes/shadows.toml"),
 ];
 
 const NFF_SCENES: [&str; 5] = [
-    include_str!("../scenes/spd/balls-small.nff"),
-    include_str!("../scenes/spd/mount-small.nff"),
-    include_str!("../scenes/spd/rings-small.nff"),
-    include_str!("../scenes/spd/tetra-small.nff"),
-    include_str!("../scenes/spd/tree-small.nff"),
+    include_str!("../../scenes/spd/balls-small.nff"),
+    include_str!("../../scenes/spd/mount-small.nff"),
+    include_str!("../../scenes/spd/rings-small.nff"),
+    include_str!("../../scenes/spd/tetra-small.nff"),
+    include_str!("../../scenes/spd/tree-small.nff"),
 ];
 
 /// One edit of a file's bytes; positions are taken modulo the current length.

@@ -2,8 +2,6 @@
 //! number derived here by hand; under every mistake the recordings still
 //! agree with the image; the command line takes them by name.
 
-mod support;
-
 use std::path::Path;
 
 use glam::DVec3;
@@ -14,7 +12,7 @@ use raystep::scene::{Scene, Settings, parse};
 use raystep::terms::render_terms;
 use raystep::trace::NoRecorder;
 
-use support::{raystep, scene};
+use crate::support::{raystep, scene};
 
 const SQRT_HALF: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
@@ -23,8 +21,8 @@ fn both(scene: &Scene, mistake: Mistake, origin: [f64; 3], direction: [f64; 3]) 
     let mut wrong = scene.clone();
     wrong.settings.mistakes = Mistakes::NONE.with(mistake);
     [
-        support::record(scene, origin, direction),
-        support::record(&wrong, origin, direction),
+        crate::support::record(scene, origin, direction),
+        crate::support::record(&wrong, origin, direction),
     ]
 }
 

@@ -14,9 +14,7 @@ use raystep::terms::Term;
 use raystep::trace::NoRecorder;
 use raystep::tui::{Action, App, Mode, View};
 
-mod common;
-
-use common::*;
+use crate::support::debugger::*;
 
 fn builtin_scene() -> Scene {
     builtin::load_file_or_builtin(None).expect("the built-in scene loads")

@@ -9,11 +9,8 @@ use raystep::record::{EventKind, record_pixel};
 use raystep::terms::Term;
 use raystep::tui::{Action, App, Mode, View};
 
-mod common;
-mod support;
-
-use common::*;
-use support::{raystep, stderr};
+use crate::support::debugger::*;
+use crate::support::{raystep, stderr};
 
 /// A term view's pixels, scaled as the image files scale them: each
 /// rescanning the whole image for its maximum (the slow way the pane

@@ -8,9 +8,7 @@ use crossterm::event::KeyCode;
 use ratatui::layout::Rect;
 use raystep::tui::{Action, App, Pane};
 
-mod common;
-
-use common::*;
+use crate::support::debugger::*;
 
 /// Seven-rays with its two lights replaced by two a hair apart, so that
 /// in the top view they land on one cell.

@@ -1,8 +1,7 @@
 //! `raystep compare` as a student and an autograder run it: exit codes, bad
 //! images, a correct image from another tracer, and what the report says.
 
-mod support;
-use support::{raystep, stderr, stdout};
+use crate::support::{raystep, stderr, stdout};
 
 use std::path::{Path, PathBuf};
 use std::process::Output;
@@ -419,9 +418,7 @@ fn the_text_report_reads_as_reviewed() {
             vec![Mistake::OpaqueShadows, Mistake::PhongNotBlinn],
         ),
     ] {
-        insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
-            insta::assert_snapshot!(format!("compare__{name}"), report(&mistakes));
-        });
+        snapshot!(name, report(&mistakes));
     }
 }
 
@@ -460,7 +457,5 @@ fn the_json_shape_is_pinned() {
     );
     let output = raystep(&["compare", SCENE, path(&image), "--format", "json"]);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
-    insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
-        insta::assert_json_snapshot!("compare__json_shape", shape(&json(&output)));
-    });
+    json_snapshot!("json_shape", shape(&json(&output)));
 }

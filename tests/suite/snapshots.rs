@@ -39,17 +39,10 @@ fn rounded(value: Value) -> Value {
     }
 }
 
-fn settings() -> insta::Settings {
-    let mut settings = insta::Settings::clone_current();
-    settings.set_snapshot_path("../snapshots");
-    settings.set_prepend_module_to_snapshot(true);
-    settings
-}
-
 /// Each scene rendered at 32 x 24, one line of hex colours per pixel row.
 #[test]
 fn scene_pixels() {
-    insta::glob!("../scenes", "*.toml", |path| {
+    insta::glob!("../../scenes", "*.toml", |path| {
         let scene = scene_at(path, Some((32, 24)));
         let (image, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
         let mut text = String::new();
@@ -60,7 +53,7 @@ fn scene_pixels() {
             text.push_str(&line.join(" "));
             text.push('\n');
         }
-        settings().bind(|| insta::assert_snapshot!(text));
+        snapshot!("scene_pixels", text);
     });
 }
 
@@ -131,12 +124,10 @@ fn chosen_pixels() {
         let name = format!("{}_{x}_{y}", file.trim_end_matches(".toml"));
         let mut json = rounded(tree.to_json());
         let events = json.as_object_mut().unwrap().remove("events").unwrap();
-        settings().bind(|| {
-            insta::with_settings!({ description => why }, {
-                insta::assert_json_snapshot!(format!("{name}_tree"), json);
-                insta::assert_json_snapshot!(format!("{name}_events"), events);
-                insta::assert_snapshot!(format!("{name}_explain"), explain(&tree));
-            });
+        insta::with_settings!({ description => why }, {
+            json_snapshot!(&format!("{name}_tree"), json);
+            json_snapshot!(&format!("{name}_events"), events);
+            snapshot!(&format!("{name}_explain"), explain(&tree));
         });
     }
 }
@@ -159,5 +150,5 @@ fn graphviz_of_a_pixel_with_total_internal_reflection() {
     assert!(
         dot.contains("label=\"reflected ray\\nnot cast: max_depth\\nweight 1, max_depth = 5\"")
     );
-    settings().bind(|| insta::assert_snapshot!("glass_135_58_dot", dot));
+    snapshot!("glass_135_58_dot", dot);
 }

@@ -2,9 +2,7 @@
 //! and the text ends with what changed; `--diff-against` compares with
 //! another scene file.
 
-mod support;
-
-use support::{raystep, stderr, stdout};
+use crate::support::{raystep, stderr, stdout};
 
 #[test]
 fn a_lower_depth_and_plain_glass_say_which_rays_went() {

@@ -1,11 +1,9 @@
 //! The crossing test whole (edge by edge, in text, JSON and the 2-D SVG
 //! figure) and the near misses of spheres.
 
-mod support;
-
+use crate::support::{raystep, record, scene, stderr};
 use raystep::record::record_pixel;
 use raystep::shapes::{RootChoice, Working};
-use support::{raystep, record, scene, stderr};
 
 /// polygons.toml's star; pixel (40, 54) lies between its two lower legs.
 /// Its ray meets z = 0 at (-1.7963, 2.0002). Drop z: U = x, V = y. The
@@ -226,9 +224,7 @@ fn the_crossing_figure_marks_each_crossing() {
 fn the_crossing_figure_is_pinned() {
     let dir = tempfile::tempdir().unwrap();
     let svg = crossing_svg(dir.path(), NOTCH);
-    insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
-        insta::assert_snapshot!("figure__polygons_40_54_crossing", svg);
-    });
+    snapshot!("polygons_40_54_crossing", svg);
 }
 
 #[test]

@@ -1,5 +1,5 @@
 //! Whole debugger screens drawn on ratatui's `TestBackend`, pinned with insta
-//! in `snapshots/` (as `tui__<name>.snap`). Every one was read against
+//! in `snapshots/` (as `tui_screens__<name>.snap`). Every one was read against
 //! `raystep inspect` before it was accepted.
 
 use std::path::PathBuf;
@@ -8,22 +8,12 @@ use std::time::Instant;
 use raystep::terms::Term;
 use raystep::tui::{self, Action, App, View};
 
-mod common;
-
-use common::*;
-
-macro_rules! snapshot {
-    ($name:expr, $terminal:expr) => {
-        insta::with_settings!({ snapshot_path => "../snapshots", prepend_module_to_snapshot => false }, {
-            insta::assert_snapshot!(format!("tui__{}", $name), $terminal.backend());
-        })
-    };
-}
+use crate::support::debugger::*;
 
 #[test]
 fn snapshot_start_screen() {
     let mut app = app();
-    snapshot!("start_screen", screen(&mut app, 120, 40));
+    snapshot!("start_screen", screen(&mut app, 120, 40).backend());
 }
 
 #[test]
@@ -31,21 +21,21 @@ fn snapshot_shadowed_pixel() {
     let mut app = app();
     app.update(Action::Pick(80, 82));
     chars(&mut app, "b");
-    snapshot!("shadowed_pixel", screen(&mut app, 120, 40));
+    snapshot!("shadowed_pixel", screen(&mut app, 120, 40).backend());
 }
 
 #[test]
 fn snapshot_step_through() {
     let mut app = app();
     chars(&mut app, "ioi");
-    snapshot!("step_through", screen(&mut app, 120, 40));
+    snapshot!("step_through", screen(&mut app, 120, 40).backend());
 }
 
 #[test]
 fn snapshot_help_overlay() {
     let mut app = app();
     chars(&mut app, "?");
-    snapshot!("help_overlay", screen(&mut app, 120, 40));
+    snapshot!("help_overlay", screen(&mut app, 120, 40).backend());
 }
 
 #[test]
@@ -53,7 +43,7 @@ fn snapshot_term_view() {
     let mut app = app();
     chars(&mut app, "vvvvvvv");
     assert_eq!(app.view(), View::Term(Term::Rays));
-    snapshot!("term_view_rays", screen(&mut app, 120, 40));
+    snapshot!("term_view_rays", screen(&mut app, 120, 40).backend());
 }
 
 #[test]
@@ -62,13 +52,13 @@ fn snapshot_error_banner() {
     let mut app = App::open(Some(path.clone()), true).unwrap();
     edit(&path, "kt = 0.7", "kt = 0.7.5");
     app.update(Action::Reload);
-    snapshot!("error_banner", screen(&mut app, 120, 40));
+    snapshot!("error_banner", screen(&mut app, 120, 40).backend());
 }
 
 #[test]
 fn snapshot_too_small() {
     let mut app = app();
-    snapshot!("too_small", screen(&mut app, 60, 20));
+    snapshot!("too_small", screen(&mut app, 60, 20).backend());
 }
 
 #[test]
@@ -76,7 +66,7 @@ fn snapshot_wide_side_view() {
     let mut app = app();
     app.update(Action::Pick(80, 82));
     chars(&mut app, "d");
-    snapshot!("wide_side_view", screen(&mut app, 200, 60));
+    snapshot!("wide_side_view", screen(&mut app, 200, 60).backend());
 }
 
 /// Timings for the report: `cargo test --release --test tui -- --ignored --nocapture`.
@@ -125,7 +115,7 @@ fn snapshot_mistakes_menu() {
     // the pixel retraced without its ambient term behind the menu.
     let mut app = app();
     chars(&mut app, "Mjjjjjjjjj ");
-    snapshot!("mistakes_menu", screen(&mut app, 120, 40));
+    snapshot!("mistakes_menu", screen(&mut app, 120, 40).backend());
 }
 
 #[test]

@@ -1,0 +1,40 @@
+//! Every integration test, in one binary. Each file here was its own test
+//! binary, and each of those linked the whole crate: CI spent most of its
+//! minutes linking, twice per run, while the tests themselves take seconds.
+//! `tests/signals.rs` stays apart: it forks the debugger into
+//! pseudo-terminals and job-control groups, which is its process's business.
+//!
+//! Snapshots go through `support::snapshot!` (and `json_snapshot!`), which
+//! names them `snapshots/<file>__<name>.snap` after the file that pins them.
+
+#[macro_use]
+mod support;
+
+mod accel;
+mod cli;
+mod cli_outputs;
+mod compare;
+mod crossing;
+mod details_pane;
+mod explain_story;
+mod figure;
+mod five_questions;
+mod fuzz_regressions;
+mod layout;
+mod mistakes;
+mod nff_import;
+mod one_engine;
+mod pruning;
+mod readme;
+mod scene_bounds;
+mod scene_props;
+mod shading;
+mod snapshots;
+mod term_images;
+mod toml_sections;
+mod tui;
+mod tui_compare;
+mod tui_diagram;
+mod tui_reach;
+mod tui_screens;
+mod what_if;

@@ -1,0 +1,87 @@
+//! Helpers shared by the test files of the tracer and the command line: a
+//! scene from TOML text, the recorded tree of one primary ray cast by hand,
+//! the `raystep` binary run with arguments, and the one way to pin a
+//! snapshot. The debugger's helpers are in `debugger.rs`.
+
+pub mod debugger;
+
+/// Pins `value` (anything `Display`) as `snapshots/<file>__<name>.snap`,
+/// `<file>` being the test file that asserts it.
+macro_rules! snapshot {
+    ($name:expr, $value:expr) => {
+        $crate::support::snapshot_settings().bind(|| {
+            insta::assert_snapshot!(
+                $crate::support::snapshot_name(module_path!(), $name),
+                $value
+            )
+        })
+    };
+}
+
+/// `snapshot!` for a value serialised as JSON.
+macro_rules! json_snapshot {
+    ($name:expr, $value:expr) => {
+        $crate::support::snapshot_settings().bind(|| {
+            insta::assert_json_snapshot!(
+                $crate::support::snapshot_name(module_path!(), $name),
+                $value
+            )
+        })
+    };
+}
+
+/// Where snapshots live: `snapshots/` at the root (this file's folder is
+/// `tests/suite/`), named by `snapshot_name`, not by insta's module prefix.
+pub fn snapshot_settings() -> insta::Settings {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../../snapshots");
+    settings.set_prepend_module_to_snapshot(false);
+    settings
+}
+
+/// `<file>__<name>`: `module_path` is `suite::<file>` or deeper.
+pub fn snapshot_name(module_path: &str, name: &str) -> String {
+    let file = module_path
+        .split("::")
+        .nth(1)
+        .expect("a test file's module");
+    format!("{file}__{name}")
+}
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use glam::DVec3;
+use raystep::math::Ray;
+use raystep::record::{RayTree, TreeRecorder};
+use raystep::scene::{Scene, parse};
+use raystep::trace::trace;
+
+pub fn scene(text: &str) -> Scene {
+    parse(Path::new("test.toml"), text).unwrap()
+}
+
+/// The tree of one primary ray from `origin` along `direction`.
+pub fn record(scene: &Scene, origin: [f64; 3], direction: [f64; 3]) -> RayTree {
+    let ray = Ray::new(DVec3::from_array(origin), DVec3::from_array(direction));
+    let mut recorder = TreeRecorder::new(scene, &scene.settings);
+    trace(scene, &scene.settings, &ray, &mut recorder);
+    recorder.into_tree((0, 0))
+}
+
+/// The `raystep` binary run with `args` from the repository's root.
+pub fn raystep(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raystep"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("raystep runs")
+}
+
+pub fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+pub fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
