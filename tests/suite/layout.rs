@@ -352,3 +352,43 @@ fn only_the_command_line_reaches_into_the_debugger() {
         .collect();
     assert!(users.is_empty(), "modules naming crate::tui: {users:?}");
 }
+
+/// The `src/`, `tests/`, `benches/`, `docs/` and `scenes/` paths that `text`
+/// names in backticks (`src/figure/view.rs`, `src/tui/app/`).
+fn named_paths(text: &str) -> BTreeSet<String> {
+    text.split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|quoted| {
+            ["src/", "tests/", "benches/", "docs/", "scenes/"]
+                .iter()
+                .any(|root| quoted.starts_with(root))
+        })
+        .filter(|quoted| !quoted.contains(['*', ' ', '<']))
+        .map(String::from)
+        .collect()
+}
+
+#[test]
+fn every_path_that_model_and_readme_name_exists() {
+    // MODEL.md's "where in the code" lines and README's Layout section are
+    // read by newcomers to find things: a moved file must take them along.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for doc in ["docs/MODEL.md", "README.md"] {
+        let paths = named_paths(&fs::read_to_string(root.join(doc)).unwrap());
+        assert!(
+            paths.contains("src/trace/tracer.rs") || paths.contains("src/trace/"),
+            "{doc}: {paths:?}"
+        );
+        let missing: Vec<_> = paths.iter().filter(|p| !root.join(p).exists()).collect();
+        assert!(
+            missing.is_empty(),
+            "{doc} names paths that do not exist: {missing:?}"
+        );
+    }
+    let example = "see `src/a.rs` and `tests/b/`, not `cargo test` or `scenes/*.toml`";
+    assert_eq!(
+        named_paths(example).into_iter().collect::<Vec<_>>(),
+        ["src/a.rs", "tests/b/"]
+    );
+}
