@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, criterion_group, criterion_main};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use raystep::tui::view::find::Find;
-use raystep::tui::{Action, App, View, pane};
+use raystep::tui::Find;
+use raystep::tui::{Action, App, Picture, pane};
 
 fn term_view_redraw(c: &mut Criterion) {
     for (name, relative) in [
@@ -25,8 +25,8 @@ fn term_view_redraw(c: &mut Criterion) {
         let mut app = App::open(Some(path), true).unwrap();
         app.update(Action::Resize(200, 60));
         // ambient, diffuse, ..., shadow, rays: the count views scale by a maximum.
-        while app.view() != View::Term(raystep::terms::Term::Rays) {
-            app.update(Action::CycleView);
+        while app.picture() != Picture::Term(raystep::terms::Term::Rays) {
+            app.update(Action::CyclePicture);
         }
         assert!(app.terms().is_some());
         let mut terminal = Terminal::new(TestBackend::new(200, 60)).unwrap();

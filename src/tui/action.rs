@@ -1,12 +1,12 @@
 //! What the user can ask for: the `Action`s that `event.rs` makes of keys
-//! (and the main loop of time passing) and that `App::update` carries out.
+//! (and the main loop of time passing) and that `App::update` carries out,
+//! with the words they are made of (a pane, a step, a breakpoint, what to
+//! find, what the image pane shows). The key table (`keymap.rs`) speaks
+//! only this vocabulary.
 
 use crate::mistakes::Mistake;
 use crate::scene::Switch;
 use crate::terms::Term;
-
-use super::view::find::Find;
-use super::view::stepper::{Breakpoint, Step};
 
 /// Something the user asked for, or a tick of the clock.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,7 +39,8 @@ pub enum Action {
     Toggle(Switch),
     ToggleSpecular,
     Depth(i32),
-    CycleView,
+    /// What the image pane shows next: the render, each term, yours, the error map.
+    CyclePicture,
     /// Open the mistakes menu, or close it when open.
     ToggleMistakeMenu,
     CloseMistakeMenu,
@@ -80,9 +81,88 @@ pub enum Action {
 /// What the image pane shows: the render, one term image, or (when
 /// comparing) the student's image or FLIP's error map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum View {
-    Image,
+pub enum Picture {
+    Render,
     Term(Term),
     Yours,
     ErrorMap,
+}
+
+/// The panes, in the order Tab visits them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pane {
+    Image,
+    Tree,
+    Steps,
+    Details,
+    Diagram,
+}
+
+impl Pane {
+    pub const ALL: [Pane; 5] = [
+        Pane::Image,
+        Pane::Tree,
+        Pane::Steps,
+        Pane::Details,
+        Pane::Diagram,
+    ];
+
+    pub fn next(self) -> Pane {
+        let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
+        Pane::ALL[(i + 1) % Pane::ALL.len()]
+    }
+
+    pub fn previous(self) -> Pane {
+        let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
+        Pane::ALL[(i + Pane::ALL.len() - 1) % Pane::ALL.len()]
+    }
+}
+
+/// A way to move to another event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// The next event, whatever ray it belongs to.
+    Next,
+    Previous,
+    /// The next ray cast: enter the next child ray.
+    Into,
+    /// The next event of the same ray, skipping child rays' events.
+    Over,
+    /// Where this ray returns to its parent (the end, for the primary ray).
+    Out,
+    /// The first event.
+    Start,
+    /// The last event: the primary ray is done.
+    End,
+}
+
+/// A condition to run forward to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Breakpoint {
+    /// The first blocker of a shadow ray: a light is (partly) in shadow.
+    BlockedShadow,
+    /// A shading ray hits this object (index in the scene).
+    HitObject(usize),
+    /// Total internal reflection.
+    Tir,
+}
+
+/// What `f` looks for in each pixel's recording.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Find {
+    BlockedShadow,
+    /// A shadow ray blocked only by transparent surfaces: 0 < S < 1.
+    PartialShadow,
+    Tir,
+    /// A ray that hit a reflective or transparent surface at max_depth, so
+    /// the child it would have cast (with its switch on) was not.
+    DepthLimit,
+    /// A hit on the breakpoint object (`x`'s).
+    BreakObject,
+    /// A near miss: a ray crossed a polygon's plane inside its bounding box
+    /// but outside the polygon (an even crossing count), e.g. a notch, or a
+    /// sphere's bounding box without hitting the sphere (no real roots, or
+    /// both roots behind); any recorded `near_misses` entry counts. Of
+    /// the breakpoint object only, once one is chosen.
+    NearMiss,
 }

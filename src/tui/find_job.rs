@@ -11,7 +11,8 @@ use std::thread;
 
 use crate::record::{RayTree, record_pixel};
 use crate::scene::{Scene, Settings};
-use crate::tui::view::find::{self, Find};
+use crate::tui::action::Find;
+use crate::tui::view::find;
 
 /// The first pixel after the start that has what was looked for.
 pub struct Found {

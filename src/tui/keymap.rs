@@ -4,10 +4,7 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
-use super::action::Action;
-use super::view::find::Find;
-use super::view::layout::Pane;
-use super::view::stepper::{Breakpoint, Step};
+use super::action::{Action, Breakpoint, Find, Pane, Step};
 use crate::scene::Switch;
 
 /// How far Shift (or H J K L) moves the pixel cursor.
@@ -201,7 +198,7 @@ const PIXEL_AND_VIEW: &[Binding] = &[
         ..ROW
     },
     Binding {
-        inputs: &[(key('v'), act(Action::CycleView))],
+        inputs: &[(key('v'), act(Action::CyclePicture))],
         what: "cycle the image: render, each term image, yours, error map",
         hint: hint(7, "v", "view"),
         ..ROW

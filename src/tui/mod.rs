@@ -3,9 +3,12 @@
 //!
 //! The structure follows ratatui's event-driven template:
 //!
-//! - `app/`: the state, its fields private; `App::update(Action)` is the
-//!   only place it changes, and the rest reads it through accessors.
-//! - `action.rs`: what can be asked for. Terminal events become `Action`s in
+//! - `app/`: the state, in parts that own their fields (the overlay, the
+//!   pixel traced, the renders, the session, the comparison);
+//!   `App::update(Action)` is the only place it changes, and the rest reads
+//!   it through accessors.
+//! - `action.rs`: what can be asked for, and the words it is said in
+//!   (panes, steps, breakpoints, finds). Terminal events become `Action`s in
 //!   `event.rs` by the one key table in `keymap.rs` (which the help and the
 //!   status line also read); the main loop below adds `Action::Tick`, on
 //!   which the app takes in finished renders and reloads a changed file.
@@ -13,8 +16,9 @@
 //!   the step list, stepping, the image grid,
 //!   layout). Pure and unit tested; the state uses it, it knows no pane.
 //! - `pane/`: the drawing, one file per pane; `pane::draw` only reads an `App`.
-//! - `job.rs` renders whole images on a background thread; picking a pixel
-//!   retraces that pixel alone. `source.rs` loads and watches the scene file,
+//! - `render_job.rs` renders whole images on a background thread, and
+//!   `find_job.rs` scans them for `f`; picking a pixel retraces that pixel
+//!   alone. `source.rs` loads and watches the scene file,
 //!   `terminal.rs` sets the terminal up and restores it.
 //!
 //! The main loop is generic over the ratatui `Backend`, so tests drive the
@@ -24,9 +28,9 @@ pub mod action;
 pub mod app;
 pub mod event;
 pub mod find_job;
-pub mod job;
 pub mod keymap;
 pub mod pane;
+pub mod render_job;
 pub mod source;
 mod terminal;
 pub mod view;
@@ -44,11 +48,9 @@ use ratatui::backend::Backend;
 
 pub use crate::diagram::DiagramPlane;
 pub use crate::scene::Switch;
-pub use action::{Action, View};
-pub use app::{App, Compared};
+pub use action::{Action, Breakpoint, Find, Pane, Picture, Step};
+pub use app::{App, Overlay, StudentComparison};
 pub use keymap::Mode;
-pub use view::layout::Pane;
-pub use view::stepper::{Breakpoint, Step};
 
 /// Where terminal events come from: the real terminal, or a script in tests.
 pub trait Input {

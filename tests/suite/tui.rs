@@ -12,7 +12,7 @@ use raystep::math::to_rgb8;
 use raystep::record::{EventKind, record_pixel};
 use raystep::scene::SpecularModel;
 use raystep::terms::Term;
-use raystep::tui::{self, Action, App, Breakpoint, Pane, Step, View};
+use raystep::tui::{self, Action, App, Breakpoint, Pane, Picture, Step};
 
 use crate::support::debugger::*;
 
@@ -310,12 +310,12 @@ fn max_depth_stays_within_its_bounds() {
 fn term_views_cycle_and_render_the_terms() {
     let mut app = app();
     chars(&mut app, "v");
-    assert_eq!(app.view(), View::Term(Term::Ambient));
+    assert_eq!(app.picture(), Picture::Term(Term::Ambient));
     assert!(app.terms().is_some());
     for _ in 0..5 {
         chars(&mut app, "v");
     }
-    assert_eq!(app.view(), View::Term(Term::Shadow));
+    assert_eq!(app.picture(), Picture::Term(Term::Shadow));
     app.update(Action::Pick(80, 82));
     let shadow = app.shown_pixel(80, 82).unwrap();
     assert_eq!(
@@ -324,7 +324,7 @@ fn term_views_cycle_and_render_the_terms() {
         "mean S over the two lights"
     );
     chars(&mut app, "vvv");
-    assert_eq!(app.view(), View::Image);
+    assert_eq!(app.picture(), Picture::Render);
 }
 
 #[test]
@@ -605,4 +605,27 @@ fn the_first_pixel_is_timed_too() {
         "{:?} > {opening:?}",
         app.pick_time()
     );
+}
+
+#[test]
+fn one_overlay_at_a_time_help_then_mistakes_menu() {
+    // Help and menu were two flags: asked for while the help was open, the
+    // menu opened under it, and closing the help uncovered it. The overlay
+    // is now one value, so only one of them can be open.
+    let mut app = app();
+    chars(&mut app, "?");
+    assert!(app.help());
+    // With the help open, M closes it like any key: the menu waits.
+    chars(&mut app, "M");
+    assert_eq!(app.mode(), tui::Mode::Browsing);
+    assert_eq!(app.mistake_menu(), None);
+    chars(&mut app, "M");
+    assert_eq!(app.mode(), tui::Mode::Menu);
+    assert_eq!(app.mistake_menu(), Some(0));
+    // Asked for directly, the help replaces the menu instead of lying over it.
+    app.update(Action::ToggleHelp);
+    assert_eq!(app.mode(), tui::Mode::Help);
+    assert_eq!(app.mistake_menu(), None, "the menu closed under the help");
+    app.update(Action::CloseHelp);
+    assert_eq!(app.mode(), tui::Mode::Browsing, "nothing left open");
 }

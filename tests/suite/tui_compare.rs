@@ -12,7 +12,7 @@ use raystep::render::render;
 use raystep::scene::{Scene, Settings, builtin};
 use raystep::terms::Term;
 use raystep::trace::NoRecorder;
-use raystep::tui::{Action, App, Mode, View};
+use raystep::tui::{Action, App, Mode, Picture};
 
 use crate::support::debugger::*;
 
@@ -155,16 +155,16 @@ fn comparing_shows_yours_and_the_error_map_and_ranks_the_mistake() {
     for _ in 0..=Term::ALL.len() {
         chars(&mut app, "v");
     }
-    assert_eq!(app.view(), View::Yours);
+    assert_eq!(app.picture(), Picture::Yours);
     assert_eq!(app.shown_pixel(x, y), Some(yours.get_pixel(x, y).0));
     let screen = screen_text(&mut app, 120, 40);
     assert!(screen.contains("view: yours"), "{screen}");
     chars(&mut app, "v");
-    assert_eq!(app.view(), View::ErrorMap);
+    assert_eq!(app.picture(), Picture::ErrorMap);
     assert_eq!(app.shown_pixel(x, y), Some(error_map.get_pixel(x, y).0));
     assert_eq!(app.shown_pixel(3, 119), Some(error_map.get_pixel(3, 119).0));
     chars(&mut app, "v");
-    assert_eq!(app.view(), View::Image);
+    assert_eq!(app.picture(), Picture::Render);
     // The ranking under the image, the rank in the menu.
     let screen = screen_text(&mut app, 120, 40);
     assert!(screen.contains("compare: no-ambient 100%"), "{screen}");
@@ -238,7 +238,7 @@ fn without_an_image_w_says_how_to_compare_and_v_skips_the_compare_views() {
     for _ in 0..=Term::ALL.len() {
         chars(&mut app, "v");
     }
-    assert_eq!(app.view(), View::Image);
+    assert_eq!(app.picture(), Picture::Render);
 }
 
 #[test]

@@ -124,7 +124,7 @@ fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
     let fitted = diagram_rows(&mut app);
     let image_zoom = app.zoom();
     chars(&mut app, "+");
-    assert_eq!(app.diagram_view().zoom(), 1);
+    assert_eq!(app.diagram_pan_zoom().zoom(), 1);
     assert_eq!(app.zoom(), image_zoom, "the image keeps its zoom");
     // Zoomed about the primary ray's first hit, not the window's centre
     // (as `raystep diagram --zoom`); the title says by how much (1.5).
@@ -134,23 +134,23 @@ fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
         diagram_title(&mut app)
     );
     chars(&mut app, "0");
-    assert!(app.diagram_view().is_fit());
+    assert!(app.diagram_pan_zoom().is_fit());
     assert!(!diagram_title(&mut app).contains("zoom"), "none at 1");
     chars(&mut app, "+");
     press(&mut app, &[key(KeyCode::Home)]);
-    assert!(app.diagram_view().is_fit(), "Home fits it too");
+    assert!(app.diagram_pan_zoom().is_fit(), "Home fits it too");
     assert_eq!(diagram_rows(&mut app), fitted);
     // A pan, then another pixel: the diagram fits the new pixel's rays.
     press(&mut app, &[key(KeyCode::Right)]);
     chars(&mut app, "-");
-    assert!(!app.diagram_view().is_fit());
+    assert!(!app.diagram_pan_zoom().is_fit());
     let (x, y) = app.cursor();
     app.update(Action::Pick(x + 1, y));
-    assert!(app.diagram_view().is_fit());
+    assert!(app.diagram_pan_zoom().is_fit());
     // So does another plane.
     chars(&mut app, "+");
     chars(&mut app, "d");
-    assert!(app.diagram_view().is_fit());
+    assert!(app.diagram_pan_zoom().is_fit());
 }
 
 #[test]

@@ -7,7 +7,7 @@ use std::time::Duration;
 use crossterm::event::KeyCode;
 use raystep::record::{EventKind, record_pixel};
 use raystep::terms::Term;
-use raystep::tui::{Action, App, Mode, View};
+use raystep::tui::{Action, App, Mode, Picture};
 
 use crate::support::debugger::*;
 use crate::support::{raystep, stderr};
@@ -23,8 +23,8 @@ fn slow_pixel(app: &App, term: Term, x: u32, y: u32) -> [u8; 3] {
 #[test]
 fn count_views_show_the_pixels_scaled_by_the_whole_image() {
     let mut app = app();
-    while app.view() != View::Term(Term::Rays) {
-        app.update(Action::CycleView);
+    while app.picture() != Picture::Term(Term::Rays) {
+        app.update(Action::CyclePicture);
     }
     let (width, height) = (app.scene().width, app.scene().height);
     for term in [Term::Rays, Term::Cost] {
@@ -45,7 +45,7 @@ fn count_views_show_the_pixels_scaled_by_the_whole_image() {
                 );
             }
         }
-        app.update(Action::CycleView);
+        app.update(Action::CyclePicture);
     }
 }
 

@@ -2,11 +2,16 @@
 //! in `snapshots/` (as `tui_screens__<name>.snap`). Every one was read against
 //! `raystep inspect` before it was accepted.
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crossterm::event::{
+    Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
+};
 use raystep::terms::Term;
-use raystep::tui::{self, Action, App, View};
+use raystep::tui::keymap::{self, Input};
+use raystep::tui::{self, Action, App, Mode, Pane, Picture};
 
 use crate::support::debugger::*;
 
@@ -42,7 +47,7 @@ fn snapshot_help_overlay() {
 fn snapshot_term_view() {
     let mut app = app();
     chars(&mut app, "vvvvvvv");
-    assert_eq!(app.view(), View::Term(Term::Rays));
+    assert_eq!(app.picture(), Picture::Term(Term::Rays));
     snapshot!("term_view_rays", screen(&mut app, 120, 40).backend());
 }
 
@@ -146,4 +151,92 @@ fn header_row(app: &mut App, width: u16) -> String {
     (0..width)
         .map(|x| buffer[(x, 0)].symbol().to_string())
         .collect()
+}
+
+/// The key table as the debugger carries it out: for every mode, each row
+/// that applies (its help text), and each of its inputs with the action it
+/// gives in each pane (the focused one for keys, the one under the mouse
+/// for the mouse). It pins `keymap.rs` and `event.rs` together: a key that changes
+/// what it does changes this snapshot.
+#[test]
+fn snapshot_key_table() {
+    let openers = [
+        (Mode::Browsing, None),
+        (Mode::Help, Some(Action::ToggleHelp)),
+        (Mode::Menu, Some(Action::ToggleMistakeMenu)),
+        (Mode::Prompt, Some(Action::OpenPrompt)),
+        (Mode::Find, Some(Action::StartFind)),
+    ];
+    let mut table = String::new();
+    for (mode, opener) in openers {
+        let mut app = app();
+        if let Some(action) = opener {
+            app.update(action);
+        }
+        assert_eq!(app.mode(), mode);
+        writeln!(table, "{mode:?}").unwrap();
+        for row in keymap::rows().filter(|row| row.context.applies(mode)) {
+            writeln!(table, "  {}", row.what).unwrap();
+            for &(input, _) in row.inputs {
+                let actions = in_each_pane(&mut app, input);
+                writeln!(table, "    {:<15} {actions}", label(input)).unwrap();
+            }
+        }
+    }
+    snapshot!("key_table", table);
+}
+
+/// An input's name, each modifier spelled out (`H` is the key, `Shift+h`
+/// the key with Shift held); any other key is shown by a `7`.
+fn label(input: Input) -> String {
+    match input {
+        Input::Shift(KeyCode::Char(c)) => format!("Shift+{c}"),
+        Input::Ctrl(KeyCode::Char(c)) => format!("Ctrl+{c}"),
+        Input::AnyKey => "any other (7)".into(),
+        Input::WheelUp => "wheel up".into(),
+        Input::WheelDown => "wheel down".into(),
+        input => input.name(),
+    }
+}
+
+/// What `input` does with each pane focused (keys) or under the mouse: one
+/// action when every pane gives the same, else each pane's.
+fn in_each_pane(app: &mut App, input: Input) -> String {
+    let key = |code, modifiers| Event::Key(KeyEvent::new(code, modifiers));
+    let panes = app.panes();
+    let mut actions: Vec<(Pane, Option<Action>)> = Vec::new();
+    for pane in Pane::ALL {
+        while app.focus() != pane {
+            app.update(Action::FocusNext);
+        }
+        let area = panes.rect(pane);
+        let (column, row) = (area.x + area.width / 2, area.y + area.height / 2);
+        let mouse = |kind| {
+            Event::Mouse(MouseEvent {
+                kind,
+                column,
+                row,
+                modifiers: KeyModifiers::NONE,
+            })
+        };
+        let event = match input {
+            Input::Key(code) => key(code, KeyModifiers::NONE),
+            Input::Shift(code) => key(code, KeyModifiers::SHIFT),
+            Input::Ctrl(code) => key(code, KeyModifiers::CONTROL),
+            Input::AnyKey => key(KeyCode::Char('7'), KeyModifiers::NONE),
+            Input::Click => mouse(MouseEventKind::Down(MouseButton::Left)),
+            Input::WheelUp => mouse(MouseEventKind::ScrollUp),
+            Input::WheelDown => mouse(MouseEventKind::ScrollDown),
+        };
+        actions.push((pane, tui::event::action(&event, app)));
+    }
+    let said = |action: Option<Action>| action.map_or("nothing".into(), |a| format!("{a:?}"));
+    if actions.iter().all(|&(_, action)| action == actions[0].1) {
+        return said(actions[0].1);
+    }
+    let each: Vec<String> = actions
+        .iter()
+        .map(|&(pane, action)| format!("{pane:?}: {}", said(action)))
+        .collect();
+    each.join(" · ")
 }

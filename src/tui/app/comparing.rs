@@ -1,28 +1,42 @@
 //! `--compare`: the student's image kept beside what `compare` found at
-//! open, and `w`, which takes the cursor from region to region.
+//! open, and `w`, which goes from region to region.
 
 use image::RgbImage;
 
-use super::App;
 use crate::compare::{Comparison, RegionReport};
 
-/// The student's image and the comparison, made once when the app opens.
-pub struct Compared {
-    pub yours: RgbImage,
-    pub comparison: Comparison,
+/// The student's image, its comparison with the scene (made once, when the
+/// app opens), and the region `w` went to last.
+pub struct StudentComparison {
+    yours: RgbImage,
+    comparison: Comparison,
+    region: Option<usize>,
 }
 
-impl App {
-    /// The cursor to the next region's pixel (the largest first, cycling).
-    pub(super) fn next_region(&mut self) {
-        let Some(comparison) = self.comparison() else {
-            self.message = Some("no image to compare: open with --compare IMAGE.png".into());
-            return;
-        };
+impl StudentComparison {
+    pub(super) fn new(yours: RgbImage, comparison: Comparison) -> StudentComparison {
+        StudentComparison {
+            yours,
+            comparison,
+            region: None,
+        }
+    }
+
+    pub fn yours(&self) -> &RgbImage {
+        &self.yours
+    }
+
+    pub fn comparison(&self) -> &Comparison {
+        &self.comparison
+    }
+
+    /// `w`: the next region (the largest first, cycling), as its pixel and
+    /// what the status line says; or why there is none.
+    pub(super) fn next_region(&mut self) -> Result<((u32, u32), String), String> {
+        let comparison = &self.comparison;
         let (shown, all) = (comparison.regions.len(), comparison.region_count);
         if shown == 0 {
-            self.message = Some("your image matches: no region differs".into());
-            return;
+            return Err("your image matches: no region differs".into());
         }
         let index = self.region.map_or(0, |r| (r + 1) % shown);
         let region = &comparison.regions[index];
@@ -39,8 +53,7 @@ impl App {
             objects(region)
         );
         self.region = Some(index);
-        self.pick(x, y);
-        self.message = Some(message);
+        Ok(((x, y), message))
     }
 }
 

@@ -1,40 +1,63 @@
 //! The debugger's state and the one place it changes: `App::update(Action)`.
-//! Every field is private: drawing and tests read through the accessors
-//! below; keys become `Action`s in `event.rs` first, and background work
-//! (finished renders, a changed scene file) is looked at on `Action::Tick`.
-//! `controls.rs` and `renders.rs` carry out the actions; they are child
-//! modules only so they can reach the fields.
+//! The state is in parts, each owning its fields and changed by its own
+//! `update` or methods:
+//!
+//! - `overlay.rs`: what is open over the panes (help, mistakes menu, go-to
+//!   prompt, `f`'s second key), one at a time;
+//! - `pixel.rs`: the pixel being traced (cursor, recording, current event,
+//!   folded rows, breakpoint object, what-if);
+//! - `renders.rs`: the whole image's renders;
+//! - `session.rs`: the scene, its source and watcher, the settings traced;
+//! - `comparing.rs`: `--compare`'s image, findings and regions;
+//! - `screen.rs`: focus, zoom, the image pane's picture, the diagram's
+//!   plane, pan and zoom;
+//! - `search.rs`: a find across the image under way.
+//!
+//! `App` ties them together: an action that concerns several parts (a
+//! pick, a toggle, a reload, a find) is carried out here. Drawing and tests
+//! read through the accessors below; keys become `Action`s in `event.rs`
+//! first, and background work (finished renders, a changed scene file) is
+//! looked at on `Action::Tick`.
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
-use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use image::RgbImage;
-use ratatui::layout::Rect;
+use ratatui::layout::{Position, Rect};
 
 use crate::compare::{self, Comparison, StudentImage};
-use crate::mistakes::Mistake;
-use crate::record::{NodeId, RayTree, record_pixel};
+use crate::diagram::DiagramPlane;
+use crate::record::{NEAR_MISS_SCENE_LIMIT, NodeId, RayTree};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::terms::{Term, TermImages};
 
-pub use super::action::{Action, View};
-use super::job::Renderer;
+pub use super::action::{Action, Find, Pane, Picture};
 use super::keymap::Mode;
-use super::source::{FileWatcher, SceneSource, merge_settings};
-use super::view::layout::{self, Pane, Panes};
+use super::render_job::Progress;
+use super::source::SceneSource;
+use super::view::find;
+use super::view::image_grid::{ImageGrid, max_zoom};
+use super::view::layout::{self, Panes, inner};
 use super::view::pan_zoom::PanZoom;
-use super::view::{help, tree};
-use crate::diagram::DiagramPlane;
+use super::view::tree;
 
 mod comparing;
-mod controls;
-mod mistakes;
-mod reach;
+mod overlay;
+mod pixel;
 mod renders;
+mod screen;
+mod search;
+mod session;
 
-pub use comparing::Compared;
+pub use comparing::StudentComparison;
+pub use overlay::Overlay;
+use overlay::Overlays;
+use pixel::TracedPixel;
+use renders::Renders;
+use screen::Screen;
+use search::Search;
+use session::Session;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
@@ -42,72 +65,22 @@ pub const MAX_DEPTH: u32 = 16;
 /// The first status message, for someone who has never seen the debugger.
 pub const WELCOME: &str =
     "arrows pick a pixel, n steps through its trace, Tab changes pane, ? lists every key";
-/// How long the file must be quiet before a reload (editors write in bursts).
-const RELOAD_DELAY: Duration = Duration::from_millis(150);
 
 pub struct App {
-    source: SceneSource,
-    /// The last good file's scene, with the file's own settings; shared with
-    /// the render thread, never copied.
-    scene: Arc<Scene>,
-    /// The settings traced: the file's, with the user's toggles.
-    settings: Settings,
-    /// The selected pixel, in the scene image's coordinates.
-    cursor: (u32, u32),
-    tree: RayTree,
-    /// What-if: how the pixel's tree changed with the last toggle (or
-    /// reload), in `record::diff`'s words; cleared when another pixel is picked.
-    what_if: Option<String>,
-    /// The current event of `tree.events`.
-    current: usize,
-    collapsed: BTreeSet<NodeId>,
-    focus: Pane,
-    /// 1 shows the whole image; each doubling halves the pixels per cell.
-    zoom: u32,
-    view: View,
-    plane: DiagramPlane,
-    /// The diagram's pan and zoom; fitted again for another pixel or plane.
-    diagram_view: PanZoom,
-    help: bool,
-    help_scroll: u16,
-    /// Whether the mistakes menu is open, and its selected row.
-    menu: bool,
-    menu_row: usize,
-    /// The go-to prompt's text while it is open (`:`).
-    prompt: Option<String>,
-    /// `f` was pressed: the next key says what to find across the image.
-    finding: bool,
-    /// The find scanning the image in the background, if one runs.
-    searching: Option<reach::Searching>,
-    /// Background work runs on the caller's thread (tests).
-    sync: bool,
+    session: Session,
+    pixel: TracedPixel,
+    renders: Renders,
+    overlay: Overlays,
+    screen: Screen,
     /// The student's image and what `compare` found, with `--compare`.
-    compared: Option<Compared>,
-    /// The region `w` went to last.
-    region: Option<usize>,
-    /// The banner: why the last reload failed.
-    error: Option<String>,
+    comparison: Option<StudentComparison>,
+    /// The find scanning the image in the background, if one runs.
+    search: Option<Search>,
     /// The status line's message.
     message: Option<String>,
-    break_object: Option<usize>,
-    /// Manual scroll of the details; `None` follows the current event.
-    details_scroll: Option<u16>,
-    screen: Rect,
     quit: bool,
-    /// The latest finished render, and the term images when a term view asked for them.
-    image: Option<RgbImage>,
-    terms: Option<TermImages>,
-    /// The term images' largest ray and cost counts, worked out once when
-    /// they arrive: a redraw then costs the cells shown, not the image.
-    count_max: (u32, u32),
-    generation: u64,
-    terms_generation: Option<u64>,
-    renderer: Renderer,
-    watcher: Option<FileWatcher>,
-    reload_due: Option<Instant>,
-    /// How long the last pixel pick and the last render took.
-    pick_time: Duration,
-    render_time: Option<Duration>,
+    /// Background work runs on the caller's thread (tests).
+    sync: bool,
     /// Show timings in the status line (off in tests, for stable screens).
     show_timings: bool,
 }
@@ -139,58 +112,31 @@ impl App {
         let scene = source.load()?;
         let yours = student.image.clone();
         let comparison = compare::compare(&scene, student);
-        let compared = Compared { yours, comparison };
-        Ok(App::new(source, scene, Some(compared), sync))
+        let comparison = StudentComparison::new(yours, comparison);
+        Ok(App::new(source, scene, Some(comparison), sync))
     }
 
     /// The app on a loaded scene: its centre pixel picked, its render asked for.
-    fn new(source: SceneSource, scene: Scene, compared: Option<Compared>, sync: bool) -> App {
-        let scene = Arc::new(scene);
-        let settings = scene.settings;
+    fn new(
+        source: SceneSource,
+        scene: Scene,
+        comparison: Option<StudentComparison>,
+        sync: bool,
+    ) -> App {
         let cursor = (scene.width / 2, scene.height / 2);
-        let started = Instant::now();
-        let tree = record_pixel(&scene, &settings, cursor.0, cursor.1);
-        let pick_time = started.elapsed();
+        let session = Session::new(source, scene);
+        let pixel = TracedPixel::new(session.scene(), session.settings(), cursor);
         let mut app = App {
-            source,
-            scene,
-            settings,
-            cursor,
-            tree,
-            what_if: None,
-            current: 0,
-            collapsed: BTreeSet::new(),
-            focus: Pane::Image,
-            zoom: 1,
-            view: View::Image,
-            plane: DiagramPlane::Top,
-            diagram_view: PanZoom::fit(),
-            help: false,
-            help_scroll: 0,
-            menu: false,
-            menu_row: 0,
-            prompt: None,
-            finding: false,
-            searching: None,
-            sync,
-            compared,
-            region: None,
-            error: None,
+            session,
+            pixel,
+            renders: Renders::new(sync),
+            overlay: Overlays::default(),
+            screen: Screen::default(),
+            comparison,
+            search: None,
             message: Some(WELCOME.into()),
-            break_object: None,
-            details_scroll: None,
-            screen: Rect::new(0, 0, 120, 40),
             quit: false,
-            image: None,
-            terms: None,
-            count_max: (0, 0),
-            generation: 0,
-            terms_generation: None,
-            renderer: Renderer::new(sync),
-            watcher: None,
-            reload_due: None,
-            pick_time,
-            render_time: None,
+            sync,
             show_timings: !sync,
         };
         app.request_render();
@@ -201,19 +147,21 @@ impl App {
     /// The app watching its scene file for changes, which it reloads on a
     /// later `Action::Tick` (the built-in scene has no file).
     pub fn watching(mut self) -> App {
-        let Some(path) = &self.source.path else {
-            return self;
-        };
-        match FileWatcher::new(path) {
-            Ok(watcher) => self.watcher = Some(watcher),
-            Err(e) => {
-                self.message = Some(format!(
-                    "cannot watch {} ({e}): press R to reload",
-                    path.display()
-                ))
-            }
+        if let Some(why) = self.session.watch() {
+            self.message = Some(why);
         }
         self
+    }
+
+    /// The app on `pixel` instead of the centre (`--pixel X,Y`); refused
+    /// when the pixel is outside the image.
+    pub fn at_pixel(mut self, pixel: (u32, u32)) -> Result<App, String> {
+        let size = (self.scene().width, self.scene().height);
+        if pixel.0 >= size.0 || pixel.1 >= size.1 {
+            return Err(find::outside(pixel, size));
+        }
+        self.pick(pixel.0, pixel.1);
+        Ok(self)
     }
 
     /// Carries out an action: the only way the state changes.
@@ -223,183 +171,410 @@ impl App {
             // doing: the message (the welcome, at first) stays.
             self.message = None;
         }
+        let height = self.screen.size().height;
         match action {
-            Action::Tick => self.tick(),
+            Action::Tick => {
+                if self.session.reload_is_due() {
+                    self.reload();
+                }
+            }
             Action::Quit => {
                 self.quit = true;
-                self.searching = None;
-                self.cancel_renders();
+                self.search = None;
+                self.renders.cancel();
             }
             Action::Suspend => {}
-            Action::ToggleHelp => (self.help, self.help_scroll) = (!self.help, 0),
-            Action::CloseHelp => self.help = false,
-            Action::ScrollHelp(delta) => {
-                let most = help::hidden_lines(self.screen.height) as i32;
-                self.help_scroll = (self.help_scroll as i32 + delta).clamp(0, most) as u16;
-            }
-            Action::FocusNext => self.focus = self.focus.next(),
-            Action::FocusPrevious => self.focus = self.focus.previous(),
             Action::Move(dx, dy) => self.move_cursor(dx, dy),
             Action::Pick(x, y) => self.pick(x, y),
             Action::Click(column, row) => self.click(column, row),
-            Action::ZoomIn => self.zoom_in(),
-            Action::ZoomOut => self.zoom = (self.zoom / 2).max(1),
-            Action::Step(step) => self.step(step),
-            Action::RunTo(breakpoint) => self.run_to(breakpoint),
-            Action::RunToObject => self.run_to_object(),
-            Action::CycleBreakObject => self.cycle_break_object(),
-            Action::SelectRow(delta) => self.select_row(delta),
-            Action::ToggleCollapse => self.toggle_collapse(),
-            Action::ScrollDetails(delta) => self.scroll_details(delta),
-            Action::Toggle(switch) => self.toggle(switch),
-            Action::ToggleSpecular => self.toggle_specular(),
-            Action::Depth(delta) => self.change_depth(delta),
-            Action::CycleView => self.cycle_view(),
-            Action::ToggleMistakeMenu => self.menu = !self.menu,
-            Action::CloseMistakeMenu => self.menu = false,
-            Action::MenuMove(delta) => self.menu_move(delta),
-            Action::MenuToggle => self.toggle_mistake(Mistake::ALL[self.menu_row]),
-            Action::ToggleMistake(mistake) => self.toggle_mistake(mistake),
+            Action::ZoomIn => {
+                if let Some(size) = self.renders.image().map(|i| (i.width(), i.height())) {
+                    let most = max_zoom(inner(self.panes().image), size);
+                    self.message = self.screen.zoom_in(most);
+                }
+            }
+            Action::CyclePicture => {
+                self.message = Some(self.screen.next_picture(self.comparison.is_some()));
+                let terms = matches!(self.screen.picture(), Picture::Term(_));
+                if terms && !self.renders.terms_are_current() {
+                    let (scene, settings) = (self.session.shared_scene(), *self.settings());
+                    self.renders.request_again(scene, settings, true);
+                }
+            }
+            Action::Step(_)
+            | Action::RunTo(_)
+            | Action::RunToObject
+            | Action::CycleBreakObject
+            | Action::SelectRow(_)
+            | Action::ToggleCollapse
+            | Action::ScrollDetails(_) => {
+                self.message = self.pixel.update(action, self.session.scene());
+            }
+            Action::Toggle(_)
+            | Action::ToggleSpecular
+            | Action::Depth(_)
+            | Action::ToggleMistake(_) => self.toggle(action),
+            Action::MenuToggle => self.toggle(Action::ToggleMistake(self.overlay.menu_mistake())),
             Action::NextRegion => self.next_region(),
-            Action::CyclePlane => {
-                self.plane = self.plane.next();
-                self.diagram_view = PanZoom::fit();
-            }
-            Action::PanDiagram(dx, dy) => self.diagram_view.pan(dx, dy),
-            Action::ZoomDiagram(steps) => self.diagram_view.zoom_by(steps),
-            Action::FitDiagram => self.diagram_view = PanZoom::fit(),
-            Action::OpenPrompt => self.prompt = Some(String::new()),
-            Action::PromptChar(c) => self.prompt_char(c),
-            Action::PromptBackspace => self.prompt_backspace(),
             Action::PromptSubmit => self.prompt_submit(),
-            Action::PromptCancel => self.prompt = None,
-            Action::StartFind => {
-                self.finding = true;
-                self.message = Some(
-                    "find the next pixel with: b blocked shadow, p partly blocked, t TIR, D depth limit, x object X, n near miss"
-                        .into(),
-                );
+            Action::Find(what) => {
+                self.overlay.update(action, height);
+                self.find(what);
             }
-            Action::CancelFind => self.finding = false,
-            Action::Find(what) => self.find(what),
             Action::Reload => self.reload(),
-            Action::Resize(width, height) => self.screen = Rect::new(0, 0, width, height),
+            Action::ToggleHelp
+            | Action::CloseHelp
+            | Action::ScrollHelp(_)
+            | Action::ToggleMistakeMenu
+            | Action::CloseMistakeMenu
+            | Action::MenuMove(_)
+            | Action::OpenPrompt
+            | Action::PromptChar(_)
+            | Action::PromptBackspace
+            | Action::PromptCancel
+            | Action::StartFind
+            | Action::CancelFind => self.message = self.overlay.update(action, height),
+            Action::FocusNext
+            | Action::FocusPrevious
+            | Action::ZoomOut
+            | Action::CyclePlane
+            | Action::PanDiagram(..)
+            | Action::ZoomDiagram(_)
+            | Action::FitDiagram
+            | Action::Resize(..) => self.screen.update(action),
         }
         self.collect_renders();
         self.collect_find();
     }
 
-    /// Background work: finished renders, and a reload once the file has
-    /// been quiet for `RELOAD_DELAY` after a change.
-    fn tick(&mut self) {
-        if self.watcher.as_ref().is_some_and(|w| w.changed()) {
-            self.reload_due = Some(Instant::now() + RELOAD_DELAY);
-        }
-        if self.reload_due.is_some_and(|due| Instant::now() >= due) {
-            self.reload_due = None;
-            self.reload();
+    /// Selects a pixel: only that pixel is traced again.
+    fn pick(&mut self, x: u32, y: u32) {
+        self.search = None;
+        self.screen.fit_diagram();
+        let session = &self.session;
+        self.pixel.pick((x, y), session.scene(), session.settings());
+    }
+
+    fn move_cursor(&mut self, dx: i32, dy: i32) {
+        let clamp =
+            |v: u32, d: i32, size: u32| (v as i64 + d as i64).clamp(0, size as i64 - 1) as u32;
+        let (cursor, scene) = (self.cursor(), self.scene());
+        let (x, y) = (
+            clamp(cursor.0, dx, scene.width),
+            clamp(cursor.1, dy, scene.height),
+        );
+        if (x, y) != cursor {
+            self.pick(x, y);
         }
     }
 
+    fn click(&mut self, column: u16, row: u16) {
+        let panes = self.panes();
+        let Some(pane) = panes.pane_at(column, row) else {
+            return;
+        };
+        self.screen.set_focus(pane);
+        let inside = inner(panes.rect(pane));
+        if !inside.contains(Position::new(column, row)) {
+            return;
+        }
+        let (line, height) = ((row - inside.y) as usize, inside.height as usize);
+        match pane {
+            Pane::Image => {
+                if let Some((x, y)) = self.image_grid().and_then(|v| v.pixel_at_cell(column, row)) {
+                    let (width, height) = (self.scene().width, self.scene().height);
+                    self.pick(x.min(width - 1), y.min(height - 1));
+                }
+            }
+            Pane::Tree => self.pixel.click_tree(line, height),
+            Pane::Steps => self.pixel.click_steps(line, height),
+            Pane::Details | Pane::Diagram => {}
+        }
+    }
+
+    /// A teaching toggle: the new settings traced, and what it did said.
+    fn toggle(&mut self, action: Action) {
+        let (settings, message) = self.session.toggled(action);
+        if let Some(settings) = settings {
+            self.apply_settings(settings);
+        }
+        self.message = Some(message);
+    }
+
+    /// Traces the scene with new settings: the pixel, then the image.
+    fn apply_settings(&mut self, settings: Settings) {
+        self.search = None;
+        self.session.set_settings(settings);
+        let session = &self.session;
+        self.pixel.retrace_with(session.scene(), session.settings());
+        self.request_render();
+    }
+
+    /// Reloads the scene file; a broken file keeps the last good scene.
+    fn reload(&mut self) {
+        match self.session.reload() {
+            Some(settings) => {
+                self.apply_settings(settings);
+                self.message = Some(format!("reloaded {}", self.session.source().name()));
+            }
+            None => {
+                self.message =
+                    Some("the scene file has an error: the last good scene stays".into());
+            }
+        }
+    }
+
+    /// The cursor to the next region's pixel (the largest first, cycling).
+    fn next_region(&mut self) {
+        let Some(comparison) = &mut self.comparison else {
+            self.message = Some("no image to compare: open with --compare IMAGE.png".into());
+            return;
+        };
+        match comparison.next_region() {
+            Ok(((x, y), message)) => {
+                self.pick(x, y);
+                self.message = Some(message);
+            }
+            Err(why) => self.message = Some(why),
+        }
+    }
+
+    /// Enter: go to the pixel typed, or say why not and keep the prompt
+    /// open so the text can be corrected.
+    fn prompt_submit(&mut self) {
+        let Some(text) = self.overlay.prompt() else {
+            return;
+        };
+        match find::parse_goto(text, (self.scene().width, self.scene().height)) {
+            Ok((x, y)) => {
+                self.overlay.close();
+                self.pick(x, y);
+                self.message = Some(format!("went to pixel ({x}, {y})"));
+            }
+            Err(why) => self.message = Some(why),
+        }
+    }
+
+    /// Starts looking for the next pixel in reading order whose recording
+    /// has `what` (its first such event current when found), in the
+    /// background: a pick, a toggle, another find or quitting cancels it.
+    fn find(&mut self, what: Find) {
+        self.search = None;
+        let objects = self.scene().objects.len();
+        let object = match what {
+            Find::BreakObject => match self.pixel.choose_break_target() {
+                Some(object) => Some(object),
+                None => {
+                    self.message =
+                        Some("no breakpoint object: press X to choose one, then f x".into());
+                    return;
+                }
+            },
+            Find::NearMiss if objects > NEAR_MISS_SCENE_LIMIT => {
+                // Not recorded on big scenes: "none in the image" would mislead.
+                self.message = Some(format!(
+                    "near misses are recorded only in scenes of at most {NEAR_MISS_SCENE_LIMIT} objects; this one has {objects}"
+                ));
+                return;
+            }
+            Find::NearMiss => self.break_object(),
+            _ => None,
+        };
+        let what_text = match (what, object) {
+            (Find::BreakObject, Some(object)) => {
+                format!("a hit on {}", self.scene().object_name(object))
+            }
+            (Find::NearMiss, Some(object)) => {
+                format!("a near miss of {}", self.scene().object_name(object))
+            }
+            _ => what.what().to_string(),
+        };
+        self.search = Some(Search::start(
+            (self.session.shared_scene(), *self.settings()),
+            (what, object),
+            what_text,
+            self.cursor(),
+            self.sync,
+        ));
+    }
+
+    /// Takes in the running find's result once it has one.
+    fn collect_find(&mut self) {
+        let Some(found) = self.search.as_ref().and_then(Search::poll) else {
+            return;
+        };
+        let Some(search) = self.search.take() else {
+            return;
+        };
+        self.message = Some(search.result_message(found.as_ref().map(|f| f.pixel)));
+        if let Some(found) = found {
+            self.pixel.take_found(found, search.elapsed());
+        }
+    }
+
+    /// Renders the scene as it is now, as a new generation.
+    fn request_render(&mut self) {
+        let terms = matches!(self.screen.picture(), Picture::Term(_));
+        let (scene, settings) = (self.session.shared_scene(), *self.settings());
+        self.renders.request(scene, settings, terms);
+    }
+
+    /// Takes in the previews and renders that came back.
+    fn collect_renders(&mut self) {
+        if let Some(failed) = self.renders.collect() {
+            self.message = Some(failed);
+        }
+    }
+
+    // What the panes and tests read.
+
     pub fn source(&self) -> &SceneSource {
-        &self.source
+        self.session.source()
     }
 
     /// The last good file's scene, with the file's own settings.
     pub fn scene(&self) -> &Scene {
-        &self.scene
+        self.session.scene()
     }
 
     /// The settings traced: the file's, with the user's toggles.
     pub fn settings(&self) -> &Settings {
-        &self.settings
+        self.session.settings()
+    }
+
+    pub fn phong(&self) -> bool {
+        self.settings().specular == SpecularModel::Phong
+    }
+
+    /// The banner: why the last reload failed.
+    pub fn error(&self) -> Option<&str> {
+        self.session.error()
     }
 
     /// The selected pixel, in the scene image's coordinates.
     pub fn cursor(&self) -> (u32, u32) {
-        self.cursor
+        self.pixel.cursor()
     }
 
     /// The selected pixel's recording.
     pub fn tree(&self) -> &RayTree {
-        &self.tree
+        self.pixel.tree()
     }
 
     /// The current event, an index into `tree().events`.
     pub fn current(&self) -> usize {
-        self.current
+        self.pixel.current()
     }
 
     /// The rays whose rows the tree pane folds away.
     pub fn collapsed(&self) -> &BTreeSet<NodeId> {
-        &self.collapsed
+        self.pixel.collapsed()
     }
 
-    pub fn focus(&self) -> Pane {
-        self.focus
+    /// The node the tree and details show: the current event's ray.
+    pub fn selected_node(&self) -> NodeId {
+        self.pixel.selected_node()
     }
 
-    /// 1 shows the whole image; each doubling halves the pixels per cell.
-    pub fn zoom(&self) -> u32 {
-        self.zoom
+    /// The object the `x` breakpoint stops at, once chosen.
+    pub fn break_object(&self) -> Option<usize> {
+        self.pixel.break_object()
     }
 
-    pub fn view(&self) -> View {
-        self.view
+    /// Manual scroll of the details; `None` follows the current event.
+    pub fn details_scroll(&self) -> Option<u16> {
+        self.pixel.details_scroll()
     }
 
-    pub fn plane(&self) -> DiagramPlane {
-        self.plane
+    /// How the selected pixel changed with the last toggle, when it did.
+    pub fn what_if(&self) -> Option<&str> {
+        self.pixel.what_if()
     }
 
-    /// How the diagram is panned and zoomed.
-    pub fn diagram_view(&self) -> PanZoom {
-        self.diagram_view
+    /// How long the last pixel pick took.
+    pub fn pick_time(&self) -> Duration {
+        self.pixel.pick_time()
     }
 
-    /// Whether the help overlay is open, and how far it is scrolled.
+    /// What is open over the panes, if anything.
+    pub fn overlay(&self) -> Option<&Overlay> {
+        self.overlay.open()
+    }
+
+    /// What has the keys: the overlay open, else the panes.
+    pub fn mode(&self) -> Mode {
+        self.overlay.mode()
+    }
+
+    /// Whether the help is open.
     pub fn help(&self) -> bool {
-        self.help
-    }
-
-    pub fn help_scroll(&self) -> u16 {
-        self.help_scroll
+        matches!(self.overlay(), Some(Overlay::Help { .. }))
     }
 
     /// The mistakes menu's selected row (an index into `Mistake::ALL`)
     /// when the menu is open.
     pub fn mistake_menu(&self) -> Option<usize> {
-        self.menu.then_some(self.menu_row)
+        self.overlay.menu_row()
     }
 
-    /// What has the keys: the help, the mistakes menu, or the panes.
-    pub fn mode(&self) -> Mode {
-        if self.help {
-            Mode::Help
-        } else if self.menu {
-            Mode::Menu
-        } else if self.prompt.is_some() {
-            Mode::Prompt
-        } else if self.finding {
-            Mode::Find
-        } else {
-            Mode::Browsing
-        }
+    /// The go-to prompt's text while it is open.
+    pub fn prompt(&self) -> Option<&str> {
+        self.overlay.prompt()
     }
 
-    /// The student's image and the comparison, with `--compare`.
-    pub fn compared(&self) -> Option<&Compared> {
-        self.compared.as_ref()
+    pub fn focus(&self) -> Pane {
+        self.screen.focus()
+    }
+
+    /// 1 shows the whole image; each doubling halves the pixels per cell.
+    pub fn zoom(&self) -> u32 {
+        self.screen.zoom()
+    }
+
+    /// What the image pane shows.
+    pub fn picture(&self) -> Picture {
+        self.screen.picture()
+    }
+
+    pub fn plane(&self) -> DiagramPlane {
+        self.screen.plane()
+    }
+
+    /// How the diagram is panned and zoomed.
+    pub fn diagram_pan_zoom(&self) -> PanZoom {
+        self.screen.diagram()
+    }
+
+    /// The terminal's size, as the last `Action::Resize` gave it.
+    pub fn screen(&self) -> Rect {
+        self.screen.size()
+    }
+
+    pub fn panes(&self) -> Panes {
+        let banner = self.error().map_or(0, |e| e.lines().count() as u16);
+        let rows = tree::rows(self.tree(), self.collapsed()).len() as u16;
+        layout::panes(self.screen(), banner, rows)
+    }
+
+    /// The image pane's mapping, for drawing and for clicks.
+    pub fn image_grid(&self) -> Option<ImageGrid> {
+        let size = self.image().map(|i| (i.width(), i.height()))?;
+        Some(ImageGrid::new(
+            inner(self.panes().image),
+            size,
+            self.zoom(),
+            self.cursor(),
+        ))
+    }
+
+    /// The student's image, with `--compare`.
+    pub fn yours(&self) -> Option<&RgbImage> {
+        self.comparison.as_ref().map(StudentComparison::yours)
     }
 
     /// The comparison's findings, with `--compare`.
     pub fn comparison(&self) -> Option<&Comparison> {
-        self.compared.as_ref().map(|c| &c.comparison)
-    }
-
-    /// The banner: why the last reload failed.
-    pub fn error(&self) -> Option<&str> {
-        self.error.as_deref()
+        self.comparison.as_ref().map(StudentComparison::comparison)
     }
 
     /// The status line's message.
@@ -407,53 +582,46 @@ impl App {
         self.message.as_deref()
     }
 
-    /// The object the `x` breakpoint stops at, once chosen.
-    pub fn break_object(&self) -> Option<usize> {
-        self.break_object
-    }
-
-    /// Manual scroll of the details; `None` follows the current event.
-    pub fn details_scroll(&self) -> Option<u16> {
-        self.details_scroll
-    }
-
-    /// The terminal's size, as the last `Action::Resize` gave it.
-    pub fn screen(&self) -> Rect {
-        self.screen
-    }
-
     /// Whether the user asked to quit.
     pub fn should_quit(&self) -> bool {
         self.quit
     }
 
+    /// Whether background work is under way (the loop then polls more often).
+    pub fn busy(&self) -> bool {
+        self.renders.busy() || self.session.reload_waits() || self.search.is_some()
+    }
+
+    /// How far the running render is.
+    pub fn progress(&self) -> Option<Progress> {
+        self.renders.progress()
+    }
+
+    /// What the running find looks for and the row it is on (from 1), of
+    /// the image's rows: "finding {what}… (row N of H)".
+    pub fn finding_progress(&self) -> Option<(&str, u32, u32)> {
+        let (what, row) = self.search.as_ref()?.progress();
+        Some((what, row + 1, self.scene().height))
+    }
+
     /// The latest render (or preview) of the current settings.
     pub fn image(&self) -> Option<&RgbImage> {
-        self.image.as_ref()
+        self.renders.image()
     }
 
-    /// The term images, once a term view asked for them.
+    /// The term images, once a term picture asked for them.
     pub fn terms(&self) -> Option<&TermImages> {
-        self.terms.as_ref()
+        self.renders.terms()
     }
 
-    /// The scale of a count view (rays or cost): its largest count, as
-    /// `TermImages::max_count` has it, but without a scan of the image.
+    /// The scale of a count picture (rays or cost): its largest count.
     pub fn count_max(&self, term: Term) -> u32 {
-        match term {
-            Term::Rays => self.count_max.0,
-            _ => self.count_max.1,
-        }
-    }
-
-    /// How long the last pixel pick took.
-    pub fn pick_time(&self) -> Duration {
-        self.pick_time
+        self.renders.count_max(term)
     }
 
     /// How long the last finished render took.
     pub fn render_time(&self) -> Option<Duration> {
-        self.render_time
+        self.renders.render_time()
     }
 
     /// Whether the status line shows timings (off in tests, for stable screens).
@@ -461,104 +629,23 @@ impl App {
         self.show_timings
     }
 
-    pub fn panes(&self) -> Panes {
-        let banner = self.error.as_ref().map_or(0, |e| e.lines().count() as u16);
-        let rows = tree::rows(&self.tree, &self.collapsed).len() as u16;
-        layout::panes(self.screen, banner, rows)
-    }
-
-    pub fn phong(&self) -> bool {
-        self.settings.specular == SpecularModel::Phong
-    }
-
-    /// The node the tree and details show: the current event's ray.
-    pub fn selected_node(&self) -> NodeId {
-        self.tree.events.get(self.current).map_or(0, |e| e.node)
-    }
-
-    /// The colour of a pixel as the image pane shows it (render or term view).
+    /// The colour of a pixel as the image pane shows it.
     pub fn shown_pixel(&self, x: u32, y: u32) -> Option<[u8; 3]> {
-        match self.view {
-            View::Image => self.image.as_ref().and_then(|i| pixel(i, x, y)),
-            View::Term(term) => self
-                .terms
-                .as_ref()
+        match self.picture() {
+            Picture::Render => self.image().and_then(|i| pixel(i, x, y)),
+            Picture::Term(term) => self
+                .terms()
                 .filter(|t| x < t.width && y < t.height)
                 .map(|t| t.rgb(term, (y * t.width + x) as usize, self.count_max(term))),
-            View::Yours => self.compared.as_ref().and_then(|c| pixel(&c.yours, x, y)),
-            View::ErrorMap => self
-                .compared
-                .as_ref()
-                .and_then(|c| pixel(&c.comparison.error_map, x, y)),
+            Picture::Yours => self.yours().and_then(|i| pixel(i, x, y)),
+            Picture::ErrorMap => self.comparison().and_then(|c| pixel(&c.error_map, x, y)),
         }
     }
 
     /// Our pixel at the cursor, as the render (with the toggles) has it.
     pub fn our_pixel(&self) -> Option<[u8; 3]> {
-        let (x, y) = self.cursor;
-        self.image.as_ref().and_then(|i| pixel(i, x, y))
-    }
-
-    /// Re-records the selected pixel in the current scene, keeping the step.
-    fn retrace(&mut self) {
-        self.cursor = (
-            self.cursor.0.min(self.scene.width - 1),
-            self.cursor.1.min(self.scene.height - 1),
-        );
-        let started = Instant::now();
-        self.tree = record_pixel(&self.scene, &self.settings, self.cursor.0, self.cursor.1);
-        self.pick_time = started.elapsed();
-        self.current = self.current.min(self.tree.events.len().saturating_sub(1));
-        self.collapsed.clear();
-        self.details_scroll = None;
-    }
-
-    /// Selects a pixel: only that pixel is traced again.
-    fn pick(&mut self, x: u32, y: u32) {
-        self.cancel_find();
-        self.cursor = (x, y);
-        self.current = 0;
-        self.what_if = None;
-        self.diagram_view = PanZoom::fit();
-        self.retrace();
-    }
-
-    /// Traces the scene with new settings: the pixel, then the image. The
-    /// pixel's tree before and after give the what-if.
-    fn apply_settings(&mut self, settings: Settings) {
-        self.cancel_find();
-        let before = self.tree.clone();
-        self.settings = settings;
-        self.retrace();
-        self.what_if =
-            (before.pixel == self.tree.pixel).then(|| crate::record::diff(&before, &self.tree));
-        // The details open at the top, on what changed.
-        self.details_scroll = self.what_if.as_ref().map(|_| 0);
-        self.request_render();
-    }
-
-    /// How the selected pixel changed with the last toggle, when it did.
-    pub fn what_if(&self) -> Option<&str> {
-        self.what_if.as_deref()
-    }
-
-    /// Reloads the scene file; a broken file keeps the last good scene.
-    fn reload(&mut self) {
-        match self.source.load() {
-            Ok(file_scene) => {
-                let settings =
-                    merge_settings(&self.scene.settings, &file_scene.settings, &self.settings);
-                self.scene = Arc::new(file_scene);
-                self.error = None;
-                self.apply_settings(settings);
-                self.message = Some(format!("reloaded {}", self.source.name()));
-            }
-            Err(error) => {
-                self.error = Some(error.to_string());
-                self.message =
-                    Some("the scene file has an error: the last good scene stays".into());
-            }
-        }
+        let (x, y) = self.cursor();
+        self.image().and_then(|i| pixel(i, x, y))
     }
 }
 

@@ -4,7 +4,7 @@
 use ratatui::style::Stylize;
 use ratatui::text::{Line, Span};
 
-use crate::tui::{App, View, keymap};
+use crate::tui::{App, Picture, keymap};
 
 /// A switch's name: plain green when on, "no ..." in red when off.
 fn on_off(name: &str, on: bool) -> Span<'static> {
@@ -87,11 +87,11 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
                 .red(),
         ]);
     }
-    let view = match app.view() {
-        View::Image => None,
-        View::Term(term) => Some(term.name()),
-        View::Yours => Some("yours"),
-        View::ErrorMap => Some("error map"),
+    let view = match app.picture() {
+        Picture::Render => None,
+        Picture::Term(term) => Some(term.name()),
+        Picture::Yours => Some("yours"),
+        Picture::ErrorMap => Some("error map"),
     };
     if let Some(view) = view {
         right.extend([sep(), Span::raw(format!("view: {view}")).bold().yellow()]);

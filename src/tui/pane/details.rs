@@ -7,9 +7,8 @@ use ratatui::widgets::Paragraph;
 
 use super::pane_block;
 use crate::record::kind_name;
-use crate::tui::App;
 use crate::tui::view::details::{compare_line, lines, what_if_lines};
-use crate::tui::view::layout::Pane;
+use crate::tui::{App, Pane};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let id = app.selected_node();
@@ -24,7 +23,7 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         marked = marked.map(|m| m + changed.len());
         lines.splice(0..0, changed);
     }
-    if let Some(yours) = app.compared().map(|c| c.yours.get_pixel(x, y).0) {
+    if let Some(yours) = app.yours().map(|yours| yours.get_pixel(x, y).0) {
         lines.insert(0, compare_line(yours, app.our_pixel()));
         marked = marked.map(|m| m + 1);
     }

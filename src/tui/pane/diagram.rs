@@ -126,7 +126,7 @@ fn object_color(scene: &Scene, object: usize) -> Color {
 /// at its current event, on its plane, panned and zoomed as it says.
 pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
     let (scene, tree, current) = (app.scene(), app.tree(), app.current());
-    let (plane, view) = (app.plane(), app.diagram_view());
+    let (plane, view) = (app.plane(), app.diagram_pan_zoom());
     let inner = block.inner(area);
     let projection = Projection::new(plane, scene, tree);
     let (segments, blockers) = ray_segments(tree, scene, &projection, progress(tree, current));

@@ -1,4 +1,4 @@
-//! The image pane: the render (or a term view) with the pixel cursor, the
+//! The image pane: the render (or a term image) with the pixel cursor, the
 //! selected pixel's coordinates and colour in the title, and the term
 //! view's legend at the bottom.
 
@@ -14,10 +14,10 @@ use crate::terms::{Term, false_color};
 
 use super::pane_block;
 use crate::tui::view::image_grid::ImageGrid;
-use crate::tui::view::layout::{Pane, inner};
-use crate::tui::view::mistakes;
+use crate::tui::view::layout::inner;
+use crate::tui::view::mistakes_menu;
 use crate::tui::view::tree::rgb_swatch;
-use crate::tui::{App, View};
+use crate::tui::{App, Pane, Picture};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let (x, y) = app.cursor();
@@ -32,12 +32,12 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     }
     title.push(Span::raw(format!(" zoom {}x ", app.zoom())));
     let mut block = pane_block(app, Pane::Image, String::new()).title(Line::from(title));
-    if let View::Term(term) = app.view() {
+    if let Picture::Term(term) = app.picture() {
         block = block.title_bottom(term_legend(app, term).right_aligned());
     }
     if let Some(c) = app.comparison() {
         // The ranking stays in sight while comparing, whatever the view.
-        let ranking = mistakes::ranking(&c.mistakes, c.matches);
+        let ranking = mistakes_menu::ranking(&c.mistakes, c.matches);
         block = block.title_bottom(Line::from(format!(" compare: {ranking} ")).bold().yellow());
     }
     frame.render_widget(block, area);

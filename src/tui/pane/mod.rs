@@ -7,7 +7,7 @@ pub mod details;
 pub mod diagram;
 pub mod help;
 pub mod image;
-pub mod mistakes;
+pub mod mistakes_menu;
 pub mod steps;
 pub mod tree;
 
@@ -17,8 +17,9 @@ use ratatui::style::{Color, Modifier, Style, Stylize};
 use ratatui::text::Span;
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use super::App;
-use super::view::layout::{MIN_HEIGHT, MIN_WIDTH, Pane, too_small};
+use super::action::Pane;
+use super::app::{App, Overlay};
+use super::view::layout::{MIN_HEIGHT, MIN_WIDTH, too_small};
 
 pub fn draw(frame: &mut Frame, app: &App) {
     let area = frame.area();
@@ -38,7 +39,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
         format!(
             " Diagram · {}{} · white: current ",
             app.plane().name(),
-            (app.diagram_view().label()).map_or(String::new(), |z| format!(" · {z}"))
+            (app.diagram_pan_zoom().label()).map_or(String::new(), |z| format!(" · {z}"))
         ),
     );
     let block = block.title_bottom(diagram::legend());
@@ -54,11 +55,14 @@ pub fn draw(frame: &mut Frame, app: &App) {
         frame.render_widget(Paragraph::new(error).red().block(block), panes.banner);
     }
     frame.render_widget(bars::status(app), panes.status);
-    if let Some(selected) = app.mistake_menu() {
-        mistakes::draw(frame, app, area, selected);
-    }
-    if app.help() {
-        help::draw(frame, area, app.help_scroll());
+    match app.overlay() {
+        Some(Overlay::Help { scroll }) => help::draw(frame, area, *scroll),
+        Some(Overlay::MistakesMenu) => {
+            let selected = app.mistake_menu().unwrap_or(0);
+            mistakes_menu::draw(frame, app, area, selected);
+        }
+        // The prompt and `f` speak in the status line.
+        Some(Overlay::Prompt(_) | Overlay::Find) | None => {}
     }
 }
 

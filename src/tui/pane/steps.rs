@@ -6,9 +6,8 @@ use ratatui::layout::Rect;
 use ratatui::widgets::Paragraph;
 
 use super::pane_block;
-use crate::tui::App;
-use crate::tui::view::layout::Pane;
 use crate::tui::view::steps::lines;
+use crate::tui::{App, Pane};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let count = app.tree().events.len();

@@ -7,9 +7,8 @@ use ratatui::text::Line;
 use ratatui::widgets::Paragraph;
 
 use super::pane_block;
-use crate::tui::App;
-use crate::tui::view::layout::Pane;
 use crate::tui::view::tree::{row_line, rows, scroll_offset, selected_row, selected_style};
+use crate::tui::{App, Pane};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let tree = app.tree();

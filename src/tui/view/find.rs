@@ -5,27 +5,8 @@
 use crate::record::{EventKind, RayTree};
 use crate::scene::{Scene, Settings};
 
-use super::stepper::{self, Breakpoint};
-
-/// What `f` looks for in each pixel's recording.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Find {
-    BlockedShadow,
-    /// A shadow ray blocked only by transparent surfaces: 0 < S < 1.
-    PartialShadow,
-    Tir,
-    /// A ray that hit a reflective or transparent surface at max_depth, so
-    /// the child it would have cast (with its switch on) was not.
-    DepthLimit,
-    /// A hit on the breakpoint object (`x`'s).
-    BreakObject,
-    /// A near miss: a ray crossed a polygon's plane inside its bounding box
-    /// but outside the polygon (an even crossing count), e.g. a notch, or a
-    /// sphere's bounding box without hitting the sphere (no real roots, or
-    /// both roots behind); any recorded `near_misses` entry counts. Of
-    /// the breakpoint object only, once one is chosen.
-    NearMiss,
-}
+use super::stepper;
+use crate::tui::action::{Breakpoint, Find};
 
 impl Find {
     /// For the status line: "no pixel with {what}".

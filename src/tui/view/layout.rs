@@ -3,39 +3,11 @@
 
 use ratatui::layout::{Constraint, Layout, Margin, Rect};
 
+use crate::tui::action::Pane;
+
 /// The smallest terminal the debugger draws in.
 pub const MIN_WIDTH: u16 = 80;
 pub const MIN_HEIGHT: u16 = 24;
-
-/// The panes, in the order Tab visits them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Pane {
-    Image,
-    Tree,
-    Steps,
-    Details,
-    Diagram,
-}
-
-impl Pane {
-    pub const ALL: [Pane; 5] = [
-        Pane::Image,
-        Pane::Tree,
-        Pane::Steps,
-        Pane::Details,
-        Pane::Diagram,
-    ];
-
-    pub fn next(self) -> Pane {
-        let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
-        Pane::ALL[(i + 1) % Pane::ALL.len()]
-    }
-
-    pub fn previous(self) -> Pane {
-        let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
-        Pane::ALL[(i + Pane::ALL.len() - 1) % Pane::ALL.len()]
-    }
-}
 
 /// The screen, cut into its parts.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -11,7 +11,7 @@ pub mod help;
 pub mod image_grid;
 pub mod labels;
 pub mod layout;
-pub mod mistakes;
+pub mod mistakes_menu;
 pub mod pan_zoom;
 pub mod stepper;
 pub mod steps;

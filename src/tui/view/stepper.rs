@@ -5,35 +5,7 @@
 
 use crate::diagram::{CurrentRay, Progress};
 use crate::record::{EventKind, RayTree};
-
-/// A way to move to another event.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Step {
-    /// The next event, whatever ray it belongs to.
-    Next,
-    Previous,
-    /// The next ray cast: enter the next child ray.
-    Into,
-    /// The next event of the same ray, skipping child rays' events.
-    Over,
-    /// Where this ray returns to its parent (the end, for the primary ray).
-    Out,
-    /// The first event.
-    Start,
-    /// The last event: the primary ray is done.
-    End,
-}
-
-/// A condition to run forward to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Breakpoint {
-    /// The first blocker of a shadow ray: a light is (partly) in shadow.
-    BlockedShadow,
-    /// A shading ray hits this object (index in the scene).
-    HitObject(usize),
-    /// Total internal reflection.
-    Tir,
-}
+use crate::tui::action::{Breakpoint, Step};
 
 fn last(tree: &RayTree) -> usize {
     tree.events.len().saturating_sub(1)

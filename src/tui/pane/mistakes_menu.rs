@@ -1,4 +1,4 @@
-//! The `M` menu: `view::mistakes`'s lines in a centred box over the panes,
+//! The `M` menu: `view::mistakes_menu`'s lines in a centred box over the panes,
 //! drawn like the help.
 
 use ratatui::Frame;
@@ -7,7 +7,7 @@ use ratatui::style::Stylize;
 use ratatui::widgets::{Block, Clear, Paragraph};
 
 use crate::tui::App;
-use crate::tui::view::mistakes::lines;
+use crate::tui::view::mistakes_menu::lines;
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect, selected: usize) {
     let ranked = app.comparison().map_or(&[][..], |c| &c.mistakes[..]);

@@ -1,0 +1,146 @@
+//! What is open over the panes and has the keys: the help, the mistakes
+//! menu, the go-to prompt or the wait for `f`'s second key. One at a time,
+//! by type: opening one closes the other.
+
+use crate::mistakes::Mistake;
+use crate::tui::action::Action;
+use crate::tui::keymap::Mode;
+use crate::tui::view::help;
+
+/// The one thing open over the panes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Overlay {
+    /// The `?` help, scrolled by this many lines.
+    Help { scroll: u16 },
+    /// The `M` menu of classic mistakes.
+    MistakesMenu,
+    /// The go-to prompt (`:`) in the status line, with the text typed.
+    Prompt(String),
+    /// `f` was pressed: the next key says what to find.
+    Find,
+}
+
+/// The overlay open, if any, and the mistakes menu's selected row, which
+/// stays between openings.
+#[derive(Debug, Default)]
+pub struct Overlays {
+    open: Option<Overlay>,
+    /// An index into `Mistake::ALL`.
+    menu_row: usize,
+}
+
+/// What `f` asks for in the status line.
+const FIND_WHAT: &str = "find the next pixel with: b blocked shadow, p partly blocked, t TIR, D depth limit, x object X, n near miss";
+
+impl Overlays {
+    /// Opens, closes, scrolls, moves or types into an overlay; the status
+    /// line's message, when the action has one. `screen_height` bounds the
+    /// help's scroll.
+    pub(super) fn update(&mut self, action: Action, screen_height: u16) -> Option<String> {
+        match (action, &mut self.open) {
+            (Action::ToggleHelp, Some(Overlay::Help { .. })) => self.open = None,
+            (Action::ToggleHelp, _) => self.open = Some(Overlay::Help { scroll: 0 }),
+            (Action::CloseHelp, Some(Overlay::Help { .. })) => self.open = None,
+            (Action::ScrollHelp(delta), Some(Overlay::Help { scroll })) => {
+                let most = help::hidden_lines(screen_height) as i32;
+                *scroll = (*scroll as i32 + delta).clamp(0, most) as u16;
+            }
+            (Action::ToggleMistakeMenu, Some(Overlay::MistakesMenu)) => self.open = None,
+            (Action::ToggleMistakeMenu, _) => self.open = Some(Overlay::MistakesMenu),
+            (Action::CloseMistakeMenu, Some(Overlay::MistakesMenu)) => self.open = None,
+            (Action::MenuMove(delta), _) => {
+                let last = Mistake::ALL.len() as i64 - 1;
+                self.menu_row = (self.menu_row as i64 + delta as i64).clamp(0, last) as usize;
+            }
+            (Action::OpenPrompt, _) => self.open = Some(Overlay::Prompt(String::new())),
+            (Action::PromptChar(c), Some(Overlay::Prompt(text))) => text.push(c),
+            (Action::PromptBackspace, Some(Overlay::Prompt(text))) => {
+                text.pop();
+            }
+            (Action::PromptCancel, Some(Overlay::Prompt(_))) => self.open = None,
+            (Action::StartFind, _) => {
+                self.open = Some(Overlay::Find);
+                return Some(FIND_WHAT.into());
+            }
+            (Action::CancelFind | Action::Find(_), Some(Overlay::Find)) => self.open = None,
+            _ => {}
+        }
+        None
+    }
+
+    /// Closes whatever is open (the prompt, once its pixel is gone to).
+    pub(super) fn close(&mut self) {
+        self.open = None;
+    }
+
+    pub fn open(&self) -> Option<&Overlay> {
+        self.open.as_ref()
+    }
+
+    /// What has the keys: the overlay open, else the panes.
+    pub fn mode(&self) -> Mode {
+        match self.open {
+            None => Mode::Browsing,
+            Some(Overlay::Help { .. }) => Mode::Help,
+            Some(Overlay::MistakesMenu) => Mode::Menu,
+            Some(Overlay::Prompt(_)) => Mode::Prompt,
+            Some(Overlay::Find) => Mode::Find,
+        }
+    }
+
+    /// The mistakes menu's selected mistake, open or not.
+    pub fn menu_mistake(&self) -> Mistake {
+        Mistake::ALL[self.menu_row]
+    }
+
+    /// The menu's selected row when it is open.
+    pub fn menu_row(&self) -> Option<usize> {
+        (self.open == Some(Overlay::MistakesMenu)).then_some(self.menu_row)
+    }
+
+    /// The prompt's text while it is open.
+    pub fn prompt(&self) -> Option<&str> {
+        match &self.open {
+            Some(Overlay::Prompt(text)) => Some(text),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_overlay_at_a_time() {
+        // Before the overlay was one value, help and menu were two flags:
+        // the menu opened under the help, which kept the keys (Mode::Help)
+        // and, once closed, left the menu open.
+        let mut overlays = Overlays::default();
+        overlays.update(Action::ToggleHelp, 40);
+        assert_eq!(overlays.mode(), Mode::Help);
+        overlays.update(Action::ToggleMistakeMenu, 40);
+        assert_eq!(overlays.open(), Some(&Overlay::MistakesMenu));
+        assert_eq!(overlays.mode(), Mode::Menu);
+        overlays.update(Action::CloseHelp, 40);
+        assert_eq!(overlays.mode(), Mode::Menu, "no help was open to close");
+        overlays.update(Action::OpenPrompt, 40);
+        assert_eq!(overlays.prompt(), Some(""));
+        assert_eq!(overlays.menu_row(), None, "the prompt closed the menu");
+        overlays.update(Action::StartFind, 40);
+        assert_eq!(overlays.mode(), Mode::Find);
+        assert_eq!(overlays.prompt(), None, "f closed the prompt");
+    }
+
+    #[test]
+    fn the_menu_keeps_its_row_between_openings() {
+        let mut overlays = Overlays::default();
+        overlays.update(Action::ToggleMistakeMenu, 40);
+        overlays.update(Action::MenuMove(3), 40);
+        overlays.update(Action::CloseMistakeMenu, 40);
+        assert_eq!(overlays.menu_row(), None);
+        overlays.update(Action::ToggleMistakeMenu, 40);
+        assert_eq!(overlays.menu_row(), Some(3));
+        assert_eq!(overlays.menu_mistake(), Mistake::ALL[3]);
+    }
+}

@@ -1,0 +1,257 @@
+//! The pixel being traced: where the cursor is, the pixel's recording, the
+//! current event, the tree's folded rows, the details' scroll, the object
+//! the `x` breakpoint stops at, and what the last toggle changed in it.
+//! Stepping and the tree's keys change only this.
+
+use std::collections::BTreeSet;
+use std::time::{Duration, Instant};
+
+use crate::record::{NodeId, RayTree, record_pixel};
+use crate::scene::{Scene, Settings};
+use crate::tui::action::{Action, Breakpoint};
+use crate::tui::find_job::Found;
+use crate::tui::view::stepper;
+use crate::tui::view::steps;
+use crate::tui::view::tree::{self, RowKind};
+
+pub struct TracedPixel {
+    /// The selected pixel, in the scene image's coordinates.
+    cursor: (u32, u32),
+    tree: RayTree,
+    /// The current event of `tree.events`.
+    current: usize,
+    collapsed: BTreeSet<NodeId>,
+    /// Manual scroll of the details; `None` follows the current event.
+    details_scroll: Option<u16>,
+    /// What-if: how the pixel's tree changed with the last toggle (or
+    /// reload), in `record::diff`'s words; cleared when another pixel is picked.
+    what_if: Option<String>,
+    /// The object the `x` breakpoint stops at, once chosen.
+    break_object: Option<usize>,
+    /// How long the last pick took.
+    pick_time: Duration,
+}
+
+impl TracedPixel {
+    /// `scene`'s pixel `cursor`, recorded with `settings`, at its first event.
+    pub(super) fn new(scene: &Scene, settings: &Settings, cursor: (u32, u32)) -> TracedPixel {
+        let started = Instant::now();
+        let tree = record_pixel(scene, settings, cursor.0, cursor.1);
+        TracedPixel {
+            cursor,
+            tree,
+            current: 0,
+            collapsed: BTreeSet::new(),
+            details_scroll: None,
+            what_if: None,
+            break_object: None,
+            pick_time: started.elapsed(),
+        }
+    }
+
+    /// Stepping, breakpoints, the tree's rows and the details' scroll; the
+    /// status line's message, when the action has one.
+    pub(super) fn update(&mut self, action: Action, scene: &Scene) -> Option<String> {
+        match action {
+            Action::Step(step) => self.set_current(stepper::step(&self.tree, self.current, step)),
+            Action::RunTo(breakpoint) => return self.run_to(breakpoint, scene),
+            Action::RunToObject => return self.run_to_object(scene),
+            Action::CycleBreakObject => return self.cycle_break_object(scene),
+            Action::SelectRow(delta) => self.select_row(delta),
+            Action::ToggleCollapse => {
+                let node = self.selected_node();
+                if !self.collapsed.remove(&node) {
+                    self.collapsed.insert(node);
+                }
+            }
+            Action::ScrollDetails(delta) => {
+                let from = self.details_scroll.unwrap_or(0) as i32;
+                self.details_scroll = Some((from + delta).max(0) as u16);
+            }
+            _ => {}
+        }
+        None
+    }
+
+    pub fn cursor(&self) -> (u32, u32) {
+        self.cursor
+    }
+
+    pub fn tree(&self) -> &RayTree {
+        &self.tree
+    }
+
+    pub fn current(&self) -> usize {
+        self.current
+    }
+
+    pub fn collapsed(&self) -> &BTreeSet<NodeId> {
+        &self.collapsed
+    }
+
+    pub fn details_scroll(&self) -> Option<u16> {
+        self.details_scroll
+    }
+
+    pub fn what_if(&self) -> Option<&str> {
+        self.what_if.as_deref()
+    }
+
+    pub fn break_object(&self) -> Option<usize> {
+        self.break_object
+    }
+
+    pub fn pick_time(&self) -> Duration {
+        self.pick_time
+    }
+
+    /// The node the tree and details show: the current event's ray.
+    pub fn selected_node(&self) -> NodeId {
+        self.tree.events.get(self.current).map_or(0, |e| e.node)
+    }
+
+    /// The object breakpoint: the chosen one, else the selected ray's object.
+    pub fn break_target(&self) -> Option<usize> {
+        self.break_object.or_else(|| {
+            self.tree.nodes[self.selected_node()]
+                .hit
+                .as_ref()
+                .map(|h| h.object_index)
+        })
+    }
+
+    /// The breakpoint's target chosen as the breakpoint object (`x`, `f x`).
+    pub(super) fn choose_break_target(&mut self) -> Option<usize> {
+        let object = self.break_target()?;
+        self.break_object = Some(object);
+        Some(object)
+    }
+
+    /// Re-records the pixel in `scene` with `settings`, keeping the step.
+    pub(super) fn retrace(&mut self, scene: &Scene, settings: &Settings) {
+        self.cursor = (
+            self.cursor.0.min(scene.width - 1),
+            self.cursor.1.min(scene.height - 1),
+        );
+        let started = Instant::now();
+        self.tree = record_pixel(scene, settings, self.cursor.0, self.cursor.1);
+        self.pick_time = started.elapsed();
+        self.current = self.current.min(self.tree.events.len().saturating_sub(1));
+        self.collapsed.clear();
+        self.details_scroll = None;
+    }
+
+    /// Selects another pixel and records it, from its first event.
+    pub(super) fn pick(&mut self, (x, y): (u32, u32), scene: &Scene, settings: &Settings) {
+        self.cursor = (x, y);
+        self.current = 0;
+        self.what_if = None;
+        self.retrace(scene, settings);
+    }
+
+    /// Records the pixel with new settings; the trees before and after give
+    /// the what-if, and the details open at the top, on what changed.
+    pub(super) fn retrace_with(&mut self, scene: &Scene, settings: &Settings) {
+        let before = self.tree.clone();
+        self.retrace(scene, settings);
+        self.what_if =
+            (before.pixel == self.tree.pixel).then(|| crate::record::diff(&before, &self.tree));
+        self.details_scroll = self.what_if.as_ref().map(|_| 0);
+    }
+
+    /// A find's pixel, already recorded, at its first matching event.
+    pub(super) fn take_found(&mut self, found: Found, pick_time: Duration) {
+        self.cursor = found.pixel;
+        self.tree = found.tree;
+        self.pick_time = pick_time;
+        self.current = found.event;
+        self.what_if = None;
+        self.collapsed.clear();
+        self.details_scroll = None;
+    }
+
+    /// A click on line `line` of the tree pane, `height` lines high.
+    pub(super) fn click_tree(&mut self, line: usize, height: usize) {
+        let rows = tree::rows(&self.tree, &self.collapsed);
+        let selected = tree::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
+        let first = tree::scroll_offset(selected, height);
+        if let Some(row) = rows.get(first + line) {
+            self.select(row.kind);
+        }
+    }
+
+    /// A click on line `line` of the step list, `height` lines high.
+    pub(super) fn click_steps(&mut self, line: usize, height: usize) {
+        let first = steps::first_line(self.current, self.tree.events.len(), height);
+        if first + line < self.tree.events.len() {
+            self.set_current(first + line);
+        }
+    }
+
+    fn set_current(&mut self, event: usize) {
+        self.current = event.min(self.tree.events.len().saturating_sub(1));
+        self.details_scroll = None;
+    }
+
+    fn run_to(&mut self, breakpoint: Breakpoint, scene: &Scene) -> Option<String> {
+        if let Some(event) = stepper::run_to(&self.tree, self.current, breakpoint) {
+            self.set_current(event);
+            return None;
+        }
+        let what = match breakpoint {
+            Breakpoint::BlockedShadow => "blocked shadow ray".to_string(),
+            Breakpoint::HitObject(object) => format!("hit on {}", scene.object_name(object)),
+            Breakpoint::Tir => "total internal reflection".to_string(),
+        };
+        Some(format!(
+            "no {what} after event {} in this pixel",
+            self.current + 1
+        ))
+    }
+
+    fn run_to_object(&mut self, scene: &Scene) -> Option<String> {
+        match self.choose_break_target() {
+            Some(object) => self.run_to(Breakpoint::HitObject(object), scene),
+            None => Some("the selected ray hits nothing: press X to choose an object".into()),
+        }
+    }
+
+    fn cycle_break_object(&mut self, scene: &Scene) -> Option<String> {
+        let count = scene.objects.len();
+        self.break_object = match self.break_target() {
+            _ if count == 0 => None,
+            Some(object) if self.break_object.is_some() => Some((object + 1) % count),
+            Some(object) => Some(object),
+            None => Some(0),
+        };
+        let object = self.break_object?;
+        Some(format!(
+            "x runs to the next hit on {}",
+            scene.object_name(object)
+        ))
+    }
+
+    /// Makes a tree row's ray or light the current event.
+    fn select(&mut self, kind: RowKind) {
+        let event = match kind {
+            RowKind::Ray(node) => stepper::cast_event(&self.tree, node),
+            RowKind::Light { node, light } => stepper::light_event(
+                &self.tree,
+                node,
+                self.tree.nodes[node].lights[light].light_index,
+            ),
+        };
+        if let Some(event) = event {
+            self.set_current(event);
+        }
+    }
+
+    fn select_row(&mut self, delta: i32) {
+        let rows = tree::rows(&self.tree, &self.collapsed);
+        let Some(selected) = tree::selected_row(&self.tree, &rows, self.current) else {
+            return;
+        };
+        let row = (selected as i64 + delta as i64).clamp(0, rows.len() as i64 - 1) as usize;
+        self.select(rows[row].kind);
+    }
+}

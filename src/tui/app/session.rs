@@ -1,0 +1,162 @@
+//! The scene being debugged: where it comes from, the last good file's
+//! scene, the settings traced (the file's, with the user's toggles), the
+//! file's watcher and why the last reload failed.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use crate::scene::{Scene, Settings, SpecularModel};
+use crate::tui::action::Action;
+use crate::tui::source::{FileWatcher, SceneSource, merge_settings};
+
+use super::MAX_DEPTH;
+
+/// How long the file must be quiet before a reload (editors write in bursts).
+const RELOAD_DELAY: Duration = Duration::from_millis(150);
+
+pub struct Session {
+    source: SceneSource,
+    /// The last good file's scene, with the file's own settings; shared with
+    /// the render thread, never copied.
+    scene: Arc<Scene>,
+    /// The settings traced: the file's, with the user's toggles.
+    settings: Settings,
+    watcher: Option<FileWatcher>,
+    reload_due: Option<Instant>,
+    /// The banner: why the last reload failed.
+    error: Option<String>,
+}
+
+impl Session {
+    pub(super) fn new(source: SceneSource, scene: Scene) -> Session {
+        Session {
+            source,
+            settings: scene.settings,
+            scene: Arc::new(scene),
+            watcher: None,
+            reload_due: None,
+            error: None,
+        }
+    }
+
+    /// Watches the scene file (the built-in scene has none); why not, when
+    /// it cannot.
+    pub(super) fn watch(&mut self) -> Option<String> {
+        let path = self.source.path.as_ref()?;
+        match FileWatcher::new(path) {
+            Ok(watcher) => {
+                self.watcher = Some(watcher);
+                None
+            }
+            Err(e) => Some(format!(
+                "cannot watch {} ({e}): press R to reload",
+                path.display()
+            )),
+        }
+    }
+
+    /// On a tick: whether the file changed and has been quiet for
+    /// `RELOAD_DELAY` since, so that it is time to reload.
+    pub(super) fn reload_is_due(&mut self) -> bool {
+        if self.watcher.as_ref().is_some_and(|w| w.changed()) {
+            self.reload_due = Some(Instant::now() + RELOAD_DELAY);
+        }
+        if self.reload_due.is_some_and(|due| Instant::now() >= due) {
+            self.reload_due = None;
+            return true;
+        }
+        false
+    }
+
+    /// Whether a reload waits for the file to be quiet.
+    pub fn reload_waits(&self) -> bool {
+        self.reload_due.is_some()
+    }
+
+    /// Loads the file again and gives the settings to trace it with
+    /// (`merge_settings`'); `None` for a broken file, whose error the
+    /// banner shows while the last good scene stays.
+    pub(super) fn reload(&mut self) -> Option<Settings> {
+        match self.source.load() {
+            Ok(file_scene) => {
+                let settings =
+                    merge_settings(&self.scene.settings, &file_scene.settings, &self.settings);
+                self.scene = Arc::new(file_scene);
+                self.error = None;
+                Some(settings)
+            }
+            Err(error) => {
+                self.error = Some(error.to_string());
+                None
+            }
+        }
+    }
+
+    /// The settings a teaching toggle asks for (`Toggle`, `ToggleSpecular`,
+    /// `Depth`, `ToggleMistake`), if it changes them, and what the status
+    /// line says.
+    pub(super) fn toggled(&self, action: Action) -> (Option<Settings>, String) {
+        let mut settings = self.settings;
+        let on_off = |on: bool| if on { "on" } else { "off" };
+        let message = match action {
+            Action::Toggle(switch) => {
+                let state = on_off(settings.switches.flip(switch));
+                format!("{} {state}", switch.name())
+            }
+            Action::ToggleSpecular => {
+                use SpecularModel::{Blinn, Phong};
+                let (model, message) = if settings.specular == Blinn {
+                    (Phong, "specular: Phong's R·V")
+                } else {
+                    (Blinn, "specular: Blinn's N·H")
+                };
+                settings.specular = model;
+                message.into()
+            }
+            Action::Depth(delta) => {
+                let depth = settings.max_depth as i64 + delta as i64;
+                if !(1..=MAX_DEPTH as i64).contains(&depth) {
+                    let message = format!(
+                        "max depth stays {}: it goes from 1 to {MAX_DEPTH}",
+                        settings.max_depth
+                    );
+                    return (None, message);
+                }
+                settings.max_depth = depth as u32;
+                format!("max depth {depth}")
+            }
+            Action::ToggleMistake(mistake) => {
+                settings.mistakes = settings.mistakes.toggled(mistake);
+                let state = on_off(settings.mistakes.contains(mistake));
+                format!("mistake {mistake} {state}")
+            }
+            _ => return (None, String::new()),
+        };
+        (Some(settings), message)
+    }
+
+    pub(super) fn set_settings(&mut self, settings: Settings) {
+        self.settings = settings;
+    }
+
+    pub fn source(&self) -> &SceneSource {
+        &self.source
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The scene, shared with a background job.
+    pub(super) fn shared_scene(&self) -> Arc<Scene> {
+        self.scene.clone()
+    }
+
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    pub fn error(&self) -> Option<&str> {
+        self.error.as_deref()
+    }
+}
