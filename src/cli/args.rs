@@ -1,0 +1,266 @@
+//! What the command line takes: clap's definitions of every subcommand and
+//! option, and the parsers of their values. What each command then does is
+//! in the file named after it.
+
+use std::path::PathBuf;
+
+use clap::builder::PossibleValue;
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use crate::mistakes::{Mistake, Mistakes};
+use crate::scene::{self, Scene, Settings};
+
+/// raystep: a step-through debugger for Whitted ray tracing.
+///
+/// Without a subcommand it opens the debugger on SCENE, or on a built-in
+/// scene when none is given.
+#[derive(Parser, Debug)]
+#[command(version, about, args_conflicts_with_subcommands = true)]
+// `raystep [SCENE]` says its arguments as it always has: for the debugger.
+#[command(
+    mut_arg("scene", |a| a.help("Scene file for the debugger (.toml or .nff)")),
+    mut_arg("compare", |a| a.help(
+        "Compare with your own render of the scene (a PNG): its views, regions \
+         and the mistakes that explain it, in the debugger"
+    )),
+    mut_arg("pixel", |a| a.help(
+        "Open the debugger on the pixel X,Y (x to the right, y downward, from 0)"
+    )),
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Without a subcommand: the debugger, as `raystep debug` opens it.
+    #[command(flatten)]
+    pub debug: DebugArgs,
+}
+
+/// The debugger's arguments, the same for `raystep [SCENE]` and
+/// `raystep debug [SCENE]`.
+#[derive(Args, Debug)]
+pub struct DebugArgs {
+    /// Scene file (.toml or .nff); the built-in scene when absent.
+    pub scene: Option<PathBuf>,
+    /// Compare with your own render of the scene (a PNG), traced at its
+    /// size: its views, regions and the mistakes that explain it.
+    #[arg(long, value_name = "IMAGE.png")]
+    pub compare: Option<PathBuf>,
+    /// Open on the pixel X,Y (x to the right, y downward, from 0).
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
+    pub pixel: Option<(u32, u32)>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Open the interactive debugger.
+    Debug(DebugArgs),
+    /// Render a whole image to PNG.
+    Render(RenderArgs),
+    /// Print one pixel's ray tree with every term.
+    Inspect(InspectArgs),
+    /// Explain in plain words why one pixel has its colour.
+    Explain(PixelArgs),
+    /// Compare your own render of a scene with raystep's: how far apart,
+    /// where, and which classic mistake explains the difference.
+    Compare(CompareArgs),
+    /// Draw one pixel's rays as an SVG figure for a slide.
+    Diagram(DiagramArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct DiagramArgs {
+    #[command(flatten)]
+    pub pixel: PixelArgs,
+    /// The SVG file to write (new, or a regular file to replace).
+    #[arg(short, long, value_name = "FIG.svg")]
+    pub output: PathBuf,
+    /// The plane drawn, in the camera's frame: from above, from the side,
+    /// or the primary ray's plane of incidence; or `crossing`, the (U, V)
+    /// plane of the crossing test of the first polygon hit (or passed by).
+    #[arg(long, value_enum, default_value_t = PlaneArg::Top)]
+    pub plane: PlaneArg,
+    /// Magnify the figure F times (F >= 1) about the primary ray's first
+    /// hit; what falls outside is cut at the edge. 1 shows everything.
+    /// Not for `crossing`.
+    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = zoom_factor, allow_hyphen_values = true)]
+    pub zoom: f64,
+}
+
+/// The largest `--zoom`: far past any slide's need, and small enough that
+/// every coordinate in the figure stays finite (1e308 made NaNs).
+pub const MAX_ZOOM: f64 = 1e4;
+
+/// `--zoom`: a factor from 1 to `MAX_ZOOM`.
+fn zoom_factor(text: &str) -> std::result::Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(f) if (1.0..=MAX_ZOOM).contains(&f) => Ok(f),
+        _ => Err(format!(
+            "{text:?} is not a zoom factor: give a number from 1 to {MAX_ZOOM}, such as 3"
+        )),
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlaneArg {
+    Top,
+    Side,
+    Ray,
+    Crossing,
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// Scene file (.toml or .nff); rendered at the image's size.
+    pub scene: PathBuf,
+    /// Your render of the scene, a PNG (alpha and 16 bits are converted).
+    pub image: PathBuf,
+    /// Output form: a report for people, or JSON for graders.
+    #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
+    pub format: CompareFormat,
+    /// Also write FLIP's error map (magma colours) to this PNG.
+    #[arg(short, long, value_name = "DIFF.png")]
+    pub output: Option<PathBuf>,
+    /// Exit with status 3 when FLIP's mean error is above F.
+    #[arg(long, value_name = "F")]
+    pub max_flip: Option<f64>,
+    /// Exit with status 3 when the mean absolute error is above E.
+    #[arg(long, value_name = "E")]
+    pub max_mean_abs: Option<f64>,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CompareFormat {
+    Text,
+    Json,
+}
+
+#[derive(Args, Debug)]
+pub struct PixelArgs {
+    /// Scene file (.toml or .nff).
+    pub scene: PathBuf,
+    /// The pixel X,Y (x to the right, y downward, from 0).
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
+    pub pixel: (u32, u32),
+    #[command(flatten)]
+    pub size: SizeArg,
+    #[command(flatten)]
+    pub mistakes: MistakeArgs,
+    /// What-if: change a setting or a material's number first, e.g.
+    /// `settings.max_depth=2` or `materials.glass.ior=1.0` (repeatable); the
+    /// text then ends with what changed against the scene as written.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Also record the pixel in ORIGINAL (another scene file, at the same
+    /// size) and end the text with what changed from it.
+    #[arg(long, value_name = "ORIGINAL")]
+    pub diff_against: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    #[command(flatten)]
+    pub pixel: PixelArgs,
+    /// Output form: an indented tree, the complete recording as JSON, or Graphviz.
+    #[arg(long, value_enum, default_value_t = InspectFormat::Text)]
+    pub format: InspectFormat,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InspectFormat {
+    Text,
+    Json,
+    Dot,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (.toml or .nff).
+    pub scene: PathBuf,
+    /// Output PNG file: new, or a regular file to replace (a link is
+    /// followed); never the scene, a directory or a device.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub size: SizeArg,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Option<u16>,
+    /// Print ray counts and timings as one JSON object on stdout.
+    #[arg(long, conflicts_with = "timings")]
+    pub stats: bool,
+    /// Print only the timings and peak memory as one JSON object on stdout:
+    /// those of a plain render, which counts nothing (what benchmarks time).
+    #[arg(long)]
+    pub timings: bool,
+    /// Also write one PNG per term (ambient, diffuse, specular, reflected,
+    /// transmitted, shadow, rays, cost) into this directory, created if
+    /// missing; all the files are replaced together or none is.
+    #[arg(long, value_name = "DIR")]
+    pub terms: Option<PathBuf>,
+    #[command(flatten)]
+    pub mistakes: MistakeArgs,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct MistakeArgs {
+    /// Trace with this classic student mistake (repeatable; README and
+    /// docs/MODEL.md §8 list them), to make the wrong image on purpose.
+    #[arg(long = "mistake", value_name = "NAME", value_enum)]
+    pub mistakes: Vec<Mistake>,
+}
+
+impl MistakeArgs {
+    /// The scene's settings with these mistakes.
+    pub fn settings(&self, scene: &Scene) -> Settings {
+        Settings {
+            mistakes: self.mistakes.iter().copied().collect::<Mistakes>(),
+            ..scene.settings
+        }
+    }
+}
+
+/// The catalogue's fixed names are the option's values.
+impl ValueEnum for Mistake {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Mistake::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.name()))
+    }
+}
+
+#[derive(Args, Debug, Clone, Copy)]
+pub struct SizeArg {
+    /// Image size WIDTHxHEIGHT, overriding the scene's (the field of view is kept).
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+}
+
+/// Parses `WxH`, e.g. `320x240`.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{text}` is not a size: expected WIDTHxHEIGHT, e.g. 320x240");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    scene::check_image_size(w, h)?;
+    Ok((w, h))
+}
+
+/// Parses `X,Y`, e.g. `160,120`.
+pub fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+    let bad =
+        || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 160,120");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    let coordinate = |c: &str| -> Result<u32, String> {
+        match c.trim().parse::<i64>() {
+            Ok(n) if n < 0 => Err(format!(
+                "`{text}` is not a pixel: {n} is negative, and pixels are counted from 0"
+            )),
+            _ => c.trim().parse().map_err(|_| bad()),
+        }
+    };
+    Ok((coordinate(x)?, coordinate(y)?))
+}

@@ -1,0 +1,50 @@
+//! `raystep diagram`: one pixel's rays as an SVG figure, in a plane of the
+//! camera's frame or as the crossing test of a polygon.
+
+use std::process::ExitCode;
+
+use anyhow::{Result, bail};
+
+use super::recorded::record;
+use super::{DiagramArgs, PlaneArg};
+use crate::output::{self, Target};
+use crate::record::RayTree;
+
+pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
+    use crate::diagram::DiagramPlane;
+    let target = output::file(&args.output)?;
+    output::refuse_clashes(
+        &args.pixel.scene,
+        &[(&target, "the figure (-o)".to_owned())],
+    )?;
+    if args.plane == PlaneArg::Crossing && args.zoom != 1.0 {
+        bail!(
+            "--zoom magnifies the top, side and ray diagrams; the crossing figure is always fitted to its polygon"
+        );
+    }
+    let recorded = record(&args.pixel)?;
+    let plane = match args.plane {
+        PlaneArg::Top => DiagramPlane::Top,
+        PlaneArg::Side => DiagramPlane::Side,
+        PlaneArg::Ray => DiagramPlane::Primary,
+        PlaneArg::Crossing => return crossing_figure(&recorded.tree, &target),
+    };
+    let figure = crate::figure::svg(&recorded.scene, &recorded.tree, plane, args.zoom);
+    output::write_text(&target, &figure)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `--plane crossing`: the first polygon hit, or else passed by; none is an error.
+fn crossing_figure(tree: &RayTree, target: &Target) -> Result<ExitCode> {
+    use crate::figure::crossing;
+    let Some(subject) = crossing::subject(tree) else {
+        anyhow::bail!(
+            "pixel ({}, {}): no ray of its tree hits a polygon or patch or passes one by, \
+             so there is no crossing test to draw (try --plane top)",
+            tree.pixel.0,
+            tree.pixel.1
+        );
+    };
+    output::write_text(target, &crossing::svg(tree.pixel, &subject))?;
+    Ok(ExitCode::SUCCESS)
+}

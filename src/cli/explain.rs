@@ -1,0 +1,15 @@
+//! `raystep explain`: in plain words, why one pixel has its colour.
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+
+use super::recorded::record;
+use super::{PixelArgs, emit};
+use crate::record::explain;
+
+pub(super) fn run(args: &PixelArgs) -> Result<ExitCode> {
+    let recorded = record(args)?;
+    emit(&(explain(&recorded.tree) + &recorded.what_changed()))?;
+    Ok(ExitCode::SUCCESS)
+}

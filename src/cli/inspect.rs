@@ -1,0 +1,33 @@
+//! `raystep inspect`: one pixel's ray tree with every term, as text, JSON
+//! or Graphviz.
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+
+use super::recorded::record;
+use super::{InspectArgs, InspectFormat, emit};
+use crate::record::{dot, text};
+
+pub(super) fn run(args: &InspectArgs) -> Result<ExitCode> {
+    let recorded = record(&args.pixel)?;
+    let tree = &recorded.tree;
+    match args.format {
+        InspectFormat::Text => emit(&(text(tree) + &recorded.what_changed()))?,
+        InspectFormat::Json => {
+            // serde_json would print a NaN or an infinity as `null`: refuse instead.
+            tree.check_finite().map_err(|e| {
+                anyhow::anyhow!(
+                    "pixel {:?}: cannot write the recording as JSON: {e}",
+                    tree.pixel
+                )
+            })?;
+            emit(&format!(
+                "{}\n",
+                serde_json::to_string_pretty(&tree.to_json())?
+            ))?
+        }
+        InspectFormat::Dot => emit(&dot(tree))?,
+    }
+    Ok(ExitCode::SUCCESS)
+}

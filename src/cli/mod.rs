@@ -1,0 +1,60 @@
+//! The command line: clap's definitions in `args.rs`, and one file per
+//! command's body (`render.rs`, `inspect.rs`, `explain.rs`, `compare.rs`,
+//! `diagram.rs`; the debugger is `crate::tui::run`). The three commands on
+//! one pixel share `recorded.rs`: the scene loaded, `--set` applied and
+//! the pixel recorded.
+
+use std::path::Path;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+
+use crate::scene::{self, Scene};
+
+mod args;
+mod compare;
+mod diagram;
+mod explain;
+mod inspect;
+mod recorded;
+mod render;
+
+pub use args::*;
+
+/// Loads a scene (or the built-in one) and applies `--size`.
+pub fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
+    let scene = scene::builtin::load_file_or_builtin(path)?;
+    Ok(match size.size {
+        Some((w, h)) => scene.with_size(w, h)?,
+        None => scene,
+    })
+}
+
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Inspect(args)) => inspect::run(&args),
+        Some(Command::Explain(args)) => explain::run(&args),
+        Some(Command::Compare(args)) => compare::run(&args),
+        Some(Command::Diagram(args)) => diagram::run(&args),
+        Some(Command::Debug(args)) => debug(&args),
+        None => debug(&cli.debug),
+    }
+}
+
+/// `raystep [debug] [SCENE] [--compare IMAGE.png] [--pixel X,Y]`.
+fn debug(args: &DebugArgs) -> Result<ExitCode> {
+    crate::tui::run(args.scene.as_deref(), args.compare.as_deref(), args.pixel)
+}
+
+/// Writes to stdout; a reader that closed the pipe early (`| head`) is not an error.
+fn emit(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(e).context("cannot write to stdout")
+        }
+        _ => Ok(()),
+    }
+}
