@@ -87,14 +87,15 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
                 .red(),
         ]);
     }
-    let view = match app.picture() {
+    // On screen a picture is a "view", the `v` key's word.
+    let picture = match app.picture() {
         Picture::Render => None,
         Picture::Term(term) => Some(term.name()),
         Picture::Yours => Some("yours"),
         Picture::ErrorMap => Some("error map"),
     };
-    if let Some(view) = view {
-        right.extend([sep(), Span::raw(format!("view: {view}")).bold().yellow()]);
+    if let Some(picture) = picture {
+        right.extend([sep(), Span::raw(format!("view: {picture}")).bold().yellow()]);
     }
     right
 }

@@ -1,6 +1,6 @@
-//! The image pane: the render (or a term image) with the pixel cursor, the
-//! selected pixel's coordinates and colour in the title, and the term
-//! view's legend at the bottom.
+//! The image pane: its picture (the render, a term image, yours or the
+//! error map) with the pixel cursor, the selected pixel's coordinates and
+//! colour in the title, and a term image's legend at the bottom.
 
 use ratatui::Frame;
 use ratatui::buffer::Buffer;
@@ -36,7 +36,7 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         block = block.title_bottom(term_legend(app, term).right_aligned());
     }
     if let Some(c) = app.comparison() {
-        // The ranking stays in sight while comparing, whatever the view.
+        // The ranking stays in sight while comparing, whatever the picture.
         let ranking = mistakes_menu::ranking(&c.mistakes, c.matches);
         block = block.title_bottom(Line::from(format!(" compare: {ranking} ")).bold().yellow());
     }
@@ -79,8 +79,8 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     }
 }
 
-/// The term view's legend: the view's name, the selected pixel's value,
-/// and the scale of a count view.
+/// A term image's legend: the term's name, the selected pixel's value,
+/// and the scale of a count image (rays, cost).
 fn term_legend(app: &App, term: Term) -> Line<'static> {
     let Some(terms) = app.terms() else {
         return Line::raw(format!(" {}: rendering… ", term.name()));
