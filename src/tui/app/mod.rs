@@ -32,7 +32,7 @@ use crate::record::{NEAR_MISS_SCENE_LIMIT, NodeId, RayTree};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::terms::{Term, TermImages};
 
-pub use super::action::{Action, Find, Pane, Picture};
+use super::action::{Action, Find, Pane, Picture};
 use super::keymap::Mode;
 use super::render_job::Progress;
 use super::source::SceneSource;
@@ -294,7 +294,9 @@ impl App {
 
     /// A teaching toggle: the new settings traced, and what it did said.
     fn toggle(&mut self, action: Action) {
-        let (settings, message) = self.session.toggled(action);
+        let Some((settings, message)) = self.session.toggled(action) else {
+            return;
+        };
         if let Some(settings) = settings {
             self.apply_settings(settings);
         }

@@ -92,10 +92,10 @@ impl Session {
         }
     }
 
-    /// The settings a teaching toggle asks for (`Toggle`, `ToggleSpecular`,
-    /// `Depth`, `ToggleMistake`), if it changes them, and what the status
-    /// line says.
-    pub(super) fn toggled(&self, action: Action) -> (Option<Settings>, String) {
+    /// For a teaching toggle (`Toggle`, `ToggleSpecular`, `Depth`,
+    /// `ToggleMistake`): the settings it asks for, if it changes them, and
+    /// what the status line says. `None` for any other action.
+    pub(super) fn toggled(&self, action: Action) -> Option<(Option<Settings>, String)> {
         let mut settings = self.settings;
         let on_off = |on: bool| if on { "on" } else { "off" };
         let message = match action {
@@ -120,7 +120,7 @@ impl Session {
                         "max depth stays {}: it goes from 1 to {MAX_DEPTH}",
                         settings.max_depth
                     );
-                    return (None, message);
+                    return Some((None, message));
                 }
                 settings.max_depth = depth as u32;
                 format!("max depth {depth}")
@@ -130,9 +130,9 @@ impl Session {
                 let state = on_off(settings.mistakes.contains(mistake));
                 format!("mistake {mistake} {state}")
             }
-            _ => return (None, String::new()),
+            _ => return None,
         };
-        (Some(settings), message)
+        Some((Some(settings), message))
     }
 
     pub(super) fn set_settings(&mut self, settings: Settings) {
