@@ -28,7 +28,7 @@ use ratatui::layout::{Position, Rect};
 
 use crate::compare::{self, Comparison, StudentImage};
 use crate::diagram::DiagramPlane;
-use crate::record::{NEAR_MISS_SCENE_LIMIT, NodeId, RayTree};
+use crate::record::{NodeId, RayTree};
 use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::terms::{Term, TermImages};
 
@@ -358,46 +358,14 @@ impl App {
     }
 
     /// Starts looking for the next pixel in reading order whose recording
-    /// has `what` (its first such event current when found), in the
-    /// background: a pick, a toggle, another find or quitting cancels it.
+    /// has `what`, in the background: a pick, a toggle, another find or
+    /// quitting cancels it.
     fn find(&mut self, what: Find) {
         self.search = None;
-        let objects = self.scene().objects.len();
-        let object = match what {
-            Find::BreakObject => match self.pixel.choose_break_target() {
-                Some(object) => Some(object),
-                None => {
-                    self.message =
-                        Some("no breakpoint object: press X to choose one, then f x".into());
-                    return;
-                }
-            },
-            Find::NearMiss if objects > NEAR_MISS_SCENE_LIMIT => {
-                // Not recorded on big scenes: "none in the image" would mislead.
-                self.message = Some(format!(
-                    "near misses are recorded only in scenes of at most {NEAR_MISS_SCENE_LIMIT} objects; this one has {objects}"
-                ));
-                return;
-            }
-            Find::NearMiss => self.break_object(),
-            _ => None,
-        };
-        let what_text = match (what, object) {
-            (Find::BreakObject, Some(object)) => {
-                format!("a hit on {}", self.scene().object_name(object))
-            }
-            (Find::NearMiss, Some(object)) => {
-                format!("a near miss of {}", self.scene().object_name(object))
-            }
-            _ => what.what().to_string(),
-        };
-        self.search = Some(Search::start(
-            (self.session.shared_scene(), *self.settings()),
-            (what, object),
-            what_text,
-            self.cursor(),
-            self.sync,
-        ));
+        match Search::start(what, &mut self.pixel, &self.session, self.sync) {
+            Ok(search) => self.search = Some(search),
+            Err(why) => self.message = Some(why),
+        }
     }
 
     /// Takes in the running find's result once it has one.

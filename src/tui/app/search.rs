@@ -1,12 +1,14 @@
 //! A find across the image under way (`f` then a key): the background job,
 //! and what the status line and the result say about it.
 
-use std::sync::Arc;
 use std::time::Instant;
 
-use crate::scene::{Scene, Settings};
+use crate::record::NEAR_MISS_SCENE_LIMIT;
 use crate::tui::action::Find;
 use crate::tui::find_job::{FindJob, Found};
+
+use super::pixel::TracedPixel;
+use super::session::Session;
 
 pub struct Search {
     job: FindJob,
@@ -18,21 +20,48 @@ pub struct Search {
 }
 
 impl Search {
-    /// Looks for the next pixel after `from` whose recording has `find`
-    /// (of `object`, see `find::first_event`), said as `what`.
+    /// Looks for the next pixel after the cursor whose recording has
+    /// `find` (its first such event current when found). The `x` object, when
+    /// the find needs one, becomes the breakpoint object; why not, when
+    /// there is nothing to look for.
     pub(super) fn start(
-        (scene, settings): (Arc<Scene>, Settings),
-        (find, object): (Find, Option<usize>),
-        what: String,
-        from: (u32, u32),
+        find: Find,
+        pixel: &mut TracedPixel,
+        session: &Session,
         sync: bool,
-    ) -> Search {
-        Search {
-            job: FindJob::start(scene, settings, (find, object), from, sync),
+    ) -> Result<Search, String> {
+        let scene = session.scene();
+        let object = match find {
+            Find::BreakObject => Some(
+                pixel
+                    .choose_break_target()
+                    .ok_or("no breakpoint object: press X to choose one, then f x".to_string())?,
+            ),
+            Find::NearMiss if scene.objects.len() > NEAR_MISS_SCENE_LIMIT => {
+                // Not recorded on big scenes: "none in the image" would mislead.
+                return Err(format!(
+                    "near misses are recorded only in scenes of at most {NEAR_MISS_SCENE_LIMIT} objects; this one has {}",
+                    scene.objects.len()
+                ));
+            }
+            Find::NearMiss => pixel.break_object(),
+            _ => None,
+        };
+        let what = match (find, object) {
+            (Find::BreakObject, Some(object)) => format!("a hit on {}", scene.object_name(object)),
+            (Find::NearMiss, Some(object)) => {
+                format!("a near miss of {}", scene.object_name(object))
+            }
+            _ => find.what().to_string(),
+        };
+        let from = pixel.cursor();
+        let job = (session.shared_scene(), *session.settings());
+        Ok(Search {
+            job: FindJob::start(job.0, job.1, (find, object), from, sync),
             what,
             from,
             started: Instant::now(),
-        }
+        })
     }
 
     /// What it looks for and the row it is on, from 0.
