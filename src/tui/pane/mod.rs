@@ -55,14 +55,12 @@ pub fn draw(frame: &mut Frame, app: &App) {
         frame.render_widget(Paragraph::new(error).red().block(block), panes.banner);
     }
     frame.render_widget(bars::status(app), panes.status);
-    match app.overlay() {
-        Some(Overlay::Help { scroll }) => help::draw(frame, area, *scroll),
-        Some(Overlay::MistakesMenu) => {
-            let selected = app.mistake_menu().unwrap_or(0);
-            mistakes_menu::draw(frame, app, area, selected);
-        }
-        // The prompt and `f` speak in the status line.
-        Some(Overlay::Prompt(_) | Overlay::Find) | None => {}
+    // The prompt and `f` speak in the status line; these two draw over the panes.
+    if let Some(selected) = app.mistake_menu() {
+        mistakes_menu::draw(frame, app, area, selected);
+    }
+    if let Some(Overlay::Help { scroll }) = app.overlay() {
+        help::draw(frame, area, *scroll);
     }
 }
 
