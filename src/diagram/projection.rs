@@ -1,8 +1,7 @@
 //! The ray diagram's geometry: the plane a pixel's rays are drawn on, and
-//! the 2-D shapes of the diagram (object outlines, the eye, the lights and
-//! every ray), each already projected, so the drawing code only paints. The
-//! debugger's diagram pane and the SVG figure of `raystep diagram` both draw
-//! these; neither the step-through nor any drawing lives here.
+//! the 2-D shapes on it (object outlines and every ray), each already
+//! projected. `assembly.rs` builds the diagram from these; no drawing
+//! lives here.
 
 use glam::{DVec2, DVec3};
 
