@@ -16,8 +16,7 @@ pub use assembly::{
     PassedMark, Role,
 };
 pub use projection::{
-    BlockerMark, CurrentRay, DiagramPlane, Outline, Progress, Projection, Segment, Stroke,
-    magnified_centre, outline, ray_segments, shadow_stroke,
+    BlockerMark, CurrentRay, DiagramPlane, Outline, Progress, Segment, Stroke, magnified_centre,
 };
 
 #[cfg(test)]

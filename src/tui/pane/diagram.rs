@@ -22,7 +22,14 @@ use crate::tui::view::labels::{Wanted, cell, place};
 use crate::tui::view::pan_zoom::PanZoom;
 use crate::tui::view::stepper::progress;
 
-pub fn stroke_color(stroke: Stroke) -> Color {
+/// The passed-by ring, and its and the faces-away line's key entries.
+const PASSED_BY: &str = "○";
+const PASSED_BY_KEY: &str = "○ passed by";
+const FACES_AWAY_KEY: &str = "┈ light faces away";
+/// Marks that are no ray: passed-by rings and faces-away lines.
+const MARK_GREY: Color = Color::Gray;
+
+fn stroke_color(stroke: Stroke) -> Color {
     match stroke {
         Stroke::Primary => Color::Cyan,
         Stroke::Reflected => Color::Magenta,
@@ -53,8 +60,8 @@ fn legend() -> TextLine<'static> {
     ])
 }
 
-/// The world rectangle shown: every ray, light and met object, with a
-/// margin, stretched so that one unit is as wide as it is tall on screen
+/// The world rectangle shown: the diagram's extent (every ray, the eye,
+/// the lights, what the rays meet or pass by), with a margin, stretched so that one unit is as wide as it is tall on screen
 /// (a Braille dot is about square).
 fn bounds(points: &[DVec2], area: Rect) -> ([f64; 2], [f64; 2]) {
     let min = points.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
@@ -135,13 +142,6 @@ fn mark_key(diagram: &Diagram) -> Vec<(&'static str, Color)> {
         .collect()
 }
 
-/// The passed-by ring and the faces-away line's legend entries.
-const PASSED_BY: &str = "○";
-const PASSED_BY_KEY: &str = "○ passed by";
-const FACES_AWAY_KEY: &str = "┈ light faces away";
-/// Marks that are no ray: passed-by rings and faces-away lines.
-const MARK_GREY: Color = Color::Gray;
-
 /// Draws the app's diagram into `area` (block included): its pixel's tree
 /// at its current event, on its plane, panned and zoomed as it says.
 pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
@@ -158,7 +158,7 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
 /// Paints `diagram` (of a pixel of `scene`) into `area`, the block's border
 /// holding the ray key, its window fitted to the diagram then panned and
 /// zoomed by `view`.
-pub fn draw(
+fn draw(
     area: Rect,
     buf: &mut ratatui::buffer::Buffer,
     block: Block,

@@ -1,6 +1,6 @@
 //! Where the diagram's labels go in the terminal, so that none is written
-//! over another: a marker (the eye's ◉, a light's ☼, a blocker's ×) sits
-//! on its point's cell or is left out when an earlier marker has it; a name
+//! over another: a marker (the eye's ◉, a light's ☼, a blocker's ×, a
+//! passed-by ring's ○) sits on its point's cell or is left out when an earlier marker has it; a name
 //! goes where it is asked (right of its marker, for the eye and the lights),
 //! else above, below, left or further out, at the first place where it
 //! meets no placed label; with no room anywhere it is
