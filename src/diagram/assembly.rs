@@ -95,6 +95,7 @@ pub enum Named {
     Eye,
     Light,
     Object(usize),
+    /// The index of its mark in `Diagram::passed`.
     PassedBy(usize),
 }
 
@@ -264,8 +265,8 @@ impl Diagram {
                 },
             });
         }
-        labels.extend(self.passed.iter().map(|m| Label {
-            named: Named::PassedBy(m.object),
+        labels.extend(self.passed.iter().enumerate().map(|(i, m)| Label {
+            named: Named::PassedBy(i),
             // An object named at its outline already: "passed by" alone.
             text: if self.met(m.object) {
                 "passed by".to_string()
@@ -428,7 +429,7 @@ sphere = { center = [0.9, 0.9, 4], radius = 1 }
                 named(Named::Light, "lamp"),
                 named(Named::Light, "back"),
                 named(Named::Object(0), "ball"),
-                named(Named::PassedBy(1), "pebble: passed by"),
+                named(Named::PassedBy(0), "pebble: passed by"),
             ]
         );
         // Every row but the partly blocked shadow ray's (none here).

@@ -222,6 +222,7 @@ fn draw(
     labels.extend(
         (diagram.blockers.iter()).map(|b| Label::marker(b.at, "×", stroke_color(b.stroke))),
     );
+    let rings = labels.len();
     labels.extend((diagram.passed.iter()).map(|m| Label::marker(m.at, PASSED_BY, MARK_GREY)));
     let key = mark_key(diagram);
     let key_rows = key.len() as i32;
@@ -236,7 +237,16 @@ fn draw(
         let (point, after, colour) = match (label.named, label.anchor) {
             (Named::Eye, Anchor::Point(p)) => (p, 2, Color::Cyan),
             (Named::Light, Anchor::Point(p)) => (p, 2, Color::Yellow),
-            (Named::PassedBy(_), Anchor::Point(p)) => (p, 2, MARK_GREY),
+            (Named::PassedBy(mark), Anchor::Point(p)) => {
+                // Said only beside its ring: on a cell another marker took,
+                // it would name that one.
+                let name = Label::named(p, label.text, 2, MARK_GREY);
+                labels.push(Label {
+                    with: Some(rings + mark),
+                    ..name
+                });
+                continue;
+            }
             (_, Anchor::Point(p)) => (p, 0, Color::DarkGray),
             (_, Anchor::Outline { outline, hits }) => {
                 let Some(at) = label_point(outline, hits.first().copied()) else {
@@ -273,6 +283,8 @@ struct Label<'a> {
     text: Cow<'a, str>,
     marker: bool,
     colour: Color,
+    /// Shown only with the label at this index (a ring's name with it).
+    with: Option<usize>,
 }
 
 /// Where a label is asked for.
@@ -290,6 +302,7 @@ impl<'a> Label<'a> {
             text: Cow::Borrowed(text),
             marker: true,
             colour,
+            with: None,
         }
     }
 
@@ -299,6 +312,7 @@ impl<'a> Label<'a> {
             text: text.into(),
             marker: false,
             colour,
+            with: None,
         }
     }
 
@@ -308,6 +322,7 @@ impl<'a> Label<'a> {
             text: Cow::Borrowed(text),
             marker: false,
             colour,
+            with: None,
         }
     }
 }
@@ -321,10 +336,13 @@ fn write_labels(
     labels: &[Label],
 ) {
     let size = (inner.width, inner.height);
+    // Where each label is among those shown (a companion's index moves).
+    let mut shown_at = vec![None; labels.len()];
     let shown: Vec<(Wanted, &Label)> = labels
         .iter()
-        .filter(|l| !l.text.is_empty())
-        .filter_map(|l| {
+        .enumerate()
+        .filter(|(_, l)| !l.text.is_empty())
+        .filter_map(|(i, l)| {
             let at = match l.at {
                 Place::Point { point, after } => {
                     let (col, row) = cell((point.x, point.y), x, y, size)?;
@@ -332,11 +350,15 @@ fn write_labels(
                 }
                 Place::Cell(at) => at,
             };
+            // A companion not shown: `place` leaves the label out with it.
+            let with = l.with.map(|c| shown_at[c].unwrap_or(usize::MAX));
+            shown_at[i] = Some(shown_at.iter().flatten().count());
             Some((
                 Wanted {
                     at,
                     text: &l.text,
                     fixed: l.marker,
+                    with,
                 },
                 l,
             ))
