@@ -6,11 +6,10 @@
 
 use glam::{DVec2, DVec3};
 
-use super::projection::{
-    BlockerMark, DiagramPlane, Outline, Progress, Projection, Segment, Stroke, involved_objects,
-    outline, ray_segments,
-};
-use crate::record::{NearMiss, Node, RayTree};
+use super::outline::{Outline, outline};
+use super::projection::{DiagramPlane, Projection};
+use super::rays::{BlockerMark, Progress, Segment, Stroke, ray_segments};
+use crate::record::{EventKind, NearMiss, Node, RayTree};
 use crate::scene::Scene;
 use crate::shapes::Shape;
 
@@ -51,6 +50,21 @@ pub struct LightMark {
 pub struct HitMark {
     pub object: usize,
     pub at: DVec2,
+}
+
+/// The objects this pixel's rays meet: hit by a ray or blocking a shadow ray.
+fn involved_objects(tree: &RayTree) -> Vec<usize> {
+    let mut objects: Vec<usize> = tree
+        .events
+        .iter()
+        .filter_map(|e| match e.kind {
+            EventKind::Hit { object, .. } | EventKind::Blocker { object, .. } => Some(object),
+            _ => None,
+        })
+        .collect();
+    objects.sort_unstable();
+    objects.dedup();
+    objects
 }
 
 /// Where a ray passed an object by: where it crosses a polygon's plane, or
