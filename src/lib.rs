@@ -8,7 +8,6 @@ pub mod camera;
 pub mod cli;
 pub mod compare;
 pub mod diagram;
-pub mod figure;
 pub mod math;
 pub mod mistakes;
 pub mod object;

@@ -11,7 +11,7 @@ use crate::output::{self, Target};
 use crate::record::RayTree;
 
 pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
-    use crate::diagram::DiagramPlane;
+    use crate::diagram::{Diagram, DiagramPlane, Progress, svg};
     let target = output::file(&args.output)?;
     output::refuse_clashes(
         &args.pixel.scene,
@@ -29,14 +29,18 @@ pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
         PlaneArg::Ray => DiagramPlane::Primary,
         PlaneArg::Crossing => return crossing_figure(&recorded.tree, &target),
     };
-    let figure = crate::figure::svg(&recorded.scene, &recorded.tree, plane, args.zoom);
+    let (scene, tree) = (&recorded.scene, &recorded.tree);
+    let figure = svg::figure(
+        &Diagram::new(scene, tree, plane, Progress::done(tree)),
+        args.zoom,
+    );
     output::write_text(&target, &figure)?;
     Ok(ExitCode::SUCCESS)
 }
 
 /// `--plane crossing`: the first polygon hit, or else passed by; none is an error.
 fn crossing_figure(tree: &RayTree, target: &Target) -> Result<ExitCode> {
-    use crate::figure::crossing;
+    use crate::diagram::svg::crossing;
     let Some(subject) = crossing::subject(tree) else {
         anyhow::bail!(
             "pixel ({}, {}): no ray of its tree hits a polygon or patch or passes one by, \

@@ -341,7 +341,7 @@ fn readme_layout_names_every_folder_of_the_debugger() {
 #[test]
 fn only_the_command_line_reaches_into_the_debugger() {
     // The SVG figure, the recording and the renderer are no part of the
-    // debugger; what they share with it (the diagram's projection) lives
+    // debugger; what they share with it (the assembled ray diagram) lives
     // outside `src/tui/`. Only `cli.rs` launches the debugger.
     let graph = module_graph(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
     assert!(graph["cli"].contains("tui"), "the reader sees cli -> tui");
@@ -391,4 +391,41 @@ fn every_path_that_model_and_readme_name_exists() {
         named_paths(example).into_iter().collect::<Vec<_>>(),
         ["src/a.rs", "tests/b/"]
     );
+}
+
+#[test]
+fn the_diagram_is_assembled_once_and_the_media_only_draw_it() {
+    // src/diagram/ assembles the ray diagram knowing neither medium: no
+    // file of it outside svg/ names the SVG writer, the debugger or
+    // ratatui. The two media (svg/ and the debugger's diagram pane) take
+    // the assembled diagram: neither projects rays or picks the objects
+    // itself, as each did when they drifted apart.
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let diagram = src.join("diagram");
+    for file in rust_files(&diagram) {
+        if file.starts_with(diagram.join("svg")) {
+            continue;
+        }
+        let segments = path_segments(&fs::read_to_string(&file).unwrap());
+        for medium in ["svg", "tui", "ratatui"] {
+            assert!(
+                !segments.contains(medium),
+                "{} names {medium}",
+                file.display()
+            );
+        }
+    }
+    let mut media = rust_files(&diagram.join("svg"));
+    media.push(src.join("tui/pane/diagram.rs"));
+    for file in media {
+        let text = fs::read_to_string(&file).unwrap();
+        let library = text.split("#[cfg(test)]").next().unwrap_or_default();
+        for assembling in ["ray_segments", "involved_objects", "Projection"] {
+            assert!(
+                !library.contains(assembling),
+                "{} assembles the diagram itself ({assembling})",
+                file.display()
+            );
+        }
+    }
 }

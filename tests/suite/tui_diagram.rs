@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use crossterm::event::KeyCode;
 use ratatui::layout::Rect;
+use raystep::diagram::{Diagram, Progress};
 use raystep::tui::{Action, App, Pane};
 
 use crate::support::debugger::*;
@@ -177,4 +178,57 @@ fn a_plane_hit_by_a_ray_is_named() {
     app.update(Action::Pick(40, 54));
     let text = diagram_rows(&mut app).join("\n");
     assert!(text.contains("back wall"), "{text}");
+}
+
+/// The diagram pane's bottom-right corner rows, where the key to its
+/// marks goes.
+fn key_rows(app: &mut App) -> String {
+    let rows = diagram_rows(app);
+    rows[rows.len() - 2..].join("\n")
+}
+
+#[test]
+fn a_polygon_passed_by_is_ringed_in_the_pane_as_in_the_figure() {
+    // polygons.toml's pixel (40, 54): the primary ray passes the star by
+    // (tests/figure.rs: the SVG rings it). The pane showed no ring: now a
+    // ○ where the ray crosses the star's plane, "passed by" beside it (the
+    // star, which blocks a shadow ray, is named at its outline already)
+    // and in the key; no light faces away from the back wall's hit, so
+    // no dotted line's key.
+    let mut app = App::open(Some(PathBuf::from("scenes/polygons.toml")), true).unwrap();
+    app.update(Action::Pick(40, 54));
+    let text = diagram_rows(&mut app).join("\n");
+    assert_eq!(text.matches('○').count(), 1 + 1, "ring and key: {text}");
+    assert!(key_rows(&mut app).contains("○ passed by"), "{text}");
+    assert_eq!(text.matches("passed by").count(), 2, "{text}");
+    assert!(!text.contains("faces away"), "{text}");
+    // The same marks as `raystep diagram` draws from the same assembly.
+    let scene = raystep::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 40, 54);
+    let diagram = Diagram::new(&scene, &tree, app.plane(), Progress::done(&tree));
+    let svg = raystep::diagram::svg::figure(&diagram, 1.0);
+    assert_eq!(diagram.passed.len(), 1);
+    assert_eq!(svg.matches("class=\"passed-by\"").count(), 1);
+    assert!(!svg.contains("light facing away"));
+}
+
+#[test]
+fn a_light_facing_away_is_dotted_and_keyed_in_the_pane() {
+    // glass.toml's pixel (135, 58): two lights face away from hits (the
+    // figure's test counts them); the pane's key says what the grey
+    // dotted lines are, as the SVG's legend does. No ray passes anything
+    // by: no ring in either.
+    let mut app = App::open(Some(PathBuf::from("scenes/glass.toml")), true).unwrap();
+    app.update(Action::Pick(135, 58));
+    let text = diagram_rows(&mut app).join("\n");
+    assert!(key_rows(&mut app).contains("┈ light faces away"), "{text}");
+    assert!(!text.contains('○'), "{text}");
+    let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    let diagram = Diagram::new(&scene, &tree, app.plane(), Progress::done(&tree));
+    assert_eq!(diagram.faces_away.len(), 2);
+    assert!(diagram.passed.is_empty());
+    let svg = raystep::diagram::svg::figure(&diagram, 1.0);
+    assert!(svg.contains(">light facing away (no shadow ray)<"));
+    assert!(!svg.contains("class=\"passed-by\""));
 }

@@ -1,28 +1,35 @@
 //! The ray diagram pane: the textbook figure of the selected pixel's ray
-//! tree, drawn in Braille on a ratatui `Canvas` — object outlines, the eye,
-//! the lights, every ray, and the current event's ray in white.
+//! tree, drawn in Braille on a ratatui `Canvas`. It only draws the
+//! assembled `crate::diagram::Diagram` (the one `raystep diagram` writes as
+//! SVG): object outlines, the eye (◉), the lights (☼), every ray with the
+//! current event's in white, blockers (×), passed-by rings (○) and dotted
+//! lines to lights that face away.
+
+use std::borrow::Cow;
 
 use glam::DVec2;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line as TextLine, Span};
-use ratatui::widgets::canvas::{Canvas, Circle, Context, Line};
+use ratatui::widgets::canvas::{Canvas, Circle, Context, Line, Points};
 use ratatui::widgets::{Block, Widget};
 
+use crate::diagram::{Anchor, Diagram, LegendRow, Named, ObjectOutline, Outline, Segment, Stroke};
 use crate::math::to_rgb8;
 use crate::scene::Scene;
-
-use crate::diagram::{
-    Outline, Projection, Segment, Stroke, involved_objects, outline, ray_segments,
-};
 use crate::tui::App;
 use crate::tui::view::labels::{Wanted, cell, place};
+use crate::tui::view::pan_zoom::PanZoom;
 use crate::tui::view::stepper::progress;
 
-/// Scenes with more objects show only those the pixel's rays meet.
-const MAX_OUTLINES: usize = 300;
+/// The passed-by ring, and its and the faces-away line's key entries.
+const PASSED_BY: &str = "○";
+const PASSED_BY_KEY: &str = "○ passed by";
+const FACES_AWAY_KEY: &str = "┈ light faces away";
+/// Marks that are no ray: passed-by rings and faces-away lines.
+const MARK_GREY: Color = Color::Gray;
 
-pub fn stroke_color(stroke: Stroke) -> Color {
+fn stroke_color(stroke: Stroke) -> Color {
     match stroke {
         Stroke::Primary => Color::Cyan,
         Stroke::Reflected => Color::Magenta,
@@ -36,8 +43,9 @@ pub fn stroke_color(stroke: Stroke) -> Color {
     }
 }
 
-/// The legend line for the pane's bottom border.
-pub fn legend() -> TextLine<'static> {
+/// The ray key for the pane's bottom border (the marks' key goes in
+/// the drawing: a narrow pane's border has no room left).
+fn legend() -> TextLine<'static> {
     let item = |name: &'static str, stroke| {
         Span::styled(format!(" {name}"), Style::new().fg(stroke_color(stroke)))
     };
@@ -52,8 +60,8 @@ pub fn legend() -> TextLine<'static> {
     ])
 }
 
-/// The world rectangle shown: every ray, light and met object, with a
-/// margin, stretched so that one unit is as wide as it is tall on screen
+/// The world rectangle shown: the diagram's extent (every ray, the eye,
+/// the lights, what the rays meet or pass by), with a margin, stretched so that one unit is as wide as it is tall on screen
 /// (a Braille dot is about square).
 fn bounds(points: &[DVec2], area: Rect) -> ([f64; 2], [f64; 2]) {
     let min = points.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
@@ -122,49 +130,74 @@ fn object_color(scene: &Scene, object: usize) -> Color {
     Color::Rgb(r, g, b)
 }
 
+/// The marks the ray key in the border has no room for: drawn in the
+/// drawing's bottom-right corner, only when the diagram holds one.
+fn mark_key(diagram: &Diagram) -> Vec<(&'static str, Color)> {
+    (diagram.legend().iter())
+        .filter_map(|row| match row {
+            LegendRow::PassedBy => Some((PASSED_BY_KEY, MARK_GREY)),
+            LegendRow::FacesAway => Some((FACES_AWAY_KEY, MARK_GREY)),
+            _ => None,
+        })
+        .collect()
+}
+
 /// Draws the app's diagram into `area` (block included): its pixel's tree
 /// at its current event, on its plane, panned and zoomed as it says.
 pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
-    let (scene, tree, current) = (app.scene(), app.tree(), app.current());
-    let (plane, view) = (app.plane(), app.diagram_pan_zoom());
+    let tree = app.tree();
+    let diagram = Diagram::new(
+        app.scene(),
+        tree,
+        app.plane(),
+        progress(tree, app.current()),
+    );
+    draw(
+        area,
+        buf,
+        block,
+        &diagram,
+        app.scene(),
+        app.diagram_pan_zoom(),
+    );
+}
+
+/// Paints `diagram` (of a pixel of `scene`) into `area`, the block's border
+/// holding the ray key, its window fitted to the diagram then panned and
+/// zoomed by `view`.
+fn draw(
+    area: Rect,
+    buf: &mut ratatui::buffer::Buffer,
+    block: Block,
+    diagram: &Diagram,
+    scene: &Scene,
+    view: PanZoom,
+) {
+    let block = block.title_bottom(legend());
     let inner = block.inner(area);
-    let projection = Projection::new(plane, scene, tree);
-    let (segments, blockers) = ray_segments(tree, scene, &projection, progress(tree, current));
-    let involved = involved_objects(tree);
-    let shown: Vec<usize> = if scene.objects.len() <= MAX_OUTLINES {
-        (0..scene.objects.len()).collect()
-    } else {
-        involved.clone()
-    };
-    let outlines: Vec<(usize, Vec<Outline>)> = shown
-        .iter()
-        .map(|&i| (i, outline(&scene.objects[i].shape, &projection)))
-        .collect();
-    let eye = projection.project(scene.camera.eye);
-    let lights: Vec<(DVec2, &str)> = scene
-        .lights
-        .iter()
-        .map(|l| (projection.project(l.position), l.name.as_str()))
-        .collect();
-    let mut points: Vec<DVec2> = segments.iter().flat_map(|s| [s.from, s.to]).collect();
-    points.push(eye);
-    points.extend(lights.iter().map(|l| l.0));
-    for (i, shapes) in &outlines {
-        if involved.contains(i) {
-            points.extend(shapes.iter().flat_map(Outline::points));
-        }
-    }
-    let (x, y) = bounds(&points, inner);
+    let (x, y) = bounds(&diagram.extent(), inner);
     // The projection's origin is the primary ray's first hit (the eye on
     // a miss): the zoom magnifies about it, as `raystep diagram --zoom`.
     let (x, y) = view.window(x, y, (0.0, 0.0));
+    // In object order, as the scene lists them: where two cross, the later
+    // one's colour shows.
+    let mut objects: Vec<&ObjectOutline> = diagram.objects.iter().collect();
+    objects.sort_by_key(|o| o.object);
+    // A dot every third Braille dot across.
+    let spacing = 3.0 * (x[1] - x[0]) / (f64::from(inner.width.max(1)) * 2.0);
     let paint = |ctx: &mut Context| {
-        for (i, shapes) in &outlines {
-            for shape in shapes {
-                draw_outline(ctx, shape, object_color(scene, *i), x, y);
+        for object in &objects {
+            for shape in &object.shapes {
+                draw_outline(ctx, shape, object_color(scene, object.object), x, y);
             }
         }
         ctx.layer();
+        for line in &diagram.faces_away {
+            ctx.draw(&Points {
+                coords: &dotted(line.hit, line.light, spacing),
+                color: MARK_GREY,
+            });
+        }
         let draw = |ctx: &mut Context, s: &Segment| {
             ctx.draw(&Line::new(
                 s.from.x,
@@ -174,13 +207,11 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
                 stroke_color(s.stroke),
             ));
         };
-        segments
-            .iter()
+        (diagram.segments.iter())
             .filter(|s| s.stroke != Stroke::Current)
             .for_each(|s| draw(ctx, s));
         ctx.layer();
-        segments
-            .iter()
+        (diagram.segments.iter())
             .filter(|s| s.stroke == Stroke::Current)
             .for_each(|s| draw(ctx, s));
     };
@@ -190,64 +221,115 @@ pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: 
         .y_bounds(y)
         .paint(paint)
         .render(area, buf);
-    // Most important first: the eye, the lights, the blockers, then names;
-    // the eye's and lights' markers keep a blank cell before their name.
-    let mut labels = vec![Label::marker(eye, "◉ ", Color::Cyan)];
+    // Most important first: the eye, the lights, the blockers, the
+    // passed-by rings, the key to the marks, then names; the eye's and
+    // lights' markers keep a blank cell before their name.
+    let mut labels = vec![Label::marker(diagram.eye, "◉ ", Color::Cyan)];
+    labels.extend((diagram.lights.iter()).map(|l| Label::marker(l.at, "☼ ", Color::Yellow)));
     labels.extend(
-        lights
-            .iter()
-            .map(|(p, _)| Label::marker(*p, "☼ ", Color::Yellow)),
+        (diagram.blockers.iter()).map(|b| Label::marker(b.at, "×", stroke_color(b.stroke))),
     );
-    labels.extend(
-        blockers
-            .iter()
-            .map(|b| Label::marker(b.at, "×", stroke_color(b.stroke))),
-    );
-    labels.push(Label::named(eye, "eye", 2, Color::Cyan));
-    labels.extend(
-        lights
-            .iter()
-            .map(|(p, name)| Label::named(*p, name, 2, Color::Yellow)),
-    );
-    for (i, shapes) in outlines.iter().filter(|(i, _)| involved.contains(i)) {
-        let hit = (tree.nodes.iter())
-            .filter_map(|n| n.hit.as_ref())
-            .find(|h| h.object_index == *i)
-            .map(|h| projection.project(h.point));
-        if let Some(at) = shapes.first().and_then(|s| label_point(s, hit)) {
-            let name = &scene.objects[*i].name;
-            labels.push(Label::named(at, name, 0, Color::DarkGray));
-        }
+    let rings = labels.len();
+    labels.extend((diagram.passed.iter()).map(|m| Label::marker(m.at, PASSED_BY, MARK_GREY)));
+    let key = mark_key(diagram);
+    let key_rows = key.len() as i32;
+    let keys = key.iter().enumerate().map(|(i, (text, colour))| {
+        // Right-aligned on the drawing's last rows.
+        let col = i32::from(inner.width) - text.chars().count() as i32;
+        let row = i32::from(inner.height) - key_rows + i as i32;
+        Label::at_cell((col, row), text, *colour)
+    });
+    labels.extend(keys);
+    for label in diagram.labels() {
+        let (point, after, colour) = match (label.named, label.anchor) {
+            (Named::Eye, Anchor::Point(p)) => (p, 2, Color::Cyan),
+            (Named::Light, Anchor::Point(p)) => (p, 2, Color::Yellow),
+            (Named::PassedBy(mark), Anchor::Point(p)) => {
+                // Said only beside its ring: on a cell another marker took,
+                // it would name that one.
+                let name = Label::named(p, label.text, 2, MARK_GREY);
+                labels.push(Label {
+                    with: Some(rings + mark),
+                    ..name
+                });
+                continue;
+            }
+            (_, Anchor::Point(p)) => (p, 0, Color::DarkGray),
+            (_, Anchor::Outline { outline, hits }) => {
+                let Some(at) = label_point(outline, hits.first().copied()) else {
+                    continue;
+                };
+                (at, 0, Color::DarkGray)
+            }
+        };
+        labels.push(Label::named(point, label.text, after, colour));
     }
     write_labels(buf, inner, (x, y), &labels);
 }
 
+/// Points from `a` to `b` every `spacing` (a dotted line), none when the
+/// spacing is not a positive length.
+fn dotted(a: DVec2, b: DVec2, spacing: f64) -> Vec<(f64, f64)> {
+    let n = ((b - a).length() / spacing).floor();
+    if !(n.is_finite() && n >= 1.0) {
+        return Vec::new();
+    }
+    // Bounded so that a deep zoom on a long line stays cheap.
+    let n = n.min(100_000.0) as usize;
+    (0..=n)
+        .map(|i| a.lerp(b, i as f64 / n as f64))
+        .map(|p| (p.x, p.y))
+        .collect()
+}
+
 /// A label over the drawing: a marker on its point, or a name that many
-/// cells right of it (after the eye's or a light's marker and a space).
+/// cells right of it (after the eye's or a light's marker and a space), or
+/// a key entry asked at a cell.
 struct Label<'a> {
-    point: DVec2,
-    text: &'a str,
+    at: Place,
+    text: Cow<'a, str>,
     marker: bool,
-    after: i32,
     colour: Color,
+    /// Shown only with the label at this index (a ring's name with it).
+    with: Option<usize>,
+}
+
+/// Where a label is asked for.
+enum Place {
+    /// At a point of the plane, `after` cells to its right.
+    Point { point: DVec2, after: i32 },
+    /// At a cell of the drawing area.
+    Cell((i32, i32)),
 }
 
 impl<'a> Label<'a> {
     fn marker(point: DVec2, text: &'a str, colour: Color) -> Self {
-        Self::new(point, text, true, 0, colour)
-    }
-
-    fn named(point: DVec2, text: &'a str, after: i32, colour: Color) -> Self {
-        Self::new(point, text, false, after, colour)
-    }
-
-    fn new(point: DVec2, text: &'a str, marker: bool, after: i32, colour: Color) -> Self {
         Label {
-            point,
-            text,
-            marker,
-            after,
+            at: Place::Point { point, after: 0 },
+            text: Cow::Borrowed(text),
+            marker: true,
             colour,
+            with: None,
+        }
+    }
+
+    fn named(point: DVec2, text: impl Into<Cow<'a, str>>, after: i32, colour: Color) -> Self {
+        Label {
+            at: Place::Point { point, after },
+            text: text.into(),
+            marker: false,
+            colour,
+            with: None,
+        }
+    }
+
+    fn at_cell(cell: (i32, i32), text: &'a str, colour: Color) -> Self {
+        Label {
+            at: Place::Cell(cell),
+            text: Cow::Borrowed(text),
+            marker: false,
+            colour,
+            with: None,
         }
     }
 }
@@ -261,17 +343,29 @@ fn write_labels(
     labels: &[Label],
 ) {
     let size = (inner.width, inner.height);
+    // Where each label is among those shown (a companion's index moves).
+    let mut shown_at = vec![None; labels.len()];
     let shown: Vec<(Wanted, &Label)> = labels
         .iter()
-        .filter(|l| !l.text.is_empty())
-        .filter_map(|l| {
-            let (col, row) = cell((l.point.x, l.point.y), x, y, size)?;
-            let at = (col + l.after, row);
+        .enumerate()
+        .filter(|(_, l)| !l.text.is_empty())
+        .filter_map(|(i, l)| {
+            let at = match l.at {
+                Place::Point { point, after } => {
+                    let (col, row) = cell((point.x, point.y), x, y, size)?;
+                    (col + after, row)
+                }
+                Place::Cell(at) => at,
+            };
+            // A companion not shown: `place` leaves the label out with it.
+            let with = l.with.map(|c| shown_at[c].unwrap_or(usize::MAX));
+            shown_at[i] = Some(shown_at.iter().flatten().count());
             Some((
                 Wanted {
                     at,
-                    text: l.text,
+                    text: &l.text,
                     fixed: l.marker,
+                    with,
                 },
                 l,
             ))
@@ -288,5 +382,72 @@ fn write_labels(
             &placed.text,
             style,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use ratatui::buffer::Buffer;
+
+    use super::*;
+    use crate::diagram::{DiagramPlane, Progress, pebble, svg};
+
+    #[test]
+    fn both_media_draw_the_marks_of_one_diagram() {
+        // The pebble scene's centre pixel (diagram::assembly's tests): an
+        // eye, two lights, one ring where the primary ray passes the
+        // pebble by, one light ("back") facing away from the hit, no
+        // blocker. The SVG and the pane each draw every one of them, and
+        // each names the ring and the dotted line in its legend.
+        let (scene, tree) = pebble();
+        let d = Diagram::new(&scene, &tree, DiagramPlane::Top, Progress::done(&tree));
+        let figure = svg::figure(&d, 1.0);
+        let area = Rect::new(0, 0, 60, 30);
+        let mut buf = Buffer::empty(area);
+        draw(
+            area,
+            &mut buf,
+            Block::bordered(),
+            &d,
+            &scene,
+            PanZoom::fit(),
+        );
+        let text: String = (buf.content.iter()).map(|c| c.symbol()).collect();
+
+        assert_eq!(figure.matches("class=\"passed-by\"").count(), 1);
+        assert_eq!(figure.matches("stroke-dasharray=\"2 4\"").count(), 1 + 1);
+        assert_eq!(figure.matches("l8 8m0 -8l-8 8").count(), 0);
+        assert!(figure.contains(">passed by: ray crosses a polygon's plane"));
+        assert!(figure.contains(">light facing away (no shadow ray)<"));
+        assert!(figure.contains(">pebble: passed by<"));
+
+        // The ring, and the ring in the key; the key's dotted line.
+        assert_eq!(text.matches('○').count(), 1 + 1, "{text}");
+        assert!(text.contains("○ passed by"), "{text}");
+        assert!(text.contains("┈ light faces away"), "{text}");
+        assert!(text.contains("pebble: passed by"), "{text}");
+        assert_eq!(text.matches('◉').count(), 1);
+        assert_eq!(text.matches('☼').count(), 2);
+        assert_eq!(text.matches('×').count(), 0);
+        // The dotted line: grey Braille cells (no ray or outline is grey).
+        let dotted = (buf.content.iter())
+            .filter(|c| c.fg == MARK_GREY)
+            .filter(|c| {
+                c.symbol()
+                    .chars()
+                    .all(|ch| ('\u{2800}'..='\u{28ff}').contains(&ch))
+            })
+            .count();
+        assert!(dotted > 3, "{dotted}");
+    }
+
+    #[test]
+    fn a_dotted_line_has_a_dot_every_spacing() {
+        // 10 long at spacing 3: three whole steps, so four dots, 10/3 apart.
+        let dots = dotted(DVec2::ZERO, DVec2::new(10.0, 0.0), 3.0);
+        assert_eq!(dots.len(), 4);
+        assert_eq!(dots[3], (10.0, 0.0));
+        assert!(dotted(DVec2::ZERO, DVec2::ZERO, 3.0).is_empty());
+        assert!(dotted(DVec2::ZERO, DVec2::X, 0.0).is_empty());
     }
 }

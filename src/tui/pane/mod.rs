@@ -42,7 +42,6 @@ pub fn draw(frame: &mut Frame, app: &App) {
             (app.diagram_pan_zoom().label()).map_or(String::new(), |z| format!(" · {z}"))
         ),
     );
-    let block = block.title_bottom(diagram::legend());
     diagram::render(panes.diagram, frame.buffer_mut(), block, app);
     if let Some(error) = app.error() {
         let block = Block::bordered()

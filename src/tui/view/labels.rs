@@ -1,11 +1,13 @@
 //! Where the diagram's labels go in the terminal, so that none is written
-//! over another: a marker (the eye's ◉, a light's ☼, a blocker's ×) sits
-//! on its point's cell or is left out when an earlier marker has it; a name
-//! goes where it is asked (right of its marker, for the eye and the lights),
-//! else above, below, left or further out, at the first place where it
-//! meets no placed label; with no room anywhere it is
-//! shortened with "…", and left out when even three characters do not fit.
-//! Earlier labels win, so the caller lists the most important first.
+//! over another: a marker (the eye's ◉, a light's ☼, a blocker's ×, a
+//! passed-by ring's ○) sits on its point's cell or is left out when an
+//! earlier marker has it; a name goes where it is asked (right of its
+//! marker, for the eye and the lights), else above, below, left or further
+//! out, at the first place where it meets no placed label; with no room
+//! anywhere it is shortened with "…", and left out when even three
+//! characters do not fit, or when it only explains a marker left out (a
+//! ring's "passed by"). Earlier labels win, so the caller lists the most
+//! important first.
 
 /// A label asked for, at a cell (column, row) of the drawing area.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -14,6 +16,9 @@ pub struct Wanted<'a> {
     pub text: &'a str,
     /// A marker: exactly at `at` or nowhere.
     pub fixed: bool,
+    /// Placed only if the label at this index (earlier in the list) was:
+    /// a name that says what its marker is, meaningless without it.
+    pub with: Option<usize>,
 }
 
 /// A label's place: the cell its text starts in, and the text shown.
@@ -40,9 +45,12 @@ pub fn cell(p: (f64, f64), x: [f64; 2], y: [f64; 2], size: (u16, u16)) -> Option
 /// place, or `None` when it is left out.
 pub fn place(wanted: &[Wanted], size: (u16, u16)) -> Vec<Option<Placed>> {
     let mut taken = Taken::new(size);
-    wanted
-        .iter()
-        .map(|w| {
+    let mut placed_so_far: Vec<Option<Placed>> = Vec::with_capacity(wanted.len());
+    for w in wanted {
+        let companion_missing = w
+            .with
+            .is_some_and(|i| placed_so_far.get(i).is_none_or(Option::is_none));
+        let placed = (!companion_missing).then(|| {
             let placed = if w.fixed {
                 taken
                     .fits(w.at, w.text.chars().count())
@@ -61,8 +69,10 @@ pub fn place(wanted: &[Wanted], size: (u16, u16)) -> Vec<Option<Placed>> {
                 at: (at.0 as u16, at.1 as u16),
                 text,
             })
-        })
-        .collect()
+        });
+        placed_so_far.push(placed.flatten());
+    }
+    placed_so_far
 }
 
 /// Where a name of `n` characters asked at `at` may start, best first:
@@ -139,6 +149,7 @@ mod tests {
             at,
             text,
             fixed: false,
+            with: None,
         }
     }
 
@@ -147,6 +158,7 @@ mod tests {
             at,
             text,
             fixed: true,
+            with: None,
         }
     }
 
@@ -218,6 +230,30 @@ mod tests {
             }
         }
         assert_eq!(placed.len(), texts.len(), "room for all: {placed:?}");
+    }
+
+    #[test]
+    fn a_name_that_goes_with_its_marker_is_left_out_with_it() {
+        // A ring's "passed by" on the eye's cell: the ring (a marker) is
+        // left out, and so is its name, which would name the eye's cell;
+        // with the ring placed elsewhere, its name is placed too.
+        let passed = |at| Wanted {
+            at,
+            text: "passed by",
+            fixed: false,
+            with: Some(1),
+        };
+        let hidden = place(
+            &[marker((3, 2), "◉"), marker((3, 2), "○"), passed((5, 2))],
+            (20, 5),
+        );
+        assert_eq!(hidden[1], None);
+        assert_eq!(hidden[2], None);
+        let shown = place(
+            &[marker((3, 2), "◉"), marker((8, 2), "○"), passed((10, 2))],
+            (20, 5),
+        );
+        assert_eq!(shown[2].as_ref().unwrap().at, (10, 2));
     }
 
     #[test]

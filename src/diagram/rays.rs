@@ -1,0 +1,227 @@
+//! A pixel's rays as projected segments, each with its kind (for its
+//! colour) and how far the step-through has come; the blockers' points.
+
+use glam::{DVec2, DVec3};
+
+use super::projection::Projection;
+use crate::record::{EventKind, NodeId, RayTree};
+use crate::scene::Scene;
+
+/// What a drawn ray is, for its colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stroke {
+    Primary,
+    Reflected,
+    Transmitted,
+    ShadowLit,
+    /// 0 < S < 1: only transparent blockers (MODEL §4's Kt product).
+    ShadowPartial,
+    ShadowBlocked,
+    Normal,
+    /// Not yet reached by the step-through.
+    Later,
+    Current,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Segment {
+    pub from: DVec2,
+    pub to: DVec2,
+    pub stroke: Stroke,
+}
+
+/// How far a step-through has come, for the strokes: rays cast by the
+/// events up to `reached` (included) get their kind's colour, later ones are
+/// `Later`, and the ray of `current` is `Current`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    pub reached: usize,
+    pub current: Option<CurrentRay>,
+}
+
+/// The ray the step-through is at: a node's own ray, or (with `light`) its
+/// shadow ray to that light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CurrentRay {
+    pub node: NodeId,
+    pub light: Option<usize>,
+}
+
+impl Progress {
+    /// Every event reached and none current: each ray in its kind's colour.
+    pub fn done(tree: &RayTree) -> Progress {
+        Progress {
+            reached: tree.events.len(),
+            current: None,
+        }
+    }
+}
+
+/// What a shadow ray's S makes it: lit at 1, blocked at 0, partly
+/// blocked between (transparent blockers only).
+pub fn shadow_stroke(s: f64) -> Stroke {
+    if s >= 1.0 {
+        Stroke::ShadowLit
+    } else if s <= 0.0 {
+        Stroke::ShadowBlocked
+    } else {
+        Stroke::ShadowPartial
+    }
+}
+
+/// A shadow ray's blocker, where it crosses, and its ray's kind (blocked
+/// or partly blocked), for the colour of its ×.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlockerMark {
+    pub at: DVec2,
+    pub stroke: Stroke,
+}
+
+/// The rays of a pixel as projected segments, plus blocker points.
+pub fn ray_segments(
+    tree: &RayTree,
+    scene: &Scene,
+    projection: &Projection,
+    progress: Progress,
+) -> (Vec<Segment>, Vec<BlockerMark>) {
+    let current = progress.current;
+    let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
+        tree.events
+            .iter()
+            .take(progress.reached.saturating_add(1))
+            .any(|e| test(&e.kind, e.node))
+    };
+    let miss_length = miss_length(tree, scene);
+    let mut segments = Vec::new();
+    let mut blockers = Vec::new();
+    for (id, node) in tree.nodes.iter().enumerate() {
+        let end = node.hit.as_ref().map_or(
+            node.origin + node.direction.normalize() * miss_length,
+            |h| h.point,
+        );
+        let is_current = current
+            == Some(CurrentRay {
+                node: id,
+                light: None,
+            });
+        let stroke = if is_current {
+            Stroke::Current
+        } else if !reached(&|k, n| n == id && matches!(k, EventKind::RayCast { .. })) {
+            Stroke::Later
+        } else {
+            match node.kind {
+                crate::trace::RayKind::Primary => Stroke::Primary,
+                crate::trace::RayKind::Reflected => Stroke::Reflected,
+                crate::trace::RayKind::Transmitted => Stroke::Transmitted,
+            }
+        };
+        segments.push(Segment {
+            from: projection.project(node.origin),
+            to: projection.project(end),
+            stroke,
+        });
+        let Some(hit) = &node.hit else { continue };
+        let normal_end = hit.point + hit.normal * miss_length * 0.08;
+        segments.push(Segment {
+            from: projection.project(hit.point),
+            to: projection.project(normal_end),
+            stroke: Stroke::Normal,
+        });
+        for light in &node.lights {
+            let Some(shadow) = &light.shadow else {
+                continue;
+            };
+            let target = scene
+                .lights
+                .get(light.light_index)
+                .map_or(hit.point, |l| l.position);
+            let is_current = current
+                == Some(CurrentRay {
+                    node: id,
+                    light: Some(light.light_index),
+                });
+            let cast = |k: &EventKind, n| {
+                n == id
+                    && matches!(k, EventKind::ShadowCast { light: l } if *l == light.light_index)
+            };
+            let stroke = match () {
+                _ if is_current => Stroke::Current,
+                _ if !reached(&cast) => Stroke::Later,
+                _ => shadow_stroke(shadow.s),
+            };
+            segments.push(Segment {
+                from: projection.project(hit.point),
+                to: projection.project(target),
+                stroke,
+            });
+            // A blocker of a ray S = 1 lets all through (Kt = 1): its × as
+            // a partly blocked one's.
+            let kind = match shadow_stroke(shadow.s) {
+                Stroke::ShadowBlocked => Stroke::ShadowBlocked,
+                _ => Stroke::ShadowPartial,
+            };
+            blockers.extend(shadow.blockers.iter().map(|b| BlockerMark {
+                at: projection.project(shadow.origin + shadow.direction * b.t),
+                stroke: kind,
+            }));
+        }
+    }
+    (segments, blockers)
+}
+
+/// How far a missed ray is drawn: half the size of the pixel's scene.
+fn miss_length(tree: &RayTree, scene: &Scene) -> f64 {
+    let mut points: Vec<DVec3> = tree
+        .nodes
+        .iter()
+        .filter_map(|n| n.hit.as_ref().map(|h| h.point))
+        .collect();
+    points.push(tree.root().origin);
+    points.extend(scene.lights.iter().map(|l| l.position));
+    let min = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
+    let max = points.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
+    ((max - min).length() * 0.5).max(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagram::DiagramPlane;
+    use crate::tui::view::fixture::ball;
+    use crate::tui::view::stepper::progress;
+
+    fn close(a: DVec2, b: DVec2) -> bool {
+        (a - b).length() < 1e-9
+    }
+
+    #[test]
+    fn segments_follow_the_step_through() {
+        let (scene, tree) = ball();
+        let top = Projection::new(DiagramPlane::Top, &scene, &tree);
+        let strokes = |current| {
+            let (segments, blockers) = ray_segments(&tree, &scene, &top, progress(&tree, current));
+            assert!(blockers.is_empty(), "nothing blocks the lamp");
+            segments.iter().map(|s| s.stroke).collect::<Vec<_>>()
+        };
+        // r0, its normal, its shadow ray to the lamp, then r1 (no hit: no normal).
+        use Stroke::*;
+        assert_eq!(strokes(0), [Current, Normal, Later, Later], "at r0's cast");
+        assert_eq!(
+            strokes(3),
+            [Primary, Normal, Current, Later],
+            "its shadow ray"
+        );
+        assert_eq!(
+            strokes(9),
+            [Current, Normal, ShadowLit, Reflected],
+            "r0 done"
+        );
+        // r1 misses: drawn half the scene's size long. The hit (0, 0, 1), the
+        // eye (0, 0, 10) and the lamp (5, 0, 10) span (5, 0, 9): half of
+        // √106 from (0, 0, 1) along +z, which the top view shows downward.
+        let (segments, _) = ray_segments(&tree, &scene, &top, progress(&tree, 9));
+        let r1 = &segments[3];
+        assert!(close(r1.from, DVec2::ZERO));
+        assert!(close(r1.to, DVec2::new(0.0, -(106f64.sqrt() / 2.0))));
+    }
+}
