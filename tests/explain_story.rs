@@ -6,6 +6,7 @@ mod support;
 
 use std::path::Path;
 
+use raystep::mistakes::{Mistake, Mistakes};
 use raystep::record::{Children, explain, node_lines, record_pixel, shaping_events};
 use raystep::scene::{Scene, load};
 
@@ -271,6 +272,59 @@ fn tir_at_the_depth_limit_casts_one_reflected_ray_of_weight_ks_plus_kt() {
         "{story}"
     );
     assert!(!story.contains("stops its transmitted ray"), "{story}");
+}
+
+#[test]
+fn under_depth_off_by_one_the_limit_is_one_level_higher_everywhere() {
+    // scenes/mirrors.toml's pixel (97, 50): the primary ray hits the right
+    // mirror (k_s = 0.85), whose reflection shows the ball. With max_depth 2
+    // and depth-off-by-one, rays of depth 2 - 1 = 1 spawn nothing (MODEL
+    // §8): the primary ray is at the limit, so it casts no reflected ray.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/mirrors.toml");
+    let scene = load(&path).unwrap();
+    let mut settings = scene.settings;
+    settings.max_depth = 2;
+    settings.mistakes = Mistakes::NONE.with(Mistake::DepthOffByOne);
+    let tree = record_pixel(&scene, &settings, 97, 50);
+    assert_eq!(tree.nodes.len(), 1, "no secondary ray is cast");
+    let story = flat(&explain(&tree));
+    assert!(
+        story.contains(
+            "No secondary rays: max_depth is 2, and under depth-off-by-one the primary ray \
+             spawns none."
+        ),
+        "{story}"
+    );
+    // The ray not cast is the mirror's reflected ray, of weight k_s = 0.85.
+    assert!(
+        story.contains("the depth limit (max_depth 2) stops its reflected ray (weight 0.85)"),
+        "{story}"
+    );
+    // inspect's lines agree: depth 1 is the limit, not max_depth.
+    let lines: Vec<String> = node_lines(&tree, 0, Children::Omitted)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    assert!(
+        lines.contains(
+            &"no secondary rays: depth 1 is max_depth - 1, the limit under depth-off-by-one"
+                .to_string()
+        ),
+        "{lines:#?}"
+    );
+}
+
+#[test]
+fn a_ray_switched_off_is_not_told_as_cut_by_the_depth_limit() {
+    // max_depth 1 on the mirror (k_s = 0.5) with reflection switched off:
+    // the mirror would cast no reflected ray at any depth, so the depth
+    // limit cuts nothing and nothing shaped the pixel but its terms.
+    let mut scene = mirror_and_shadow("max_depth = 1");
+    scene.settings.switches.reflection = false;
+    let tree = record(&scene, [0.0; 3], [0.0, 0.0, -1.0]);
+    assert_eq!(tree.nodes.len(), 1);
+    let story = flat(&explain(&tree));
+    assert!(!story.contains("the depth limit"), "{story}");
 }
 
 fn explain_file(file: &str, x: u32, y: u32) -> String {

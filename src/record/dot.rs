@@ -5,7 +5,6 @@
 
 use std::fmt::Write;
 
-use super::shaping::depth_cut_rays;
 use super::text::{color, kind_name, not_cast_reason, num};
 use super::tree::{LightRecord, Node, NodeId, RayTree};
 use crate::math::{Color, to_rgb8};
@@ -32,7 +31,7 @@ pub fn dot(tree: &RayTree) -> String {
             let why = format!("not cast: {rule}\\n{}", not_cast_reason(ray));
             write_not_cast(&mut out, &format!("n{id}p{i}"), id, ray.kind, &why);
         }
-        for (i, (kind, weight)) in depth_cut_rays(tree, id).into_iter().enumerate() {
+        for (i, (kind, weight)) in node.depth_cut().enumerate() {
             let why = format!(
                 "not cast: max_depth\\nweight {}, max_depth = {}",
                 num(weight),

@@ -112,10 +112,16 @@ pub fn explain_unwrapped(tree: &RayTree) -> String {
         write_child(&mut out, tree, child);
     }
     write_not_cast(&mut out, tree);
-    if root.depth >= tree.max_depth {
+    if root.at_depth_limit() {
+        let but = if root.depth >= tree.max_depth {
+            "so"
+        } else {
+            "and under depth-off-by-one"
+        };
         let _ = writeln!(
             out,
-            "No secondary rays: max_depth is 1, so the primary ray spawns none."
+            "No secondary rays: max_depth is {}, {but} the primary ray spawns none.",
+            tree.max_depth
         );
     }
     write_sources(&mut out, tree);

@@ -580,7 +580,7 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
     if let Some(r) = &node.refraction {
         // At the depth limit (recorded on TIR only) no ray is cast; the line
         // below says so.
-        let outcome = match (r.tir, tree.at_depth_limit(id)) {
+        let outcome = match (r.tir, node.at_depth_limit()) {
             (true, false) => "total internal reflection: kt goes to the reflected ray",
             (true, true) => "total internal reflection: no transmitted ray",
             (false, _) => "transmitted",
@@ -600,10 +600,15 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
             .iter()
             .map(|ray| Line::text(Some(About::NotCast(ray.kind)), not_cast_line(ray))),
     );
-    if node.reflected.is_none() && node.transmitted.is_none() && node.depth >= tree.max_depth {
+    if node.at_depth_limit() {
+        let limit = if node.depth >= tree.max_depth {
+            "max_depth"
+        } else {
+            "max_depth - 1, the limit under depth-off-by-one"
+        };
         lines.push(Line::text(
             None,
-            format!("no secondary rays: depth {} is max_depth", node.depth),
+            format!("no secondary rays: depth {} is {limit}", node.depth),
         ));
     }
     lines

@@ -14,8 +14,8 @@ pub enum Find {
     /// A shadow ray blocked only by transparent surfaces: 0 < S < 1.
     PartialShadow,
     Tir,
-    /// A ray that hit a reflective or transparent surface at max_depth, so
-    /// the child it would have cast (with its switch on) was not.
+    /// A ray whose hit the depth limit kept from casting a child it would
+    /// have cast (the recording's `depth_limit`, as the tracer reported it).
     DepthLimit,
     /// A hit on the breakpoint object (`x`'s).
     BreakObject,
@@ -45,12 +45,12 @@ impl Find {
 
 /// The first event of `tree` that `find` looks for; `object` is the
 /// breakpoint object (`Find::BreakObject` needs one; `Find::NearMiss`
-/// looks at it alone when there is one). The depth limit needs the
-/// materials (the scene's) and the switches `tree` was recorded with.
+/// looks at it alone when there is one). Everything is read from `tree`;
+/// the scene and settings it was recorded with are not needed.
 pub fn first_event(
     tree: &RayTree,
-    scene: &Scene,
-    settings: &Settings,
+    _scene: &Scene,
+    _settings: &Settings,
     find: Find,
     object: Option<usize>,
 ) -> Option<usize> {
@@ -58,7 +58,13 @@ pub fn first_event(
         Find::BlockedShadow => Breakpoint::BlockedShadow,
         Find::Tir => Breakpoint::Tir,
         Find::BreakObject => Breakpoint::HitObject(object?),
-        Find::DepthLimit => return depth_cut(tree, scene, settings),
+        Find::DepthLimit => {
+            let cut = tree
+                .nodes
+                .iter()
+                .position(|n| n.depth_cut().next().is_some())?;
+            return stepper::cast_event(tree, cut);
+        }
         Find::PartialShadow => {
             return (0..tree.events.len()).find(|&i| {
                 stepper::matches(tree, i, Breakpoint::BlockedShadow) && partly_blocked(tree, i)
@@ -88,19 +94,6 @@ fn partly_blocked(tree: &RayTree, i: usize) -> bool {
         .find(|l| l.light_index == light)
         .and_then(|l| l.shadow.as_ref())
         .is_some_and(|shadow| shadow.s > 0.0 && shadow.s < 1.0)
-}
-
-/// The cast event of the first ray whose children the depth limit cut.
-fn depth_cut(tree: &RayTree, scene: &Scene, settings: &Settings) -> Option<usize> {
-    let switches = settings.switches;
-    let cut = tree.nodes.iter().position(|node| {
-        let Some(hit) = &node.hit else { return false };
-        let material = scene.material_of(hit.object_index);
-        let would_cast = (switches.reflection && material.ks > 0.0)
-            || (switches.transmission && material.kt > 0.0);
-        node.depth >= tree.max_depth && would_cast
-    })?;
-    stepper::cast_event(tree, cut)
 }
 
 /// The pixels after `from` in reading order (left to right, rows down),
