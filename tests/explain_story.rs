@@ -266,8 +266,8 @@ fn tir_at_the_depth_limit_casts_one_reflected_ray_of_weight_ks_plus_kt() {
     let story = flat(&explain(&tree));
     assert!(
         story.contains(
-            "the depth limit (max_depth 2) stops its reflected ray (weight 1, total internal \
-             reflection)"
+            "the depth limit (max_depth 2) stops its reflected ray (weight 1), the one ray of a \
+             total internal reflection on glass block right"
         ),
         "{story}"
     );
@@ -325,6 +325,29 @@ fn a_ray_switched_off_is_not_told_as_cut_by_the_depth_limit() {
     assert_eq!(tree.nodes.len(), 1);
     let story = flat(&explain(&tree));
     assert!(!story.contains("the depth limit"), "{story}");
+}
+
+#[test]
+fn a_tir_at_the_depth_limit_is_named_with_its_object() {
+    // scenes/glass.toml's pixel (122, 72): r5 (depth 5, max_depth 5) is
+    // inside the block and meets its bottom face at too shallow an angle:
+    // TIR, and the limit stops the one reflected ray, of weight k_s + k_t
+    // = 0.1 + 0.9 = 1. The sentence says where: on glass block bottom.
+    let story = flat(&explain_file("scenes/glass.toml", 122, 72));
+    assert!(
+        story.contains(
+            "at r5 (primary → transmitted → reflected → reflected → reflected, depth 5) the \
+             depth limit (max_depth 5) stops its reflected ray (weight 1), the one ray of a \
+             total internal reflection on glass block bottom:"
+        ),
+        "{story}"
+    );
+    // Every TIR sentence names its object.
+    for sentence in story.split_inclusive(". ") {
+        if sentence.contains("total internal reflection") {
+            assert!(sentence.contains(" on glass block "), "{sentence}");
+        }
+    }
 }
 
 fn explain_file(file: &str, x: u32, y: u32) -> String {

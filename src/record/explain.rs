@@ -6,7 +6,7 @@ use std::fmt::Write;
 use super::lines::Line;
 use super::shaping::{place, shaping_events};
 use super::sources::{brightness, sources};
-use super::text::{color, count, fraction, kind_name, not_cast_reason, num, precise};
+use super::text::{along, color, count, fraction, kind_name, not_cast_reason, num};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
 use crate::shapes::{CrossingFigure, RootChoice, Working};
@@ -104,8 +104,9 @@ pub fn explain_unwrapped(tree: &RayTree) -> String {
     if root.tir() {
         let _ = writeln!(
             out,
-            "Total internal reflection: the ray is inside a denser medium at too shallow an angle, \
-             so no light is transmitted and k_t is added to the reflected ray's weight."
+            "Total internal reflection on {}: the ray is inside a denser medium at too shallow an \
+             angle, so no light is transmitted and k_t is added to the reflected ray's weight.",
+            hit.object
         );
     }
     for child in tree.children(0) {
@@ -300,7 +301,7 @@ fn light_fate(light: &LightRecord) -> String {
              to the light.",
             light.light,
             opaque.object,
-            precise(opaque.t),
+            along(opaque.t),
             num(shadow.distance)
         );
     }

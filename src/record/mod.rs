@@ -21,8 +21,8 @@ pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use shaping::{Shaping, place, reach, shaping_events};
 pub use sources::{Source, brightness, sources};
 pub use text::{
-    Children, color, count, fraction, kind_name, light_label, light_lines, node_lines,
-    not_cast_line, not_cast_reason, num, ray_header, text, vector, working_lines,
+    Children, along, color, count, fraction, kind_name, light_label, light_lines, node_lines,
+    not_cast_line, not_cast_reason, num, ray_header, root, text, vector, working_lines,
 };
 pub use tree::{
     BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors,

@@ -3,7 +3,7 @@
 //! the primary hit's story, so that total internal reflection three rays
 //! down is told as plainly as a shadow on the first hit.
 
-use super::text::{color, cosine_name, kind_name, not_cast_reason, num, precise};
+use super::text::{color, cosine_name, kind_name, not_cast_reason, num, root};
 use super::tree::{LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use crate::math::Color;
 
@@ -163,11 +163,11 @@ fn blocked(
         .blockers
         .iter()
         .map(|b| {
-            let root = b.root.map(|r| format!(", root {r}")).unwrap_or_default();
+            let which = b.root.map(|r| format!(", root {r}")).unwrap_or_default();
             format!(
-                "{} (t = {}{root}, k_t = {})",
+                "{} ({}{which}, k_t = {})",
                 b.object,
-                precise(b.t),
+                root("t", b.t),
                 num(b.kt)
             )
         })
@@ -206,24 +206,27 @@ fn blocked(
 /// A hit whose material reflects or transmits at the depth limit: the rays
 /// it would have spawned are not cast (MODEL §5).
 fn depth_cut(tree: &RayTree, id: NodeId, reach: f64) -> Vec<Shaping> {
-    let tir = tree.nodes[id].tir();
-    tree.nodes[id]
-        .depth_cut()
+    let node = &tree.nodes[id];
+    // TIR is told here, with the ray it does not cast: on which object.
+    let tir = match &node.hit {
+        Some(hit) if node.tir() => format!(
+            ", the one ray of a total internal reflection on {}",
+            hit.object
+        ),
+        _ => String::new(),
+    };
+    node.depth_cut()
         .map(|(kind, weight)| Shaping {
             matters: reach * weight,
             node: id,
             text: format!(
-                "at {} the depth limit (max_depth {}) stops its {} ray (weight {}{}): it could \
+                "at {} the depth limit (max_depth {}) stops its {} ray (weight {}){}: it could \
                  have added up to {} to each channel.",
                 place(tree, id),
                 tree.max_depth,
                 kind_name(kind),
                 num(weight),
-                if tir {
-                    ", total internal reflection"
-                } else {
-                    ""
-                },
+                tir,
                 num(reach * weight)
             ),
         })

@@ -36,6 +36,32 @@ pub fn precise(x: f64) -> String {
     if s == "-0" { "0".into() } else { s.into() }
 }
 
+/// A distance along a ray within EPS of 0: the point the ray leaves (a
+/// secondary or shadow ray starts on the surface), said so rather than
+/// shown as rounding noise such as 1.110e-16.
+fn leaves(t: f64) -> bool {
+    t.abs() < EPS
+}
+
+const LEAVES: &str = "≈ 0 (the point the ray leaves)";
+
+/// A distance along a ray, as `precise` writes it, or `≈ 0 (the point the
+/// ray leaves)`. The inspect text, the details pane and `explain` write a
+/// root or a blocker's distance here or through `root`.
+pub fn along(t: f64) -> String {
+    if leaves(t) { LEAVES.into() } else { precise(t) }
+}
+
+/// A root of a ray's quadratic: `t0 = 1.6081`, or `t0 ≈ 0 (the point the
+/// ray leaves)`.
+pub fn root(name: &str, t: f64) -> String {
+    if leaves(t) {
+        format!("{name} {LEAVES}")
+    } else {
+        format!("{name} = {}", precise(t))
+    }
+}
+
 pub fn vector(v: DVec3) -> String {
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
@@ -126,7 +152,11 @@ pub fn working_lines(working: &Working) -> Vec<String> {
                     RootChoice::BothBehind => "both roots are behind the ray".to_string(),
                     RootChoice::NoRealRoots => String::new(),
                 };
-                lines.push(format!("roots t0 = {}, t1 = {}: {why}", num(t0), num(t1)));
+                lines.push(format!(
+                    "roots {}, {}: {why}",
+                    root("t0", t0),
+                    root("t1", t1)
+                ));
             } else {
                 lines.push("negative discriminant: no real roots, no hit".into());
             }
@@ -256,9 +286,9 @@ fn near_miss_lines(near: &NearMiss) -> Vec<String> {
             )
         } else {
             format!(
-                "roots t0 = {}, t1 = {}: both behind the origin, the sphere is behind the ray",
-                num(w.t0.unwrap_or(0.0)),
-                num(w.t1.unwrap_or(0.0))
+                "roots {}, {}: both behind the origin, the sphere is behind the ray",
+                root("t0", w.t0.unwrap_or(0.0)),
+                root("t1", w.t1.unwrap_or(0.0))
             )
         });
     }
@@ -273,10 +303,10 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
         num(w.c),
         num(w.discriminant)
     )];
-    let root = |name: &str, t: Option<f64>, s: Option<f64>, ok: bool| match (t, s) {
+    let at = |name: &str, t: Option<f64>, s: Option<f64>, ok: bool| match (t, s) {
         (Some(t), Some(s)) => format!(
-            "{name} = {} at height {} of {}: {}",
-            num(t),
+            "{} at height {} of {}: {}",
+            root(name, t),
             num(s),
             num(w.height),
             if ok {
@@ -288,8 +318,8 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
         _ => format!("{name}: none"),
     };
     if w.t0.is_some() {
-        lines.push(root("t0", w.t0, w.s0, w.on_surface[0]));
-        lines.push(root("t1", w.t1, w.s1, w.on_surface[1]));
+        lines.push(at("t0", w.t0, w.s0, w.on_surface[0]));
+        lines.push(at("t1", w.t1, w.s1, w.on_surface[1]));
     } else {
         lines.push("no real roots: no hit".into());
     }
@@ -328,7 +358,7 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
             let names: Vec<String> = s
                 .blockers
                 .iter()
-                .map(|b| format!("{} (t = {}, k_t = {})", b.object, precise(b.t), num(b.kt)))
+                .map(|b| format!("{} ({}, k_t = {})", b.object, root("t", b.t), num(b.kt)))
                 .collect();
             let how = if s.s > 0.0 {
                 "partly blocked"
@@ -360,8 +390,8 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
             .iter()
             .filter(|o| o.object_index == b.object_index)
             .map(|o| {
-                let root = o.root.map(|r| format!(" (root {r})")).unwrap_or_default();
-                format!("t = {}{root}", precise(o.t))
+                let which = o.root.map(|r| format!(" (root {r})")).unwrap_or_default();
+                format!("{}{which}", root("t", o.t))
             })
             .collect();
         lines.push(Line::text(
@@ -411,7 +441,7 @@ fn blocker_lines(working: &Working) -> Vec<String> {
             let mut lines = working_lines(working);
             if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
                 lines.truncate(1);
-                lines.push(format!("roots t0 = {}, t1 = {}", precise(t0), precise(t1)));
+                lines.push(format!("roots {}, {}", root("t0", t0), root("t1", t1)));
             }
             lines
         }
