@@ -350,6 +350,43 @@ fn a_tir_at_the_depth_limit_is_named_with_its_object() {
     }
 }
 
+#[test]
+fn a_ray_leaving_a_sphere_says_t0_is_where_it_leaves() {
+    // A glass ball of radius 1 at (0, 0, -3), met head on: the primary ray
+    // enters at (0, 0, -2), straight through (cos_i = 1, so the transmitted
+    // direction is (0, 0, -1)). The transmitted ray r1 starts on the
+    // sphere: o - c = (0, 0, 1), A = 1, B = 2 d·(o - c) = -2, C = 1 - 1 = 0,
+    // roots (2 -+ 2) / 2 = 0 and 2: t0 is the point it leaves, t1 the back.
+    let ball = scene(
+        "[camera]
+        eye = [0, 0, 0]
+        look_at = [0, 0, -1]
+        [settings]
+        max_depth = 2
+        [materials.glass]
+        kd = 0.1
+        ks = 0
+        kt = 0.9
+        ior = 1.5
+        [[object]]
+        name = \"ball\"
+        material = \"glass\"
+        sphere = { center = [0, 0, -3], radius = 1 }",
+    );
+    let tree = record(&ball, [0.0; 3], [0.0, 0.0, -1.0]);
+    let r1 = tree.root().transmitted.expect("the ball transmits");
+    let lines: Vec<String> = node_lines(&tree, r1, Children::Listed)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("  roots t0 ≈ 0 (the point the ray leaves), t1 = 2: took t1")),
+        "{lines:#?}"
+    );
+}
+
 fn explain_file(file: &str, x: u32, y: u32) -> String {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
     let scene = load(&path).unwrap();
