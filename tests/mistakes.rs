@@ -99,7 +99,10 @@ fn shadow_acne_is_told_as_the_surface_the_shadow_ray_leaves() {
     // and the inspect lines say so rather than print a bare 2.776e-17.
     let s = floor("0.1", "", "");
     let [_, wrong] = both(&s, Mistake::ShadowAcne, DOWN.0, DOWN.1);
-    let story = explain(&wrong);
+    let story = explain(&wrong)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
     let inspect: String = node_lines(&wrong, 0, Children::Listed)
         .iter()
         .map(|l| format!("{l}\n"))
@@ -109,7 +112,7 @@ fn shadow_acne_is_told_as_the_surface_the_shadow_ray_leaves() {
         assert!(!text.contains("e-17"), "{text}");
     }
     assert!(
-        story.contains("blocked by floor (opaque) at distance ≈ 0 (the point the ray leaves)"),
+        story.contains("blocked by plane 0 (opaque) at distance ≈ 0 (the point the ray leaves)"),
         "{story}"
     );
 }
