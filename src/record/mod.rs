@@ -14,7 +14,7 @@ mod tree;
 
 pub use diff::diff;
 pub use dot::dot;
-pub use explain::{explain, explain_unwrapped};
+pub use explain::{Said, Told, explain, explain_lines, explain_unwrapped};
 pub use finite::{NonFinite, check_finite};
 pub use lines::{About, Line, Piece, Row, Word};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
