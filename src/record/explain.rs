@@ -4,9 +4,10 @@
 use std::fmt::{self, Write};
 
 use super::lines::Line;
+use super::numbers::{along, color, count, fraction, num};
 use super::shaping::{place, shaping_events};
 use super::sources::{brightness, sources};
-use super::text::{along, color, count, fraction, kind_name, not_cast_reason, num};
+use super::text::{kind_name, not_cast_reason};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
 use crate::shapes::{CrossingFigure, RootChoice, Working};

@@ -3,7 +3,8 @@
 //! the primary hit's story, so that total internal reflection three rays
 //! down is told as plainly as a shadow on the first hit.
 
-use super::text::{color, cosine_name, kind_name, not_cast_reason, num, root};
+use super::numbers::{color, num, root};
+use super::text::{cosine_name, kind_name, not_cast_reason};
 use super::tree::{LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use crate::math::Color;
 
