@@ -276,10 +276,14 @@ fn write_sources(out: &mut Story, tree: &RayTree) {
             (n, true) => (format!("{n} rays"), "add"),
             (n, false) => (format!("{n} other rays"), "add"),
         };
-        let (pct, added) = (format!("{:>5.1}%", share(sum)), color(sum));
-        // Rays that add nothing visible are not worth a line.
-        if pct.trim() != "0.0%" || added != "(0.000, 0.000, 0.000)" {
-            out.ranked(Said::Source, pct, format!("{rays} {add} {added}"));
+        // Rays that add nothing visible (their share prints as 0.0%, their
+        // colour as (0.000, 0.000, 0.000)) are not worth a line.
+        if share(sum) >= 0.05 || sum.abs().max_element() >= 0.0005 {
+            out.ranked(
+                Said::Source,
+                format!("{:>5.1}%", share(sum)),
+                format!("{rays} {add} {}", color(sum)),
+            );
         }
     }
 }
