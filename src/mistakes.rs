@@ -103,6 +103,27 @@ impl Mistake {
         }
     }
 
+    /// What the mistake acts on: a scene without it renders the same with
+    /// the mistake, so `compare` need not render it (MODEL §8's "Touches").
+    /// Every mistake answers here, beside its definition: a new one does not
+    /// compile until it says what it can change.
+    pub fn acts_on(self) -> ActsOn {
+        match self {
+            Mistake::ShadowAcne | Mistake::ShadowsPastLight => ActsOn::ShadowRays,
+            Mistake::OpaqueShadows => ActsOn::TransparentShadows,
+            Mistake::EtaInverted | Mistake::TirDropped => ActsOn::Refraction,
+            Mistake::NoLightAttenuation => ActsOn::LightAttenuation,
+            Mistake::NoAmbient => ActsOn::Ambient,
+            Mistake::PhongNotBlinn => ActsOn::Highlights,
+            Mistake::DepthOffByOne => ActsOn::SecondaryRays,
+            Mistake::NoNormalFlip
+            | Mistake::ByteWrap
+            | Mistake::Gamma
+            | Mistake::FlippedY
+            | Mistake::PixelCorner => ActsOn::AnyScene,
+        }
+    }
+
     /// The mistake of this name.
     pub fn from_name(name: &str) -> Option<Mistake> {
         Mistake::ALL.into_iter().find(|m| m.name() == name)
@@ -111,6 +132,27 @@ impl Mistake {
     fn bit(self) -> u16 {
         1 << self as u16
     }
+}
+
+/// What a scene must have for a mistake to change its image (`Mistake::acts_on`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ActsOn {
+    /// Shadow rays: shadows switched on.
+    ShadowRays,
+    /// Shadow rays through a transparent material (k_t > 0).
+    TransparentShadows,
+    /// Refraction: transmission switched on and a material with k_t > 0.
+    Refraction,
+    /// Light attenuation other than (1, 0, 0).
+    LightAttenuation,
+    /// An ambient term: switched on, I_a not black, a material with k_a > 0.
+    Ambient,
+    /// Highlights: a material with k_s > 0.
+    Highlights,
+    /// Secondary rays: max_depth above 1, a material with k_s or k_t > 0.
+    SecondaryRays,
+    /// Any scene: the bytes, the rows, the primary rays or the normals.
+    AnyScene,
 }
 
 impl fmt::Display for Mistake {

@@ -12,7 +12,8 @@ use crate::mistakes::Mistakes;
 use crate::render::{RowRecorder, trace_rows, viewport};
 use crate::scene::{Scene, Settings};
 use crate::trace::{
-    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace_in_row,
+    Blocker, ChildTerm, DepthLimit, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit,
+    trace_in_row,
 };
 
 /// One view of the per-pixel terms.
@@ -221,6 +222,7 @@ struct Both<'a, A, B>(&'a mut A, &'a mut B);
 
 impl<A: Recorder, B: Recorder> Recorder for Both<'_, A, B> {
     const RECORDS_ALL_BLOCKERS: bool = A::RECORDS_ALL_BLOCKERS || B::RECORDS_ALL_BLOCKERS;
+    const RECORDS_DEPTH_LIMIT: bool = A::RECORDS_DEPTH_LIMIT || B::RECORDS_DEPTH_LIMIT;
 
     fn ray_cast(&mut self, kind: RayKind, depth: u32, ray: &Ray, weight: f64) {
         self.0.ray_cast(kind, depth, ray, weight);
@@ -261,6 +263,10 @@ impl<A: Recorder, B: Recorder> Recorder for Both<'_, A, B> {
     fn not_cast(&mut self, ray: &NotCast) {
         self.0.not_cast(ray);
         self.1.not_cast(ray);
+    }
+    fn depth_limit(&mut self, limit: &DepthLimit) {
+        self.0.depth_limit(limit);
+        self.1.depth_limit(limit);
     }
     fn ray_done(&mut self, color: Color) {
         self.0.ray_done(color);

@@ -20,7 +20,7 @@ pub use ranking::{MIN_FIT, Ranked};
 pub use report::text;
 pub use student::StudentImage;
 
-use crate::record::{RayTree, explain_unwrapped, record_pixel};
+use crate::record::{RayTree, Said, Told, explain_lines, record_pixel};
 use crate::scene::Scene;
 
 /// The regions a report describes; the rest are only counted.
@@ -140,7 +140,7 @@ fn describe(
         pixel: [x, y],
         yours: yours.get_pixel(x, y).0,
         reference: reference.image.get_pixel(x, y).0,
-        explain: brief(&explain_unwrapped(&tree)),
+        explain: brief(&explain_lines(&tree)),
         diagnosis: diagnosis::diagnose(&samples(scene, yours, region)),
     }
 }
@@ -183,26 +183,55 @@ fn objects(
         .collect()
 }
 
-/// `explain`'s sentence on the primary ray and its three largest terms.
-fn brief(explained: &str) -> Vec<String> {
-    let lines: Vec<&str> = explained.lines().collect();
-    // The sentence itself, not the near misses `explain` puts before it.
-    let mut out: Vec<String> = lines
-        .iter()
-        .find(|l| l.starts_with("Its primary ray"))
-        .map(|l| l.to_string())
-        .into_iter()
-        .collect();
-    if let Some(start) = lines
-        .iter()
-        .position(|l| l.starts_with("Its colour is the sum"))
-    {
-        out.extend(
-            lines[start + 1..]
-                .iter()
-                .take(3)
-                .map(|l| l.trim().to_string()),
+/// `explain`'s sentence on the primary ray and its three largest terms,
+/// taken by what its lines tell.
+fn brief(story: &[Told]) -> Vec<String> {
+    let primary = story.iter().filter(|t| t.said == Said::PrimaryRay).take(1);
+    let terms = story.iter().filter(|t| t.said == Said::Term).take(3);
+    primary.chain(terms).map(|t| t.text.clone()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::parse;
+
+    #[test]
+    fn the_brief_takes_the_primary_sentence_and_only_term_lines() {
+        // A matte plane z = -1 facing the eye, no ambient light, one light
+        // straight behind the eye at (0, 0, 1): the primary ray hits at
+        // t = 1, N·L = 1, and the only term is the diffuse (1, 1, 1) · 0.5 =
+        // (0.5, 0.5, 0.5), 100% of the brightness. The brief holds no more
+        // than that: not the "Lights:" heading or a light's fate that
+        // follow the one term line.
+        let scene = parse(
+            std::path::Path::new("plane.toml"),
+            "[camera]
+            eye = [0, 0, 0]
+            look_at = [0, 0, -1]
+            [image]
+            width = 1
+            height = 1
+            [settings]
+            ambient = [0, 0, 0]
+            [materials.matte]
+            kd = 0.5
+            [[light]]
+            position = [0, 0, 1]
+            [[object]]
+            name = \"wall\"
+            material = \"matte\"
+            plane = { normal = [0, 0, 1], point = [0, 0, -1] }",
+        )
+        .unwrap();
+        let tree = record_pixel(&scene, &scene.settings, 0, 0);
+        assert_eq!(
+            brief(&explain_lines(&tree)),
+            [
+                "Its primary ray hits wall (plane, material matte) at distance 1, on its front side."
+                    .to_string(),
+                format!("{:<28} (0.500, 0.500, 0.500)  100.0%", "diffuse from light 0"),
+            ]
         );
     }
-    out
 }

@@ -17,9 +17,10 @@ use image::RgbImage;
 use serde::Serialize;
 
 use super::metrics::{TOLERANCE_STEPS, channel_gap};
-use crate::mistakes::{Mistake, Mistakes};
+use crate::math::Color;
+use crate::mistakes::{ActsOn, Mistake, Mistakes};
 use crate::render::render;
-use crate::scene::{Scene, Settings};
+use crate::scene::{Material, Scene, Settings};
 use crate::trace::NoRecorder;
 
 /// The side of the blocks compared.
@@ -136,23 +137,21 @@ pub fn rank(
 /// Whether `mistake` can change this scene's image at all: false when the
 /// scene lacks what it acts on (no transparent material for eta-inverted,
 /// no distance attenuation for no-light-attenuation, ...), which saves its
-/// render. True when unsure.
+/// render.
 fn may_change(scene: &Scene, settings: &Settings, mistake: Mistake) -> bool {
-    let any = |f: fn(&crate::scene::Material) -> bool| scene.materials.iter().any(f);
-    match mistake {
-        Mistake::EtaInverted | Mistake::TirDropped => {
-            settings.switches.transmission && any(|m| m.kt > 0.0)
+    let any = |f: fn(&Material) -> bool| scene.materials.iter().any(f);
+    let switches = settings.switches;
+    match mistake.acts_on() {
+        ActsOn::ShadowRays => switches.shadows,
+        ActsOn::TransparentShadows => switches.shadows && any(|m| m.kt > 0.0),
+        ActsOn::Refraction => switches.transmission && any(|m| m.kt > 0.0),
+        ActsOn::LightAttenuation => settings.light_attenuation != [1.0, 0.0, 0.0],
+        ActsOn::Ambient => {
+            switches.ambient && settings.ambient != Color::ZERO && any(|m| m.ka > 0.0)
         }
-        Mistake::OpaqueShadows => settings.switches.shadows && any(|m| m.kt > 0.0),
-        Mistake::NoLightAttenuation => settings.light_attenuation != [1.0, 0.0, 0.0],
-        Mistake::NoAmbient => {
-            settings.switches.ambient
-                && settings.ambient != crate::math::Color::ZERO
-                && any(|m| m.ka > 0.0)
-        }
-        Mistake::PhongNotBlinn => any(|m| m.ks > 0.0),
-        Mistake::DepthOffByOne => settings.max_depth > 1 && any(|m| m.ks > 0.0 || m.kt > 0.0),
-        _ => true,
+        ActsOn::Highlights => any(|m| m.ks > 0.0),
+        ActsOn::SecondaryRays => settings.max_depth > 1 && any(|m| m.ks > 0.0 || m.kt > 0.0),
+        ActsOn::AnyScene => true,
     }
 }
 
@@ -296,5 +295,58 @@ mod tests {
         variant.put_pixel(1, 0, image::Rgb([200; 3]));
         variant.put_pixel(2, 0, image::Rgb([50; 3]));
         assert_eq!(showing_pixel(&yours, &reference, &variant), Some([1, 0]));
+    }
+
+    #[test]
+    fn a_mistake_is_rendered_only_where_the_scene_has_what_it_acts_on() {
+        // A matte plane lit by one light, shadows switched off: no shadow
+        // ray, no transparency, no highlight, no secondary ray (max_depth
+        // 1), no ambient (I_a black), no attenuation. Only the mistakes of
+        // the bytes, rows, primary rays and normals can change it.
+        let scene = crate::scene::parse(
+            std::path::Path::new("matte.toml"),
+            "[camera]
+            eye = [0, 0, 0]
+            look_at = [0, 0, -1]
+            [image]
+            width = 16
+            height = 16
+            [settings]
+            max_depth = 1
+            ambient = [0, 0, 0]
+            [materials.matte]
+            color = [0.9, 0.5, 0.2]
+            kd = 1
+            [[light]]
+            position = [0, 2, 0]
+            [[object]]
+            material = \"matte\"
+            plane = { normal = [0, 0, 1], point = [0, 0, -3] }",
+        )
+        .unwrap();
+        let mut settings = scene.settings;
+        settings.switches.shadows = false;
+        let possible: Vec<Mistake> = Mistake::ALL
+            .into_iter()
+            .filter(|&m| may_change(&scene, &settings, m))
+            .collect();
+        assert_eq!(
+            possible,
+            [
+                Mistake::NoNormalFlip,
+                Mistake::ByteWrap,
+                Mistake::Gamma,
+                Mistake::FlippedY,
+                Mistake::PixelCorner
+            ]
+        );
+        // And each mistake skipped indeed changes nothing.
+        let reference = render::<NoRecorder>(&scene, &settings, &|| {}).0;
+        for mistake in Mistake::ALL.into_iter().filter(|m| !possible.contains(m)) {
+            let mut mistaken = settings;
+            mistaken.mistakes = Mistakes::NONE.with(mistake);
+            let image = render::<NoRecorder>(&scene, &mistaken, &|| {}).0;
+            assert!(image == reference, "{mistake} changed the image");
+        }
     }
 }

@@ -6,7 +6,8 @@
 
 use std::fmt::Write;
 
-use super::text::{color, kind_name};
+use super::numbers::color;
+use super::text::kind_name;
 use super::tree::{Node, NodeId, RayTree};
 use crate::math::Color;
 

@@ -5,8 +5,8 @@
 
 use std::fmt::Write;
 
-use super::shaping::depth_cut_rays;
-use super::text::{color, kind_name, not_cast_reason, num};
+use super::numbers::{color, num};
+use super::text::{kind_name, not_cast_reason};
 use super::tree::{LightRecord, Node, NodeId, RayTree};
 use crate::math::{Color, to_rgb8};
 use crate::trace::{PruneRule, RayKind};
@@ -32,7 +32,7 @@ pub fn dot(tree: &RayTree) -> String {
             let why = format!("not cast: {rule}\\n{}", not_cast_reason(ray));
             write_not_cast(&mut out, &format!("n{id}p{i}"), id, ray.kind, &why);
         }
-        for (i, (kind, weight)) in depth_cut_rays(tree, id).into_iter().enumerate() {
+        for (i, (kind, weight)) in node.depth_cut().enumerate() {
             let why = format!(
                 "not cast: max_depth\\nweight {}, max_depth = {}",
                 num(weight),

@@ -1,12 +1,13 @@
 //! "Why is this pixel this colour?", answered in plain words for a student,
 //! from the recording alone.
 
-use std::fmt::Write;
+use std::fmt::{self, Write};
 
 use super::lines::Line;
+use super::numbers::{along, color, count, fraction, num};
 use super::shaping::{place, shaping_events};
 use super::sources::{brightness, sources};
-use super::text::{color, count, fraction, kind_name, not_cast_reason, num, precise};
+use super::text::{kind_name, not_cast_reason};
 use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
 use crate::shapes::{CrossingFigure, RootChoice, Working};
@@ -15,117 +16,226 @@ use crate::trace::{PruneRule, RayKind};
 /// `explain` wraps its lines at 100 columns.
 const WIDTH: usize = 100;
 
-/// The story wrapped for a terminal.
-pub fn explain(tree: &RayTree) -> String {
-    wrapped(&explain_unwrapped(tree))
+/// What a line of the story tells, so that a reader takes the parts it
+/// needs (`compare`'s brief) by their type, never by their words.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Said {
+    /// The pixel's colour and bytes.
+    Pixel,
+    /// The mistakes it is traced with.
+    Mistakes,
+    /// Something the primary ray passed by.
+    NearMiss,
+    /// What the primary ray hits, or that it misses.
+    PrimaryRay,
+    /// The crossing test that put a concave polygon's hit inside.
+    Crossing,
+    /// The heading of the primary ray's terms.
+    TermsHeading,
+    /// One of the primary ray's terms with its share, largest first (or the
+    /// terms too small to show, or that every term is zero).
+    Term,
+    LightsHeading,
+    /// What one light did at the primary hit.
+    Light,
+    /// Total internal reflection at the primary hit.
+    Tir,
+    /// A secondary ray of the primary ray and what it adds.
+    Child,
+    /// Secondary rays a rule kept from being cast.
+    NotCast,
+    /// The depth limit stopping the primary ray's secondary rays.
+    DepthLimit,
+    SourcesHeading,
+    /// A ray whose own terms make a share of the pixel.
+    Source,
+    ShapedHeading,
+    /// An event that shaped the colour, with how much it moved it.
+    Shaped,
 }
 
-/// Each line broken at `WIDTH`, continuations hung under the line's text:
-/// past a leading number ("  0.372  total internal ..." or "  61.0%  green
-/// wall ..."), else four past its indentation.
-fn wrapped(story: &str) -> String {
+/// One line of the story: what it tells, its indentation, a leading number
+/// its continuations hang past ("0.372", " 61.0%"), and its words.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Told {
+    pub said: Said,
+    pub indent: usize,
+    pub number: Option<String>,
+    pub text: String,
+}
+
+impl Told {
+    /// How far past the indentation a wrapped continuation starts: under
+    /// the text after a leading number, else four.
+    fn hang(&self) -> usize {
+        self.number
+            .as_ref()
+            .map_or(4, |n| n.trim_start().chars().count() + 2)
+    }
+}
+
+/// The line as `explain_unwrapped` prints it.
+impl fmt::Display for Told {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", " ".repeat(self.indent))?;
+        if let Some(number) = &self.number {
+            write!(f, "{number}  ")?;
+        }
+        f.write_str(&self.text)
+    }
+}
+
+/// The story as it is told, line by line.
+#[derive(Default)]
+struct Story(Vec<Told>);
+
+impl Story {
+    /// A sentence of its own.
+    fn say(&mut self, said: Said, text: impl Into<String>) {
+        self.push(said, 0, None, text.into());
+    }
+
+    /// An entry of a list, under its heading.
+    fn item(&mut self, said: Said, text: impl Into<String>) {
+        self.push(said, 2, None, text.into());
+    }
+
+    /// An entry of a list led by its number.
+    fn ranked(&mut self, said: Said, number: String, text: String) {
+        self.push(said, 2, Some(number), text);
+    }
+
+    fn push(&mut self, said: Said, indent: usize, number: Option<String>, text: String) {
+        self.0.push(Told {
+            said,
+            indent,
+            number,
+            text,
+        });
+    }
+}
+
+/// The story wrapped for a terminal: each line broken at `WIDTH`, its
+/// continuations hung under its text (`Told::hang`).
+pub fn explain(tree: &RayTree) -> String {
     let mut out = String::new();
-    for line in story.lines() {
-        let body = line.trim_start_matches(' ');
-        let hang = match body.split_once("  ") {
-            Some((number, rest))
-                if number.starts_with(|c: char| c.is_ascii_digit())
-                    && !number.contains(' ')
-                    && !rest.starts_with(' ') =>
-            {
-                number.chars().count() + 2
-            }
-            _ => 4,
-        };
-        for row in Line::text(None, line).wrap_hanging(WIDTH, 0, hang) {
+    for told in explain_lines(tree) {
+        for row in Line::text(None, told.to_string()).wrap_hanging(WIDTH, 0, told.hang()) {
             let _ = writeln!(out, "{}", row.text());
         }
     }
     out
 }
 
-/// The story, one line per sentence or list entry (for JSON and briefs).
+/// The story, one line per sentence or list entry (for tests that look for
+/// a sentence on one line).
 pub fn explain_unwrapped(tree: &RayTree) -> String {
-    let mut out = String::new();
+    explain_lines(tree)
+        .iter()
+        .map(|told| format!("{told}\n"))
+        .collect()
+}
+
+/// The story's lines, each with what it tells.
+pub fn explain_lines(tree: &RayTree) -> Vec<Told> {
+    let mut out = Story::default();
     let root = tree.root();
     let c = tree.color();
     let [r, g, b] = tree.rgb8();
-    let _ = writeln!(
-        out,
-        "Pixel ({}, {}) has colour {} (stored as {r}, {g}, {b}).",
-        tree.pixel.0,
-        tree.pixel.1,
-        color(c)
+    out.say(
+        Said::Pixel,
+        format!(
+            "Pixel ({}, {}) has colour {} (stored as {r}, {g}, {b}).",
+            tree.pixel.0,
+            tree.pixel.1,
+            color(c)
+        ),
     );
     if !tree.mistakes.is_empty() {
-        let _ = writeln!(
-            out,
-            "It is traced with classic mistakes on purpose: {} (MODEL §8).",
-            tree.mistakes
+        out.say(
+            Said::Mistakes,
+            format!(
+                "It is traced with classic mistakes on purpose: {} (MODEL §8).",
+                tree.mistakes
+            ),
         );
     }
     write_near_misses(&mut out, tree);
     let Some(hit) = &root.hit else {
-        let _ = writeln!(
-            out,
-            "Its primary ray hits nothing, so it shows the background colour."
+        out.say(
+            Said::PrimaryRay,
+            "Its primary ray hits nothing, so it shows the background colour.",
         );
-        return out;
+        return out.0;
     };
-    let _ = writeln!(
-        out,
-        "Its primary ray hits {} ({}, material {}) at distance {}, on its {} side.",
-        hit.object,
-        hit.kind,
-        hit.material,
-        num(hit.t),
-        if hit.entering { "front" } else { "back" }
+    out.say(
+        Said::PrimaryRay,
+        format!(
+            "Its primary ray hits {} ({}, material {}) at distance {}, on its {} side.",
+            hit.object,
+            hit.kind,
+            hit.material,
+            num(hit.t),
+            if hit.entering { "front" } else { "back" }
+        ),
     );
     // A convex hit's single crossing is routine (it is in `inspect`); several
     // crossings mean a concave outline where the parity rule decided the hit.
     if let Some(figure) = hit.crossing_figure.as_ref().filter(|f| counted(f) > 1) {
-        let _ = writeln!(
-            out,
-            "The crossing test puts the hit inside: {}, an odd number.",
-            counted_edges(figure)
+        out.say(
+            Said::Crossing,
+            format!(
+                "The crossing test puts the hit inside: {}, an odd number.",
+                counted_edges(figure)
+            ),
         );
     }
     write_shares(&mut out, tree, 0);
-    let _ = writeln!(out, "Lights:");
+    out.say(Said::LightsHeading, "Lights:");
     for light in &root.lights {
-        let _ = writeln!(out, "  {}", light_fate(light));
+        out.item(Said::Light, light_fate(light));
     }
     if root.lights.is_empty() {
-        let _ = writeln!(
-            out,
-            "  the scene has no lights: only ambient light and secondary rays add colour."
+        out.item(
+            Said::Light,
+            "the scene has no lights: only ambient light and secondary rays add colour.",
         );
     }
     if root.tir() {
-        let _ = writeln!(
-            out,
-            "Total internal reflection: the ray is inside a denser medium at too shallow an angle, \
-             so no light is transmitted and k_t is added to the reflected ray's weight."
-        );
+        out.say(
+            Said::Tir,
+            format!(
+            "Total internal reflection on {}: the ray is inside a denser medium at too shallow an \
+             angle, so no light is transmitted and k_t is added to the reflected ray's weight.",
+            hit.object
+        ));
     }
     for child in tree.children(0) {
         write_child(&mut out, tree, child);
     }
     write_not_cast(&mut out, tree);
-    if root.depth >= tree.max_depth {
-        let _ = writeln!(
-            out,
-            "No secondary rays: max_depth is 1, so the primary ray spawns none."
+    if root.at_depth_limit() {
+        let but = if root.depth >= tree.max_depth {
+            "so"
+        } else {
+            "and under depth-off-by-one"
+        };
+        out.say(
+            Said::DepthLimit,
+            format!(
+                "No secondary rays: max_depth is {}, {but} the primary ray spawns none.",
+                tree.max_depth
+            ),
         );
     }
     write_sources(&mut out, tree);
     write_shaping(&mut out, tree);
-    out
+    out.0
 }
 
 /// The rays whose own terms make most of the pixel: at most three, each
 /// over 5% of its brightness, then what the rest add together.
-fn write_sources(out: &mut String, tree: &RayTree) {
+fn write_sources(out: &mut Story, tree: &RayTree) {
     let total = brightness(tree.color());
     if total <= 0.0 {
         return;
@@ -137,22 +247,24 @@ fn write_sources(out: &mut String, tree: &RayTree) {
         .take(3)
         .filter(|s| share(s.color) > 5.0)
         .collect();
-    let _ = writeln!(
-        out,
+    out.say(
+        Said::SourcesHeading,
         "Where the colour comes from: each surface's own ambient + diffuse + specular, times the \
-         weights and attenuations of the rays leading to it, as a share of the brightness:"
+         weights and attenuations of the rays leading to it, as a share of the brightness:",
     );
     for source in &top {
         let what = match &source.object {
             Some(object) => format!("{object}, hit by"),
             None => "the background, seen by".to_string(),
         };
-        let _ = writeln!(
-            out,
-            "  {:>5.1}%  {what} {}: adds {}",
-            share(source.color),
-            place(tree, source.node),
-            color(source.color)
+        out.ranked(
+            Said::Source,
+            format!("{:>5.1}%", share(source.color)),
+            format!(
+                "{what} {}: adds {}",
+                place(tree, source.node),
+                color(source.color)
+            ),
         );
     }
     let rest = &all[top.len()..];
@@ -164,51 +276,61 @@ fn write_sources(out: &mut String, tree: &RayTree) {
             (n, true) => (format!("{n} rays"), "add"),
             (n, false) => (format!("{n} other rays"), "add"),
         };
-        let (pct, added) = (format!("{:>5.1}%", share(sum)), color(sum));
-        // Rays that add nothing visible are not worth a line.
-        if pct.trim() != "0.0%" || added != "(0.000, 0.000, 0.000)" {
-            let _ = writeln!(out, "  {pct}  {rays} {add} {added}");
+        // Rays that add nothing visible (their share prints as 0.0%, their
+        // colour as (0.000, 0.000, 0.000)) are not worth a line.
+        if share(sum) >= 0.05 || sum.abs().max_element() >= 0.0005 {
+            out.ranked(
+                Said::Source,
+                format!("{:>5.1}%", share(sum)),
+                format!("{rays} {add} {}", color(sum)),
+            );
         }
     }
 }
 
 /// The events anywhere in the tree that shaped the colour, largest first.
-fn write_shaping(out: &mut String, tree: &RayTree) {
+fn write_shaping(out: &mut Story, tree: &RayTree) {
     let events = shaping_events(tree);
     if events.is_empty() {
-        let _ = writeln!(
-            out,
+        out.say(
+            Said::ShapedHeading,
             "Nothing else shaped it: no shadow, no total internal reflection, no ray cut short \
-             or lost to the background, no channel clamped."
+             or lost to the background, no channel clamped.",
         );
         return;
     }
-    let _ = writeln!(
-        out,
+    out.say(
+        Said::ShapedHeading,
         "What shaped the colour, at any depth of the tree, largest first; the number is how \
-         much of a channel it moved in the pixel, on average:"
+         much of a channel it moved in the pixel, on average:",
     );
     // An event that moved the pixel by less than 0.0005 prints as 0.000.
     let (visible, invisible): (Vec<_>, Vec<_>) =
         events.into_iter().partition(|e| e.matters >= 0.0005);
     for event in &visible {
-        let _ = writeln!(out, "  {:.3}  {}", event.matters, event.text);
+        out.ranked(
+            Said::Shaped,
+            format!("{:.3}", event.matters),
+            event.text.clone(),
+        );
     }
     if !invisible.is_empty() {
-        let _ = writeln!(
-            out,
-            "  {} changed nothing visible (less than 0.0005 on average).",
-            if visible.is_empty() {
-                count(invisible.len() as u64, "event", "events")
-            } else {
-                count(invisible.len() as u64, "more event", "more events")
-            }
+        out.item(
+            Said::Shaped,
+            format!(
+                "{} changed nothing visible (less than 0.0005 on average).",
+                if visible.is_empty() {
+                    count(invisible.len() as u64, "event", "events")
+                } else {
+                    count(invisible.len() as u64, "more event", "more events")
+                }
+            ),
         );
     }
 }
 
 /// Each term of the primary ray with its share of the total brightness.
-fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
+fn write_shares(out: &mut Story, tree: &RayTree, id: NodeId) {
     let node = &tree.nodes[id];
     let mut terms: Vec<(String, Color)> = vec![("ambient".into(), node.ambient)];
     for light in &node.lights {
@@ -221,9 +343,9 @@ fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
     }
     let total: f64 = terms.iter().map(|(_, c)| brightness(*c)).sum();
     terms.sort_by(|a, b| brightness(b.1).total_cmp(&brightness(a.1)));
-    let _ = writeln!(
-        out,
-        "Its colour is the sum of these terms (largest first, share of the brightness):"
+    out.say(
+        Said::TermsHeading,
+        "Its colour is the sum of these terms (largest first, share of the brightness):",
     );
     // A term that prints as (0.000, 0.000, 0.000) is only named, in one line.
     let (shown, tiny): (Vec<_>, Vec<_>) = terms
@@ -236,15 +358,21 @@ fn write_shares(out: &mut String, tree: &RayTree, id: NodeId) {
         } else {
             0.0
         };
-        let _ = writeln!(out, "  {name:<28} {}  {share:>5.1}%", color(*term));
+        out.item(
+            Said::Term,
+            format!("{name:<28} {}  {share:>5.1}%", color(*term)),
+        );
     }
     if !tiny.is_empty() {
         let names: Vec<&str> = tiny.iter().map(|(name, _)| name.as_str()).collect();
         let each = if names.len() == 1 { "" } else { "each " };
-        let _ = writeln!(out, "  and {} ({each}under 0.0005)", names.join(", "));
+        out.item(
+            Said::Term,
+            format!("and {} ({each}under 0.0005)", names.join(", ")),
+        );
     }
     if total <= 0.0 {
-        let _ = writeln!(out, "  every term is zero: nothing lights this point.");
+        out.item(Said::Term, "every term is zero: nothing lights this point.");
     }
 }
 
@@ -294,7 +422,7 @@ fn light_fate(light: &LightRecord) -> String {
              to the light.",
             light.light,
             opaque.object,
-            precise(opaque.t),
+            along(opaque.t),
             num(shadow.distance)
         );
     }
@@ -327,7 +455,7 @@ fn light_fate(light: &LightRecord) -> String {
     )
 }
 
-fn write_child(out: &mut String, tree: &RayTree, id: NodeId) {
+fn write_child(out: &mut Story, tree: &RayTree, id: NodeId) {
     let child = &tree.nodes[id];
     let kind = match child.kind {
         RayKind::Reflected => "Reflected",
@@ -337,25 +465,29 @@ fn write_child(out: &mut String, tree: &RayTree, id: NodeId) {
         Some(hit) => format!("hits {} at distance {}", hit.object, num(hit.t)),
         None => "hits nothing (background)".into(),
     };
-    let _ = writeln!(
-        out,
-        "{kind} ray (weight {}): {target} and brings back {}; after attenuation {} it adds {}.",
-        num(child.weight),
-        color(child.color),
-        num(child.attenuation),
-        color(child.contribution)
+    out.say(
+        Said::Child,
+        format!(
+            "{kind} ray (weight {}): {target} and brings back {}; after attenuation {} it adds {}.",
+            num(child.weight),
+            color(child.color),
+            num(child.attenuation),
+            color(child.contribution)
+        ),
     );
 }
 
 /// The primary ray's secondary rays that were not cast, and how many were
 /// not cast deeper in the tree, by rule (MODEL §5).
-fn write_not_cast(out: &mut String, tree: &RayTree) {
+fn write_not_cast(out: &mut Story, tree: &RayTree) {
     for ray in &tree.root().not_cast {
-        let _ = writeln!(
-            out,
-            "The {} ray is not cast: {}; it adds nothing.",
-            kind_name(ray.kind),
-            not_cast_reason(ray)
+        out.say(
+            Said::NotCast,
+            format!(
+                "The {} ray is not cast: {}; it adds nothing.",
+                kind_name(ray.kind),
+                not_cast_reason(ray)
+            ),
         );
     }
     let deeper = tree.nodes[1..].iter().flat_map(|n| &n.not_cast);
@@ -374,24 +506,28 @@ fn write_not_cast(out: &mut String, tree: &RayTree) {
         }
     }
     if let Some(min_weight) = light {
-        let _ = writeln!(
-            out,
-            "Deeper in the tree {} not cast: {} below min_weight {}.",
-            count(lighter, "secondary ray was", "secondary rays were"),
-            if lighter == 1 {
-                "its accumulated weight was"
-            } else {
-                "their accumulated weight was"
-            },
-            fraction(min_weight)
+        out.say(
+            Said::NotCast,
+            format!(
+                "Deeper in the tree {} not cast: {} below min_weight {}.",
+                count(lighter, "secondary ray was", "secondary rays were"),
+                if lighter == 1 {
+                    "its accumulated weight was"
+                } else {
+                    "their accumulated weight was"
+                },
+                fraction(min_weight)
+            ),
         );
     }
     if let Some(max_rays) = budget {
-        let _ = writeln!(
-            out,
-            "Deeper in the tree {} not cast: the pixel's tree had reached max_rays = \
+        out.say(
+            Said::NotCast,
+            format!(
+                "Deeper in the tree {} not cast: the pixel's tree had reached max_rays = \
              {max_rays} rays.",
-            count(over, "secondary ray was", "secondary rays were")
+                count(over, "secondary ray was", "secondary rays were")
+            ),
         );
     }
 }
@@ -399,16 +535,17 @@ fn write_not_cast(out: &mut String, tree: &RayTree) {
 /// What the primary ray went past although it came near: polygons whose
 /// plane it met within their bounds (the crossing test said outside), and
 /// spheres whose box it crossed (no real roots, or both behind).
-fn write_near_misses(out: &mut String, tree: &RayTree) {
+fn write_near_misses(out: &mut Story, tree: &RayTree) {
     for near in &tree.root().near_misses {
         if let Some(figure) = &near.crossing_figure {
-            let _ = writeln!(
-                out,
+            out.say(
+                Said::NearMiss,
+                format!(
                 "On its way it passes through the plane of {} inside its bounding box, but the point \
                  is outside the polygon: {}, an even number.",
                 near.object,
                 counted_edges(figure)
-            );
+            ));
         }
         if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
             let why = if w.choice == RootChoice::NoRealRoots {
@@ -427,9 +564,11 @@ fn write_near_misses(out: &mut String, tree: &RayTree) {
             } else {
                 format!("sphere {}", near.object)
             };
-            let _ = writeln!(
-                out,
-                "On its way it crosses the bounding box of {name} but passes it by: {why}."
+            out.say(
+                Said::NearMiss,
+                format!(
+                    "On its way it crosses the bounding box of {name} but passes it by: {why}."
+                ),
             );
         }
     }

@@ -5,7 +5,7 @@
 
 use std::fmt;
 
-use super::text::color;
+use super::numbers::color;
 use super::tree::{Event, EventKind, NodeId, RayTree};
 use crate::math::Color;
 use crate::trace::RayKind;

@@ -6,6 +6,7 @@ mod dot;
 mod explain;
 mod finite;
 mod lines;
+mod numbers;
 mod recorder;
 mod shaping;
 mod sources;
@@ -14,15 +15,16 @@ mod tree;
 
 pub use diff::diff;
 pub use dot::dot;
-pub use explain::{explain, explain_unwrapped};
+pub use explain::{Said, Told, explain, explain_lines, explain_unwrapped};
 pub use finite::{NonFinite, check_finite};
 pub use lines::{About, Line, Piece, Row, Word};
+pub use numbers::{along, color, count, fraction, num, root, vector};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use shaping::{Shaping, place, reach, shaping_events};
 pub use sources::{Source, brightness, sources};
 pub use text::{
-    Children, color, count, fraction, kind_name, light_label, light_lines, node_lines,
-    not_cast_line, not_cast_reason, num, ray_header, text, vector, working_lines,
+    Children, kind_name, light_label, light_lines, node_lines, not_cast_line, not_cast_reason,
+    ray_header, text, working_lines,
 };
 pub use tree::{
     BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors,

@@ -11,7 +11,8 @@ use crate::shapes::{
     CrossingFigure, Polygon, PolygonWorking, Shape, Sphere, SphereWorking, Working,
 };
 use crate::trace::{
-    Blocker, ChildTerm, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit, trace,
+    Blocker, ChildTerm, DepthLimit, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit,
+    trace,
 };
 
 use super::tree::{
@@ -116,6 +117,7 @@ impl Recorder for TreeRecorder<'_> {
             reflected: None,
             transmitted: None,
             not_cast: Vec::new(),
+            depth_limit: None,
             color: Color::ZERO,
             contribution: Color::ZERO,
         });
@@ -294,6 +296,10 @@ impl Recorder for TreeRecorder<'_> {
     fn not_cast(&mut self, ray: &NotCast) {
         self.node().not_cast.push(*ray);
         self.push_event(EventKind::NotCast(*ray));
+    }
+
+    fn depth_limit(&mut self, limit: &DepthLimit) {
+        self.node().depth_limit = Some(*limit);
     }
 
     fn ray_done(&mut self, color: Color) {

@@ -3,11 +3,10 @@
 //! the primary hit's story, so that total internal reflection three rays
 //! down is told as plainly as a shadow on the first hit.
 
-use super::text::{color, cosine_name, kind_name, not_cast_reason, num, precise};
+use super::numbers::{color, num, root};
+use super::text::{cosine_name, kind_name, not_cast_reason};
 use super::tree::{LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use crate::math::Color;
-use crate::mistakes::Mistake;
-use crate::trace::RayKind;
 
 /// One event and how much it matters to the pixel: the mean over the three
 /// channels of the colour it added or took away, after the weights and
@@ -33,7 +32,7 @@ pub fn shaping_events(tree: &RayTree) -> Vec<Shaping> {
             continue;
         };
         // At the depth limit TIR is told with the reflected ray it does not cast.
-        if node.tir() && !tree.at_depth_limit(id) {
+        if node.tir() && !node.at_depth_limit() {
             events.push(tir(tree, id, reach, &hit.object));
         }
         for light in &node.lights {
@@ -165,11 +164,11 @@ fn blocked(
         .blockers
         .iter()
         .map(|b| {
-            let root = b.root.map(|r| format!(", root {r}")).unwrap_or_default();
+            let which = b.root.map(|r| format!(", root {r}")).unwrap_or_default();
             format!(
-                "{} (t = {}{root}, k_t = {})",
+                "{} ({}{which}, k_t = {})",
                 b.object,
-                precise(b.t),
+                root("t", b.t),
                 num(b.kt)
             )
         })
@@ -208,54 +207,30 @@ fn blocked(
 /// A hit whose material reflects or transmits at the depth limit: the rays
 /// it would have spawned are not cast (MODEL §5).
 fn depth_cut(tree: &RayTree, id: NodeId, reach: f64) -> Vec<Shaping> {
-    let tir = tree.nodes[id].tir();
-    depth_cut_rays(tree, id)
-        .into_iter()
+    let node = &tree.nodes[id];
+    // TIR is told here, with the ray it does not cast: on which object.
+    let tir = match &node.hit {
+        Some(hit) if node.tir() => format!(
+            ", the one ray of a total internal reflection on {}",
+            hit.object
+        ),
+        _ => String::new(),
+    };
+    node.depth_cut()
         .map(|(kind, weight)| Shaping {
             matters: reach * weight,
             node: id,
             text: format!(
-                "at {} the depth limit (max_depth {}) stops its {} ray (weight {}{}): it could \
+                "at {} the depth limit (max_depth {}) stops its {} ray (weight {}){}: it could \
                  have added up to {} to each channel.",
                 place(tree, id),
                 tree.max_depth,
                 kind_name(kind),
                 num(weight),
-                if tir {
-                    ", total internal reflection"
-                } else {
-                    ""
-                },
+                tir,
                 num(reach * weight)
             ),
         })
-        .collect()
-}
-
-/// The secondary rays the depth limit kept a hit from spawning, with their
-/// weights: k_s and k_t, or on total internal reflection (recorded at the
-/// limit too) one reflected ray of k_s + k_t (k_s under `tir-dropped`).
-/// None below the limit, where every ray is cast or recorded as not cast.
-pub fn depth_cut_rays(tree: &RayTree, id: NodeId) -> Vec<(RayKind, f64)> {
-    let Some(hit) = tree.nodes[id].hit.as_ref() else {
-        return Vec::new();
-    };
-    if !tree.at_depth_limit(id) {
-        return Vec::new();
-    }
-    let f = &hit.factors;
-    let rays = if tree.nodes[id].tir() {
-        let moved = if tree.mistakes.contains(Mistake::TirDropped) {
-            0.0
-        } else {
-            f.kt
-        };
-        vec![(RayKind::Reflected, f.ks + moved)]
-    } else {
-        vec![(RayKind::Reflected, f.ks), (RayKind::Transmitted, f.kt)]
-    };
-    rays.into_iter()
-        .filter(|(_, weight)| *weight > 0.0)
         .collect()
 }
 

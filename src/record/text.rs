@@ -1,11 +1,11 @@
-//! Text forms of a recording: an indented tree for terminals (80 columns) and
-//! Graphviz for lecture slides. The debugger shows the same lines.
+//! The `inspect` text of a recording: each ray's typed lines (the debugger's
+//! details pane shows the same) and the indented tree for terminals (80
+//! columns). Numbers are written as `numbers.rs` writes them.
 
 use std::fmt::Write;
 
-use glam::DVec3;
-
 use super::lines::{About, Line};
+use super::numbers::{color, count, fraction, num, precise, root, vector};
 use super::tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
 };
@@ -14,56 +14,6 @@ use crate::mistakes::Mistake;
 use crate::scene::SpecularModel;
 use crate::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};
 use crate::trace::{NotCast, PruneRule, RayKind};
-
-/// A number with at most four decimals and no trailing zeros; one that
-/// rounds to 0 at four decimals (rounding noise such as -2.2e-16) is `0`.
-pub fn num(x: f64) -> String {
-    if x.abs() < 5e-5 {
-        return "0".into();
-    }
-    precise(x)
-}
-
-/// Like `num`, but a small value keeps its digits (`1.110e-16`): for the
-/// few numbers whose smallness is the lesson (a shadow-acne blocker's t, a
-/// ray's accumulated weight, EPS).
-pub fn precise(x: f64) -> String {
-    if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-4) {
-        return format!("{x:.3e}");
-    }
-    let s = format!("{x:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
-}
-
-pub fn vector(v: DVec3) -> String {
-    format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
-}
-
-/// A colour with three decimals per channel (never `-0.000`).
-pub fn color(c: DVec3) -> String {
-    let channel = |x: f64| {
-        let s = format!("{x:.3}");
-        if s == "-0.000" { "0.000".into() } else { s }
-    };
-    format!("({}, {}, {})", channel(c.x), channel(c.y), channel(c.z))
-}
-
-/// A cutoff such as 1/512 as a fraction when it is one, else as `num` writes it.
-pub fn fraction(x: f64) -> String {
-    let inverse = 1.0 / x;
-    if x > 0.0 && inverse.fract() == 0.0 && inverse <= 1e6 {
-        format!("1/{inverse}")
-    } else {
-        precise(x)
-    }
-}
-
-/// "1 primitive", "2 primitives": a count with its noun.
-pub fn count(n: impl Into<u64>, singular: &str, plural: &str) -> String {
-    let n = n.into();
-    format!("{n} {}", if n == 1 { singular } else { plural })
-}
 
 /// A secondary ray a rule kept from being cast, and the rule, in one line.
 pub fn not_cast_line(ray: &NotCast) -> String {
@@ -126,7 +76,11 @@ pub fn working_lines(working: &Working) -> Vec<String> {
                     RootChoice::BothBehind => "both roots are behind the ray".to_string(),
                     RootChoice::NoRealRoots => String::new(),
                 };
-                lines.push(format!("roots t0 = {}, t1 = {}: {why}", num(t0), num(t1)));
+                lines.push(format!(
+                    "roots {}, {}: {why}",
+                    root("t0", t0),
+                    root("t1", t1)
+                ));
             } else {
                 lines.push("negative discriminant: no real roots, no hit".into());
             }
@@ -256,9 +210,9 @@ fn near_miss_lines(near: &NearMiss) -> Vec<String> {
             )
         } else {
             format!(
-                "roots t0 = {}, t1 = {}: both behind the origin, the sphere is behind the ray",
-                num(w.t0.unwrap_or(0.0)),
-                num(w.t1.unwrap_or(0.0))
+                "roots {}, {}: both behind the origin, the sphere is behind the ray",
+                root("t0", w.t0.unwrap_or(0.0)),
+                root("t1", w.t1.unwrap_or(0.0))
             )
         });
     }
@@ -273,10 +227,10 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
         num(w.c),
         num(w.discriminant)
     )];
-    let root = |name: &str, t: Option<f64>, s: Option<f64>, ok: bool| match (t, s) {
+    let at = |name: &str, t: Option<f64>, s: Option<f64>, ok: bool| match (t, s) {
         (Some(t), Some(s)) => format!(
-            "{name} = {} at height {} of {}: {}",
-            num(t),
+            "{} at height {} of {}: {}",
+            root(name, t),
             num(s),
             num(w.height),
             if ok {
@@ -288,8 +242,8 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
         _ => format!("{name}: none"),
     };
     if w.t0.is_some() {
-        lines.push(root("t0", w.t0, w.s0, w.on_surface[0]));
-        lines.push(root("t1", w.t1, w.s1, w.on_surface[1]));
+        lines.push(at("t0", w.t0, w.s0, w.on_surface[0]));
+        lines.push(at("t1", w.t1, w.s1, w.on_surface[1]));
     } else {
         lines.push("no real roots: no hit".into());
     }
@@ -328,7 +282,7 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
             let names: Vec<String> = s
                 .blockers
                 .iter()
-                .map(|b| format!("{} (t = {}, k_t = {})", b.object, precise(b.t), num(b.kt)))
+                .map(|b| format!("{} ({}, k_t = {})", b.object, root("t", b.t), num(b.kt)))
                 .collect();
             let how = if s.s > 0.0 {
                 "partly blocked"
@@ -360,8 +314,8 @@ pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> 
             .iter()
             .filter(|o| o.object_index == b.object_index)
             .map(|o| {
-                let root = o.root.map(|r| format!(" (root {r})")).unwrap_or_default();
-                format!("t = {}{root}", precise(o.t))
+                let which = o.root.map(|r| format!(" (root {r})")).unwrap_or_default();
+                format!("{}{which}", root("t", o.t))
             })
             .collect();
         lines.push(Line::text(
@@ -411,7 +365,7 @@ fn blocker_lines(working: &Working) -> Vec<String> {
             let mut lines = working_lines(working);
             if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
                 lines.truncate(1);
-                lines.push(format!("roots t0 = {}, t1 = {}", precise(t0), precise(t1)));
+                lines.push(format!("roots {}, {}", root("t0", t0), root("t1", t1)));
             }
             lines
         }
@@ -580,7 +534,7 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
     if let Some(r) = &node.refraction {
         // At the depth limit (recorded on TIR only) no ray is cast; the line
         // below says so.
-        let outcome = match (r.tir, tree.at_depth_limit(id)) {
+        let outcome = match (r.tir, node.at_depth_limit()) {
             (true, false) => "total internal reflection: kt goes to the reflected ray",
             (true, true) => "total internal reflection: no transmitted ray",
             (false, _) => "transmitted",
@@ -600,10 +554,15 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
             .iter()
             .map(|ray| Line::text(Some(About::NotCast(ray.kind)), not_cast_line(ray))),
     );
-    if node.reflected.is_none() && node.transmitted.is_none() && node.depth >= tree.max_depth {
+    if node.at_depth_limit() {
+        let limit = if node.depth >= tree.max_depth {
+            "max_depth"
+        } else {
+            "max_depth - 1, the limit under depth-off-by-one"
+        };
         lines.push(Line::text(
             None,
-            format!("no secondary rays: depth {} is max_depth", node.depth),
+            format!("no secondary rays: depth {} is {limit}", node.depth),
         ));
     }
     lines
@@ -701,36 +660,5 @@ fn write_node(out: &mut String, tree: &RayTree, id: NodeId, prefix: &str) {
         let _ = write!(out, "{prefix}{}", if last { "└─ " } else { "├─ " });
         let next = format!("{prefix}{}", if last { "   " } else { "│  " });
         write_node(out, tree, *child, &next);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{color, num, precise};
-    use glam::DVec3;
-
-    #[test]
-    fn numbers_are_short() {
-        assert_eq!(num(1.0), "1");
-        assert_eq!(num(0.25), "0.25");
-        assert_eq!(num(-0.0), "0");
-        assert_eq!(num(2.0 / 3.0), "0.6667");
-        assert_eq!(num(2.5e7), "2.500e7");
-    }
-
-    #[test]
-    fn what_rounds_to_zero_prints_zero() {
-        // Rounding noise such as 1 - (1 - 2^-52) - 2^-52... prints as 0 at
-        // four decimals; 0.00005 rounds up to 0.0001 and stays.
-        assert_eq!(num(-2.220446049250313e-16), "0");
-        assert_eq!(num(-0.00001), "0");
-        assert_eq!(num(0.00005), "5.000e-5");
-        assert_eq!(color(DVec3::new(-1e-9, 0.5, -0.0)), "(0.000, 0.500, 0.000)");
-    }
-
-    #[test]
-    fn precise_numbers_keep_small_values() {
-        assert_eq!(precise(-0.00001), "-1.000e-5");
-        assert_eq!(precise(1.1102230246251565e-16), "1.110e-16");
     }
 }

@@ -7,10 +7,10 @@ use serde_json::Value;
 
 use crate::accel::Cost;
 use crate::math::Color;
-use crate::mistakes::{Mistake, Mistakes};
+use crate::mistakes::Mistakes;
 use crate::scene::SpecularModel;
 use crate::shapes::{CrossingFigure, Working};
-use crate::trace::{NotCast, RayKind, Refraction};
+use crate::trace::{DepthLimit, NotCast, RayKind, Refraction};
 
 pub type NodeId = usize;
 
@@ -41,6 +41,10 @@ pub struct Node {
     /// Secondary rays a rule kept from being cast (MODEL §5); absent when none.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub not_cast: Vec<NotCast>,
+    /// At a hit the depth limit kept from spawning, the rays it cut (MODEL
+    /// §5), as the tracer reported them; absent elsewhere.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub depth_limit: Option<DepthLimit>,
     /// The colour this ray returns, the sum of its stored terms.
     pub color: Color,
     /// weight * attenuation * color: what it adds to its parent.
@@ -51,6 +55,19 @@ impl Node {
     /// Whether the ray's refraction was total internal reflection.
     pub fn tir(&self) -> bool {
         self.refraction.is_some_and(|r| r.tir)
+    }
+
+    /// Whether the ray hit at the depth limit, where nothing is spawned:
+    /// max_depth, or one less under `depth-off-by-one` (MODEL §5, §8).
+    pub fn at_depth_limit(&self) -> bool {
+        self.depth_limit.is_some()
+    }
+
+    /// The secondary rays the depth limit kept this ray's hit from
+    /// spawning, by kind and weight; none below the limit, where every ray
+    /// is cast or recorded as not cast.
+    pub fn depth_cut(&self) -> impl Iterator<Item = (RayKind, f64)> {
+        self.depth_limit.into_iter().flat_map(|limit| limit.cut())
     }
 }
 
@@ -264,17 +281,6 @@ impl RayTree {
     /// The pixel's colour before clamping.
     pub fn color(&self) -> Color {
         self.root().color
-    }
-
-    /// Whether node `id` is at the depth limit, where no secondary ray is
-    /// spawned: max_depth, or one less under `depth-off-by-one` (MODEL §5, §8).
-    pub fn at_depth_limit(&self, id: NodeId) -> bool {
-        let limit = if self.mistakes.contains(Mistake::DepthOffByOne) {
-            self.max_depth.saturating_sub(1)
-        } else {
-            self.max_depth
-        };
-        self.nodes[id].depth >= limit
     }
 
     /// The pixel's bytes, as the render stores them with the same mistakes.

@@ -7,8 +7,8 @@ mod stats;
 mod tracer;
 
 pub use recorder::{
-    Blocker, ChildTerm, LightTerm, NoRecorder, NotCast, PruneRule, RayKind, Recorder, Refraction,
-    ShadowOutcome, SurfaceHit,
+    Blocker, ChildTerm, DepthLimit, LightTerm, NoRecorder, NotCast, PruneRule, RayKind, Recorder,
+    Refraction, ShadowOutcome, SurfaceHit,
 };
 pub use stats::RayStats;
 pub use tracer::{trace, trace_in_row};

@@ -123,17 +123,42 @@ pub struct NotCast {
     pub rule: PruneRule,
 }
 
+/// A hit the depth limit keeps from spawning (MODEL §5), with the weights
+/// of the secondary rays it would have cast: k_s and k_t, or on total
+/// internal reflection one reflected ray of k_s + k_t (k_s under
+/// `tir-dropped`); 0 for a ray it would not have cast either way (its
+/// material, or its switch off).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DepthLimit {
+    pub reflected: f64,
+    pub transmitted: f64,
+}
+
+impl DepthLimit {
+    /// The rays the limit cut, by kind and weight: those of weight above 0.
+    pub fn cut(self) -> impl Iterator<Item = (RayKind, f64)> {
+        [
+            (RayKind::Reflected, self.reflected),
+            (RayKind::Transmitted, self.transmitted),
+        ]
+        .into_iter()
+        .filter(|(_, weight)| *weight > 0.0)
+    }
+}
+
 /// Callbacks in execution order. For one ray: `ray_cast`, then `hit` or `miss`;
 /// after a hit `ambient`, per light `shadow_cast` and its `blocker`s then
-/// `light`, then `refraction` (at the depth limit only on TIR
-/// and if `RECORDS_DEPTH_LIMIT`), each child's whole subtree followed by `child`
-/// (or, for a child that is not cast, `not_cast`); last `ray_done`.
+/// `light`, then `refraction`, each child's whole subtree followed by `child`
+/// (or, for a child that is not cast, `not_cast`); last `ray_done`. At a hit
+/// the depth limit keeps from spawning, and only if `RECORDS_DEPTH_LIMIT`,
+/// `refraction` (on TIR only) and `depth_limit` come in place of the children.
 pub trait Recorder {
     /// When true, shadow queries report every blocker instead of stopping at
     /// the first opaque one. S is the same either way.
     const RECORDS_ALL_BLOCKERS: bool = false;
-    /// When true, a hit the depth limit keeps from spawning still gets its
-    /// `refraction` if it is TIR, though no colour depends on it.
+    /// When true, a hit the depth limit keeps from spawning is reported
+    /// (`depth_limit`, and `refraction` if it is TIR), though no colour
+    /// depends on it; a render skips that work at compile time.
     const RECORDS_DEPTH_LIMIT: bool = false;
 
     #[inline]
@@ -156,6 +181,8 @@ pub trait Recorder {
     fn child(&mut self, _term: &ChildTerm) {}
     #[inline]
     fn not_cast(&mut self, _ray: &NotCast) {}
+    #[inline]
+    fn depth_limit(&mut self, _limit: &DepthLimit) {}
     #[inline]
     fn ray_done(&mut self, _color: Color) {}
 }

@@ -1,9 +1,10 @@
-//! The few numbers and choices of MODEL §3-§6 that a classic mistake changes
-//! (MODEL §8), each asked as a question (which normal lights the hit? which
-//! segment does a shadow ray test?) so that the tracer reads like the lecture
-//! rather than checking mistakes. With `MISTAKES` false (an empty set) every
-//! answer is the model's and compiles to it; otherwise each question is one
-//! bit test of the settings' set.
+//! The few numbers and choices of MODEL §3-§6 that a setting's switch or a
+//! classic mistake changes (MODEL §8), each asked as a question (is the
+//! ambient term added? which normal lights the hit? which segment does a
+//! shadow ray test?) so that the tracer reads like the lecture rather than
+//! checking switches and mistakes. With `MISTAKES` false (an empty set) every
+//! mistake's answer is the model's and compiles to it; otherwise each
+//! question is one bit test of the settings' set.
 
 use glam::DVec3;
 
@@ -33,6 +34,30 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     #[inline]
     pub fn ambient(&self) -> bool {
         self.settings.switches.ambient && !self.has(Mistake::NoAmbient)
+    }
+
+    /// Whether a light that faces the point casts a shadow ray: the switch
+    /// (off, every light is unblocked, S = 1).
+    #[inline]
+    pub fn shadows(&self) -> bool {
+        self.settings.switches.shadows
+    }
+
+    /// The mirror weight of the reflected ray: k_s, or 0 with reflection
+    /// switched off (a TIR's k_t still moves to it).
+    #[inline]
+    pub fn mirror_weight(&self, material: &Material) -> f64 {
+        if self.settings.switches.reflection {
+            material.ks
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether the material refracts: k_t > 0 with transmission switched on.
+    #[inline]
+    pub fn transmits(&self, material: &Material) -> bool {
+        material.kt > 0.0 && self.settings.switches.transmission
     }
 
     /// Hits at a depth below this spawn secondary rays: max_depth, or one

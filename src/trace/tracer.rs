@@ -1,14 +1,14 @@
 //! The Whitted tracer, written once for rendering and recording (MODEL §3-§6):
 //! nearest hit or background; ambient; each light with its shadow ray; then
-//! reflection and transmission while the depth allows. The classic
-//! mistakes of MODEL §8 enter only through `Rules`.
+//! reflection and transmission while the depth allows. The settings'
+//! switches and the classic mistakes of MODEL §8 enter only through `Rules`.
 
 use std::ops::ControlFlow;
 
 use glam::DVec3;
 
 use super::recorder::{
-    Blocker, ChildTerm, LightTerm, NotCast, PruneRule, RayKind, Recorder, Refraction,
+    Blocker, ChildTerm, DepthLimit, LightTerm, NotCast, PruneRule, RayKind, Recorder, Refraction,
     ShadowOutcome, SurfaceHit,
 };
 use super::rules::Rules;
@@ -138,24 +138,52 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         if depth < self.rules.spawn_below_depth() {
             color = self.secondary_rays(ray, hit, material, (depth, path_weight), color);
         } else if R::RECORDS_DEPTH_LIMIT {
-            self.refraction_at_depth_limit(ray, hit, material);
+            self.depth_limit(ray, hit, material);
         }
         color
     }
 
-    /// Snell's law at a hit the depth limit keeps from spawning, for the
-    /// recording only, which keeps it on TIR: then the ray not cast is one
-    /// reflected ray, not a reflected and a transmitted one (MODEL §5). No
-    /// colour depends on it, so a render (`NoRecorder`) skips it at compile time.
+    /// Reports a hit the depth limit keeps from spawning, with the rays it
+    /// would have cast, for the recording only: Snell's law is kept on TIR,
+    /// where the ray not cast is one reflected ray, not a reflected and a
+    /// transmitted one (MODEL §5). No colour depends on it, so a render
+    /// (`NoRecorder`) skips it at compile time.
     #[cold]
     #[inline(never)]
-    fn refraction_at_depth_limit(&mut self, ray: &Ray, hit: &SurfaceHit, material: &Material) {
-        if material.kt > 0.0 && self.settings.switches.transmission {
-            let eta = self.rules.eta(hit.entering, material.ior);
-            let refraction = refract(ray.direction, hit, eta);
-            if refraction.tir {
-                self.rec.refraction(&refraction);
-            }
+    fn depth_limit(&mut self, ray: &Ray, hit: &SurfaceHit, material: &Material) {
+        let spawn = self.spawn(ray, hit, material);
+        if let Some(refraction) = spawn.refraction.filter(|r| r.tir) {
+            self.rec.refraction(&refraction);
+        }
+        let transmits = spawn.refraction.is_some_and(|r| r.direction.is_some());
+        self.rec.depth_limit(&DepthLimit {
+            reflected: spawn.reflected_weight,
+            transmitted: if transmits { material.kt } else { 0.0 },
+        });
+    }
+
+    /// What a hit spawns, once, for the rays cast and for those the depth
+    /// limit cuts: Snell's law if the material transmits, and the reflected
+    /// ray's weight, k_s (+ k_t on TIR).
+    #[inline]
+    fn spawn(&self, ray: &Ray, hit: &SurfaceHit, material: &Material) -> Spawn {
+        let refraction = self.rules.transmits(material).then(|| {
+            refract(
+                ray.direction,
+                hit,
+                self.rules.eta(hit.entering, material.ior),
+            )
+        });
+        let tir = refraction.is_some_and(|r| r.tir);
+        let reflected_weight = self.rules.mirror_weight(material)
+            + if tir && self.rules.tir_adds_kt() {
+                material.kt
+            } else {
+                0.0
+            };
+        Spawn {
+            refraction,
+            reflected_weight,
         }
     }
 
@@ -169,7 +197,6 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         to_viewer: DVec3,
         (index, light): (usize, &Light),
     ) -> LightTerm {
-        let settings = self.settings;
         let offset = light.position - point;
         let distance = offset.length();
         let to_light = offset / distance;
@@ -196,7 +223,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         if term.faces_away {
             return term;
         }
-        if settings.switches.shadows {
+        if self.rules.shadows() {
             term.shadow = Some(self.shadow_ray(point, to_light, distance, index));
         }
         let s = term.shadow.map_or(1.0, |shadow| shadow.s);
@@ -279,29 +306,13 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         parent: (u32, f64),
         local: Color,
     ) -> Color {
-        let switches = self.settings.switches;
-        let refraction = (material.kt > 0.0 && switches.transmission).then(|| {
-            refract(
-                ray.direction,
-                hit,
-                self.rules.eta(hit.entering, material.ior),
-            )
-        });
+        let Spawn {
+            refraction,
+            reflected_weight,
+        } = self.spawn(ray, hit, material);
         if let Some(refraction) = &refraction {
             self.rec.refraction(refraction);
         }
-        let tir = refraction.is_some_and(|r| r.tir);
-        let mirror = if switches.reflection {
-            material.ks
-        } else {
-            0.0
-        };
-        let reflected_weight = mirror
-            + if tir && self.rules.tir_adds_kt() {
-                material.kt
-            } else {
-                0.0
-            };
         let mut color = local;
         if reflected_weight > 0.0 {
             let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
@@ -370,6 +381,12 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         });
         contribution
     }
+}
+
+/// What a hit spawns (`Tracer::spawn`).
+struct Spawn {
+    refraction: Option<Refraction>,
+    reflected_weight: f64,
 }
 
 /// A light within EPS of the point, recorded like one that faces away, with

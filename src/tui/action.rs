@@ -154,8 +154,8 @@ pub enum Find {
     /// A shadow ray blocked only by transparent surfaces: 0 < S < 1.
     PartialShadow,
     Tir,
-    /// A ray that hit a reflective or transparent surface at max_depth, so
-    /// the child it would have cast (with its switch on) was not.
+    /// A ray whose hit the depth limit kept from casting a child it would
+    /// have cast (the recording's `depth_limit`, as the tracer reported it).
     DepthLimit,
     /// A hit on the breakpoint object (`x`'s).
     BreakObject,

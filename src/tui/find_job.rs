@@ -54,7 +54,7 @@ impl FindJob {
                 }
                 job_row.store(y, Ordering::Relaxed);
                 let tree = record_pixel(&scene, &settings, x, y);
-                if let Some(event) = find::first_event(&tree, &scene, &settings, what, object) {
+                if let Some(event) = find::first_event(&tree, what, object) {
                     found = Some(Found {
                         pixel: (x, y),
                         tree,

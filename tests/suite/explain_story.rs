@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use raystep::mistakes::{Mistake, Mistakes};
 use raystep::record::{Children, explain, node_lines, record_pixel, shaping_events};
 use raystep::scene::{Scene, load};
 
@@ -263,12 +264,125 @@ fn tir_at_the_depth_limit_casts_one_reflected_ray_of_weight_ks_plus_kt() {
     let story = flat(&explain(&tree));
     assert!(
         story.contains(
-            "the depth limit (max_depth 2) stops its reflected ray (weight 1, total internal \
-             reflection)"
+            "the depth limit (max_depth 2) stops its reflected ray (weight 1), the one ray of a \
+             total internal reflection on glass block right"
         ),
         "{story}"
     );
     assert!(!story.contains("stops its transmitted ray"), "{story}");
+}
+
+#[test]
+fn under_depth_off_by_one_the_limit_is_one_level_higher_everywhere() {
+    // scenes/mirrors.toml's pixel (97, 50): the primary ray hits the right
+    // mirror (k_s = 0.85), whose reflection shows the ball. With max_depth 2
+    // and depth-off-by-one, rays of depth 2 - 1 = 1 spawn nothing (MODEL
+    // §8): the primary ray is at the limit, so it casts no reflected ray.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/mirrors.toml");
+    let scene = load(&path).unwrap();
+    let mut settings = scene.settings;
+    settings.max_depth = 2;
+    settings.mistakes = Mistakes::NONE.with(Mistake::DepthOffByOne);
+    let tree = record_pixel(&scene, &settings, 97, 50);
+    assert_eq!(tree.nodes.len(), 1, "no secondary ray is cast");
+    let story = flat(&explain(&tree));
+    assert!(
+        story.contains(
+            "No secondary rays: max_depth is 2, and under depth-off-by-one the primary ray \
+             spawns none."
+        ),
+        "{story}"
+    );
+    // The ray not cast is the mirror's reflected ray, of weight k_s = 0.85.
+    assert!(
+        story.contains("the depth limit (max_depth 2) stops its reflected ray (weight 0.85)"),
+        "{story}"
+    );
+    // inspect's lines agree: depth 1 is the limit, not max_depth.
+    let lines: Vec<String> = node_lines(&tree, 0, Children::Omitted)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    assert!(
+        lines.contains(
+            &"no secondary rays: depth 1 is max_depth - 1, the limit under depth-off-by-one"
+                .to_string()
+        ),
+        "{lines:#?}"
+    );
+}
+
+#[test]
+fn a_ray_switched_off_is_not_told_as_cut_by_the_depth_limit() {
+    // max_depth 1 on the mirror (k_s = 0.5) with reflection switched off:
+    // the mirror would cast no reflected ray at any depth, so the depth
+    // limit cuts nothing and nothing shaped the pixel but its terms.
+    let mut scene = mirror_and_shadow("max_depth = 1");
+    scene.settings.switches.reflection = false;
+    let tree = record(&scene, [0.0; 3], [0.0, 0.0, -1.0]);
+    assert_eq!(tree.nodes.len(), 1);
+    let story = flat(&explain(&tree));
+    assert!(!story.contains("the depth limit"), "{story}");
+}
+
+#[test]
+fn a_tir_at_the_depth_limit_is_named_with_its_object() {
+    // scenes/glass.toml's pixel (122, 72): r5 (depth 5, max_depth 5) is
+    // inside the block and meets its bottom face at too shallow an angle:
+    // TIR, and the limit stops the one reflected ray, of weight k_s + k_t
+    // = 0.1 + 0.9 = 1. The sentence says where: on glass block bottom.
+    let story = flat(&explain_file("scenes/glass.toml", 122, 72));
+    assert!(
+        story.contains(
+            "at r5 (primary → transmitted → reflected → reflected → reflected, depth 5) the \
+             depth limit (max_depth 5) stops its reflected ray (weight 1), the one ray of a \
+             total internal reflection on glass block bottom:"
+        ),
+        "{story}"
+    );
+    // Every TIR sentence names its object.
+    for sentence in story.split_inclusive(". ") {
+        if sentence.contains("total internal reflection") {
+            assert!(sentence.contains(" on glass block "), "{sentence}");
+        }
+    }
+}
+
+#[test]
+fn a_ray_leaving_a_sphere_says_t0_is_where_it_leaves() {
+    // A glass ball of radius 1 at (0, 0, -3), met head on: the primary ray
+    // enters at (0, 0, -2), straight through (cos_i = 1, so the transmitted
+    // direction is (0, 0, -1)). The transmitted ray r1 starts on the
+    // sphere: o - c = (0, 0, 1), A = 1, B = 2 d·(o - c) = -2, C = 1 - 1 = 0,
+    // roots (2 -+ 2) / 2 = 0 and 2: t0 is the point it leaves, t1 the back.
+    let ball = scene(
+        "[camera]
+        eye = [0, 0, 0]
+        look_at = [0, 0, -1]
+        [settings]
+        max_depth = 2
+        [materials.glass]
+        kd = 0.1
+        ks = 0
+        kt = 0.9
+        ior = 1.5
+        [[object]]
+        name = \"ball\"
+        material = \"glass\"
+        sphere = { center = [0, 0, -3], radius = 1 }",
+    );
+    let tree = record(&ball, [0.0; 3], [0.0, 0.0, -1.0]);
+    let r1 = tree.root().transmitted.expect("the ball transmits");
+    let lines: Vec<String> = node_lines(&tree, r1, Children::Listed)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("  roots t0 ≈ 0 (the point the ray leaves), t1 = 2: took t1")),
+        "{lines:#?}"
+    );
 }
 
 fn explain_file(file: &str, x: u32, y: u32) -> String {

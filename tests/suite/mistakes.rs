@@ -6,7 +6,7 @@ use std::path::Path;
 
 use glam::DVec3;
 use raystep::mistakes::{Mistake, Mistakes};
-use raystep::record::{RayTree, record_pixel};
+use raystep::record::{Children, RayTree, explain, node_lines, record_pixel};
 use raystep::render::render;
 use raystep::scene::{Scene, Settings, parse};
 use raystep::terms::render_terms;
@@ -87,6 +87,31 @@ fn shadow_acne_lets_the_floor_shadow_itself() {
         blockers[0].t > 0.0 && blockers[0].t < 1e-16,
         "{}",
         blockers[0].t
+    );
+}
+
+#[test]
+fn shadow_acne_is_told_as_the_surface_the_shadow_ray_leaves() {
+    // The floor above: under shadow-acne its shadow ray meets the floor
+    // itself at t = 2.8e-17, below EPS: the point the ray leaves. explain
+    // and the inspect lines say so rather than print a bare 2.776e-17.
+    let s = floor("0.1", "", "");
+    let [_, wrong] = both(&s, Mistake::ShadowAcne, DOWN.0, DOWN.1);
+    let story = explain(&wrong)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let inspect: String = node_lines(&wrong, 0, Children::Listed)
+        .iter()
+        .map(|l| format!("{l}\n"))
+        .collect();
+    for text in [&story, &inspect] {
+        assert!(text.contains("≈ 0 (the point the ray leaves)"), "{text}");
+        assert!(!text.contains("e-17"), "{text}");
+    }
+    assert!(
+        story.contains("blocked by plane 0 (opaque) at distance ≈ 0 (the point the ray leaves)"),
+        "{story}"
     );
 }
 

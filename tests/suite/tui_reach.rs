@@ -5,6 +5,7 @@ use std::path::Path;
 use std::time::Duration;
 
 use crossterm::event::KeyCode;
+use raystep::mistakes::{Mistake, Mistakes};
 use raystep::record::{EventKind, record_pixel};
 use raystep::terms::Term;
 use raystep::tui::{Action, App, Mode, Picture};
@@ -155,6 +156,51 @@ fn f_t_finds_the_next_pixel_with_total_internal_reflection() {
         .unwrap();
     chars(&mut app, "ft");
     assert_eq!(app.cursor(), next);
+}
+
+#[test]
+fn f_d_finds_the_depth_limit_where_the_mistake_puts_it() {
+    // mirrors.toml (max_depth 5) with depth-off-by-one, turned on in the
+    // mistakes menu (row 8 of the catalogue): rays of depth 5 - 1 = 4
+    // spawn nothing, so no ray reaches depth 5 and the rays the limit cuts
+    // are those that hit a mirror (k_s = 0.85) at depth 4.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/mirrors.toml");
+    let mut app = App::open(Some(path), true).unwrap();
+    let start = app.cursor();
+    chars(&mut app, "Mjjjjjjjj ");
+    assert_eq!(
+        app.settings().mistakes,
+        Mistakes::NONE.with(Mistake::DepthOffByOne)
+    );
+    chars(&mut app, "M");
+    // Independently: the first pixel in reading order after the cursor with
+    // a ray that hit a reflective or transparent material at depth 4.
+    let (scene, settings) = (app.scene().clone(), *app.settings());
+    let (width, height) = (scene.width, scene.height);
+    let cut = |x, y| {
+        record_pixel(&scene, &settings, x, y).nodes.iter().any(|n| {
+            n.hit.as_ref().is_some_and(|h| {
+                n.depth == settings.max_depth - 1 && (h.factors.ks > 0.0 || h.factors.kt > 0.0)
+            })
+        })
+    };
+    let expected = (start.1 * width + start.0 + 1..width * height)
+        .chain(0..=start.1 * width + start.0)
+        .map(|i| (i % width, i / width))
+        .find(|&(x, y)| cut(x, y))
+        .expect("mirrors.toml has rays that reach depth 4 on a mirror");
+    chars(&mut app, "fD");
+    let message = app.message().unwrap_or_default().to_string();
+    assert_shows_pixel(&app, expected);
+    assert!(message.contains("depth limit"), "{message}");
+    // The current event is the cast of the ray the limit stopped, at depth 4.
+    assert!(
+        matches!(
+            app.tree().events[app.current()].kind,
+            EventKind::RayCast { depth: 4, .. }
+        ),
+        "{message}"
+    );
 }
 
 #[test]

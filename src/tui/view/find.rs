@@ -3,7 +3,6 @@
 //! limit, a hit on the breakpoint object, or a near miss (polygon or sphere); and the go-to prompt's `X,Y`.
 
 use crate::record::{EventKind, RayTree};
-use crate::scene::{Scene, Settings};
 
 use super::stepper;
 use crate::tui::action::{Breakpoint, Find};
@@ -26,20 +25,19 @@ impl Find {
 
 /// The first event of `tree` that `find` looks for; `object` is the
 /// breakpoint object (`Find::BreakObject` needs one; `Find::NearMiss`
-/// looks at it alone when there is one). The depth limit needs the
-/// materials (the scene's) and the switches `tree` was recorded with.
-pub fn first_event(
-    tree: &RayTree,
-    scene: &Scene,
-    settings: &Settings,
-    find: Find,
-    object: Option<usize>,
-) -> Option<usize> {
+/// looks at it alone when there is one). Everything is read from `tree`.
+pub fn first_event(tree: &RayTree, find: Find, object: Option<usize>) -> Option<usize> {
     let breakpoint = match find {
         Find::BlockedShadow => Breakpoint::BlockedShadow,
         Find::Tir => Breakpoint::Tir,
         Find::BreakObject => Breakpoint::HitObject(object?),
-        Find::DepthLimit => return depth_cut(tree, scene, settings),
+        Find::DepthLimit => {
+            let cut = tree
+                .nodes
+                .iter()
+                .position(|n| n.depth_cut().next().is_some())?;
+            return stepper::cast_event(tree, cut);
+        }
         Find::PartialShadow => {
             return (0..tree.events.len()).find(|&i| {
                 stepper::matches(tree, i, Breakpoint::BlockedShadow) && partly_blocked(tree, i)
@@ -69,19 +67,6 @@ fn partly_blocked(tree: &RayTree, i: usize) -> bool {
         .find(|l| l.light_index == light)
         .and_then(|l| l.shadow.as_ref())
         .is_some_and(|shadow| shadow.s > 0.0 && shadow.s < 1.0)
-}
-
-/// The cast event of the first ray whose children the depth limit cut.
-fn depth_cut(tree: &RayTree, scene: &Scene, settings: &Settings) -> Option<usize> {
-    let switches = settings.switches;
-    let cut = tree.nodes.iter().position(|node| {
-        let Some(hit) = &node.hit else { return false };
-        let material = scene.material_of(hit.object_index);
-        let would_cast = (switches.reflection && material.ks > 0.0)
-            || (switches.transmission && material.kt > 0.0);
-        node.depth >= tree.max_depth && would_cast
-    })?;
-    stepper::cast_event(tree, cut)
 }
 
 /// The pixels after `from` in reading order (left to right, rows down),

@@ -5,7 +5,7 @@ use ratatui::style::{Color as TermColor, Style};
 use ratatui::text::{Line, Span};
 
 use crate::math::Color;
-use crate::record::{Event, EventKind, RayTree, color, kind_name, not_cast_line, num};
+use crate::record::{Event, EventKind, RayTree, color, kind_name, not_cast_line, num, root};
 use crate::scene::Scene;
 
 use super::tree::{light_label, swatch};
@@ -53,9 +53,9 @@ pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option
         ),
         EventKind::Blocker { object, t, kt, .. } => (
             format!(
-                "{ray}: blocked by {} at t = {}, kt = {}",
+                "{ray}: blocked by {} at {}, kt = {}",
                 scene.object_name(*object),
-                num(*t),
+                root("t", *t),
                 num(*kt)
             ),
             None,
