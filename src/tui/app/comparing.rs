@@ -26,7 +26,8 @@ impl StudentComparison {
         &self.yours
     }
 
-    pub fn comparison(&self) -> &Comparison {
+    /// What `compare` found: the ranked mistakes, the regions, the error map.
+    pub fn findings(&self) -> &Comparison {
         &self.comparison
     }
 

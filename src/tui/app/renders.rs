@@ -161,6 +161,7 @@ mod tests {
         let mut app = App::new(source, big, None, false);
         let deadline = Instant::now() + Duration::from_secs(30);
         while !app
+            .renders()
             .progress()
             .is_some_and(|p| p.rows == 3000 && p.rows_done > 0)
         {

@@ -52,6 +52,7 @@ impl Screen {
         }
     }
 
+    /// The terminal's size, as the last `Action::Resize` gave it.
     pub fn size(&self) -> Rect {
         self.size
     }
@@ -113,7 +114,8 @@ impl Screen {
         self.plane
     }
 
-    pub fn diagram(&self) -> PanZoom {
+    /// How the diagram is panned and zoomed.
+    pub fn diagram_pan_zoom(&self) -> PanZoom {
         self.diagram
     }
 

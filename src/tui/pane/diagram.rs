@@ -125,8 +125,9 @@ fn object_color(scene: &Scene, object: usize) -> Color {
 /// Draws the app's diagram into `area` (block included): its pixel's tree
 /// at its current event, on its plane, panned and zoomed as it says.
 pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
-    let (scene, tree, current) = (app.scene(), app.tree(), app.current());
-    let (plane, view) = (app.plane(), app.diagram_pan_zoom());
+    let (scene, pixel, screen) = (app.session().scene(), app.pixel(), app.screen());
+    let (tree, current) = (pixel.tree(), pixel.current());
+    let (plane, view) = (screen.plane(), screen.diagram_pan_zoom());
     let inner = block.inner(area);
     let projection = Projection::new(plane, scene, tree);
     let (segments, blockers) = ray_segments(tree, scene, &projection, progress(tree, current));
