@@ -22,6 +22,7 @@ impl StudentComparison {
         }
     }
 
+    /// The student's image.
     pub fn yours(&self) -> &RgbImage {
         &self.yours
     }

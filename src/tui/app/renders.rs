@@ -111,14 +111,17 @@ impl Renders {
         self.renderer.busy()
     }
 
+    /// How far the running render is.
     pub fn progress(&self) -> Option<Progress> {
         self.renderer.progress()
     }
 
+    /// The latest render (or preview) of the current settings.
     pub fn image(&self) -> Option<&RgbImage> {
         self.image.as_ref()
     }
 
+    /// The term images, once a term picture asked for them.
     pub fn terms(&self) -> Option<&TermImages> {
         self.terms.as_ref()
     }
@@ -132,6 +135,7 @@ impl Renders {
         }
     }
 
+    /// How long the last finished render took.
     pub fn render_time(&self) -> Option<Duration> {
         self.render_time
     }

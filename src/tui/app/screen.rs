@@ -57,6 +57,7 @@ impl Screen {
         self.size
     }
 
+    /// The pane that has the keys.
     pub fn focus(&self) -> Pane {
         self.focus
     }
@@ -65,6 +66,7 @@ impl Screen {
         self.focus = pane;
     }
 
+    /// 1 shows the whole image; each doubling halves the pixels per cell.
     pub fn zoom(&self) -> u32 {
         self.zoom
     }
@@ -78,6 +80,7 @@ impl Screen {
         Some("zoomed in all the way: one image pixel per half cell".into())
     }
 
+    /// What the image pane shows.
     pub fn picture(&self) -> Picture {
         self.picture
     }
@@ -110,6 +113,7 @@ impl Screen {
         }
     }
 
+    /// The plane the diagram is drawn on.
     pub fn plane(&self) -> DiagramPlane {
         self.plane
     }
