@@ -25,10 +25,10 @@ fn term_view_redraw(c: &mut Criterion) {
         let mut app = App::open(Some(path), true).unwrap();
         app.update(Action::Resize(200, 60));
         // ambient, diffuse, ..., shadow, rays: the count views scale by a maximum.
-        while app.picture() != Picture::Term(raystep::terms::Term::Rays) {
+        while app.screen().picture() != Picture::Term(raystep::terms::Term::Rays) {
             app.update(Action::CyclePicture);
         }
-        assert!(app.terms().is_some());
+        assert!(app.renders().terms().is_some());
         let mut terminal = Terminal::new(TestBackend::new(200, 60)).unwrap();
         let mut group = c.benchmark_group(format!("debugger 200x60 {name}"));
         group.sample_size(10);

@@ -12,7 +12,7 @@ use super::keymap::{self, Command, Input, Mode};
 pub fn action(event: &Event, app: &App) -> Option<Action> {
     match event {
         Event::Key(key) if key.kind != KeyEventKind::Release => {
-            key_action(key, app.mode(), app.focus())
+            key_action(key, app.overlay().mode(), app.screen().focus())
         }
         Event::Mouse(mouse) => {
             let input = match mouse.kind {
@@ -21,7 +21,7 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
                 MouseEventKind::ScrollDown => Input::WheelDown,
                 _ => return None,
             };
-            match keymap::mouse_command(input, app.mode())? {
+            match keymap::mouse_command(input, app.overlay().mode())? {
                 Command::Click => Some(Action::Click(mouse.column, mouse.row)),
                 command => in_pane(command, app.panes().pane_at(mouse.column, mouse.row)?),
             }

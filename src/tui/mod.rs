@@ -106,7 +106,8 @@ where
     B::Error: Send + Sync + 'static,
 {
     let size = terminal.size()?;
-    if (size.width, size.height) != (app.screen().width, app.screen().height) {
+    let known = app.screen().size();
+    if (size.width, size.height) != (known.width, known.height) {
         app.update(Action::Resize(size.width, size.height));
     }
     terminal.draw(|frame| pane::draw(frame, app))?;

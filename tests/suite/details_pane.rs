@@ -75,7 +75,8 @@ fn app_at(x: u32, y: u32) -> App {
 
 /// The first event of ray `node` that `test` accepts.
 fn event(app: &App, node: usize, test: impl Fn(&EventKind) -> bool) -> usize {
-    app.tree()
+    app.pixel()
+        .tree()
         .events
         .iter()
         .position(|e| e.node == node && test(&e.kind))
@@ -89,7 +90,7 @@ fn pane(app: &mut App, at: usize) -> Buffer {
     for _ in 0..at {
         app.update(Action::Step(Step::Next));
     }
-    assert_eq!(app.current(), at);
+    assert_eq!(app.pixel().current(), at);
     let mut terminal = Terminal::new(TestBackend::new(WIDTH, HEIGHT)).unwrap();
     terminal
         .draw(|frame| details::draw(frame, app, frame.area()))

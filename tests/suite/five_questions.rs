@@ -174,7 +174,7 @@ fn keys(app: &mut App, keys: &str, most: usize) {
         "{keys}: more than {most} keys"
     );
     chars(app, keys);
-    assert_eq!(app.mode(), Mode::Browsing);
+    assert_eq!(app.overlay().mode(), Mode::Browsing);
 }
 
 #[test]
@@ -194,7 +194,7 @@ fn each_answer_is_in_the_debugger_within_five_keys_of_the_start() {
     // the left edge of row 61, through the glass ball and the pane. 2 keys.
     let mut app = open("two-lights.toml");
     keys(&mut app, "fp", 5);
-    assert_eq!(app.cursor(), (0, 61));
+    assert_eq!(app.pixel().cursor(), (0, 61));
     let text = screen_text(&mut app);
     assert!(
         text.contains("S = 0.288, partly blocked by glass ball"),
@@ -232,7 +232,7 @@ fn each_answer_is_in_the_debugger_within_five_keys_of_the_start() {
     // then the star; f n goes to the next near miss of the star. 5 keys.
     let mut app = open("polygons.toml");
     keys(&mut app, "XXX", 5);
-    assert_eq!(app.break_object(), Some(2), "the star");
+    assert_eq!(app.pixel().break_object(), Some(2), "the star");
     keys(&mut app, "fn", 2);
     let text = screen_text(&mut app);
     assert!(text.contains("passed by star"), "{text}");

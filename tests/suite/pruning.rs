@@ -366,5 +366,5 @@ fn the_debugger_opens_lossless_glass_planes_at_depth_64() {
         .replace("kt = 0.5", "kt = 1");
     std::fs::write(&path, text).unwrap();
     let app = raystep::tui::App::open(Some(path), true).unwrap();
-    assert_eq!(app.tree().nodes.len(), 4096);
+    assert_eq!(app.pixel().tree().nodes.len(), 4096);
 }

@@ -19,15 +19,18 @@ use crate::support::debugger::*;
 #[test]
 fn starts_on_the_centre_pixel_with_its_tree() {
     let app = app();
-    assert_eq!(app.cursor(), (80, 60));
+    assert_eq!(app.pixel().cursor(), (80, 60));
     assert_eq!(
-        app.tree().nodes.len(),
+        app.pixel().tree().nodes.len(),
         7,
         "the seven rays of the seven-rays scene"
     );
-    assert_eq!(app.current(), 0);
-    assert_eq!(app.focus(), Pane::Image);
-    assert!(app.image().is_some(), "sync mode renders before returning");
+    assert_eq!(app.pixel().current(), 0);
+    assert_eq!(app.screen().focus(), Pane::Image);
+    assert!(
+        app.renders().image().is_some(),
+        "sync mode renders before returning"
+    );
 }
 
 #[test]
@@ -41,9 +44,9 @@ fn cursor_moves_and_clamps_at_the_image_edge() {
             key(KeyCode::Down),
         ],
     );
-    assert_eq!(app.cursor(), (82, 61));
+    assert_eq!(app.pixel().cursor(), (82, 61));
     press(&mut app, &[shift('H'), key(KeyCode::Char('k'))]);
-    assert_eq!(app.cursor(), (72, 60));
+    assert_eq!(app.pixel().cursor(), (72, 60));
     press(
         &mut app,
         &[Event::Key(KeyEvent::new(
@@ -51,14 +54,14 @@ fn cursor_moves_and_clamps_at_the_image_edge() {
             KeyModifiers::SHIFT,
         ))],
     );
-    assert_eq!(app.cursor(), (62, 60));
+    assert_eq!(app.pixel().cursor(), (62, 60));
     app.update(Action::Move(-1000, -1000));
-    assert_eq!(app.cursor(), (0, 0));
+    assert_eq!(app.pixel().cursor(), (0, 0));
     app.update(Action::Move(1000, 1000));
-    assert_eq!(app.cursor(), (160, 120));
+    assert_eq!(app.pixel().cursor(), (160, 120));
     chars(&mut app, "lj");
     assert_eq!(
-        app.cursor(),
+        app.pixel().cursor(),
         (160, 120),
         "the cursor stays on the last pixel"
     );
@@ -69,11 +72,11 @@ fn picking_a_pixel_shows_exactly_what_inspect_records() {
     let mut app = app();
     for (x, y) in [(0, 0), (80, 82), (123, 45), (160, 120)] {
         app.update(Action::Pick(x, y));
-        let expected = record_pixel(app.scene(), app.settings(), x, y);
-        assert_eq!(app.tree().pixel, (x, y));
-        assert_eq!(app.tree().color(), expected.color());
-        assert_eq!(app.tree().events.len(), expected.events.len());
-        let shown = app.image().unwrap().get_pixel(x, y).0;
+        let expected = record_pixel(app.session().scene(), app.session().settings(), x, y);
+        assert_eq!(app.pixel().tree().pixel, (x, y));
+        assert_eq!(app.pixel().tree().color(), expected.color());
+        assert_eq!(app.pixel().tree().events.len(), expected.events.len());
+        let shown = app.renders().image().unwrap().get_pixel(x, y).0;
         assert_eq!(
             shown,
             to_rgb8(expected.color()),
@@ -88,7 +91,7 @@ fn steps_move_like_a_debugger() {
     let mut app = app();
     let step = |app: &mut App, step: Step| {
         app.update(Action::Step(step));
-        app.current()
+        app.pixel().current()
     };
     assert_eq!(
         step(&mut app, Step::Previous),
@@ -100,14 +103,14 @@ fn steps_move_like_a_debugger() {
     assert_eq!(step(&mut app, Step::Next), 9);
     assert_eq!(step(&mut app, Step::Out), 28, "out: where r1 returns to r0");
     assert!(matches!(
-        app.tree().events[28].kind,
+        app.pixel().tree().events[28].kind,
         EventKind::ChildReturned { child: 1, .. }
     ));
     app.update(Action::Step(Step::Start));
     for _ in 0..7 {
         app.update(Action::Step(Step::Over));
     }
-    assert_eq!(app.current(), 7, "over: r0's own events one by one");
+    assert_eq!(app.pixel().current(), 7, "over: r0's own events one by one");
     assert_eq!(step(&mut app, Step::Over), 28, "over skips r1's subtree");
     assert_eq!(
         step(&mut app, Step::Out),
@@ -116,12 +119,12 @@ fn steps_move_like_a_debugger() {
     );
     assert_eq!(step(&mut app, Step::Next), 54, "no event after the last");
     chars(&mut app, "g");
-    assert_eq!(app.current(), 0);
+    assert_eq!(app.pixel().current(), 0);
     chars(&mut app, "e");
-    assert_eq!(app.current(), 54);
+    assert_eq!(app.pixel().current(), 54);
     app.update(Action::Step(Step::Start));
     chars(&mut app, "nnnp");
-    assert_eq!(app.current(), 2);
+    assert_eq!(app.pixel().current(), 2);
 }
 
 #[test]
@@ -130,23 +133,23 @@ fn over_at_the_end_of_a_child_ray_returns_to_the_parent() {
     for _ in 0..16 {
         app.update(Action::Step(Step::Next));
     }
-    assert_eq!(app.current(), 16);
-    let event = &app.tree().events[16];
+    assert_eq!(app.pixel().current(), 16);
+    let event = &app.pixel().tree().events[16];
     assert!(
         matches!(event.kind, EventKind::RayDone { .. }) && event.node == 2,
         "r2 done"
     );
     app.update(Action::Step(Step::Over));
-    assert_eq!(app.current(), 17);
-    assert_eq!(app.tree().events[17].node, 1);
+    assert_eq!(app.pixel().current(), 17);
+    assert_eq!(app.pixel().tree().events[17].node, 1);
 }
 
 #[test]
 fn blocked_shadow_breakpoint_lands_on_the_first_blocker() {
     let mut app = app();
     chars(&mut app, "b");
-    let event = &app.tree().events[app.current()];
-    assert_eq!(app.current(), 22);
+    let event = &app.pixel().tree().events[app.pixel().current()];
+    assert_eq!(app.pixel().current(), 22);
     assert_eq!(event.node, 3, "the transmitted ray inside the green ball");
     assert!(
         matches!(
@@ -161,14 +164,14 @@ fn blocked_shadow_breakpoint_lands_on_the_first_blocker() {
     );
     chars(&mut app, "b");
     assert_eq!(
-        app.current(),
+        app.pixel().current(),
         33,
         "the next shadow ray, not the next blocker of the same ray"
     );
     chars(&mut app, "bb");
-    assert_eq!(app.current(), 44);
+    assert_eq!(app.pixel().current(), 44);
     chars(&mut app, "b");
-    assert_eq!(app.current(), 44, "no more: it stays");
+    assert_eq!(app.pixel().current(), 44, "no more: it stays");
     assert!(
         app.message()
             .unwrap_or("")
@@ -181,7 +184,7 @@ fn floor_pixel_in_the_balls_shadow() {
     let mut app = app();
     app.update(Action::Pick(80, 82));
     chars(&mut app, "b");
-    let event = &app.tree().events[app.current()];
+    let event = &app.pixel().tree().events[app.pixel().current()];
     assert!(
         matches!(
             event.kind,
@@ -193,7 +196,7 @@ fn floor_pixel_in_the_balls_shadow() {
         ),
         "{event:?}"
     );
-    let light = &app.tree().root().lights[0];
+    let light = &app.pixel().tree().root().lights[0];
     let shadow = light.shadow.as_ref().unwrap();
     assert_eq!(shadow.blockers.len(), 2, "the glass ball is crossed twice");
     assert!((shadow.s - 0.49).abs() < 1e-12, "S = 0.7 x 0.7");
@@ -203,21 +206,29 @@ fn floor_pixel_in_the_balls_shadow() {
 fn object_breakpoint_uses_the_selected_rays_object_and_cycles() {
     let mut app = app();
     chars(&mut app, "x");
-    assert_eq!(app.break_object(), Some(0), "r0 hits the glass ball");
-    assert_eq!(app.current(), 1, "r0's own hit comes first");
+    assert_eq!(
+        app.pixel().break_object(),
+        Some(0),
+        "r0 hits the glass ball"
+    );
+    assert_eq!(app.pixel().current(), 1, "r0's own hit comes first");
     chars(&mut app, "x");
     assert_eq!(
-        app.current(),
+        app.pixel().current(),
         30,
         "the next hit on the glass ball: r4 from inside"
     );
     chars(&mut app, "X");
-    assert_eq!(app.break_object(), Some(1));
+    assert_eq!(app.pixel().break_object(), Some(1));
     chars(&mut app, "gx");
-    assert_eq!(app.current(), 9, "the first hit on the green ball: r1");
+    assert_eq!(
+        app.pixel().current(),
+        9,
+        "the first hit on the green ball: r1"
+    );
     chars(&mut app, "XX");
     assert_eq!(
-        app.break_object(),
+        app.pixel().break_object(),
         Some(0),
         "cycles through the three objects"
     );
@@ -231,17 +242,22 @@ fn tir_breakpoint_stops_at_total_internal_reflection() {
     let mut glass = App::open(Some(glass), true).unwrap();
     glass.update(Action::Pick(135, 58));
     let is_tir = |kind: &EventKind| matches!(kind, EventKind::Refraction { tir: true });
-    let first_tir = glass.tree().events.iter().position(|e| is_tir(&e.kind));
+    let first_tir = glass
+        .pixel()
+        .tree()
+        .events
+        .iter()
+        .position(|e| is_tir(&e.kind));
     let first_tir = first_tir.expect("glass.toml 135,58 has a total internal reflection");
     assert!(first_tir > 0, "the primary ray's hit comes first");
     chars(&mut glass, "T");
-    assert_eq!(glass.current(), first_tir);
+    assert_eq!(glass.pixel().current(), first_tir);
 
     // The built-in scene's centre pixel has none: `T` stays and says so.
     let mut app = app();
     app.update(Action::Pick(80, 60));
     app.update(Action::RunTo(Breakpoint::Tir));
-    assert_eq!(app.current(), 0, "the centre pixel has no TIR");
+    assert_eq!(app.pixel().current(), 0, "the centre pixel has no TIR");
     assert!(
         app.message()
             .unwrap_or("")
@@ -253,53 +269,58 @@ fn tir_breakpoint_stops_at_total_internal_reflection() {
 fn toggles_change_settings_and_render_again() {
     let mut app = app();
     app.update(Action::Pick(80, 82));
-    let before = app.image().unwrap().get_pixel(80, 82).0;
+    let before = app.renders().image().unwrap().get_pixel(80, 82).0;
     chars(&mut app, "s");
-    assert!(!app.settings().switches.shadows);
+    assert!(!app.session().settings().switches.shadows);
     assert!(
-        app.tree().root().lights[0].shadow.is_none(),
+        app.pixel().tree().root().lights[0].shadow.is_none(),
         "no shadow rays when shadows are off"
     );
-    let after = app.image().unwrap().get_pixel(80, 82).0;
+    let after = app.renders().image().unwrap().get_pixel(80, 82).0;
     assert!(
         after[0] > before[0],
         "the floor is lit without the ball's shadow: {before:?} -> {after:?}"
     );
-    assert_eq!(after, to_rgb8(app.tree().color()));
+    assert_eq!(after, to_rgb8(app.pixel().tree().color()));
     chars(&mut app, "s");
-    assert!(app.settings().switches.shadows);
-    assert_eq!(app.image().unwrap().get_pixel(80, 82).0, before);
+    assert!(app.session().settings().switches.shadows);
+    assert_eq!(app.renders().image().unwrap().get_pixel(80, 82).0, before);
 
     app.update(Action::Pick(80, 60));
     chars(&mut app, "r");
-    assert!(!app.settings().switches.reflection);
-    assert!(app.tree().root().reflected.is_none());
+    assert!(!app.session().settings().switches.reflection);
+    assert!(app.pixel().tree().root().reflected.is_none());
     chars(&mut app, "t");
-    assert!(!app.settings().switches.transmission);
-    assert_eq!(app.tree().nodes.len(), 1);
+    assert!(!app.session().settings().switches.transmission);
+    assert_eq!(app.pixel().tree().nodes.len(), 1);
     chars(&mut app, "a");
-    assert!(!app.settings().switches.ambient);
-    assert_eq!(app.tree().root().ambient, glam::DVec3::ZERO);
+    assert!(!app.session().settings().switches.ambient);
+    assert_eq!(app.pixel().tree().root().ambient, glam::DVec3::ZERO);
     chars(&mut app, "m");
-    assert_eq!(app.settings().specular, SpecularModel::Phong);
+    assert_eq!(app.session().settings().specular, SpecularModel::Phong);
     chars(&mut app, "m");
-    assert_eq!(app.settings().specular, SpecularModel::Blinn);
+    assert_eq!(app.session().settings().specular, SpecularModel::Blinn);
 }
 
 #[test]
 fn max_depth_stays_within_its_bounds() {
     let mut app = app();
-    assert_eq!(app.settings().max_depth, 3);
+    assert_eq!(app.session().settings().max_depth, 3);
     chars(&mut app, "[[[[");
-    assert_eq!(app.settings().max_depth, 1);
-    assert_eq!(app.tree().nodes.len(), 1, "depth 1: the primary ray only");
+    assert_eq!(app.session().settings().max_depth, 1);
+    assert_eq!(
+        app.pixel().tree().nodes.len(),
+        1,
+        "depth 1: the primary ray only"
+    );
     assert!(app.message().unwrap_or("").contains("stays 1"));
     for _ in 0..40 {
         chars(&mut app, "]");
     }
-    assert_eq!(app.settings().max_depth, tui::app::MAX_DEPTH);
+    assert_eq!(app.session().settings().max_depth, tui::app::MAX_DEPTH);
     assert!(
-        app.tree()
+        app.pixel()
+            .tree()
             .nodes
             .iter()
             .all(|n| n.depth <= tui::app::MAX_DEPTH)
@@ -310,12 +331,12 @@ fn max_depth_stays_within_its_bounds() {
 fn term_views_cycle_and_render_the_terms() {
     let mut app = app();
     chars(&mut app, "v");
-    assert_eq!(app.picture(), Picture::Term(Term::Ambient));
-    assert!(app.terms().is_some());
+    assert_eq!(app.screen().picture(), Picture::Term(Term::Ambient));
+    assert!(app.renders().terms().is_some());
     for _ in 0..5 {
         chars(&mut app, "v");
     }
-    assert_eq!(app.picture(), Picture::Term(Term::Shadow));
+    assert_eq!(app.screen().picture(), Picture::Term(Term::Shadow));
     app.update(Action::Pick(80, 82));
     let shadow = app.shown_pixel(80, 82).unwrap();
     assert_eq!(
@@ -324,34 +345,34 @@ fn term_views_cycle_and_render_the_terms() {
         "mean S over the two lights"
     );
     chars(&mut app, "vvv");
-    assert_eq!(app.picture(), Picture::Render);
+    assert_eq!(app.screen().picture(), Picture::Render);
 }
 
 #[test]
 fn tree_selection_and_collapse_follow_the_events() {
     let mut app = app();
     press(&mut app, &[key(KeyCode::Tab)]);
-    assert_eq!(app.focus(), Pane::Tree);
+    assert_eq!(app.screen().focus(), Pane::Tree);
     press(&mut app, &[key(KeyCode::Down)]);
     assert!(
         matches!(
-            app.tree().events[app.current()].kind,
+            app.pixel().tree().events[app.pixel().current()].kind,
             EventKind::ShadowCast { light: 0 }
         ),
         "the key light's row"
     );
     press(&mut app, &[key(KeyCode::Down), key(KeyCode::Down)]);
-    assert_eq!(app.current(), 8, "r1's row selects its cast");
+    assert_eq!(app.pixel().current(), 8, "r1's row selects its cast");
     press(&mut app, &[key(KeyCode::Enter)]);
-    assert!(app.collapsed().contains(&1));
-    let rows = tui::view::tree::rows(app.tree(), app.collapsed());
+    assert!(app.pixel().collapsed().contains(&1));
+    let rows = tui::view::tree::rows(app.pixel().tree(), app.pixel().collapsed());
     assert_eq!(
         rows.len(),
         3 + 1 + 3 + 3 + 1,
         "r0 and its lights, r1 collapsed, r4, r5 with their lights, r6"
     );
     press(&mut app, &[key(KeyCode::Enter)]);
-    assert!(app.collapsed().is_empty());
+    assert!(app.pixel().collapsed().is_empty());
 }
 
 #[test]
@@ -360,7 +381,7 @@ fn tab_cycles_the_panes_and_arrows_act_on_the_focused_one() {
     let order: Vec<Pane> = (0..5)
         .map(|_| {
             press(&mut app, &[key(KeyCode::Tab)]);
-            app.focus()
+            app.screen().focus()
         })
         .collect();
     assert_eq!(
@@ -381,10 +402,10 @@ fn tab_cycles_the_panes_and_arrows_act_on_the_focused_one() {
             key(KeyCode::BackTab),
         ],
     );
-    assert_eq!(app.focus(), Pane::Steps);
+    assert_eq!(app.screen().focus(), Pane::Steps);
     press(&mut app, &[key(KeyCode::Down), key(KeyCode::Down)]);
     assert_eq!(
-        (app.current(), app.cursor()),
+        (app.pixel().current(), app.pixel().cursor()),
         (2, (80, 60)),
         "in the steps pane, arrows step"
     );
@@ -396,17 +417,17 @@ fn clicks_pick_pixels_and_rows() {
     let grid = app.image_grid().unwrap();
     let (column, row, _) = grid.cursor_cell((40, 30)).unwrap();
     app.update(Action::Click(column, row));
-    let picked = app.cursor();
+    let picked = app.pixel().cursor();
     assert_eq!(grid.pixel_at_cell(column, row), Some(picked));
     assert!(
         picked.0.abs_diff(40) <= 3 && picked.1.abs_diff(30) <= 3,
         "{picked:?}"
     );
-    assert_eq!(app.focus(), Pane::Image);
+    assert_eq!(app.screen().focus(), Pane::Image);
     let tree = app.panes().tree;
     app.update(Action::Click(tree.x + 5, tree.y + 1));
-    assert_eq!(app.focus(), Pane::Tree);
-    assert_eq!(app.current(), 0, "the first row is the primary ray");
+    assert_eq!(app.screen().focus(), Pane::Tree);
+    assert_eq!(app.pixel().current(), 0, "the first row is the primary ray");
 }
 
 #[test]
@@ -425,11 +446,11 @@ fn zoom_goes_down_to_one_pixel_per_half_cell() {
         (grid.origin.0 as u32, grid.origin.1 as u32)
     );
     assert!(
-        grid.display_of(app.cursor()).is_some(),
+        grid.display_of(app.pixel().cursor()).is_some(),
         "the cursor stays in view"
     );
     chars(&mut app, "--------");
-    assert_eq!(app.zoom(), 1);
+    assert_eq!(app.screen().zoom(), 1);
 }
 
 #[test]
@@ -441,6 +462,7 @@ fn image_cells_carry_the_pixel_colours() {
     let (column, row) = (grid.area.x + 20, grid.area.y + 5);
     let cell = &terminal.backend().buffer()[(column, row)];
     let [r, g, b] = app
+        .renders()
         .image()
         .unwrap()
         .get_pixel(grid.sample(20, 10).0, grid.sample(20, 10).1)
@@ -448,6 +470,7 @@ fn image_cells_carry_the_pixel_colours() {
     assert_eq!(cell.symbol(), "▀");
     assert_eq!(cell.fg, Color::Rgb(r, g, b));
     let [r, g, b] = app
+        .renders()
         .image()
         .unwrap()
         .get_pixel(grid.sample(20, 11).0, grid.sample(20, 11).1)
@@ -463,36 +486,40 @@ fn reload_applies_an_edit_and_keeps_the_pixel() {
     chars(&mut app, "s");
     edit(&path, "max_depth = 3", "max_depth = 2");
     app.update(Action::Reload);
-    assert_eq!(app.cursor(), (80, 82));
-    assert_eq!(app.settings().max_depth, 2, "the file changed max_depth");
+    assert_eq!(app.pixel().cursor(), (80, 82));
+    assert_eq!(
+        app.session().settings().max_depth,
+        2,
+        "the file changed max_depth"
+    );
     assert!(
-        !app.settings().switches.shadows,
+        !app.session().settings().switches.shadows,
         "the toggle survives the reload"
     );
-    assert!(app.error().is_none());
+    assert!(app.session().error().is_none());
 }
 
 #[test]
 fn reload_with_a_broken_file_keeps_the_last_good_scene() {
     let path = scene_file("reload-broken.toml");
     let mut app = App::open(Some(path.clone()), true).unwrap();
-    let objects = app.scene().objects.len();
+    let objects = app.session().scene().objects.len();
     edit(&path, "radius = 1.0", "radius = \"big\"");
     app.update(Action::Reload);
-    let error = app.error().expect("an error banner");
+    let error = app.session().error().expect("an error banner");
     assert!(
         error.starts_with("target/tui-tests/reload-broken.toml:"),
         "{error}"
     );
-    assert_eq!(app.scene().objects.len(), objects);
+    assert_eq!(app.session().scene().objects.len(), objects);
     assert_eq!(
-        app.tree().nodes.len(),
+        app.pixel().tree().nodes.len(),
         7,
         "the last good scene is still traced"
     );
     edit(&path, "radius = \"big\"", "radius = 1.0");
     app.update(Action::Reload);
-    assert!(app.error().is_none());
+    assert!(app.session().error().is_none());
 }
 
 #[test]
@@ -502,11 +529,15 @@ fn the_watcher_reloads_on_save() {
     std::thread::sleep(Duration::from_millis(100));
     edit(&path, "max_depth = 3", "max_depth = 4");
     let started = Instant::now();
-    while app.settings().max_depth != 4 && started.elapsed() < Duration::from_secs(10) {
+    while app.session().settings().max_depth != 4 && started.elapsed() < Duration::from_secs(10) {
         app.update(Action::Tick);
         std::thread::sleep(Duration::from_millis(20));
     }
-    assert_eq!(app.settings().max_depth, 4, "reloaded within 10 s");
+    assert_eq!(
+        app.session().settings().max_depth,
+        4,
+        "reloaded within 10 s"
+    );
 }
 
 #[test]
@@ -521,17 +552,17 @@ fn the_main_loop_runs_on_a_test_backend() {
     .into();
     tui::run_loop(&mut terminal, &mut app, &mut input).unwrap();
     assert!(app.should_quit());
-    assert_eq!((app.cursor(), app.current()), ((81, 60), 1));
+    assert_eq!((app.pixel().cursor(), app.pixel().current()), ((81, 60), 1));
 }
 
 #[test]
 fn help_closes_on_any_key_and_esc_quits() {
     let mut app = app();
     chars(&mut app, "?");
-    assert!(app.help());
+    assert_eq!(app.overlay().mode(), tui::Mode::Help);
     chars(&mut app, "n");
-    assert!(!app.help());
-    assert_eq!(app.current(), 0, "the key only closed the help");
+    assert_eq!(app.overlay().mode(), tui::Mode::Browsing);
+    assert_eq!(app.pixel().current(), 0, "the key only closed the help");
     press(&mut app, &[key(KeyCode::Esc)]);
     assert!(app.should_quit());
 }
@@ -540,7 +571,8 @@ fn help_closes_on_any_key_and_esc_quits() {
 fn q_in_the_help_closes_it_and_only_then_quits() {
     let mut app = app();
     chars(&mut app, "?q");
-    assert!(!app.help() && !app.should_quit(), "q closed the help");
+    assert_eq!(app.overlay().mode(), tui::Mode::Browsing);
+    assert!(!app.should_quit(), "q closed the help");
     chars(&mut app, "q");
     assert!(app.should_quit());
 }
@@ -565,11 +597,14 @@ fn a_toggle_shows_what_changed_for_the_pixel_until_another_is_picked() {
     // below it is gone (as record::diff says).
     let mut app = app();
     app.update(Action::Depth(-1));
-    let rays = app.tree().nodes.len();
+    let rays = app.pixel().tree().nodes.len();
     assert!(rays > 1);
     app.update(Action::Depth(-1));
-    assert_eq!(app.settings().max_depth, 1);
-    let what_if = app.what_if().expect("a toggle records what changed");
+    assert_eq!(app.session().settings().max_depth, 1);
+    let what_if = app
+        .pixel()
+        .what_if()
+        .expect("a toggle records what changed");
     assert_eq!(
         what_if.matches("ray is gone").count(),
         rays - 1,
@@ -588,7 +623,7 @@ fn a_toggle_shows_what_changed_for_the_pixel_until_another_is_picked() {
         "{text}"
     );
     app.update(Action::Pick(0, 0));
-    assert!(app.what_if().is_none());
+    assert!(app.pixel().what_if().is_none());
 }
 
 #[test]
@@ -599,11 +634,11 @@ fn the_first_pixel_is_timed_too() {
     let started = Instant::now();
     let app = app();
     let opening = started.elapsed();
-    assert!(app.pick_time() > Duration::ZERO);
+    assert!(app.pixel().pick_time() > Duration::ZERO);
     assert!(
-        app.pick_time() <= opening,
+        app.pixel().pick_time() <= opening,
         "{:?} > {opening:?}",
-        app.pick_time()
+        app.pixel().pick_time()
     );
 }
 
@@ -614,18 +649,26 @@ fn one_overlay_at_a_time_help_then_mistakes_menu() {
     // is now one value, so only one of them can be open.
     let mut app = app();
     chars(&mut app, "?");
-    assert!(app.help());
+    assert_eq!(app.overlay().mode(), tui::Mode::Help);
     // With the help open, M closes it like any key: the menu waits.
     chars(&mut app, "M");
-    assert_eq!(app.mode(), tui::Mode::Browsing);
-    assert_eq!(app.mistake_menu(), None);
+    assert_eq!(app.overlay().mode(), tui::Mode::Browsing);
+    assert_eq!(app.overlay().menu_row(), None);
     chars(&mut app, "M");
-    assert_eq!(app.mode(), tui::Mode::Menu);
-    assert_eq!(app.mistake_menu(), Some(0));
+    assert_eq!(app.overlay().mode(), tui::Mode::Menu);
+    assert_eq!(app.overlay().menu_row(), Some(0));
     // Asked for directly, the help replaces the menu instead of lying over it.
     app.update(Action::ToggleHelp);
-    assert_eq!(app.mode(), tui::Mode::Help);
-    assert_eq!(app.mistake_menu(), None, "the menu closed under the help");
+    assert_eq!(app.overlay().mode(), tui::Mode::Help);
+    assert_eq!(
+        app.overlay().menu_row(),
+        None,
+        "the menu closed under the help"
+    );
     app.update(Action::CloseHelp);
-    assert_eq!(app.mode(), tui::Mode::Browsing, "nothing left open");
+    assert_eq!(
+        app.overlay().mode(),
+        tui::Mode::Browsing,
+        "nothing left open"
+    );
 }

@@ -65,7 +65,7 @@ fn find(rows: &[String], symbol: char) -> Option<(usize, usize)> {
 }
 
 fn focus_diagram(app: &mut App) {
-    while app.focus() != Pane::Diagram {
+    while app.screen().focus() != Pane::Diagram {
         app.update(Action::FocusNext);
     }
 }
@@ -88,7 +88,7 @@ fn two_lights_on_one_cell_keep_both_names_readable() {
 fn with_the_diagram_focused_arrows_pan_it_and_keep_the_pixel() {
     let mut app = app();
     focus_diagram(&mut app);
-    let pixel = app.cursor();
+    let pixel = app.pixel().cursor();
     // The status line says what the arrows do here.
     let status = {
         let terminal = screen(&mut app, 120, 40);
@@ -103,7 +103,7 @@ fn with_the_diagram_focused_arrows_pan_it_and_keep_the_pixel() {
     );
     let (eye_col, eye_row) = find(&diagram_rows(&mut app), '◉').expect("the eye is drawn");
     press(&mut app, &[key(KeyCode::Right)]);
-    assert_eq!(app.cursor(), pixel, "the pixel stays");
+    assert_eq!(app.pixel().cursor(), pixel, "the pixel stays");
     // The window moved right by a quarter of its width: the eye a quarter
     // of the pane's width left (within a cell of rounding).
     let width = app.panes().diagram.width as usize - 2;
@@ -123,10 +123,10 @@ fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
     let mut app = app();
     focus_diagram(&mut app);
     let fitted = diagram_rows(&mut app);
-    let image_zoom = app.zoom();
+    let image_zoom = app.screen().zoom();
     chars(&mut app, "+");
-    assert_eq!(app.diagram_pan_zoom().zoom(), 1);
-    assert_eq!(app.zoom(), image_zoom, "the image keeps its zoom");
+    assert_eq!(app.screen().diagram_pan_zoom().zoom(), 1);
+    assert_eq!(app.screen().zoom(), image_zoom, "the image keeps its zoom");
     // Zoomed about the primary ray's first hit, not the window's centre
     // (as `raystep diagram --zoom`); the title says by how much (1.5).
     assert!(
@@ -135,23 +135,23 @@ fn plus_zooms_the_diagram_and_zero_or_a_new_pixel_fits_it_again() {
         diagram_title(&mut app)
     );
     chars(&mut app, "0");
-    assert!(app.diagram_pan_zoom().is_fit());
+    assert!(app.screen().diagram_pan_zoom().is_fit());
     assert!(!diagram_title(&mut app).contains("zoom"), "none at 1");
     chars(&mut app, "+");
     press(&mut app, &[key(KeyCode::Home)]);
-    assert!(app.diagram_pan_zoom().is_fit(), "Home fits it too");
+    assert!(app.screen().diagram_pan_zoom().is_fit(), "Home fits it too");
     assert_eq!(diagram_rows(&mut app), fitted);
     // A pan, then another pixel: the diagram fits the new pixel's rays.
     press(&mut app, &[key(KeyCode::Right)]);
     chars(&mut app, "-");
-    assert!(!app.diagram_pan_zoom().is_fit());
-    let (x, y) = app.cursor();
+    assert!(!app.screen().diagram_pan_zoom().is_fit());
+    let (x, y) = app.pixel().cursor();
     app.update(Action::Pick(x + 1, y));
-    assert!(app.diagram_pan_zoom().is_fit());
+    assert!(app.screen().diagram_pan_zoom().is_fit());
     // So does another plane.
     chars(&mut app, "+");
     chars(&mut app, "d");
-    assert!(app.diagram_pan_zoom().is_fit());
+    assert!(app.screen().diagram_pan_zoom().is_fit());
 }
 
 #[test]
@@ -205,7 +205,7 @@ fn a_polygon_passed_by_is_ringed_in_the_pane_as_in_the_figure() {
     // The same marks as `raystep diagram` draws from the same assembly.
     let scene = raystep::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap();
     let tree = raystep::record::record_pixel(&scene, &scene.settings, 40, 54);
-    let diagram = Diagram::new(&scene, &tree, app.plane(), Progress::done(&tree));
+    let diagram = Diagram::new(&scene, &tree, app.screen().plane(), Progress::done(&tree));
     let svg = raystep::diagram::svg::figure(&diagram, 1.0);
     assert_eq!(diagram.passed.len(), 1);
     assert_eq!(svg.matches("class=\"passed-by\"").count(), 1);
@@ -225,7 +225,7 @@ fn a_light_facing_away_is_dotted_and_keyed_in_the_pane() {
     assert!(!text.contains('○'), "{text}");
     let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
     let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
-    let diagram = Diagram::new(&scene, &tree, app.plane(), Progress::done(&tree));
+    let diagram = Diagram::new(&scene, &tree, app.screen().plane(), Progress::done(&tree));
     assert_eq!(diagram.faces_away.len(), 2);
     assert!(diagram.passed.is_empty());
     let svg = raystep::diagram::svg::figure(&diagram, 1.0);

@@ -17,24 +17,27 @@ use crate::support::{raystep, stderr};
 /// rescanning the whole image for its maximum (the slow way the pane
 /// used to take, once per shown pixel).
 fn slow_pixel(app: &App, term: Term, x: u32, y: u32) -> [u8; 3] {
-    let terms = app.terms().unwrap();
+    let terms = app.renders().terms().unwrap();
     terms.rgb(term, (y * terms.width + x) as usize, terms.max_count(term))
 }
 
 #[test]
 fn count_views_show_the_pixels_scaled_by_the_whole_image() {
     let mut app = app();
-    while app.picture() != Picture::Term(Term::Rays) {
+    while app.screen().picture() != Picture::Term(Term::Rays) {
         app.update(Action::CyclePicture);
     }
-    let (width, height) = (app.scene().width, app.scene().height);
+    let (width, height) = (app.session().scene().width, app.session().scene().height);
     for term in [Term::Rays, Term::Cost] {
         // The scale matters only when counts differ: a miss casts 1 ray,
         // the glass in the middle many more.
-        assert!(app.terms().unwrap().max_count(term) > 1, "{term:?}");
+        assert!(
+            app.renders().terms().unwrap().max_count(term) > 1,
+            "{term:?}"
+        );
         assert_eq!(
-            app.count_max(term),
-            app.terms().unwrap().max_count(term),
+            app.renders().count_max(term),
+            app.renders().terms().unwrap().max_count(term),
             "{term:?}"
         );
         for y in 0..height {
@@ -53,10 +56,15 @@ fn count_views_show_the_pixels_scaled_by_the_whole_image() {
 /// The recording the app shows is the one `record_pixel` makes of the
 /// cursor's pixel, with the same settings.
 fn assert_shows_pixel(app: &App, pixel: (u32, u32)) {
-    assert_eq!(app.cursor(), pixel);
-    let expected = record_pixel(app.scene(), app.settings(), pixel.0, pixel.1);
+    assert_eq!(app.pixel().cursor(), pixel);
+    let expected = record_pixel(
+        app.session().scene(),
+        app.session().settings(),
+        pixel.0,
+        pixel.1,
+    );
     assert_eq!(
-        serde_json::to_value(&app.tree().nodes).unwrap(),
+        serde_json::to_value(&app.pixel().tree().nodes).unwrap(),
         serde_json::to_value(&expected.nodes).unwrap()
     );
 }
@@ -64,15 +72,15 @@ fn assert_shows_pixel(app: &App, pixel: (u32, u32)) {
 #[test]
 fn colon_then_x_comma_y_and_enter_goes_to_that_pixel() {
     let mut app = app();
-    assert_eq!(app.cursor(), (80, 60), "the centre of 161x121");
+    assert_eq!(app.pixel().cursor(), (80, 60), "the centre of 161x121");
     chars(&mut app, ":120,40");
-    assert_eq!(app.mode(), Mode::Prompt);
-    assert_eq!(app.prompt(), Some("120,40"));
-    assert_eq!(app.cursor(), (80, 60), "nothing moves while typing");
+    assert_eq!(app.overlay().mode(), Mode::Prompt);
+    assert_eq!(app.overlay().prompt(), Some("120,40"));
+    assert_eq!(app.pixel().cursor(), (80, 60), "nothing moves while typing");
     press(&mut app, &[key(KeyCode::Enter)]);
-    assert_eq!(app.mode(), Mode::Browsing);
+    assert_eq!(app.overlay().mode(), Mode::Browsing);
     assert_shows_pixel(&app, (120, 40));
-    assert_eq!(app.current(), 0);
+    assert_eq!(app.pixel().current(), 0);
 }
 
 #[test]
@@ -83,7 +91,11 @@ fn the_prompt_says_why_bad_input_is_refused_and_esc_cancels() {
     // x runs 0..161 in the 161x121 image: 161 is one past the edge.
     let message = app.message().unwrap();
     assert!(message.contains("outside the 161x121 image"), "{message}");
-    assert_eq!(app.prompt(), Some("161,3"), "kept, to be corrected");
+    assert_eq!(
+        app.overlay().prompt(),
+        Some("161,3"),
+        "kept, to be corrected"
+    );
     let mut terminal = screen(&mut app, 120, 40);
     let status = row_text(&mut terminal, 39);
     assert!(status.contains("go to X,Y: 161,3"), "{status}");
@@ -96,8 +108,8 @@ fn the_prompt_says_why_bad_input_is_refused_and_esc_cancels() {
     press(&mut app, &[key(KeyCode::Enter)]);
     assert!(app.message().unwrap().contains("expected X,Y"));
     press(&mut app, &[key(KeyCode::Esc)]);
-    assert_eq!(app.mode(), Mode::Browsing);
-    assert_eq!(app.cursor(), (80, 60));
+    assert_eq!(app.overlay().mode(), Mode::Browsing);
+    assert_eq!(app.pixel().cursor(), (80, 60));
     assert!(
         !app.should_quit(),
         "Esc closed the prompt, not the debugger"
@@ -119,11 +131,11 @@ fn glass() -> App {
 #[test]
 fn f_t_finds_the_next_pixel_with_total_internal_reflection() {
     let mut app = glass();
-    let start = app.cursor();
-    let (width, height) = (app.scene().width, app.scene().height);
+    let start = app.pixel().cursor();
+    let (width, height) = (app.session().scene().width, app.session().scene().height);
     // Independently: the pixels in reading order after the cursor (then
     // from the top), the first whose tree has a node that refracted with TIR.
-    let (scene, settings) = (app.scene().clone(), *app.settings());
+    let (scene, settings) = (app.session().scene().clone(), *app.session().settings());
     let has_tir = |x, y| {
         record_pixel(&scene, &settings, x, y)
             .nodes
@@ -141,7 +153,7 @@ fn f_t_finds_the_next_pixel_with_total_internal_reflection() {
     assert_shows_pixel(&app, expected);
     assert!(
         matches!(
-            app.tree().events[app.current()].kind,
+            app.pixel().tree().events[app.pixel().current()].kind,
             EventKind::Refraction { tir: true }
         ),
         "the TIR is the current event"
@@ -155,7 +167,7 @@ fn f_t_finds_the_next_pixel_with_total_internal_reflection() {
         .find(|&(x, y)| has_tir(x, y))
         .unwrap();
     chars(&mut app, "ft");
-    assert_eq!(app.cursor(), next);
+    assert_eq!(app.pixel().cursor(), next);
 }
 
 #[test]
@@ -166,16 +178,16 @@ fn f_d_finds_the_depth_limit_where_the_mistake_puts_it() {
     // are those that hit a mirror (k_s = 0.85) at depth 4.
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/mirrors.toml");
     let mut app = App::open(Some(path), true).unwrap();
-    let start = app.cursor();
+    let start = app.pixel().cursor();
     chars(&mut app, "Mjjjjjjjj ");
     assert_eq!(
-        app.settings().mistakes,
+        app.session().settings().mistakes,
         Mistakes::NONE.with(Mistake::DepthOffByOne)
     );
     chars(&mut app, "M");
     // Independently: the first pixel in reading order after the cursor with
     // a ray that hit a reflective or transparent material at depth 4.
-    let (scene, settings) = (app.scene().clone(), *app.settings());
+    let (scene, settings) = (app.session().scene().clone(), *app.session().settings());
     let (width, height) = (scene.width, scene.height);
     let cut = |x, y| {
         record_pixel(&scene, &settings, x, y).nodes.iter().any(|n| {
@@ -196,7 +208,7 @@ fn f_d_finds_the_depth_limit_where_the_mistake_puts_it() {
     // The current event is the cast of the ray the limit stopped, at depth 4.
     assert!(
         matches!(
-            app.tree().events[app.current()].kind,
+            app.pixel().tree().events[app.pixel().current()].kind,
             EventKind::RayCast { depth: 4, .. }
         ),
         "{message}"
@@ -208,22 +220,26 @@ fn a_find_with_nothing_to_find_says_none_in_the_image() {
     // With shadows off (s) no shadow ray is cast, so none is blocked.
     let mut app = app();
     chars(&mut app, "s");
-    assert!(!app.settings().switches.shadows);
+    assert!(!app.session().settings().switches.shadows);
     chars(&mut app, "fb");
-    assert_eq!(app.cursor(), (80, 60));
+    assert_eq!(app.pixel().cursor(), (80, 60));
     let message = app.message().unwrap();
     assert!(message.contains("none in the image"), "{message}");
     // Any other key after f cancels it and does nothing else.
     chars(&mut app, "fq");
     assert!(!app.should_quit());
-    assert_eq!(app.mode(), Mode::Browsing);
+    assert_eq!(app.overlay().mode(), Mode::Browsing);
 }
 
 #[test]
 fn pixel_opens_the_debugger_on_that_pixel() {
     let app = glass().at_pixel((3, 4)).unwrap();
     assert_shows_pixel(&app, (3, 4));
-    let (width, height) = (glass().scene().width, glass().scene().height);
+    let opened = glass();
+    let (width, height) = (
+        opened.session().scene().width,
+        opened.session().scene().height,
+    );
     let Err(why) = glass().at_pixel((width, 0)) else {
         panic!("a pixel one past the right edge opened");
     };
@@ -266,7 +282,7 @@ fn glass_in_background() -> App {
 /// The last pixel in reading order whose tree has a TIR: a find for TIR
 /// from there scans nearly the whole image before it wraps to the first.
 fn last_tir_pixel(app: &App) -> (u32, u32) {
-    let (scene, settings) = (app.scene().clone(), *app.settings());
+    let (scene, settings) = (app.session().scene().clone(), *app.session().settings());
     let (width, height) = (scene.width, scene.height);
     (0..width * height)
         .rev()
@@ -287,8 +303,8 @@ fn a_background_find_ends_where_the_synchronous_one_does() {
     let mut app = glass_in_background();
     chars(&mut app, "ft");
     until_found(&mut app, Duration::from_secs(60));
-    assert_eq!(app.cursor(), sync.cursor());
-    assert_eq!(app.current(), sync.current());
+    assert_eq!(app.pixel().cursor(), sync.pixel().cursor());
+    assert_eq!(app.pixel().current(), sync.pixel().current());
     assert_eq!(app.message(), sync.message());
 }
 
@@ -314,20 +330,20 @@ fn keys_are_answered_while_a_find_runs_and_a_cancelled_find_moves_nothing() {
     );
     // A key is answered at once, without waiting for the find, which goes on.
     chars(&mut app, "?");
-    assert!(app.help());
+    assert_eq!(app.overlay().mode(), Mode::Help);
     assert!(app.finding_progress().is_some(), "the find still runs");
     chars(&mut app, "?");
     // A pick (here j, one row down) cancels it: even once the scan would
     // have ended, the cursor stays where the key put it.
     chars(&mut app, "j");
     let moved = (last.0, last.1 + 1);
-    assert_eq!(app.cursor(), moved);
+    assert_eq!(app.pixel().cursor(), moved);
     assert!(app.finding_progress().is_none());
     for _ in 0..100 {
         std::thread::sleep(Duration::from_millis(10));
         app.update(Action::Tick);
     }
-    assert_eq!(app.cursor(), moved);
+    assert_eq!(app.pixel().cursor(), moved);
     assert_eq!(app.message(), None, "no find result came in");
     // q while a find runs: answered, and the find is dropped.
     chars(&mut app, "ft");
@@ -341,8 +357,8 @@ fn keys_are_answered_while_a_find_runs_and_a_cancelled_find_moves_nothing() {
 fn f_p_finds_the_next_pixel_with_a_partly_blocked_shadow() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/two-lights.toml");
     let mut app = App::open(Some(path), true).unwrap();
-    let (width, height) = (app.scene().width, app.scene().height);
-    let (scene, settings) = (app.scene().clone(), *app.settings());
+    let (width, height) = (app.session().scene().width, app.session().scene().height);
+    let (scene, settings) = (app.session().scene().clone(), *app.session().settings());
     // Independently: the first pixel after the centre, in reading order,
     // with a light whose S is strictly between 0 and 1 at any ray.
     let partly = |x, y| {
@@ -353,7 +369,7 @@ fn f_p_finds_the_next_pixel_with_a_partly_blocked_shadow() {
                 .any(|s| s.s > 0.0 && s.s < 1.0)
         })
     };
-    let start = app.cursor();
+    let start = app.pixel().cursor();
     let expected = (start.1 * width + start.0 + 1..width * height)
         .chain(0..=start.1 * width + start.0)
         .map(|i| (i % width, i / width))
@@ -363,7 +379,7 @@ fn f_p_finds_the_next_pixel_with_a_partly_blocked_shadow() {
     assert_shows_pixel(&app, expected);
     assert!(
         matches!(
-            app.tree().events[app.current()].kind,
+            app.pixel().tree().events[app.pixel().current()].kind,
             EventKind::Blocker { kt, .. } if kt > 0.0
         ),
         "a transparent blocker is the current event"

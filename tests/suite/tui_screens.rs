@@ -47,7 +47,7 @@ fn snapshot_help_overlay() {
 fn snapshot_term_view() {
     let mut app = app();
     chars(&mut app, "vvvvvvv");
-    assert_eq!(app.picture(), Picture::Term(Term::Rays));
+    assert_eq!(app.screen().picture(), Picture::Term(Term::Rays));
     snapshot!("term_view_rays", screen(&mut app, 120, 40).backend());
 }
 
@@ -85,17 +85,17 @@ fn measure_pick_and_render_on_the_teapot() {
     let mut app = App::open(Some(path), true).unwrap();
     println!(
         "teapot {}x{}, {} objects",
-        app.scene().width,
-        app.scene().height,
-        app.scene().objects.len()
+        app.session().scene().width,
+        app.session().scene().height,
+        app.session().scene().objects.len()
     );
     let mut picks = Vec::new();
     for i in 0..200u32 {
         app.update(Action::Pick(
-            (i * 37) % app.scene().width,
-            (i * 91) % app.scene().height,
+            (i * 37) % app.session().scene().width,
+            (i * 91) % app.session().scene().height,
         ));
-        picks.push(app.pick_time());
+        picks.push(app.pixel().pick_time());
     }
     picks.sort();
     println!(
@@ -108,7 +108,7 @@ fn measure_pick_and_render_on_the_teapot() {
         app.update(Action::Toggle(tui::Switch::Shadows));
         println!(
             "toggle shadows: re-render {:?} (update returned after {:?})",
-            app.render_time().unwrap(),
+            app.renders().render_time().unwrap(),
             started.elapsed()
         );
     }
@@ -173,7 +173,7 @@ fn snapshot_key_table() {
         if let Some(action) = opener {
             app.update(action);
         }
-        assert_eq!(app.mode(), mode);
+        assert_eq!(app.overlay().mode(), mode);
         writeln!(table, "{mode:?}").unwrap();
         for row in keymap::rows().filter(|row| row.context.applies(mode)) {
             writeln!(table, "  {}", row.what).unwrap();
@@ -206,7 +206,7 @@ fn in_each_pane(app: &mut App, input: Input) -> String {
     let panes = app.panes();
     let mut actions: Vec<(Pane, Option<Action>)> = Vec::new();
     for pane in Pane::ALL {
-        while app.focus() != pane {
+        while app.screen().focus() != pane {
             app.update(Action::FocusNext);
         }
         let area = panes.rect(pane);

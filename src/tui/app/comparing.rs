@@ -22,11 +22,13 @@ impl StudentComparison {
         }
     }
 
+    /// The student's image.
     pub fn yours(&self) -> &RgbImage {
         &self.yours
     }
 
-    pub fn comparison(&self) -> &Comparison {
+    /// What `compare` found: the ranked mistakes, the regions, the error map.
+    pub fn findings(&self) -> &Comparison {
         &self.comparison
     }
 

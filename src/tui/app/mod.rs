@@ -15,31 +15,26 @@
 //!
 //! `App` ties them together: an action that concerns several parts (a
 //! pick, a toggle, a reload, a find) is carried out here. Drawing and tests
-//! read through the accessors below; keys become `Action`s in `event.rs`
-//! first, and background work (finished renders, a changed scene file) is
-//! looked at on `Action::Tick`.
+//! read each part as it is (`app.pixel().cursor()`,
+//! `app.session().scene()`), and from `App` only what is made of several
+//! (the panes' layout, the colour shown at a pixel, whether work is under
+//! way); a part's readers are public, its changes private to this folder.
+//! Keys become `Action`s in `event.rs` first, and background work
+//! (finished renders, a changed scene file) is looked at on `Action::Tick`.
 
-use std::collections::BTreeSet;
 use std::path::PathBuf;
-use std::time::Duration;
 
 use image::RgbImage;
-use ratatui::layout::{Position, Rect};
+use ratatui::layout::Position;
 
-use crate::compare::{self, Comparison, StudentImage};
-use crate::diagram::DiagramPlane;
-use crate::record::{NodeId, RayTree};
-use crate::scene::{Scene, SceneError, Settings, SpecularModel};
-use crate::terms::{Term, TermImages};
+use crate::compare::{self, StudentImage};
+use crate::scene::{Scene, SceneError, Settings};
 
 use super::action::{Action, Find, Pane, Picture};
-use super::keymap::Mode;
-use super::render_job::Progress;
 use super::source::SceneSource;
 use super::view::find;
 use super::view::image_grid::{ImageGrid, max_zoom};
 use super::view::layout::{self, Panes, inner};
-use super::view::pan_zoom::PanZoom;
 use super::view::tree;
 
 mod comparing;
@@ -51,13 +46,12 @@ mod search;
 mod session;
 
 pub use comparing::StudentComparison;
-pub use overlay::Overlay;
-use overlay::Overlays;
-use pixel::TracedPixel;
-use renders::Renders;
-use screen::Screen;
+pub use overlay::{Overlay, Overlays};
+pub use pixel::TracedPixel;
+pub use renders::Renders;
+pub use screen::Screen;
 use search::Search;
-use session::Session;
+pub use session::Session;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
@@ -156,7 +150,8 @@ impl App {
     /// The app on `pixel` instead of the centre (`--pixel X,Y`); refused
     /// when the pixel is outside the image.
     pub fn at_pixel(mut self, pixel: (u32, u32)) -> Result<App, String> {
-        let size = (self.scene().width, self.scene().height);
+        let scene = self.session.scene();
+        let size = (scene.width, scene.height);
         if pixel.0 >= size.0 || pixel.1 >= size.1 {
             return Err(find::outside(pixel, size));
         }
@@ -197,7 +192,7 @@ impl App {
                 self.message = Some(self.screen.next_picture(self.comparison.is_some()));
                 let terms = matches!(self.screen.picture(), Picture::Term(_));
                 if terms && !self.renders.terms_are_current() {
-                    let (scene, settings) = (self.session.shared_scene(), *self.settings());
+                    let (scene, settings) = (self.session.shared_scene(), *self.session.settings());
                     self.renders.request_again(scene, settings, true);
                 }
             }
@@ -258,7 +253,7 @@ impl App {
     fn move_cursor(&mut self, dx: i32, dy: i32) {
         let clamp =
             |v: u32, d: i32, size: u32| (v as i64 + d as i64).clamp(0, size as i64 - 1) as u32;
-        let (cursor, scene) = (self.cursor(), self.scene());
+        let (cursor, scene) = (self.pixel.cursor(), self.session.scene());
         let (x, y) = (
             clamp(cursor.0, dx, scene.width),
             clamp(cursor.1, dy, scene.height),
@@ -282,7 +277,8 @@ impl App {
         match pane {
             Pane::Image => {
                 if let Some((x, y)) = self.image_grid().and_then(|v| v.pixel_at_cell(column, row)) {
-                    let (width, height) = (self.scene().width, self.scene().height);
+                    let scene = self.session.scene();
+                    let (width, height) = (scene.width, scene.height);
                     self.pick(x.min(width - 1), y.min(height - 1));
                 }
             }
@@ -347,7 +343,8 @@ impl App {
         let Some(text) = self.overlay.prompt() else {
             return;
         };
-        match find::parse_goto(text, (self.scene().width, self.scene().height)) {
+        let scene = self.session.scene();
+        match find::parse_goto(text, (scene.width, scene.height)) {
             Ok((x, y)) => {
                 self.overlay.close();
                 self.pick(x, y);
@@ -385,7 +382,7 @@ impl App {
     /// Renders the scene as it is now, as a new generation.
     fn request_render(&mut self) {
         let terms = matches!(self.screen.picture(), Picture::Term(_));
-        let (scene, settings) = (self.session.shared_scene(), *self.settings());
+        let (scene, settings) = (self.session.shared_scene(), *self.session.settings());
         self.renders.request(scene, settings, terms);
     }
 
@@ -396,155 +393,54 @@ impl App {
         }
     }
 
-    // What the panes and tests read.
+    // What the panes and tests read: each part as it is, and what is made
+    // of several parts.
 
-    pub fn source(&self) -> &SceneSource {
-        self.session.source()
+    /// The scene, its source, the settings traced, the reload's error.
+    pub fn session(&self) -> &Session {
+        &self.session
     }
 
-    /// The last good file's scene, with the file's own settings.
-    pub fn scene(&self) -> &Scene {
-        self.session.scene()
+    /// The pixel traced: cursor, recording, current event, folded rows.
+    pub fn pixel(&self) -> &TracedPixel {
+        &self.pixel
     }
 
-    /// The settings traced: the file's, with the user's toggles.
-    pub fn settings(&self) -> &Settings {
-        self.session.settings()
+    /// The whole image's renders.
+    pub fn renders(&self) -> &Renders {
+        &self.renders
     }
 
-    pub fn phong(&self) -> bool {
-        self.settings().specular == SpecularModel::Phong
+    /// What is open over the panes, and so what has the keys.
+    pub fn overlay(&self) -> &Overlays {
+        &self.overlay
     }
 
-    /// The banner: why the last reload failed.
-    pub fn error(&self) -> Option<&str> {
-        self.session.error()
+    /// The terminal's size, focus, zoom, the picture, the diagram's view.
+    pub fn screen(&self) -> &Screen {
+        &self.screen
     }
 
-    /// The selected pixel, in the scene image's coordinates.
-    pub fn cursor(&self) -> (u32, u32) {
-        self.pixel.cursor()
-    }
-
-    /// The selected pixel's recording.
-    pub fn tree(&self) -> &RayTree {
-        self.pixel.tree()
-    }
-
-    /// The current event, an index into `tree().events`.
-    pub fn current(&self) -> usize {
-        self.pixel.current()
-    }
-
-    /// The rays whose rows the tree pane folds away.
-    pub fn collapsed(&self) -> &BTreeSet<NodeId> {
-        self.pixel.collapsed()
-    }
-
-    /// The node the tree and details show: the current event's ray.
-    pub fn selected_node(&self) -> NodeId {
-        self.pixel.selected_node()
-    }
-
-    /// The object the `x` breakpoint stops at, once chosen.
-    pub fn break_object(&self) -> Option<usize> {
-        self.pixel.break_object()
-    }
-
-    /// Manual scroll of the details; `None` follows the current event.
-    pub fn details_scroll(&self) -> Option<u16> {
-        self.pixel.details_scroll()
-    }
-
-    /// How the selected pixel changed with the last toggle, when it did.
-    pub fn what_if(&self) -> Option<&str> {
-        self.pixel.what_if()
-    }
-
-    /// How long the last pixel pick took.
-    pub fn pick_time(&self) -> Duration {
-        self.pixel.pick_time()
-    }
-
-    /// What is open over the panes, if anything.
-    pub fn overlay(&self) -> Option<&Overlay> {
-        self.overlay.open()
-    }
-
-    /// What has the keys: the overlay open, else the panes.
-    pub fn mode(&self) -> Mode {
-        self.overlay.mode()
-    }
-
-    /// Whether the help is open.
-    pub fn help(&self) -> bool {
-        matches!(self.overlay(), Some(Overlay::Help { .. }))
-    }
-
-    /// The mistakes menu's selected row (an index into `Mistake::ALL`)
-    /// when the menu is open.
-    pub fn mistake_menu(&self) -> Option<usize> {
-        self.overlay.menu_row()
-    }
-
-    /// The go-to prompt's text while it is open.
-    pub fn prompt(&self) -> Option<&str> {
-        self.overlay.prompt()
-    }
-
-    pub fn focus(&self) -> Pane {
-        self.screen.focus()
-    }
-
-    /// 1 shows the whole image; each doubling halves the pixels per cell.
-    pub fn zoom(&self) -> u32 {
-        self.screen.zoom()
-    }
-
-    /// What the image pane shows.
-    pub fn picture(&self) -> Picture {
-        self.screen.picture()
-    }
-
-    pub fn plane(&self) -> DiagramPlane {
-        self.screen.plane()
-    }
-
-    /// How the diagram is panned and zoomed.
-    pub fn diagram_pan_zoom(&self) -> PanZoom {
-        self.screen.diagram()
-    }
-
-    /// The terminal's size, as the last `Action::Resize` gave it.
-    pub fn screen(&self) -> Rect {
-        self.screen.size()
+    /// The student's image and what `compare` found, with `--compare`.
+    pub fn comparison(&self) -> Option<&StudentComparison> {
+        self.comparison.as_ref()
     }
 
     pub fn panes(&self) -> Panes {
-        let banner = self.error().map_or(0, |e| e.lines().count() as u16);
-        let rows = tree::rows(self.tree(), self.collapsed()).len() as u16;
-        layout::panes(self.screen(), banner, rows)
+        let banner = self.session.error().map_or(0, |e| e.lines().count() as u16);
+        let rows = tree::rows(self.pixel.tree(), self.pixel.collapsed()).len() as u16;
+        layout::panes(self.screen.size(), banner, rows)
     }
 
     /// The image pane's mapping, for drawing and for clicks.
     pub fn image_grid(&self) -> Option<ImageGrid> {
-        let size = self.image().map(|i| (i.width(), i.height()))?;
+        let size = self.renders.image().map(|i| (i.width(), i.height()))?;
         Some(ImageGrid::new(
             inner(self.panes().image),
             size,
-            self.zoom(),
-            self.cursor(),
+            self.screen.zoom(),
+            self.pixel.cursor(),
         ))
-    }
-
-    /// The student's image, with `--compare`.
-    pub fn yours(&self) -> Option<&RgbImage> {
-        self.comparison.as_ref().map(StudentComparison::yours)
-    }
-
-    /// The comparison's findings, with `--compare`.
-    pub fn comparison(&self) -> Option<&Comparison> {
-        self.comparison.as_ref().map(StudentComparison::comparison)
     }
 
     /// The status line's message.
@@ -562,36 +458,11 @@ impl App {
         self.renders.busy() || self.session.reload_waits() || self.search.is_some()
     }
 
-    /// How far the running render is.
-    pub fn progress(&self) -> Option<Progress> {
-        self.renders.progress()
-    }
-
     /// What the running find looks for and the row it is on (from 1), of
     /// the image's rows: "finding {what}… (row N of H)".
     pub fn finding_progress(&self) -> Option<(&str, u32, u32)> {
         let (what, row) = self.search.as_ref()?.progress();
-        Some((what, row + 1, self.scene().height))
-    }
-
-    /// The latest render (or preview) of the current settings.
-    pub fn image(&self) -> Option<&RgbImage> {
-        self.renders.image()
-    }
-
-    /// The term images, once a term picture asked for them.
-    pub fn terms(&self) -> Option<&TermImages> {
-        self.renders.terms()
-    }
-
-    /// The scale of a count picture (rays or cost): its largest count.
-    pub fn count_max(&self, term: Term) -> u32 {
-        self.renders.count_max(term)
-    }
-
-    /// How long the last finished render took.
-    pub fn render_time(&self) -> Option<Duration> {
-        self.renders.render_time()
+        Some((what, row + 1, self.session.scene().height))
     }
 
     /// Whether the status line shows timings (off in tests, for stable screens).
@@ -601,21 +472,23 @@ impl App {
 
     /// The colour of a pixel as the image pane shows it.
     pub fn shown_pixel(&self, x: u32, y: u32) -> Option<[u8; 3]> {
-        match self.picture() {
-            Picture::Render => self.image().and_then(|i| pixel(i, x, y)),
-            Picture::Term(term) => self
+        let renders = &self.renders;
+        let comparison = self.comparison.as_ref();
+        match self.screen.picture() {
+            Picture::Render => renders.image().and_then(|i| pixel(i, x, y)),
+            Picture::Term(term) => renders
                 .terms()
                 .filter(|t| x < t.width && y < t.height)
-                .map(|t| t.rgb(term, (y * t.width + x) as usize, self.count_max(term))),
-            Picture::Yours => self.yours().and_then(|i| pixel(i, x, y)),
-            Picture::ErrorMap => self.comparison().and_then(|c| pixel(&c.error_map, x, y)),
+                .map(|t| t.rgb(term, (y * t.width + x) as usize, renders.count_max(term))),
+            Picture::Yours => comparison.and_then(|c| pixel(c.yours(), x, y)),
+            Picture::ErrorMap => comparison.and_then(|c| pixel(&c.findings().error_map, x, y)),
         }
     }
 
     /// Our pixel at the cursor, as the render (with the toggles) has it.
     pub fn our_pixel(&self) -> Option<[u8; 3]> {
-        let (x, y) = self.cursor();
-        self.image().and_then(|i| pixel(i, x, y))
+        let (x, y) = self.pixel.cursor();
+        self.renders.image().and_then(|i| pixel(i, x, y))
     }
 }
 

@@ -73,6 +73,7 @@ impl Overlays {
         self.open = None;
     }
 
+    /// What is open over the panes, if anything.
     pub fn open(&self) -> Option<&Overlay> {
         self.open.as_ref()
     }

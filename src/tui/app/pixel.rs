@@ -73,34 +73,42 @@ impl TracedPixel {
         None
     }
 
+    /// The selected pixel, in the scene image's coordinates.
     pub fn cursor(&self) -> (u32, u32) {
         self.cursor
     }
 
+    /// The selected pixel's recording.
     pub fn tree(&self) -> &RayTree {
         &self.tree
     }
 
+    /// The current event, an index into `tree().events`.
     pub fn current(&self) -> usize {
         self.current
     }
 
+    /// The rays whose rows the tree pane folds away.
     pub fn collapsed(&self) -> &BTreeSet<NodeId> {
         &self.collapsed
     }
 
+    /// Manual scroll of the details; `None` follows the current event.
     pub fn details_scroll(&self) -> Option<u16> {
         self.details_scroll
     }
 
+    /// How the pixel changed with the last toggle, when it did.
     pub fn what_if(&self) -> Option<&str> {
         self.what_if.as_deref()
     }
 
+    /// The object the `x` breakpoint stops at, once chosen.
     pub fn break_object(&self) -> Option<usize> {
         self.break_object
     }
 
+    /// How long the last pick took.
     pub fn pick_time(&self) -> Duration {
         self.pick_time
     }

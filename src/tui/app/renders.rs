@@ -111,14 +111,17 @@ impl Renders {
         self.renderer.busy()
     }
 
+    /// How far the running render is.
     pub fn progress(&self) -> Option<Progress> {
         self.renderer.progress()
     }
 
+    /// The latest render (or preview) of the current settings.
     pub fn image(&self) -> Option<&RgbImage> {
         self.image.as_ref()
     }
 
+    /// The term images, once a term picture asked for them.
     pub fn terms(&self) -> Option<&TermImages> {
         self.terms.as_ref()
     }
@@ -132,6 +135,7 @@ impl Renders {
         }
     }
 
+    /// How long the last finished render took.
     pub fn render_time(&self) -> Option<Duration> {
         self.render_time
     }
@@ -161,6 +165,7 @@ mod tests {
         let mut app = App::new(source, big, None, false);
         let deadline = Instant::now() + Duration::from_secs(30);
         while !app
+            .renders()
             .progress()
             .is_some_and(|p| p.rows == 3000 && p.rows_done > 0)
         {

@@ -52,10 +52,12 @@ impl Screen {
         }
     }
 
+    /// The terminal's size, as the last `Action::Resize` gave it.
     pub fn size(&self) -> Rect {
         self.size
     }
 
+    /// The pane that has the keys.
     pub fn focus(&self) -> Pane {
         self.focus
     }
@@ -64,6 +66,7 @@ impl Screen {
         self.focus = pane;
     }
 
+    /// 1 shows the whole image; each doubling halves the pixels per cell.
     pub fn zoom(&self) -> u32 {
         self.zoom
     }
@@ -77,6 +80,7 @@ impl Screen {
         Some("zoomed in all the way: one image pixel per half cell".into())
     }
 
+    /// What the image pane shows.
     pub fn picture(&self) -> Picture {
         self.picture
     }
@@ -109,11 +113,13 @@ impl Screen {
         }
     }
 
+    /// The plane the diagram is drawn on.
     pub fn plane(&self) -> DiagramPlane {
         self.plane
     }
 
-    pub fn diagram(&self) -> PanZoom {
+    /// How the diagram is panned and zoomed.
+    pub fn diagram_pan_zoom(&self) -> PanZoom {
         self.diagram
     }
 

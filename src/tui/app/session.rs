@@ -139,10 +139,12 @@ impl Session {
         self.settings = settings;
     }
 
+    /// The scene's file (or the built-in scene) and the size it is traced at.
     pub fn source(&self) -> &SceneSource {
         &self.source
     }
 
+    /// The last good file's scene, with the file's own settings.
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
@@ -152,10 +154,12 @@ impl Session {
         self.scene.clone()
     }
 
+    /// The settings traced: the file's, with the user's toggles.
     pub fn settings(&self) -> &Settings {
         &self.settings
     }
 
+    /// The banner: why the last reload failed.
     pub fn error(&self) -> Option<&str> {
         self.error.as_deref()
     }

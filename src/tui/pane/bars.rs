@@ -4,6 +4,7 @@
 use ratatui::style::Stylize;
 use ratatui::text::{Line, Span};
 
+use crate::scene::SpecularModel;
 use crate::tui::{App, Picture, keymap};
 
 /// A switch's name: plain green when on, "no ..." in red when off.
@@ -26,11 +27,12 @@ const SWITCH_NAMES: [(&str, &str); 4] = [
 /// The top line: the scene and the model's settings as the toggles left
 /// them. Short of room, the switches' names shorten first, then the scene's.
 pub(super) fn header(app: &App, width: u16) -> Line<'static> {
+    let session = app.session();
     let scene = format!(
         " {} {}x{}",
-        app.source().name(),
-        app.scene().width,
-        app.scene().height
+        session.source().name(),
+        session.scene().width,
+        session.scene().height
     );
     let long = settings_spans(app, false);
     let room = |right: &[Span]| {
@@ -61,7 +63,7 @@ pub(super) fn header(app: &App, width: u16) -> Line<'static> {
 }
 
 fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
-    let settings = app.settings();
+    let settings = app.session().settings();
     let s = settings.switches;
     let sep = || Span::raw(" · ").dark_gray();
     let on = [s.shadows, s.reflection, s.transmission, s.ambient];
@@ -74,7 +76,10 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
     }
     right.extend([
         sep(),
-        Span::raw(if app.phong() { "Phong" } else { "Blinn" }),
+        Span::raw(match settings.specular {
+            SpecularModel::Phong => "Phong",
+            SpecularModel::Blinn => "Blinn",
+        }),
         sep(),
         Span::raw(format!("depth {}", settings.max_depth)),
     ]);
@@ -88,7 +93,7 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
         ]);
     }
     // On screen a picture is a "view", the `v` key's word.
-    let picture = match app.picture() {
+    let picture = match app.screen().picture() {
         Picture::Render => None,
         Picture::Term(term) => Some(term.name()),
         Picture::Yours => Some("yours"),
@@ -102,14 +107,14 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
 
 pub(super) fn status(app: &App) -> Line<'static> {
     let mut spans = Vec::new();
-    if let Some(text) = app.prompt() {
+    if let Some(text) = app.overlay().prompt() {
         // The prompt has the keys: it, then why the last Enter failed.
         spans.push(Span::raw(format!(" go to X,Y: {text}▏")).bold().reversed());
         let why = app.message().unwrap_or("Enter goes, Esc cancels");
         spans.push(Span::raw(format!(" {why} ")).yellow());
         return Line::from(spans);
     }
-    if let Some(p) = app.progress() {
+    if let Some(p) = app.renders().progress() {
         spans.push(
             Span::raw(format!(" rendering {}/{} rows ", p.rows_done, p.rows))
                 .black()
@@ -126,19 +131,19 @@ pub(super) fn status(app: &App) -> Line<'static> {
     if let Some(message) = app.message() {
         spans.push(Span::raw(format!(" {message} ")).yellow().bold());
     } else if app.show_timings() {
-        let render = app.render_time().map_or(String::new(), |t| {
+        let render = app.renders().render_time().map_or(String::new(), |t| {
             format!(", image in {:.0} ms", t.as_secs_f64() * 1e3)
         });
         spans.push(
             Span::raw(format!(
                 " pixel traced in {} µs{render} ",
-                app.pick_time().as_micros()
+                app.pixel().pick_time().as_micros()
             ))
             .dark_gray(),
         );
     }
     spans.push(Span::raw(" "));
-    for hint in keymap::hints_in(app.focus()) {
+    for hint in keymap::hints_in(app.screen().focus()) {
         spans.push(Span::raw(hint.keys).bold().cyan());
         spans.push(Span::raw(format!(" {}  ", hint.what)));
     }

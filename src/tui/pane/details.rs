@@ -11,19 +11,25 @@ use crate::tui::view::details::{compare_line, lines, what_if_lines};
 use crate::tui::{App, Pane};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let id = app.selected_node();
-    let node = &app.tree().nodes[id];
+    let pixel = app.pixel();
+    let id = pixel.selected_node();
+    let node = &pixel.tree().nodes[id];
     let title = format!(" Details · r{id} {} ray ", kind_name(node.kind));
     let block = pane_block(app, Pane::Details, title);
     let inside = block.inner(area);
-    let (mut lines, mut marked) = lines(app.tree(), id, Some(app.current()), inside.width as usize);
-    let (x, y) = app.cursor();
-    if let Some(what_if) = app.what_if() {
+    let (mut lines, mut marked) = lines(
+        pixel.tree(),
+        id,
+        Some(pixel.current()),
+        inside.width as usize,
+    );
+    let (x, y) = pixel.cursor();
+    if let Some(what_if) = pixel.what_if() {
         let changed = what_if_lines(what_if, inside.width as usize);
         marked = marked.map(|m| m + changed.len());
         lines.splice(0..0, changed);
     }
-    if let Some(yours) = app.yours().map(|yours| yours.get_pixel(x, y).0) {
+    if let Some(yours) = app.comparison().map(|c| c.yours().get_pixel(x, y).0) {
         lines.insert(0, compare_line(yours, app.our_pixel()));
         marked = marked.map(|m| m + 1);
     }
@@ -36,7 +42,10 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         }
     });
     let most = lines.len().saturating_sub(height);
-    let offset = app.details_scroll().map_or(auto, |s| s as usize).min(most);
+    let offset = pixel
+        .details_scroll()
+        .map_or(auto, |s| s as usize)
+        .min(most);
     frame.render_widget(
         Paragraph::new(lines)
             .block(block)

@@ -145,21 +145,10 @@ fn mark_key(diagram: &Diagram) -> Vec<(&'static str, Color)> {
 /// Draws the app's diagram into `area` (block included): its pixel's tree
 /// at its current event, on its plane, panned and zoomed as it says.
 pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
-    let tree = app.tree();
-    let diagram = Diagram::new(
-        app.scene(),
-        tree,
-        app.plane(),
-        progress(tree, app.current()),
-    );
-    draw(
-        area,
-        buf,
-        block,
-        &diagram,
-        app.scene(),
-        app.diagram_pan_zoom(),
-    );
+    let (scene, pixel, screen) = (app.session().scene(), app.pixel(), app.screen());
+    let tree = pixel.tree();
+    let diagram = Diagram::new(scene, tree, screen.plane(), progress(tree, pixel.current()));
+    draw(area, buf, block, &diagram, scene, screen.diagram_pan_zoom());
 }
 
 /// Paints `diagram` (of a pixel of `scene`) into `area`, the block's border

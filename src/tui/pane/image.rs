@@ -20,9 +20,10 @@ use crate::tui::view::tree::rgb_swatch;
 use crate::tui::{App, Pane, Picture};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let (x, y) = app.cursor();
+    let (x, y) = app.pixel().cursor();
     let mut title = vec![Span::raw(format!(" Pixel ({x}, {y}) "))];
     if let Some(rgb) = app
+        .renders()
         .image()
         .filter(|i| x < i.width() && y < i.height())
         .map(|i| i.get_pixel(x, y).0)
@@ -30,19 +31,19 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         title.push(Span::raw(format!("rgb({},{},{}) ", rgb[0], rgb[1], rgb[2])));
         title.push(rgb_swatch(rgb));
     }
-    title.push(Span::raw(format!(" zoom {}x ", app.zoom())));
+    title.push(Span::raw(format!(" zoom {}x ", app.screen().zoom())));
     let mut block = pane_block(app, Pane::Image, String::new()).title(Line::from(title));
-    if let Picture::Term(term) = app.picture() {
+    if let Picture::Term(term) = app.screen().picture() {
         block = block.title_bottom(term_legend(app, term).right_aligned());
     }
-    if let Some(c) = app.comparison() {
+    if let Some(c) = app.comparison().map(|c| c.findings()) {
         // The ranking stays in sight while comparing, whatever the picture.
         let ranking = mistakes_menu::ranking(&c.mistakes, c.matches);
         block = block.title_bottom(Line::from(format!(" compare: {ranking} ")).bold().yellow());
     }
     frame.render_widget(block, area);
     let (Some(grid), Some(_)) = (app.image_grid(), app.shown_pixel(0, 0)) else {
-        let text = match app.progress() {
+        let text = match app.renders().progress() {
             Some(p) => format!("rendering… {}/{} rows", p.rows_done, p.rows),
             None => "rendering…".into(),
         };
@@ -57,11 +58,11 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         ImageWidget {
             grid,
             pixel: &pixel,
-            cursor: app.cursor(),
+            cursor: app.pixel().cursor(),
         },
         area,
     );
-    if let Some((column, row, _)) = grid.cursor_cell(app.cursor()) {
+    if let Some((column, row, _)) = grid.cursor_cell(app.pixel().cursor()) {
         // Marks on the border point at the cursor's column and row.
         let marks = [
             ((column, area.y + area.height - 1), "▲", "─"),
@@ -82,10 +83,10 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
 /// A term image's legend: the term's name, the selected pixel's value,
 /// and the scale of a count image (rays, cost).
 fn term_legend(app: &App, term: Term) -> Line<'static> {
-    let Some(terms) = app.terms() else {
+    let Some(terms) = app.renders().terms() else {
         return Line::raw(format!(" {}: rendering… ", term.name()));
     };
-    let (x, y) = app.cursor();
+    let (x, y) = app.pixel().cursor();
     let index = (x < terms.width && y < terms.height).then_some((y * terms.width + x) as usize);
     let here = index
         .and_then(|i| terms.pixels.get(i))
@@ -108,7 +109,7 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
         for i in 0..8 {
             spans.push(rgb_swatch(false_color(i as f64 / 7.0)));
         }
-        spans.push(Span::raw(format!(" {} ", app.count_max(term))));
+        spans.push(Span::raw(format!(" {} ", app.renders().count_max(term))));
     }
     Line::from(spans)
 }

@@ -10,8 +10,10 @@ use crate::tui::App;
 use crate::tui::view::mistakes_menu::lines;
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect, selected: usize) {
-    let ranked = app.comparison().map_or(&[][..], |c| &c.mistakes[..]);
-    let lines = lines(app.settings().mistakes, selected, ranked);
+    let ranked = app
+        .comparison()
+        .map_or(&[][..], |c| &c.findings().mistakes[..]);
+    let lines = lines(app.session().settings().mistakes, selected, ranked);
     let bottom = " j/k select · Space turns on/off · Esc or M closes ";
     let width = lines
         .iter()

@@ -38,12 +38,12 @@ pub fn draw(frame: &mut Frame, app: &App) {
         Pane::Diagram,
         format!(
             " Diagram · {}{} · white: current ",
-            app.plane().name(),
-            (app.diagram_pan_zoom().label()).map_or(String::new(), |z| format!(" · {z}"))
+            app.screen().plane().name(),
+            (app.screen().diagram_pan_zoom().label()).map_or(String::new(), |z| format!(" · {z}"))
         ),
     );
     diagram::render(panes.diagram, frame.buffer_mut(), block, app);
-    if let Some(error) = app.error() {
+    if let Some(error) = app.session().error() {
         let block = Block::bordered()
             .border_style(Style::new().fg(Color::Red))
             .title(
@@ -55,10 +55,10 @@ pub fn draw(frame: &mut Frame, app: &App) {
     }
     frame.render_widget(bars::status(app), panes.status);
     // The prompt and `f` speak in the status line; these two draw over the panes.
-    if let Some(selected) = app.mistake_menu() {
+    if let Some(selected) = app.overlay().menu_row() {
         mistakes_menu::draw(frame, app, area, selected);
     }
-    if let Some(Overlay::Help { scroll }) = app.overlay() {
+    if let Some(Overlay::Help { scroll }) = app.overlay().open() {
         help::draw(frame, area, *scroll);
     }
 }
@@ -85,7 +85,7 @@ fn draw_too_small(frame: &mut Frame, area: Rect) {
 
 /// A bordered pane, its border bright when it has the focus.
 fn pane_block(app: &App, pane: Pane, title: String) -> Block<'static> {
-    let focused = app.focus() == pane;
+    let focused = app.screen().focus() == pane;
     let style = if focused {
         Style::new().fg(Color::Cyan).add_modifier(Modifier::BOLD)
     } else {

@@ -11,7 +11,8 @@ use crate::tui::view::tree::{row_line, rows, scroll_offset, selected_row, select
 use crate::tui::{App, Pane};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
-    let tree = app.tree();
+    let pixel = app.pixel();
+    let tree = pixel.tree();
     let rays = tree.nodes.len();
     let title = format!(
         " Ray tree · pixel ({}, {}) · {rays} ray{} ",
@@ -21,8 +22,8 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     );
     let block = pane_block(app, Pane::Tree, title);
     let inside = block.inner(area);
-    let rows = rows(tree, app.collapsed());
-    let selected = selected_row(tree, &rows, app.current());
+    let rows = rows(tree, pixel.collapsed());
+    let selected = selected_row(tree, &rows, pixel.current());
     let first = scroll_offset(selected.unwrap_or(0), inside.height as usize);
     let lines: Vec<Line> = rows
         .iter()
@@ -30,9 +31,9 @@ pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
         .skip(first)
         .take(inside.height as usize)
         .map(|(i, row)| {
-            let line = row_line(tree, app.collapsed(), row, inside.width as usize);
+            let line = row_line(tree, pixel.collapsed(), row, inside.width as usize);
             if Some(i) == selected {
-                line.patch_style(selected_style(app.focus() == Pane::Tree))
+                line.patch_style(selected_style(app.screen().focus() == Pane::Tree))
             } else {
                 line
             }
