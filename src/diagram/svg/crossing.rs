@@ -66,7 +66,7 @@ pub fn subject(tree: &RayTree) -> Option<Subject<'_>> {
 pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     let figure = subject.figure;
     let vertices: Vec<DVec2> = figure.vertices.iter().map(|v| DVec2::from(*v)).collect();
-    let view = View::fit(&vertices);
+    let map = UvMap::fit(&vertices);
     let (dropped, u, v) = figure.axes();
     let mut out = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{HEIGHT}\" \
@@ -104,18 +104,18 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     );
     let mut labels = Labels::new(13.0, bounds);
     // The polygon's fill first: the +U half-line must show inside it.
-    write_polygon(&mut out, &view, figure, &vertices);
-    write_axes(&mut out, &view, u, v, &mut labels);
-    let o = view.map(DVec2::ZERO);
+    write_polygon(&mut out, &map, figure, &vertices);
+    write_axes(&mut out, &map, u, v, &mut labels);
+    let o = map.to_figure(DVec2::ZERO);
     labels.reserve(o, 4.5);
-    write_crossings(&mut out, &view, figure, &mut labels);
+    write_crossings(&mut out, &map, figure, &mut labels);
     let _ = writeln!(
         out,
         "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"4.5\" fill=\"black\"/>",
         o.x, o.y
     );
     labels.place_centred(&mut out, o + DVec2::new(0.0, 20.0), point, "");
-    write_vertex_numbers(&mut out, &view, &vertices, &mut labels);
+    write_vertex_numbers(&mut out, &map, &vertices, &mut labels);
     let n = figure.crossings();
     let verdict = if figure.inside() {
         "odd, inside"
@@ -136,8 +136,8 @@ pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
 }
 
 /// The U and V axes through the hit point, and the +U half-line as the ray.
-fn write_axes(out: &mut String, view: &View, u: &str, v: &str, labels: &mut Labels) {
-    let o = view.map(DVec2::ZERO);
+fn write_axes(out: &mut String, map: &UvMap, u: &str, v: &str, labels: &mut Labels) {
+    let o = map.to_figure(DVec2::ZERO);
     let (left, right) = (MARGIN / 2.0, WIDTH - MARGIN / 2.0);
     let (top, bottom) = (TOP, HEIGHT - BOTTOM - 10.0);
     let _ = writeln!(
@@ -184,10 +184,10 @@ fn write_axes(out: &mut String, view: &View, u: &str, v: &str, labels: &mut Labe
 }
 
 /// The polygon, and its counted edges highlighted.
-fn write_polygon(out: &mut String, view: &View, figure: &CrossingFigure, vertices: &[DVec2]) {
+fn write_polygon(out: &mut String, map: &UvMap, figure: &CrossingFigure, vertices: &[DVec2]) {
     let points: Vec<String> = vertices
         .iter()
-        .map(|p| view.map(*p))
+        .map(|p| map.to_figure(*p))
         .map(|p| format!("{:.1},{:.1}", p.x, p.y))
         .collect();
     let _ = writeln!(
@@ -196,7 +196,10 @@ fn write_polygon(out: &mut String, view: &View, figure: &CrossingFigure, vertice
         points.join(" ")
     );
     for edge in figure.edges.iter().filter(|e| e.counts) {
-        let (a, b) = (view.map(vertices[edge.from]), view.map(vertices[edge.to]));
+        let (a, b) = (
+            map.to_figure(vertices[edge.from]),
+            map.to_figure(vertices[edge.to]),
+        );
         let _ = writeln!(
             out,
             "<line class=\"counted-edge\" x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{COUNTS}\" stroke-width=\"4\"/>",
@@ -206,24 +209,24 @@ fn write_polygon(out: &mut String, view: &View, figure: &CrossingFigure, vertice
 }
 
 /// Each vertex's number just outside its corner, away from the centroid.
-fn write_vertex_numbers(out: &mut String, view: &View, vertices: &[DVec2], labels: &mut Labels) {
+fn write_vertex_numbers(out: &mut String, map: &UvMap, vertices: &[DVec2], labels: &mut Labels) {
     labels.set_font_size(11.0);
     let centre = vertices.iter().fold(DVec2::ZERO, |a, p| a + *p) / vertices.len() as f64;
     for (i, p) in vertices.iter().enumerate() {
         let out_by = (*p - centre).normalize_or_zero() * 14.0;
-        let at = view.map(*p) + DVec2::new(out_by.x, -out_by.y);
+        let at = map.to_figure(*p) + DVec2::new(out_by.x, -out_by.y);
         let text = i.to_string();
         labels.place_centred(out, at, &text, "font-size=\"11\" fill=\"#555555\"");
     }
 }
 
 /// Each edge meeting V = 0: numbered on +U when it counts, hollow when left.
-fn write_crossings(out: &mut String, view: &View, figure: &CrossingFigure, labels: &mut Labels) {
+fn write_crossings(out: &mut String, map: &UvMap, figure: &CrossingFigure, labels: &mut Labels) {
     let marks: Vec<(DVec2, bool, usize, usize)> = figure
         .edges
         .iter()
         .filter(|e| e.straddles)
-        .filter_map(|e| Some((view.map(DVec2::new(e.u?, 0.0)), e.counts, e.from, e.to)))
+        .filter_map(|e| Some((map.to_figure(DVec2::new(e.u?, 0.0)), e.counts, e.from, e.to)))
         .collect();
     for (p, counts, ..) in &marks {
         labels.reserve(*p, 6.0);
@@ -272,14 +275,14 @@ fn write_legend(out: &mut String) {
     super::legend::write_rows(out, &items, HEIGHT - BOTTOM + 10.0);
 }
 
-/// From (U, V) to the figure: uniform scale, V up, the origin kept in view.
-struct View {
+/// From (U, V) to the figure: uniform scale, V up, the origin kept in map.
+struct UvMap {
     centre: DVec2,
     scale: f64,
 }
 
-impl View {
-    fn fit(vertices: &[DVec2]) -> View {
+impl UvMap {
+    fn fit(vertices: &[DVec2]) -> UvMap {
         let (min, max) = vertices
             .iter()
             .fold((DVec2::ZERO, DVec2::ZERO), |(lo, hi), p| {
@@ -288,13 +291,13 @@ impl View {
         let size = (max - min).max(DVec2::splat(1e-9));
         // Room on the right for the half-line to leave the polygon.
         let room = DVec2::new(WIDTH - 2.0 * MARGIN - 80.0, HEIGHT - TOP - BOTTOM - 60.0);
-        View {
+        UvMap {
             centre: (min + max) / 2.0,
             scale: (room.x / size.x).min(room.y / size.y),
         }
     }
 
-    fn map(&self, p: DVec2) -> DVec2 {
+    fn to_figure(&self, p: DVec2) -> DVec2 {
         let middle = DVec2::new(
             WIDTH / 2.0 - 40.0,
             TOP + 30.0 + (HEIGHT - TOP - BOTTOM - 60.0) / 2.0,

@@ -10,14 +10,14 @@
 pub mod crossing;
 mod labels;
 mod legend;
-mod view;
+mod plane_map;
 
 use std::fmt::Write;
 
 use glam::DVec2;
 
 use self::labels::{Box2, Labels, clip};
-use self::view::{View, label_anchor, outline_segments, write_outline};
+use self::plane_map::{PlaneMap, label_anchor, outline_segments, write_outline};
 use super::{Anchor, Diagram, Named, Role, Stroke};
 use crate::record::light_label;
 
@@ -67,7 +67,7 @@ fn arrow(stroke: Stroke) -> Option<&'static str> {
 /// about the primary ray's first hit.
 pub fn figure(diagram: &Diagram, zoom: f64) -> String {
     // The projection's origin is the primary ray's first hit (the eye on a miss).
-    let view = View::fit(&diagram.extent()).zoomed(zoom, DVec2::ZERO);
+    let map = PlaneMap::fit(&diagram.extent()).zoomed(zoom, DVec2::ZERO);
 
     let mut out = header();
     let zoomed = if zoom > 1.0 {
@@ -87,8 +87,8 @@ pub fn figure(diagram: &Diagram, zoom: f64) -> String {
     // A slide shows what the rays meet or pass by, not the rest of the scene.
     let drawn = (diagram.objects.iter()).filter(|o| o.role != Role::Context);
     for shape in drawn.flat_map(|o| &o.shapes) {
-        write_outline(&mut out, &view, shape);
-        for (a, b) in outline_segments(shape, &view) {
+        write_outline(&mut out, &map, shape);
+        for (a, b) in outline_segments(shape, &map) {
             if let Some((a, b)) = clip(a, b, FRAME) {
                 labels.reserve_ray(a, b);
             }
@@ -99,7 +99,7 @@ pub fn figure(diagram: &Diagram, zoom: f64) -> String {
         write_line(
             &mut out,
             &mut labels,
-            &view,
+            &map,
             (line.hit, line.light),
             FACES_AWAY,
             " stroke-dasharray=\"2 4\"",
@@ -118,15 +118,15 @@ pub fn figure(diagram: &Diagram, zoom: f64) -> String {
         write_line(
             &mut out,
             &mut labels,
-            &view,
+            &map,
             ends,
             colour,
             dash,
             arrow(segment.stroke),
         );
     }
-    write_marks(&mut out, &mut labels, &view, diagram);
-    write_labels(&mut out, &mut labels, &view, diagram);
+    write_marks(&mut out, &mut labels, &map, diagram);
+    write_labels(&mut out, &mut labels, &map, diagram);
     legend::write(&mut out, &diagram.legend());
     out.push_str("</svg>\n");
     out
@@ -177,13 +177,13 @@ fn header() -> String {
 fn write_line(
     out: &mut String,
     labels: &mut Labels,
-    view: &View,
+    map: &PlaneMap,
     (from, to): (DVec2, DVec2),
     colour: &str,
     dash: &str,
     arrow: Option<&str>,
 ) {
-    let Some((a, b)) = clip(view.map(from), view.map(to), FRAME) else {
+    let Some((a, b)) = clip(map.to_figure(from), map.to_figure(to), FRAME) else {
         return;
     };
     labels.reserve_ray(a, b);
@@ -199,15 +199,15 @@ fn write_line(
 }
 
 /// A point's place in the figure, when it is inside the frame.
-fn framed(view: &View, p: DVec2) -> Option<DVec2> {
-    let at = view.map(p);
+fn framed(map: &PlaneMap, p: DVec2) -> Option<DVec2> {
+    let at = map.to_figure(p);
     labels::contains(FRAME, (at, at)).then_some(at)
 }
 
 /// The blockers' ×, the hits' dots, the passed-by rings, the eye and the
 /// lights, each reserved so no label covers it.
-fn write_marks(out: &mut String, labels: &mut Labels, view: &View, diagram: &Diagram) {
-    for (p, b) in (diagram.blockers.iter()).filter_map(|b| Some((framed(view, b.at)?, b))) {
+fn write_marks(out: &mut String, labels: &mut Labels, map: &PlaneMap, diagram: &Diagram) {
+    for (p, b) in (diagram.blockers.iter()).filter_map(|b| Some((framed(map, b.at)?, b))) {
         let colour = stroke_colour(b.stroke);
         labels.reserve(p, 5.0);
         let _ = writeln!(
@@ -217,18 +217,18 @@ fn write_marks(out: &mut String, labels: &mut Labels, view: &View, diagram: &Dia
             p.y - 4.0
         );
     }
-    for p in diagram.hits.iter().filter_map(|h| framed(view, h.at)) {
+    for p in diagram.hits.iter().filter_map(|h| framed(map, h.at)) {
         circle(out, labels, p, 3.0, "fill=\"black\"");
     }
-    for p in diagram.passed.iter().filter_map(|m| framed(view, m.at)) {
+    for p in diagram.passed.iter().filter_map(|m| framed(map, m.at)) {
         let ring =
             format!("class=\"passed-by\" fill=\"none\" stroke=\"{PASSED}\" stroke-width=\"2\"");
         circle(out, labels, p, 6.0, &ring);
     }
-    if let Some(e) = framed(view, diagram.eye) {
+    if let Some(e) = framed(map, diagram.eye) {
         circle(out, labels, e, 5.0, "fill=\"black\"");
     }
-    for p in diagram.lights.iter().filter_map(|l| framed(view, l.at)) {
+    for p in diagram.lights.iter().filter_map(|l| framed(map, l.at)) {
         circle(out, labels, p, 7.0, "fill=\"#ffdd44\" stroke=\"#aa8800\"");
     }
 }
@@ -246,14 +246,14 @@ fn circle(out: &mut String, labels: &mut Labels, p: DVec2, r: f64, attrs: &str) 
 /// The names, once every mark and ray is down; none for what lies off the
 /// frame. A light is called "light NAME" on a slide, where no symbol says
 /// what it is.
-fn write_labels(out: &mut String, labels: &mut Labels, view: &View, diagram: &Diagram) {
+fn write_labels(out: &mut String, labels: &mut Labels, map: &PlaneMap, diagram: &Diagram) {
     for label in diagram.labels() {
         let at = match label.anchor {
-            Anchor::Point(p) => framed(view, p),
+            Anchor::Point(p) => framed(map, p),
             // A plane is named where a ray hits it, if one does in the frame.
             Anchor::Outline { outline, hits } => {
-                let hit = hits.iter().find_map(|h| framed(view, *h));
-                label_anchor(outline, view, hit).filter(|a| labels::contains(FRAME, (*a, *a)))
+                let hit = hits.iter().find_map(|h| framed(map, *h));
+                label_anchor(outline, map, hit).filter(|a| labels::contains(FRAME, (*a, *a)))
             }
         };
         let Some(at) = at else { continue };

@@ -163,7 +163,7 @@ mod tokens;
 use tokens::{Parser, Token};
 
 /// A viewpoint `v` as read, before it becomes a camera.
-struct View {
+struct Viewpoint {
     keyword: Range<usize>,
     from: Option<DVec3>,
     at: Option<DVec3>,
@@ -175,7 +175,7 @@ struct View {
 /// What the file has said so far.
 #[derive(Default)]
 struct Builder {
-    view: Option<View>,
+    view: Option<Viewpoint>,
     background: Color,
     /// Positions and colours; a light without colour gets its colour at the end.
     lights: Vec<(DVec3, Option<Color>)>,

@@ -200,8 +200,8 @@ impl<'a> Parser<'a> {
     }
 
     /// The viewpoint's keyword groups after `v`, in any order, each at most once.
-    pub(super) fn view(&mut self, keyword: Token) -> Result<View, SceneError> {
-        let mut view = View {
+    pub(super) fn view(&mut self, keyword: Token) -> Result<Viewpoint, SceneError> {
+        let mut view = Viewpoint {
             keyword: keyword.span(),
             from: None,
             at: None,
