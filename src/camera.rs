@@ -9,9 +9,9 @@ use crate::mistakes::{Mistake, Mistakes};
 /// degrees, edge to edge of the image.
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
-    pub eye: DVec3,
-    pub look_at: DVec3,
-    pub up: DVec3,
+    pub(crate) eye: DVec3,
+    pub(crate) look_at: DVec3,
+    pub(crate) up: DVec3,
     pub fov: f64,
 }
 
@@ -37,14 +37,14 @@ pub struct Viewport {
 /// The camera's orthonormal frame: where it looks, its right and its true up
 /// (`up` made perpendicular to `forward`).
 #[derive(Clone, Copy, Debug)]
-pub struct Frame {
-    pub forward: DVec3,
-    pub right: DVec3,
-    pub true_up: DVec3,
+pub(crate) struct Frame {
+    pub(crate) forward: DVec3,
+    pub(crate) right: DVec3,
+    pub(crate) true_up: DVec3,
 }
 
 impl Camera {
-    pub fn frame(&self) -> Frame {
+    pub(crate) fn frame(&self) -> Frame {
         let forward = (self.look_at - self.eye).normalize();
         let right = forward.cross(self.up).normalize();
         let true_up = right.cross(forward);
@@ -79,7 +79,7 @@ impl Viewport {
     /// The viewport with the pixel mistakes of `mistakes` (`pixel-corner`,
     /// `flipped-y`) in the mapping from image pixels to primary rays; the
     /// others do not concern it.
-    pub fn with_mistakes(self, mistakes: Mistakes) -> Viewport {
+    pub(crate) fn with_mistakes(self, mistakes: Mistakes) -> Viewport {
         Viewport {
             pixel_offset: if mistakes.contains(Mistake::PixelCorner) {
                 0.0

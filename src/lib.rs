@@ -4,14 +4,14 @@
 //! rays and illumination terms that produced its colour (see MODEL.md).
 
 pub mod accel;
-pub mod camera;
+pub(crate) mod camera;
 pub mod cli;
 pub mod compare;
 pub mod diagram;
 pub mod math;
 pub mod mistakes;
-pub mod object;
-pub mod output;
+pub(crate) mod object;
+pub(crate) mod output;
 pub mod record;
 pub mod render;
 pub mod scene;

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 /// An RGB colour with linear channels; 1.0 is full intensity before clamping.
-pub type Color = DVec3;
+pub(crate) type Color = DVec3;
 
 /// Hits closer than this (in scene units) are ignored, for every kind of ray,
 /// so that secondary rays starting on a surface do not hit it again (MODEL §3).
@@ -14,8 +14,8 @@ pub const EPS: f64 = 1e-4;
 /// ray is unit length; secondary directions are used as computed (MODEL §5).
 #[derive(Clone, Copy, Debug)]
 pub struct Ray {
-    pub origin: DVec3,
-    pub direction: DVec3,
+    pub(crate) origin: DVec3,
+    pub(crate) direction: DVec3,
 }
 
 impl Ray {
@@ -31,8 +31,8 @@ impl Ray {
 /// The open interval `(min, max)` of ray distances a query accepts.
 #[derive(Clone, Copy, Debug)]
 pub struct Interval {
-    pub min: f64,
-    pub max: f64,
+    pub(crate) min: f64,
+    pub(crate) max: f64,
 }
 
 impl Interval {
@@ -46,20 +46,20 @@ impl Interval {
     }
 
     /// True when `min < t < max`.
-    pub fn surrounds(&self, t: f64) -> bool {
+    pub(crate) fn surrounds(&self, t: f64) -> bool {
         self.min < t && t < self.max
     }
 }
 
 /// `value > bound`, false when either is NaN: validation reads
 /// `!exceeds(radius, 0.0)` to refuse NaN along with non-positive values.
-pub fn exceeds(value: f64, bound: f64) -> bool {
+pub(crate) fn exceeds(value: f64, bound: f64) -> bool {
     value > bound
 }
 
 /// Attenuation `min(1, 1 / (c1 + c2 d + c3 d^2))`, used for lights and for
 /// secondary rays (MODEL §4, §5). A non-positive denominator means no attenuation.
-pub fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
+pub(crate) fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
     let denominator = c1 + c2 * distance + c3 * distance * distance;
     if denominator <= 0.0 {
         1.0
@@ -69,7 +69,7 @@ pub fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
 }
 
 /// An 8-bit channel value: clamp to [0, 1], then floor(255 c + 0.5) (MODEL §6).
-pub fn to_byte(channel: f64) -> u8 {
+pub(crate) fn to_byte(channel: f64) -> u8 {
     // The cast does the clamp: a float cast to u8 saturates (below 0 to 0,
     // above 255 to 255, NaN to 0), and 255 c + 0.5 leaves [0.5, 255.5]
     // exactly when c leaves [0, 1]. Within, truncating is the floor, without

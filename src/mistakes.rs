@@ -84,7 +84,7 @@ impl Mistake {
     }
 
     /// What a tracer with the mistake does, in a few words.
-    pub fn summary(self) -> &'static str {
+    pub(crate) fn summary(self) -> &'static str {
         match self {
             Mistake::ShadowAcne => "shadow rays hit their own surface (t > 0, not t > EPS)",
             Mistake::NoNormalFlip => "shading uses the outward normal on back faces",
@@ -107,7 +107,7 @@ impl Mistake {
     /// the mistake, so `compare` need not render it (MODEL §8's "Touches").
     /// Every mistake answers here, beside its definition: a new one does not
     /// compile until it says what it can change.
-    pub fn acts_on(self) -> ActsOn {
+    pub(crate) fn acts_on(self) -> ActsOn {
         match self {
             Mistake::ShadowAcne | Mistake::ShadowsPastLight => ActsOn::ShadowRays,
             Mistake::OpaqueShadows => ActsOn::TransparentShadows,
@@ -124,11 +124,6 @@ impl Mistake {
         }
     }
 
-    /// The mistake of this name.
-    pub fn from_name(name: &str) -> Option<Mistake> {
-        Mistake::ALL.into_iter().find(|m| m.name() == name)
-    }
-
     fn bit(self) -> u16 {
         1 << self as u16
     }
@@ -136,7 +131,7 @@ impl Mistake {
 
 /// What a scene must have for a mistake to change its image (`Mistake::acts_on`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ActsOn {
+pub(crate) enum ActsOn {
     /// Shadow rays: shadows switched on.
     ShadowRays,
     /// Shadow rays through a transparent material (k_t > 0).
@@ -184,7 +179,7 @@ impl Mistakes {
     }
 
     /// The set with `mistake` in it if it was not, out of it if it was.
-    pub fn toggled(self, mistake: Mistake) -> Mistakes {
+    pub(crate) fn toggled(self, mistake: Mistake) -> Mistakes {
         Mistakes(self.0 ^ mistake.bit())
     }
 
@@ -193,7 +188,7 @@ impl Mistakes {
     }
 
     /// The mistakes in the set, in catalogue order.
-    pub fn iter(self) -> impl Iterator<Item = Mistake> {
+    pub(crate) fn iter(self) -> impl Iterator<Item = Mistake> {
         Mistake::ALL.into_iter().filter(move |&m| self.contains(m))
     }
 
@@ -259,11 +254,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_name_reads_back_as_its_mistake() {
-        for mistake in Mistake::ALL {
-            assert_eq!(Mistake::from_name(mistake.name()), Some(mistake));
+    fn every_name_is_its_own_and_kebab_case() {
+        let names: std::collections::BTreeSet<&str> =
+            Mistake::ALL.iter().map(|m| m.name()).collect();
+        assert_eq!(names.len(), Mistake::ALL.len());
+        for name in names {
+            assert!(
+                name.chars().all(|c| c.is_ascii_lowercase() || c == '-'),
+                "{name}"
+            );
         }
-        assert_eq!(Mistake::from_name("shadow_acne"), None);
     }
 
     #[test]

@@ -29,16 +29,16 @@ const TEMP_SUFFIX: &str = ".png.tmp";
 
 /// One output file, resolved: `real` is where it lands, links followed.
 #[derive(Debug)]
-pub struct Target {
+pub(crate) struct Target {
     /// The path as the user gave it, for messages.
-    pub shown: PathBuf,
+    pub(crate) shown: PathBuf,
     real: PathBuf,
     /// The mode of the file being replaced, kept for the new one.
     mode: Option<Permissions>,
 }
 
 /// Resolves an output file whose folder must exist.
-pub fn file(path: &Path) -> Result<Target> {
+pub(crate) fn file(path: &Path) -> Result<Target> {
     resolve(path, || {
         let fail = |why: &str| anyhow!("cannot write {}: {why}", path.display());
         let name = path.file_name().ok_or_else(|| fail("not a file name"))?;
@@ -99,7 +99,7 @@ fn resolve(path: &Path, landing: impl FnOnce() -> Result<PathBuf>) -> Result<Tar
 /// A folder for several outputs, created when the files are written if it
 /// does not exist yet.
 #[derive(Debug)]
-pub struct Folder {
+pub(crate) struct Folder {
     shown: PathBuf,
     real: PathBuf,
     exists: bool,
@@ -107,7 +107,7 @@ pub struct Folder {
 
 /// Resolves and checks a folder: it exists and is a directory, or its
 /// nearest existing ancestor is one; either way it is writable.
-pub fn folder(dir: &Path) -> Result<Folder> {
+pub(crate) fn folder(dir: &Path) -> Result<Folder> {
     let fail = |why: &str| anyhow!("cannot write into {}: {why}", dir.display());
     let mut existing = dir;
     let mut missing = Vec::new();
@@ -135,14 +135,14 @@ pub fn folder(dir: &Path) -> Result<Folder> {
 
 impl Folder {
     /// The output `name` inside this folder.
-    pub fn file(&self, name: &str) -> Result<Target> {
+    pub(crate) fn file(&self, name: &str) -> Result<Target> {
         resolve(&self.shown.join(name), || Ok(self.real.join(name)))
     }
 }
 
 /// Refuses an output that is the scene file or another output. Each target
 /// comes with what it is, for the message.
-pub fn refuse_clashes(scene: &Path, targets: &[(&Target, String)]) -> Result<()> {
+pub(crate) fn refuse_clashes(scene: &Path, targets: &[(&Target, String)]) -> Result<()> {
     let scene_real = fs::canonicalize(scene).ok();
     for (i, (target, what)) in targets.iter().enumerate() {
         if scene_real.as_ref() == Some(&target.real) || same_file(scene, &target.real) {
@@ -166,7 +166,7 @@ pub fn refuse_clashes(scene: &Path, targets: &[(&Target, String)]) -> Result<()>
 }
 
 /// Refuses an output that is the input `input`, named `what` in the message.
-pub fn refuse_input(target: &Target, input: &Path, what: &str) -> Result<()> {
+pub(crate) fn refuse_input(target: &Target, input: &Path, what: &str) -> Result<()> {
     let input_real = fs::canonicalize(input).ok();
     if input_real.as_ref() == Some(&target.real) || same_file(input, &target.real) {
         bail!(
@@ -193,7 +193,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
 
 /// Writes every image to a temporary beside its target, then renames them
 /// all into place. `create` is a folder to create first when missing.
-pub fn write_all<'a>(
+pub(crate) fn write_all<'a>(
     create: Option<&Folder>,
     files: impl IntoIterator<Item = (&'a Target, RgbImage)>,
 ) -> Result<()> {
@@ -223,7 +223,7 @@ pub fn write_all<'a>(
 
 /// Writes `text` to `target` as `write_all` writes images: to a temporary
 /// beside it first, then renamed into place.
-pub fn write_text(target: &Target, text: &str) -> Result<()> {
+pub(crate) fn write_text(target: &Target, text: &str) -> Result<()> {
     let fail = || format!("cannot write {}", target.shown.display());
     let dir = target.real.parent().unwrap_or(Path::new("/"));
     remove_stale_temps(dir);

@@ -41,7 +41,7 @@ pub fn render<R: RowRecorder>(
 
 /// Renders the scene at another size with the same field of view (a quick
 /// preview; its pixels are not the scene's own).
-pub fn render_at<R: RowRecorder>(
+pub(crate) fn render_at<R: RowRecorder>(
     scene: &Scene,
     settings: &Settings,
     size: (u32, u32),
@@ -54,7 +54,7 @@ pub fn render_at<R: RowRecorder>(
 /// Renders at `size` unless `cancel` is set: each row looks at the flag
 /// before it starts, so a cancelled render stops within one row per thread,
 /// and gives `None`. Uncancelled, the bytes are those of `render_at`.
-pub fn render_unless<R: RowRecorder>(
+pub(crate) fn render_unless<R: RowRecorder>(
     scene: &Scene,
     settings: &Settings,
     (width, height): (u32, u32),
@@ -79,7 +79,11 @@ pub fn render_unless<R: RowRecorder>(
 /// Which primary ray each pixel of an image of `size` gets when `scene` is
 /// traced with `settings`: the camera's, with the settings' pixel mistakes
 /// (MODEL §8). Renders and recordings both ask here, so they agree.
-pub fn viewport(scene: &Scene, settings: &Settings, (width, height): (u32, u32)) -> Viewport {
+pub(crate) fn viewport(
+    scene: &Scene,
+    settings: &Settings,
+    (width, height): (u32, u32),
+) -> Viewport {
     scene
         .camera
         .viewport(width, height)

@@ -41,7 +41,7 @@ impl Term {
         Term::Cost,
     ];
 
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Term::Ambient => "ambient",
             Term::Diffuse => "diffuse",
@@ -55,12 +55,12 @@ impl Term {
     }
 
     /// The file `render --terms DIR` writes this view to, inside DIR.
-    pub fn file_name(self) -> String {
+    pub(crate) fn file_name(self) -> String {
         format!("{}.png", self.name())
     }
 
     /// What the view shows, for legends.
-    pub fn legend(self) -> &'static str {
+    pub(crate) fn legend(self) -> &'static str {
         match self {
             Term::Ambient => "ambient term k_a I_a O_d of the primary hit",
             Term::Diffuse => "sum over lights of the diffuse terms",
@@ -79,20 +79,20 @@ impl Term {
 
 /// The terms of one pixel's primary ray.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct PixelTerms {
-    pub color: Color,
-    pub ambient: Color,
-    pub diffuse: Color,
-    pub specular: Color,
-    pub reflected: Color,
-    pub transmitted: Color,
+pub(crate) struct PixelTerms {
+    pub(crate) color: Color,
+    pub(crate) ambient: Color,
+    pub(crate) diffuse: Color,
+    pub(crate) specular: Color,
+    pub(crate) reflected: Color,
+    pub(crate) transmitted: Color,
     /// Mean S over lights facing the hit; `None` on a miss or when none faces it.
-    pub shadow: Option<f64>,
+    pub(crate) shadow: Option<f64>,
     /// Whether the primary ray hit something (`shadow.png` tells a miss
     /// from a point no light faces).
-    pub hit: bool,
-    pub rays: u32,
-    pub cost: u32,
+    pub(crate) hit: bool,
+    pub(crate) rays: u32,
+    pub(crate) cost: u32,
 }
 
 /// Gathers `PixelTerms` from the tracer's callbacks for one pixel.
@@ -165,11 +165,11 @@ impl Recorder for TermsRecorder {
 /// Every pixel's terms, row by row.
 pub struct TermImages {
     pub width: u32,
-    pub height: u32,
-    pub pixels: Vec<PixelTerms>,
+    pub(crate) height: u32,
+    pub(crate) pixels: Vec<PixelTerms>,
     /// The mistakes traced with: the colour image stores its bytes as the
     /// render does under them (`Mistakes::rgb8`).
-    pub mistakes: Mistakes,
+    pub(crate) mistakes: Mistakes,
 }
 
 /// Traces every pixel with the terms recorder (the same `trace` as the
@@ -185,7 +185,7 @@ pub fn render_terms<R: RowRecorder>(
 
 /// `render_terms` unless `cancel` is set, looked at before each row (as
 /// `render::render_unless` does); `None` when cancelled.
-pub fn render_terms_unless<R: RowRecorder>(
+pub(crate) fn render_terms_unless<R: RowRecorder>(
     scene: &Scene,
     settings: &Settings,
     row_done: &(dyn Fn() + Sync),
@@ -286,7 +286,7 @@ impl TermImages {
 
     /// The least and the most of a count view (rays or cost) over the
     /// image: its colour ramp runs from 0 (dark blue) to the most (yellow).
-    pub fn count_range(&self, term: Term) -> (u32, u32) {
+    pub(crate) fn count_range(&self, term: Term) -> (u32, u32) {
         let count = |p: &PixelTerms| if term == Term::Rays { p.rays } else { p.cost };
         let min = self.pixels.iter().map(count).min().unwrap_or(0);
         (min, self.max_count(term))
@@ -321,7 +321,7 @@ impl TermImages {
         })
     }
 
-    pub fn image(&self, term: Term) -> RgbImage {
+    pub(crate) fn image(&self, term: Term) -> RgbImage {
         let max = self.max_count(term);
         RgbImage::from_fn(self.width, self.height, |x, y| {
             image::Rgb(self.rgb(term, (y * self.width + x) as usize, max))
@@ -336,7 +336,7 @@ pub const NO_LIGHT_FACES: [u8; 3] = [110, 40, 120];
 pub const SHADOW_BACKGROUND: [u8; 3] = [20, 30, 70];
 
 /// A dark-blue to yellow ramp for counts in [0, 1].
-pub fn false_color(v: f64) -> [u8; 3] {
+pub(crate) fn false_color(v: f64) -> [u8; 3] {
     const STOPS: [[f64; 3]; 5] = [
         [0.05, 0.03, 0.25],
         [0.25, 0.2, 0.6],

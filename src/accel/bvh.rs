@@ -44,15 +44,15 @@ const SCENE_PADDING: f64 = 1.0 / (1u64 << 30) as f64;
 /// first right after this node in the array, the second at `offset`.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct BuildNode {
-    pub bounds: Aabb,
+    pub(crate) bounds: Aabb,
     /// Leaf: the first position in the primitive index array; interior: the second child.
-    pub offset: u32,
+    pub(crate) offset: u32,
     /// Leaf: how many primitives (at least 1); interior: 0.
-    pub count: u16,
+    pub(crate) count: u16,
 }
 
 impl BuildNode {
-    pub fn is_leaf(&self) -> bool {
+    pub(crate) fn is_leaf(&self) -> bool {
         self.count > 0
     }
 }
@@ -60,13 +60,13 @@ impl BuildNode {
 /// A bounded object as the build sees it.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct PrimitiveRef {
-    pub bounds: Aabb,
-    pub centroid: DVec3,
-    pub object: u32,
+    pub(crate) bounds: Aabb,
+    pub(crate) centroid: DVec3,
+    pub(crate) object: u32,
 }
 
 impl PrimitiveRef {
-    pub fn new(object: u32, bounds: Aabb) -> PrimitiveRef {
+    pub(crate) fn new(object: u32, bounds: Aabb) -> PrimitiveRef {
         PrimitiveRef {
             bounds,
             centroid: bounds.centroid(),
@@ -78,8 +78,8 @@ impl PrimitiveRef {
 /// The hierarchy: nodes in depth-first order (the root first) and the
 /// objects of the leaves, each leaf's run in file order.
 pub(super) struct Bvh {
-    pub nodes: Vec<BuildNode>,
-    pub objects: Vec<u32>,
+    pub(crate) nodes: Vec<BuildNode>,
+    pub(crate) objects: Vec<u32>,
 }
 
 pub(super) fn build(mut primitives: Vec<PrimitiveRef>) -> Bvh {

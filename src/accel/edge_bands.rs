@@ -34,7 +34,7 @@ pub(super) struct EdgeBands {
 
 impl EdgeBands {
     /// `None` for polygons small enough to test whole, or too large to band.
-    pub fn new(projected: &[DVec2]) -> Option<EdgeBands> {
+    pub(crate) fn new(projected: &[DVec2]) -> Option<EdgeBands> {
         let n = projected.len();
         if n < MIN_VERTICES {
             return None;
@@ -86,7 +86,7 @@ impl EdgeBands {
 
     /// The edges that may straddle V = v, in increasing order; none when v
     /// lies outside the polygon's V range (or is NaN), where no edge does.
-    pub fn edges_near(&self, v: f64) -> &[u32] {
+    pub(crate) fn edges_near(&self, v: f64) -> &[u32] {
         let last = self.bounds.len() - 2;
         if !(v > self.bounds[0] && v <= self.bounds[last + 1]) {
             return &[];
@@ -105,7 +105,7 @@ impl EdgeBands {
     /// `shapes::count_crossings(projected, p)`, the crossing test's count,
     /// from the edges near p's V only; `projected` is what the bands were
     /// made of.
-    pub fn crossings(&self, projected: &[DVec2], p: DVec2) -> u32 {
+    pub(crate) fn crossings(&self, projected: &[DVec2], p: DVec2) -> u32 {
         let n = projected.len();
         let edge_crosses = |i: usize| {
             let a = projected[(i + n - 1) % n] - p;

@@ -20,21 +20,21 @@ mod imp {
 
     #[derive(Clone, Copy, Debug)]
     #[repr(transparent)]
-    pub struct Lanes(__m128d);
+    pub(crate) struct Lanes(__m128d);
 
     impl Lanes {
         #[inline]
-        pub fn new([a, b]: [f64; 2]) -> Lanes {
+        pub(crate) fn new([a, b]: [f64; 2]) -> Lanes {
             Lanes(unsafe { _mm_set_pd(b, a) })
         }
 
         #[inline]
-        pub fn splat(x: f64) -> Lanes {
+        pub(crate) fn splat(x: f64) -> Lanes {
             Lanes(unsafe { _mm_set1_pd(x) })
         }
 
         #[inline]
-        pub fn to_array(self) -> [f64; 2] {
+        pub(crate) fn to_array(self) -> [f64; 2] {
             unsafe {
                 [
                     _mm_cvtsd_f64(self.0),
@@ -44,28 +44,28 @@ mod imp {
         }
 
         #[inline]
-        pub fn sub(self, other: Lanes) -> Lanes {
+        pub(crate) fn sub(self, other: Lanes) -> Lanes {
             Lanes(unsafe { _mm_sub_pd(self.0, other.0) })
         }
 
         #[inline]
-        pub fn mul(self, other: Lanes) -> Lanes {
+        pub(crate) fn mul(self, other: Lanes) -> Lanes {
             Lanes(unsafe { _mm_mul_pd(self.0, other.0) })
         }
 
         #[inline]
-        pub fn max(self, other: Lanes) -> Lanes {
+        pub(crate) fn max(self, other: Lanes) -> Lanes {
             Lanes(unsafe { _mm_max_pd(self.0, other.0) })
         }
 
         #[inline]
-        pub fn min(self, other: Lanes) -> Lanes {
+        pub(crate) fn min(self, other: Lanes) -> Lanes {
             Lanes(unsafe { _mm_min_pd(self.0, other.0) })
         }
 
         /// Bit i set where lane i of self <= lane i of other.
         #[inline]
-        pub fn le_mask(self, other: Lanes) -> u32 {
+        pub(crate) fn le_mask(self, other: Lanes) -> u32 {
             unsafe { _mm_movemask_pd(_mm_cmple_pd(self.0, other.0)) as u32 }
         }
     }
@@ -75,48 +75,48 @@ mod imp {
 mod imp {
     #[derive(Clone, Copy, Debug)]
     #[repr(C, align(16))]
-    pub struct Lanes([f64; 2]);
+    pub(crate) struct Lanes([f64; 2]);
 
     impl Lanes {
         #[inline]
-        pub fn new(values: [f64; 2]) -> Lanes {
+        pub(crate) fn new(values: [f64; 2]) -> Lanes {
             Lanes(values)
         }
 
         #[inline]
-        pub fn splat(x: f64) -> Lanes {
+        pub(crate) fn splat(x: f64) -> Lanes {
             Lanes([x, x])
         }
 
         #[inline]
-        pub fn to_array(self) -> [f64; 2] {
+        pub(crate) fn to_array(self) -> [f64; 2] {
             self.0
         }
 
         #[inline]
-        pub fn sub(self, other: Lanes) -> Lanes {
+        pub(crate) fn sub(self, other: Lanes) -> Lanes {
             Lanes([self.0[0] - other.0[0], self.0[1] - other.0[1]])
         }
 
         #[inline]
-        pub fn mul(self, other: Lanes) -> Lanes {
+        pub(crate) fn mul(self, other: Lanes) -> Lanes {
             Lanes([self.0[0] * other.0[0], self.0[1] * other.0[1]])
         }
 
         #[inline]
-        pub fn max(self, other: Lanes) -> Lanes {
+        pub(crate) fn max(self, other: Lanes) -> Lanes {
             let pick = |a: f64, b: f64| if a > b { a } else { b };
             Lanes([pick(self.0[0], other.0[0]), pick(self.0[1], other.0[1])])
         }
 
         #[inline]
-        pub fn min(self, other: Lanes) -> Lanes {
+        pub(crate) fn min(self, other: Lanes) -> Lanes {
             let pick = |a: f64, b: f64| if a < b { a } else { b };
             Lanes([pick(self.0[0], other.0[0]), pick(self.0[1], other.0[1])])
         }
 
         #[inline]
-        pub fn le_mask(self, other: Lanes) -> u32 {
+        pub(crate) fn le_mask(self, other: Lanes) -> u32 {
             u32::from(self.0[0] <= other.0[0]) | u32::from(self.0[1] <= other.0[1]) << 1
         }
     }

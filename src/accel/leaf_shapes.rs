@@ -25,7 +25,7 @@ pub(super) enum LeafShape {
 }
 
 impl LeafShape {
-    pub fn of(shape: &Shape) -> LeafShape {
+    pub(crate) fn of(shape: &Shape) -> LeafShape {
         let polygon = match shape {
             Shape::Polygon(polygon) => polygon,
             Shape::Patch(patch) => &patch.polygon,
@@ -41,7 +41,7 @@ impl LeafShape {
 
     /// `Shape::intersect` of `objects[object]`, whose record this is.
     #[inline(always)]
-    pub fn intersect(
+    pub(crate) fn intersect(
         &self,
         objects: &[Object],
         object: usize,
@@ -58,7 +58,13 @@ impl LeafShape {
 
     /// `Shape::roots` of `objects[object]`, whose record this is.
     #[inline(always)]
-    pub fn roots(&self, objects: &[Object], object: usize, ray: &Ray, range: Interval) -> Roots {
+    pub(crate) fn roots(
+        &self,
+        objects: &[Object],
+        object: usize,
+        ray: &Ray,
+        range: Interval,
+    ) -> Roots {
         match self {
             LeafShape::Triangle(triangle) => Roots::of_one(triangle.hit_t(ray, range)),
             LeafShape::Sphere(sphere) => sphere.roots(ray, range),
@@ -93,7 +99,7 @@ pub(super) struct TriangleTest {
 
 impl TriangleTest {
     /// The test of a polygon that is a triangle.
-    pub fn of(polygon: &Polygon) -> Option<TriangleTest> {
+    pub(crate) fn of(polygon: &Polygon) -> Option<TriangleTest> {
         Some(TriangleTest {
             plane: polygon.plane.clone(),
             dropped: polygon.dropped,
@@ -103,7 +109,7 @@ impl TriangleTest {
 
     /// `Polygon::solve(ray, range).hit_t()`.
     #[inline(always)]
-    pub fn hit_t(&self, ray: &Ray, range: Interval) -> Option<f64> {
+    pub(crate) fn hit_t(&self, ray: &Ray, range: Interval) -> Option<f64> {
         let t = self.plane.solve(ray, range).hit_t()?;
         let p = self.dropped.project(ray.at(t));
         (count_crossings(&self.projected, p) % 2 == 1).then_some(t)

@@ -50,8 +50,8 @@ use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;
 use node::{BoxTesting, Child, Node, WIDTH};
-pub use object_tables::ObjectTables;
-pub use shadow::ShadowCache;
+pub(crate) use object_tables::ObjectTables;
+pub(crate) use shadow::ShadowCache;
 
 /// What one query tested: the price of a ray, shown to students.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]

@@ -25,28 +25,28 @@ pub(super) const WIDTH: usize = 4;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct Child {
     /// Leaf: the first position in the object array; interior: the node's index.
-    pub offset: u32,
+    pub(crate) offset: u32,
     /// Leaf: how many objects; interior: `INTERIOR`.
-    pub count: u16,
+    pub(crate) count: u16,
 }
 
 const INTERIOR: u16 = u16::MAX;
 
 impl Child {
     /// No child: an empty leaf with an empty box, filling a node's unused places.
-    pub const NOTHING: Child = Child {
+    pub(crate) const NOTHING: Child = Child {
         offset: 0,
         count: 0,
     };
 
-    pub fn node(index: usize) -> Child {
+    pub(crate) fn node(index: usize) -> Child {
         Child {
             offset: index as u32,
             count: INTERIOR,
         }
     }
 
-    pub fn is_leaf(self) -> bool {
+    pub(crate) fn is_leaf(self) -> bool {
         self.count != INTERIOR
     }
 }
@@ -62,9 +62,9 @@ pub(super) struct Node {
     /// The children's least coordinates (`corners[0]`) and greatest
     /// (`corners[1]`), per axis: children 0 and 1, then 2 and 3.
     pub(super) corners: [[[Lanes; 2]; 3]; 2],
-    pub children: [Child; WIDTH],
+    pub(crate) children: [Child; WIDTH],
     /// How many children are present: the boxes a visit tests, for the cost.
-    pub arity: u32,
+    pub(crate) arity: u32,
 }
 
 impl Node {
@@ -89,7 +89,7 @@ impl Node {
 
     /// Child `i`'s box, as the builder made it.
     #[cfg(test)]
-    pub fn bounds(&self, i: usize) -> Aabb {
+    pub(crate) fn bounds(&self, i: usize) -> Aabb {
         let corner = |l: &[[Lanes; 2]; 3]| DVec3::from(l.map(|v| v[i / 2].to_array()[i % 2]));
         Aabb::new(corner(&self.corners[0]), corner(&self.corners[1]))
     }

@@ -12,7 +12,7 @@ use glam::{DVec2, DVec3};
 use crate::shapes::{Axis, Shape, Sphere, blended_normal};
 
 #[derive(Clone, Debug)]
-pub enum NormalRecipe {
+pub(crate) enum NormalRecipe {
     /// Planes and polygons: the same normal everywhere.
     Flat(DVec3),
     Sphere(Sphere),
@@ -24,7 +24,7 @@ pub enum NormalRecipe {
 
 /// What `Patch::normal_at` reads of a patch of three vertices.
 #[derive(Clone, Debug)]
-pub struct SmoothTriangle {
+pub(crate) struct SmoothTriangle {
     dropped: Axis,
     projected: [DVec2; 3],
     normals: [DVec3; 3],
@@ -32,7 +32,7 @@ pub struct SmoothTriangle {
 }
 
 impl NormalRecipe {
-    pub fn of(shape: &Shape) -> NormalRecipe {
+    pub(crate) fn of(shape: &Shape) -> NormalRecipe {
         match shape {
             Shape::Plane(p) => NormalRecipe::Flat(p.normal),
             Shape::Polygon(p) => NormalRecipe::Flat(p.plane.normal),
@@ -58,7 +58,7 @@ impl NormalRecipe {
     /// `Shape::geometric_normal(point)` of the shape this recipe was made
     /// of, or `None` when it must be asked of the shape (`FromShape`).
     #[inline]
-    pub fn normal_at(&self, point: DVec3) -> Option<DVec3> {
+    pub(crate) fn normal_at(&self, point: DVec3) -> Option<DVec3> {
         match self {
             NormalRecipe::Flat(normal) => Some(*normal),
             NormalRecipe::Sphere(s) => Some(s.normal_at(point)),

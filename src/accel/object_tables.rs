@@ -9,13 +9,13 @@ use super::normals::NormalRecipe;
 use crate::object::Object;
 
 #[derive(Clone, Debug)]
-pub struct ObjectTables {
+pub(crate) struct ObjectTables {
     materials: Vec<usize>,
     normals: Vec<NormalRecipe>,
 }
 
 impl ObjectTables {
-    pub fn build(objects: &[Object]) -> ObjectTables {
+    pub(crate) fn build(objects: &[Object]) -> ObjectTables {
         ObjectTables {
             materials: objects.iter().map(|o| o.material).collect(),
             normals: objects.iter().map(|o| NormalRecipe::of(&o.shape)).collect(),
@@ -24,13 +24,18 @@ impl ObjectTables {
 
     /// `objects[object].material`.
     #[inline]
-    pub fn material(&self, object: usize) -> usize {
+    pub(crate) fn material(&self, object: usize) -> usize {
         self.materials[object]
     }
 
     /// `objects[object].shape.geometric_normal(point)`, to the bit.
     #[inline]
-    pub fn geometric_normal(&self, objects: &[Object], object: usize, point: DVec3) -> DVec3 {
+    pub(crate) fn geometric_normal(
+        &self,
+        objects: &[Object],
+        object: usize,
+        point: DVec3,
+    ) -> DVec3 {
         self.normals[object]
             .normal_at(point)
             .unwrap_or_else(|| objects[object].shape.geometric_normal(point))

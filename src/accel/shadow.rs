@@ -12,7 +12,7 @@ use crate::object::Object;
 
 /// The last opaque blocker found for each light, kept along a row of pixels.
 #[derive(Clone, Debug, Default)]
-pub struct ShadowCache {
+pub(crate) struct ShadowCache {
     blockers: Vec<Option<usize>>,
 }
 
@@ -46,7 +46,7 @@ impl Accel {
     /// blocker), the crossings come exactly as `crossings` gives them.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub fn shadow_crossings(
+    pub(crate) fn shadow_crossings(
         &self,
         objects: &[Object],
         ray: &Ray,

@@ -29,29 +29,29 @@ use crate::scene::{self, Scene, Settings};
 )]
 pub struct Cli {
     #[command(subcommand)]
-    pub command: Option<Command>,
+    pub(crate) command: Option<Command>,
     /// Without a subcommand: the debugger, as `raystep debug` opens it.
     #[command(flatten)]
-    pub debug: DebugArgs,
+    pub(crate) debug: DebugArgs,
 }
 
 /// The debugger's arguments, the same for `raystep [SCENE]` and
 /// `raystep debug [SCENE]`.
 #[derive(Args, Debug)]
-pub struct DebugArgs {
+pub(crate) struct DebugArgs {
     /// Scene file (.toml or .nff); the built-in scene when absent.
-    pub scene: Option<PathBuf>,
+    pub(crate) scene: Option<PathBuf>,
     /// Compare with your own render of the scene (a PNG), traced at its
     /// size: its views, regions and the mistakes that explain it.
     #[arg(long, value_name = "IMAGE.png")]
-    pub compare: Option<PathBuf>,
+    pub(crate) compare: Option<PathBuf>,
     /// Open on the pixel X,Y (x to the right, y downward, from 0).
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
-    pub pixel: Option<(u32, u32)>,
+    pub(crate) pixel: Option<(u32, u32)>,
 }
 
 #[derive(Subcommand, Debug)]
-pub enum Command {
+pub(crate) enum Command {
     /// Open the interactive debugger.
     Debug(DebugArgs),
     /// Render a whole image to PNG.
@@ -68,27 +68,27 @@ pub enum Command {
 }
 
 #[derive(Args, Debug)]
-pub struct DiagramArgs {
+pub(crate) struct DiagramArgs {
     #[command(flatten)]
-    pub pixel: PixelArgs,
+    pub(crate) pixel: PixelArgs,
     /// The SVG file to write (new, or a regular file to replace).
     #[arg(short, long, value_name = "FIG.svg")]
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
     /// The plane drawn, in the camera's frame: from above, from the side,
     /// or the primary ray's plane of incidence; or `crossing`, the (U, V)
     /// plane of the crossing test of the first polygon hit (or passed by).
     #[arg(long, value_enum, default_value_t = PlaneArg::Top)]
-    pub plane: PlaneArg,
+    pub(crate) plane: PlaneArg,
     /// Magnify the figure F times (F >= 1) about the primary ray's first
     /// hit; what falls outside is cut at the edge. 1 shows everything.
     /// Not for `crossing`.
     #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = zoom_factor, allow_hyphen_values = true)]
-    pub zoom: f64,
+    pub(crate) zoom: f64,
 }
 
 /// The largest `--zoom`: far past any slide's need, and small enough that
 /// every coordinate in the figure stays finite (1e308 made NaNs).
-pub const MAX_ZOOM: f64 = 1e4;
+pub(crate) const MAX_ZOOM: f64 = 1e4;
 
 /// `--zoom`: a factor from 1 to `MAX_ZOOM`.
 fn zoom_factor(text: &str) -> std::result::Result<f64, String> {
@@ -101,7 +101,7 @@ fn zoom_factor(text: &str) -> std::result::Result<f64, String> {
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PlaneArg {
+pub(crate) enum PlaneArg {
     Top,
     Side,
     Ray,
@@ -109,109 +109,109 @@ pub enum PlaneArg {
 }
 
 #[derive(Args, Debug)]
-pub struct CompareArgs {
+pub(crate) struct CompareArgs {
     /// Scene file (.toml or .nff); rendered at the image's size.
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// Your render of the scene, a PNG (alpha and 16 bits are converted).
-    pub image: PathBuf,
+    pub(crate) image: PathBuf,
     /// Output form: a report for people, or JSON for graders.
     #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
-    pub format: CompareFormat,
+    pub(crate) format: CompareFormat,
     /// Also write FLIP's error map (magma colours) to this PNG.
     #[arg(short, long, value_name = "DIFF.png")]
-    pub output: Option<PathBuf>,
+    pub(crate) output: Option<PathBuf>,
     /// Exit with status 3 when FLIP's mean error is above F.
     #[arg(long, value_name = "F")]
-    pub max_flip: Option<f64>,
+    pub(crate) max_flip: Option<f64>,
     /// Exit with status 3 when the mean absolute error is above E.
     #[arg(long, value_name = "E")]
-    pub max_mean_abs: Option<f64>,
+    pub(crate) max_mean_abs: Option<f64>,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CompareFormat {
+pub(crate) enum CompareFormat {
     Text,
     Json,
 }
 
 #[derive(Args, Debug)]
-pub struct PixelArgs {
+pub(crate) struct PixelArgs {
     /// Scene file (.toml or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// The pixel X,Y (x to the right, y downward, from 0).
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
-    pub pixel: (u32, u32),
+    pub(crate) pixel: (u32, u32),
     #[command(flatten)]
-    pub size: SizeArg,
+    pub(crate) size: SizeArg,
     #[command(flatten)]
-    pub mistakes: MistakeArgs,
+    pub(crate) mistakes: MistakeArgs,
     /// What-if: change a setting or a material's number first, e.g.
     /// `settings.max_depth=2` or `materials.glass.ior=1.0` (repeatable); the
     /// text then ends with what changed against the scene as written.
     #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
+    pub(crate) set: Vec<String>,
     /// Also record the pixel in ORIGINAL (another scene file, at the same
     /// size) and end the text with what changed from it.
     #[arg(long, value_name = "ORIGINAL")]
-    pub diff_against: Option<PathBuf>,
+    pub(crate) diff_against: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
-pub struct InspectArgs {
+pub(crate) struct InspectArgs {
     #[command(flatten)]
-    pub pixel: PixelArgs,
+    pub(crate) pixel: PixelArgs,
     /// Output form: an indented tree, the complete recording as JSON, or Graphviz.
     #[arg(long, value_enum, default_value_t = InspectFormat::Text)]
-    pub format: InspectFormat,
+    pub(crate) format: InspectFormat,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum InspectFormat {
+pub(crate) enum InspectFormat {
     Text,
     Json,
     Dot,
 }
 
 #[derive(Args, Debug)]
-pub struct RenderArgs {
+pub(crate) struct RenderArgs {
     /// Scene file (.toml or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// Output PNG file: new, or a regular file to replace (a link is
     /// followed); never the scene, a directory or a device.
     #[arg(short, long)]
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
     #[command(flatten)]
-    pub size: SizeArg,
+    pub(crate) size: SizeArg,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
-    pub threads: Option<u16>,
+    pub(crate) threads: Option<u16>,
     /// Print ray counts and timings as one JSON object on stdout.
     #[arg(long, conflicts_with = "timings")]
-    pub stats: bool,
+    pub(crate) stats: bool,
     /// Print only the timings and peak memory as one JSON object on stdout:
     /// those of a plain render, which counts nothing (what benchmarks time).
     #[arg(long)]
-    pub timings: bool,
+    pub(crate) timings: bool,
     /// Also write one PNG per term (ambient, diffuse, specular, reflected,
     /// transmitted, shadow, rays, cost) into this directory, created if
     /// missing; all the files are replaced together or none is.
     #[arg(long, value_name = "DIR")]
-    pub terms: Option<PathBuf>,
+    pub(crate) terms: Option<PathBuf>,
     #[command(flatten)]
-    pub mistakes: MistakeArgs,
+    pub(crate) mistakes: MistakeArgs,
 }
 
 #[derive(Args, Debug, Clone)]
-pub struct MistakeArgs {
+pub(crate) struct MistakeArgs {
     /// Trace with this classic student mistake (repeatable; README and
     /// docs/MODEL.md §8 list them), to make the wrong image on purpose.
     #[arg(long = "mistake", value_name = "NAME", value_enum)]
-    pub mistakes: Vec<Mistake>,
+    pub(crate) mistakes: Vec<Mistake>,
 }
 
 impl MistakeArgs {
     /// The scene's settings with these mistakes.
-    pub fn settings(&self, scene: &Scene) -> Settings {
+    pub(crate) fn settings(&self, scene: &Scene) -> Settings {
         Settings {
             mistakes: self.mistakes.iter().copied().collect::<Mistakes>(),
             ..scene.settings
@@ -231,14 +231,14 @@ impl ValueEnum for Mistake {
 }
 
 #[derive(Args, Debug, Clone, Copy)]
-pub struct SizeArg {
+pub(crate) struct SizeArg {
     /// Image size WIDTHxHEIGHT, overriding the scene's (the field of view is kept).
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    pub size: Option<(u32, u32)>,
+    pub(crate) size: Option<(u32, u32)>,
 }
 
 /// Parses `WxH`, e.g. `320x240`.
-pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+pub(crate) fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`{text}` is not a size: expected WIDTHxHEIGHT, e.g. 320x240");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h) = (
@@ -250,7 +250,7 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 }
 
 /// Parses `X,Y`, e.g. `160,120`.
-pub fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+pub(crate) fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
     let bad =
         || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 160,120");
     let (x, y) = text.split_once(',').ok_or_else(bad)?;

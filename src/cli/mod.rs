@@ -22,7 +22,7 @@ mod render;
 pub use args::*;
 
 /// Loads a scene (or the built-in one) and applies `--size`.
-pub fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
+pub(crate) fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
     let scene = scene::builtin::load_file_or_builtin(path)?;
     Ok(match size.size {
         Some((w, h)) => scene.with_size(w, h)?,

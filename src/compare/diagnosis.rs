@@ -9,7 +9,7 @@ use crate::record::RayTree;
 /// What most of a region's sampled pixels look like: the change of the
 /// reference's terms that fits the most of them, when it fits at least half.
 /// Each sample is a recording and the student's value there.
-pub fn diagnose(samples: &[(RayTree, [u8; 3])]) -> Option<String> {
+pub(crate) fn diagnose(samples: &[(RayTree, [u8; 3])]) -> Option<String> {
     let mut tally: Vec<(String, usize)> = Vec::new();
     for (tree, yours) in samples {
         if let Some(label) = best_fit(tree, *yours) {

@@ -9,46 +9,46 @@ use serde::Serialize;
 /// different (mental ray's imf_diff counts the same way): another correct
 /// tracer rounds differently in the last bit, and a student's byte
 /// conversion may differ by one step.
-pub const TOLERANCE_STEPS: u8 = 3;
+pub(crate) const TOLERANCE_STEPS: u8 = 3;
 /// The images match when at most this share of pixels is past the
 /// tolerance: an independent correct tracer differs on a few pixels where a
 /// ray grazes an edge or a shadow boundary, which must still match.
-pub const MATCH_SHARE: f64 = 0.001;
+pub(crate) const MATCH_SHARE: f64 = 0.001;
 
 #[derive(Clone, Debug, Serialize)]
-pub struct Metrics {
+pub(crate) struct Metrics {
     /// Mean over pixels and channels of |yours - reference|, from 0 to 1.
-    pub mean_abs: f64,
+    pub(crate) mean_abs: f64,
     /// FLIP's mean error (LDR, 67 pixels per degree), from 0 to 1.
-    pub flip_mean: f64,
+    pub(crate) flip_mean: f64,
     /// The share of pixels with a channel more than `tolerance` apart.
-    pub pixels_over_tolerance: f64,
+    pub(crate) pixels_over_tolerance: f64,
     /// `TOLERANCE_STEPS` / 255.
-    pub tolerance: f64,
-    pub worst: Option<Worst>,
+    pub(crate) tolerance: f64,
+    pub(crate) worst: Option<Worst>,
 }
 
 /// The pixel with the largest difference in one channel.
 #[derive(Clone, Debug, Serialize)]
-pub struct Worst {
-    pub pixel: [u32; 2],
-    pub yours: [u8; 3],
-    pub reference: [u8; 3],
+pub(crate) struct Worst {
+    pub(crate) pixel: [u32; 2],
+    pub(crate) yours: [u8; 3],
+    pub(crate) reference: [u8; 3],
 }
 
 impl Metrics {
-    pub fn matches(&self) -> bool {
+    pub(crate) fn matches(&self) -> bool {
         self.pixels_over_tolerance <= MATCH_SHARE
     }
 }
 
 /// The largest difference of one channel between the two pixels.
-pub fn channel_gap(a: [u8; 3], b: [u8; 3]) -> u8 {
+pub(crate) fn channel_gap(a: [u8; 3], b: [u8; 3]) -> u8 {
     (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0)
 }
 
 /// Whether each pixel differs past the tolerance, as a mask (255 differs).
-pub fn over_tolerance(yours: &RgbImage, reference: &RgbImage) -> GrayImage {
+pub(crate) fn over_tolerance(yours: &RgbImage, reference: &RgbImage) -> GrayImage {
     GrayImage::from_fn(yours.width(), yours.height(), |x, y| {
         let gap = channel_gap(yours.get_pixel(x, y).0, reference.get_pixel(x, y).0);
         image::Luma([if gap > TOLERANCE_STEPS { 255 } else { 0 }])
@@ -57,7 +57,7 @@ pub fn over_tolerance(yours: &RgbImage, reference: &RgbImage) -> GrayImage {
 
 /// Measures `yours` against `reference` (same size); also gives FLIP's
 /// error map in its magma colours.
-pub fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbImage) {
+pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbImage) {
     let (width, height) = yours.dimensions();
     let pixels = (width as u64 * height as u64) as f64;
     let mut sum = 0u64;

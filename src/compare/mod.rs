@@ -5,18 +5,18 @@
 //! same engine, say which classic error explains it.
 
 mod diagnosis;
-pub mod metrics;
+pub(crate) mod metrics;
 mod ranking;
 mod reference;
-pub mod regions;
+pub(crate) mod regions;
 mod report;
 pub mod student;
 
 use image::RgbImage;
 use serde::Serialize;
 
-pub use metrics::{MATCH_SHARE, Metrics, TOLERANCE_STEPS};
-pub use ranking::{MIN_FIT, Ranked};
+pub(crate) use metrics::{MATCH_SHARE, Metrics, TOLERANCE_STEPS};
+pub(crate) use ranking::Ranked;
 pub use report::text;
 pub use student::StudentImage;
 
@@ -33,15 +33,15 @@ const DIAGNOSIS_SAMPLES: usize = 24;
 /// Everything `compare` found.
 #[derive(Serialize)]
 pub struct Comparison {
-    pub width: u32,
-    pub height: u32,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
     /// What was converted to read the student's image.
-    pub notes: Vec<String>,
-    pub metrics: Metrics,
+    pub(crate) notes: Vec<String>,
+    pub(crate) metrics: Metrics,
     /// At most `MATCH_SHARE` of the pixels past the tolerance.
     pub matches: bool,
     /// How many connected regions of differing pixels there are.
-    pub region_count: usize,
+    pub(crate) region_count: usize,
     /// The largest regions, largest first.
     pub regions: Vec<RegionReport>,
     /// The mistakes that explain the difference, best first; empty when the
@@ -57,28 +57,28 @@ pub struct Comparison {
 pub struct RegionReport {
     pub pixels: usize,
     /// x0, y0, x1, y1, inclusive.
-    pub bounds: [u32; 4],
+    pub(crate) bounds: [u32; 4],
     /// The objects the reference's primary rays hit there, most pixels
     /// first: the first `OBJECTS_SHOWN`.
-    pub objects: Vec<ObjectShare>,
+    pub(crate) objects: Vec<ObjectShare>,
     /// How many more objects the region covers.
-    pub more_objects: usize,
+    pub(crate) more_objects: usize,
     /// The region's pixel with the largest difference.
     pub pixel: [u32; 2],
-    pub yours: [u8; 3],
-    pub reference: [u8; 3],
+    pub(crate) yours: [u8; 3],
+    pub(crate) reference: [u8; 3],
     /// The reference's recording of that pixel in brief, as `explain` says it.
-    pub explain: Vec<String>,
+    pub(crate) explain: Vec<String>,
     /// Which term the difference looks like, when one fits most of the
     /// region's sampled pixels.
-    pub diagnosis: Option<String>,
+    pub(crate) diagnosis: Option<String>,
 }
 
 #[derive(Serialize)]
-pub struct ObjectShare {
+pub(crate) struct ObjectShare {
     /// The object's name, or "background".
-    pub object: String,
-    pub pixels: usize,
+    pub(crate) object: String,
+    pub(crate) pixels: usize,
 }
 
 /// Compares the student's image with `scene` rendered at the image's size

@@ -28,7 +28,7 @@ const BLOCK: u32 = 16;
 /// A mistake is listed when, in the blocks it changes, it takes the image at
 /// least this far from the reference (or from the mistakes listed above it)
 /// to the student's.
-pub const MIN_FIT: f64 = 0.5;
+pub(crate) const MIN_FIT: f64 = 0.5;
 /// At most this many mistakes are listed.
 const MAX_LISTED: usize = 3;
 
@@ -40,20 +40,20 @@ pub struct Ranked {
     /// 1 - D(yours, variant) / D(yours, reference), D the block difference
     /// over the whole image: 1 when the mistaken render is the student's
     /// image, 0 or less when it is no closer than the correct one.
-    pub explains: f64,
+    pub(crate) explains: f64,
     /// The same over the blocks the mistake changes, starting from the
     /// render with the mistakes listed above it: 1 when there it gives the
     /// student's image.
-    pub fits: f64,
+    pub(crate) fits: f64,
     /// A pixel where the mistake shows: the student's pixel differs from the
     /// reference there and the mistaken render comes closest to it.
-    pub pixel: Option<[u32; 2]>,
+    pub(crate) pixel: Option<[u32; 2]>,
 }
 
 /// The mistakes that explain the difference between `yours` and
 /// `reference`, most first. Each next one is, among the mistakes that fit
 /// at least `MIN_FIT` on top of those above it, the one that explains most.
-pub fn rank(
+pub(crate) fn rank(
     scene: &Scene,
     settings: &Settings,
     yours: &RgbImage,

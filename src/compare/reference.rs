@@ -11,20 +11,20 @@ use crate::render::{trace_rows, viewport};
 use crate::scene::{Scene, Settings};
 use crate::trace::{NoRecorder, Recorder, SurfaceHit, trace_in_row};
 
-pub struct Reference {
-    pub image: RgbImage,
+pub(crate) struct Reference {
+    pub(crate) image: RgbImage,
     /// The object each primary ray hits, `None` for the background.
-    pub objects: Vec<Option<usize>>,
+    pub(crate) objects: Vec<Option<usize>>,
 }
 
 impl Reference {
-    pub fn object_at(&self, x: u32, y: u32) -> Option<usize> {
+    pub(crate) fn object_at(&self, x: u32, y: u32) -> Option<usize> {
         self.objects[(y * self.image.width() + x) as usize]
     }
 }
 
 /// Renders `scene` traced with `settings` at its own size.
-pub fn render(scene: &Scene, settings: &Settings) -> Reference {
+pub(crate) fn render(scene: &Scene, settings: &Settings) -> Reference {
     let (width, height) = (scene.width, scene.height);
     let mut pixels = vec![(Color::ZERO, None); width as usize * height as usize];
     trace_rows::<_, NoRecorder>(

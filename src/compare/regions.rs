@@ -6,14 +6,14 @@ use image::GrayImage;
 
 /// One connected set of marked pixels.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Region {
+pub(crate) struct Region {
     /// Row-major order.
-    pub pixels: Vec<(u32, u32)>,
+    pub(crate) pixels: Vec<(u32, u32)>,
 }
 
 impl Region {
     /// The smallest box holding the region: (x0, y0, x1, y1), inclusive.
-    pub fn bounds(&self) -> (u32, u32, u32, u32) {
+    pub(crate) fn bounds(&self) -> (u32, u32, u32, u32) {
         let xs = self.pixels.iter().map(|p| p.0);
         let ys = self.pixels.iter().map(|p| p.1);
         (
@@ -27,7 +27,7 @@ impl Region {
 
 /// The regions of `mask`'s non-zero pixels, largest first (ties: the one
 /// whose first pixel comes first in row-major order).
-pub fn regions(mask: &GrayImage) -> Vec<Region> {
+pub(crate) fn regions(mask: &GrayImage) -> Vec<Region> {
     let (width, height) = mask.dimensions();
     let index = |x: u32, y: u32| (y * width + x) as usize;
     let mut seen = vec![false; (width * height) as usize];

@@ -20,36 +20,36 @@ const MAX_CONTEXT: usize = 300;
 /// One pixel's ray diagram, projected onto its plane.
 #[derive(Clone, Debug)]
 pub struct Diagram {
-    pub pixel: (u32, u32),
-    pub plane: DiagramPlane,
+    pub(crate) pixel: (u32, u32),
+    pub(crate) plane: DiagramPlane,
     /// Every ray and normal, coloured by kind and by the step-through.
-    pub segments: Vec<Segment>,
+    pub(crate) segments: Vec<Segment>,
     /// Where a shadow ray's blocker stops it.
-    pub blockers: Vec<BlockerMark>,
-    pub eye: DVec2,
-    pub lights: Vec<LightMark>,
+    pub(crate) blockers: Vec<BlockerMark>,
+    pub(crate) eye: DVec2,
+    pub(crate) lights: Vec<LightMark>,
     /// Each hit, in the order the tracer recorded them.
-    pub hits: Vec<HitMark>,
+    pub(crate) hits: Vec<HitMark>,
     /// Polygons and spheres a ray passed by.
     pub passed: Vec<PassedMark>,
     /// From a hit to a light that faces away from it (no shadow ray).
     pub faces_away: Vec<FacesAway>,
     /// The objects met, then those passed by, then (in small scenes) the
     /// rest for context, each in object order.
-    pub objects: Vec<ObjectOutline>,
+    pub(crate) objects: Vec<ObjectOutline>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
-pub struct LightMark {
+pub(crate) struct LightMark {
     /// The light's name as the scene gives it.
-    pub name: String,
-    pub at: DVec2,
+    pub(crate) name: String,
+    pub(crate) at: DVec2,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HitMark {
-    pub object: usize,
-    pub at: DVec2,
+pub(crate) struct HitMark {
+    pub(crate) object: usize,
+    pub(crate) at: DVec2,
 }
 
 /// The objects this pixel's rays meet: hit by a ray or blocking a shadow ray.
@@ -71,20 +71,20 @@ fn involved_objects(tree: &RayTree) -> Vec<usize> {
 /// comes nearest a sphere's centre.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PassedMark {
-    pub object: usize,
-    pub name: String,
-    pub at: DVec2,
+    pub(crate) object: usize,
+    pub(crate) name: String,
+    pub(crate) at: DVec2,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FacesAway {
-    pub hit: DVec2,
-    pub light: DVec2,
+    pub(crate) hit: DVec2,
+    pub(crate) light: DVec2,
 }
 
 /// Why an object is in the diagram.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Role {
+pub(crate) enum Role {
     /// A ray hits it or it blocks a shadow ray.
     Met,
     /// A ray passed it by, and none meets it.
@@ -94,18 +94,18 @@ pub enum Role {
 }
 
 #[derive(Clone, Debug, PartialEq)]
-pub struct ObjectOutline {
-    pub object: usize,
-    pub name: String,
-    pub role: Role,
-    pub shapes: Vec<Outline>,
+pub(crate) struct ObjectOutline {
+    pub(crate) object: usize,
+    pub(crate) name: String,
+    pub(crate) role: Role,
+    pub(crate) shapes: Vec<Outline>,
     /// Where rays hit it, in the order they were recorded.
-    pub hits: Vec<DVec2>,
+    pub(crate) hits: Vec<DVec2>,
 }
 
 /// What a label names, for the medium's colour and wording.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Named {
+pub(crate) enum Named {
     Eye,
     Light,
     Object(usize),
@@ -115,7 +115,7 @@ pub enum Named {
 
 /// Where a label belongs.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Anchor<'a> {
+pub(crate) enum Anchor<'a> {
     /// At a mark.
     Point(DVec2),
     /// Beside an object's outline; `hits` are where rays hit the object
@@ -129,15 +129,15 @@ pub enum Anchor<'a> {
 }
 
 #[derive(Clone, Debug, PartialEq)]
-pub struct Label<'a> {
-    pub named: Named,
-    pub text: String,
-    pub anchor: Anchor<'a>,
+pub(crate) struct Label<'a> {
+    pub(crate) named: Named,
+    pub(crate) text: String,
+    pub(crate) anchor: Anchor<'a>,
 }
 
 /// A row of the legend: each kind of ray and mark the diagram can hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LegendRow {
+pub(crate) enum LegendRow {
     Primary,
     Reflected,
     Transmitted,
@@ -235,7 +235,7 @@ impl Diagram {
     /// The points a view must hold to show the whole diagram: every ray's
     /// ends, the eye, the lights, the passed-by marks and the outlines of
     /// the objects met or passed by (not the context).
-    pub fn extent(&self) -> Vec<DVec2> {
+    pub(crate) fn extent(&self) -> Vec<DVec2> {
         let mut points: Vec<DVec2> = (self.segments.iter())
             .flat_map(|s| [s.from, s.to])
             .collect();
@@ -249,13 +249,13 @@ impl Diagram {
     }
 
     /// Whether a ray met `object` (hit it or was blocked by it).
-    pub fn met(&self, object: usize) -> bool {
+    pub(crate) fn met(&self, object: usize) -> bool {
         (self.objects.iter()).any(|o| o.object == object && o.role == Role::Met)
     }
 
     /// The names, most important first: the eye, the lights, the objects
     /// met (each at its first outline), the passed-by marks.
-    pub fn labels(&self) -> Vec<Label<'_>> {
+    pub(crate) fn labels(&self) -> Vec<Label<'_>> {
         let mut labels = vec![Label {
             named: Named::Eye,
             text: "eye".to_string(),
@@ -294,7 +294,7 @@ impl Diagram {
 
     /// The legend's rows, in order; the optional ones only when the
     /// diagram holds one.
-    pub fn legend(&self) -> Vec<LegendRow> {
+    pub(crate) fn legend(&self) -> Vec<LegendRow> {
         use LegendRow::*;
         let partial = (self.segments.iter()).any(|s| s.stroke == Stroke::ShadowPartial);
         let mut rows = vec![Primary, Reflected, Transmitted, ShadowLit, ShadowBlocked];

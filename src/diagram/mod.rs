@@ -14,13 +14,12 @@ mod projection;
 mod rays;
 pub mod svg;
 
-pub use assembly::{
-    Anchor, Diagram, FacesAway, HitMark, Label, LegendRow, LightMark, Named, ObjectOutline,
-    PassedMark, Role,
-};
-pub use outline::Outline;
-pub use projection::{DiagramPlane, magnified_centre};
-pub use rays::{BlockerMark, CurrentRay, Progress, Segment, Stroke};
+pub use assembly::Diagram;
+pub(crate) use assembly::{Anchor, LegendRow, Named, ObjectOutline, Role};
+pub(crate) use outline::Outline;
+pub(crate) use projection::{DiagramPlane, magnified_centre};
+pub use rays::Progress;
+pub(crate) use rays::{CurrentRay, Segment, Stroke};
 
 #[cfg(test)]
 pub(crate) use assembly::tests::pebble;

@@ -7,7 +7,7 @@ use crate::shapes::Shape;
 
 /// An object's outline in the plane.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Outline {
+pub(crate) enum Outline {
     Circle {
         center: DVec2,
         radius: f64,
@@ -24,7 +24,7 @@ impl Outline {
     /// The points that bound the outline, for fitting the view: a circle's
     /// box corners, a polyline's points; none for an infinite line, which is
     /// drawn across whatever the view holds.
-    pub fn points(&self) -> Vec<DVec2> {
+    pub(crate) fn points(&self) -> Vec<DVec2> {
         match self {
             Outline::Circle { center, radius } => {
                 vec![
@@ -41,7 +41,7 @@ impl Outline {
 /// The outline of one shape: spheres as circles, polygons as their edges,
 /// cones as their two side lines and end caps, planes as the line where they
 /// cut the view plane (none when parallel to it).
-pub fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
+pub(crate) fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
     let p = |v: DVec3| projection.project(v);
     match shape {
         Shape::Sphere(s) => vec![Outline::Circle {

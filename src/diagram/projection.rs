@@ -20,7 +20,7 @@ pub enum DiagramPlane {
 }
 
 impl DiagramPlane {
-    pub fn next(self) -> DiagramPlane {
+    pub(crate) fn next(self) -> DiagramPlane {
         match self {
             DiagramPlane::Top => DiagramPlane::Side,
             DiagramPlane::Side => DiagramPlane::Primary,
@@ -28,7 +28,7 @@ impl DiagramPlane {
         }
     }
 
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             DiagramPlane::Top => "from above",
             DiagramPlane::Side => "from the right",
@@ -39,14 +39,14 @@ impl DiagramPlane {
 
 /// An orthographic projection onto a plane through `origin`.
 #[derive(Clone, Copy, Debug)]
-pub struct Projection {
-    pub origin: DVec3,
-    pub right: DVec3,
-    pub up: DVec3,
+pub(crate) struct Projection {
+    pub(crate) origin: DVec3,
+    pub(crate) right: DVec3,
+    pub(crate) up: DVec3,
 }
 
 impl Projection {
-    pub fn new(plane: DiagramPlane, scene: &Scene, tree: &RayTree) -> Self {
+    pub(crate) fn new(plane: DiagramPlane, scene: &Scene, tree: &RayTree) -> Self {
         let root = tree.root();
         let origin = root.hit.as_ref().map_or(root.origin, |h| h.point);
         let camera = &scene.camera;
@@ -60,7 +60,7 @@ impl Projection {
     }
 
     /// Where a point lands in the plane.
-    pub fn project(&self, p: DVec3) -> DVec2 {
+    pub(crate) fn project(&self, p: DVec3) -> DVec2 {
         let v = p - self.origin;
         DVec2::new(v.dot(self.right), v.dot(self.up))
     }
@@ -91,7 +91,7 @@ fn primary_plane(root: &crate::record::Node, camera_up: DVec3) -> (DVec3, DVec3)
 /// its offset divided by m² (shown magnified, by m), so a hit near the edge
 /// stays in view. Below 1 the view keeps its centre. The SVG's `--zoom` and
 /// the debugger's pane zoom both use it.
-pub fn magnified_centre(centre: DVec2, focus: DVec2, m: f64) -> DVec2 {
+pub(crate) fn magnified_centre(centre: DVec2, focus: DVec2, m: f64) -> DVec2 {
     let m = m.max(1.0);
     focus + (centre - focus) / (m * m)
 }

@@ -9,7 +9,7 @@ use crate::scene::Scene;
 
 /// What a drawn ray is, for its colour.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stroke {
+pub(crate) enum Stroke {
     Primary,
     Reflected,
     Transmitted,
@@ -24,10 +24,10 @@ pub enum Stroke {
 }
 
 #[derive(Clone, Debug, PartialEq)]
-pub struct Segment {
-    pub from: DVec2,
-    pub to: DVec2,
-    pub stroke: Stroke,
+pub(crate) struct Segment {
+    pub(crate) from: DVec2,
+    pub(crate) to: DVec2,
+    pub(crate) stroke: Stroke,
 }
 
 /// How far a step-through has come, for the strokes: rays cast by the
@@ -35,16 +35,16 @@ pub struct Segment {
 /// `Later`, and the ray of `current` is `Current`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Progress {
-    pub reached: usize,
-    pub current: Option<CurrentRay>,
+    pub(crate) reached: usize,
+    pub(crate) current: Option<CurrentRay>,
 }
 
 /// The ray the step-through is at: a node's own ray, or (with `light`) its
 /// shadow ray to that light.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct CurrentRay {
-    pub node: NodeId,
-    pub light: Option<usize>,
+pub(crate) struct CurrentRay {
+    pub(crate) node: NodeId,
+    pub(crate) light: Option<usize>,
 }
 
 impl Progress {
@@ -59,7 +59,7 @@ impl Progress {
 
 /// What a shadow ray's S makes it: lit at 1, blocked at 0, partly
 /// blocked between (transparent blockers only).
-pub fn shadow_stroke(s: f64) -> Stroke {
+pub(crate) fn shadow_stroke(s: f64) -> Stroke {
     if s >= 1.0 {
         Stroke::ShadowLit
     } else if s <= 0.0 {
@@ -72,13 +72,13 @@ pub fn shadow_stroke(s: f64) -> Stroke {
 /// A shadow ray's blocker, where it crosses, and its ray's kind (blocked
 /// or partly blocked), for the colour of its ×.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BlockerMark {
-    pub at: DVec2,
-    pub stroke: Stroke,
+pub(crate) struct BlockerMark {
+    pub(crate) at: DVec2,
+    pub(crate) stroke: Stroke,
 }
 
 /// The rays of a pixel as projected segments, plus blocker points.
-pub fn ray_segments(
+pub(crate) fn ray_segments(
     tree: &RayTree,
     scene: &Scene,
     projection: &Projection,

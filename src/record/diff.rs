@@ -17,7 +17,7 @@ const NOTICEABLE: f64 = 5e-4;
 
 /// The differences of `after` from `before` (the same pixel), in words; one
 /// line saying nothing changed when nothing did.
-pub fn diff(before: &RayTree, after: &RayTree) -> String {
+pub(crate) fn diff(before: &RayTree, after: &RayTree) -> String {
     let mut out = String::new();
     let (b, a) = (before.color(), after.color());
     let _ = writeln!(

@@ -19,7 +19,7 @@ const WIDTH: usize = 100;
 /// What a line of the story tells, so that a reader takes the parts it
 /// needs (`compare`'s brief) by their type, never by their words.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Said {
+pub(crate) enum Said {
     /// The pixel's colour and bytes.
     Pixel,
     /// The mistakes it is traced with.
@@ -57,11 +57,11 @@ pub enum Said {
 /// One line of the story: what it tells, its indentation, a leading number
 /// its continuations hang past ("0.372", " 61.0%"), and its words.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Told {
-    pub said: Said,
-    pub indent: usize,
-    pub number: Option<String>,
-    pub text: String,
+pub(crate) struct Told {
+    pub(crate) said: Said,
+    pub(crate) indent: usize,
+    pub(crate) number: Option<String>,
+    pub(crate) text: String,
 }
 
 impl Told {
@@ -137,7 +137,7 @@ pub fn explain_unwrapped(tree: &RayTree) -> String {
 }
 
 /// The story's lines, each with what it tells.
-pub fn explain_lines(tree: &RayTree) -> Vec<Told> {
+pub(crate) fn explain_lines(tree: &RayTree) -> Vec<Told> {
     let mut out = Story::default();
     let root = tree.root();
     let c = tree.color();

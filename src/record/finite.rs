@@ -29,7 +29,7 @@ impl ser::Error for NonFinite {
 
 /// Ok if every f32/f64 inside `value` is finite; else the path of the first
 /// one that is not, under the name `root`.
-pub fn check_finite<T: Serialize + ?Sized>(root: &str, value: &T) -> Result<(), NonFinite> {
+pub(crate) fn check_finite<T: Serialize + ?Sized>(root: &str, value: &T) -> Result<(), NonFinite> {
     let mut checker = Checker {
         path: vec![root.to_string()],
     };

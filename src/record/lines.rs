@@ -34,7 +34,7 @@ pub enum About {
 
 impl About {
     /// The part of its ray's lines an event is about.
-    pub fn of(tree: &RayTree, event: &Event) -> About {
+    pub(crate) fn of(tree: &RayTree, event: &Event) -> About {
         match &event.kind {
             EventKind::RayCast { .. } => About::Cast,
             EventKind::Hit { .. } => About::Hit,
@@ -55,7 +55,7 @@ impl About {
 
 /// One piece of a line: words, or a colour written as `color` writes it.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Piece {
+pub(crate) enum Piece {
     Text(String),
     Color(Color),
 }
@@ -64,11 +64,11 @@ pub enum Piece {
 #[derive(Clone, Debug)]
 pub struct Line {
     pub about: Option<About>,
-    pub pieces: Vec<Piece>,
+    pub(crate) pieces: Vec<Piece>,
 }
 
 impl Line {
-    pub fn new(about: Option<About>) -> Line {
+    pub(crate) fn new(about: Option<About>) -> Line {
         Line {
             about,
             pieces: Vec::new(),
@@ -81,13 +81,13 @@ impl Line {
     }
 
     /// The line with `text` appended.
-    pub fn then(mut self, text: impl Into<String>) -> Line {
+    pub(crate) fn then(mut self, text: impl Into<String>) -> Line {
         self.pieces.push(Piece::Text(text.into()));
         self
     }
 
     /// The line with a colour appended.
-    pub fn color(mut self, c: Color) -> Line {
+    pub(crate) fn color(mut self, c: Color) -> Line {
         self.pieces.push(Piece::Color(c));
         self
     }
@@ -96,17 +96,17 @@ impl Line {
 /// A word of a wrapped line: a colour's word carries the colour, for a
 /// swatch after it.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Word {
-    pub text: String,
-    pub color: Option<Color>,
+pub(crate) struct Word {
+    pub(crate) text: String,
+    pub(crate) color: Option<Color>,
 }
 
 /// One row of a wrapped line: its indentation in spaces, then its words,
 /// one space apart.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Row {
-    pub indent: usize,
-    pub words: Vec<Word>,
+pub(crate) struct Row {
+    pub(crate) indent: usize,
+    pub(crate) words: Vec<Word>,
 }
 
 impl Row {
@@ -124,13 +124,13 @@ impl Line {
     /// colour, is never broken, nor a word longer than a row. Continuations
     /// are indented four past the line's own indentation. `inspect` wraps
     /// with no swatch; the details pane with its swatch's width.
-    pub fn wrap(&self, room: usize, swatch: usize) -> Vec<Row> {
+    pub(crate) fn wrap(&self, room: usize, swatch: usize) -> Vec<Row> {
         self.wrap_hanging(room, swatch, 4)
     }
 
     /// Like `wrap`, with continuations indented `hang` past the line's own
     /// indentation (`explain` hangs them under the text after a number).
-    pub fn wrap_hanging(&self, room: usize, swatch: usize, hang: usize) -> Vec<Row> {
+    pub(crate) fn wrap_hanging(&self, room: usize, swatch: usize, hang: usize) -> Vec<Row> {
         let mut words = self.words();
         // A line of spaces keeps its last (empty) word.
         let lead = (words.iter().take_while(|w| w.text.is_empty()).count()).min(words.len() - 1);

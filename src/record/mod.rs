@@ -13,20 +13,16 @@ mod sources;
 mod text;
 mod tree;
 
-pub use diff::diff;
+pub(crate) use diff::diff;
 pub use dot::dot;
-pub use explain::{Said, Told, explain, explain_lines, explain_unwrapped};
-pub use finite::{NonFinite, check_finite};
-pub use lines::{About, Line, Piece, Row, Word};
-pub use numbers::{along, color, count, fraction, num, root, vector};
+pub(crate) use explain::{Said, Told, explain_lines};
+pub use explain::{explain, explain_unwrapped};
+pub(crate) use finite::{NonFinite, check_finite};
+pub(crate) use lines::{About, Line};
+pub(crate) use numbers::{color, count, num, root};
 pub use recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
-pub use shaping::{Shaping, place, reach, shaping_events};
-pub use sources::{Source, brightness, sources};
-pub use text::{
-    Children, kind_name, light_label, light_lines, node_lines, not_cast_line, not_cast_reason,
-    ray_header, text, working_lines,
-};
-pub use tree::{
-    BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors,
-    NearMiss, Node, NodeId, RayTree, ShadowRecord,
-};
+pub use shaping::{place, reach, shaping_events};
+pub use text::{Children, node_lines, text};
+pub(crate) use text::{kind_name, light_label, not_cast_line, ray_header};
+pub use tree::{Event, EventKind, Node, RayTree};
+pub(crate) use tree::{LightRecord, NearMiss, NodeId};

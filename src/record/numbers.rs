@@ -9,7 +9,7 @@ use crate::math::EPS;
 
 /// A number with at most four decimals and no trailing zeros; one that
 /// rounds to 0 at four decimals (rounding noise such as -2.2e-16) is `0`.
-pub fn num(x: f64) -> String {
+pub(crate) fn num(x: f64) -> String {
     if x.abs() < 5e-5 {
         return "0".into();
     }
@@ -19,7 +19,7 @@ pub fn num(x: f64) -> String {
 /// Like `num`, but a small value keeps its digits (`1.110e-16`): for the
 /// few numbers whose smallness is the lesson (a shadow-acne blocker's t, a
 /// ray's accumulated weight, EPS).
-pub fn precise(x: f64) -> String {
+pub(crate) fn precise(x: f64) -> String {
     if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-4) {
         return format!("{x:.3e}");
     }
@@ -40,13 +40,13 @@ const LEAVES: &str = "≈ 0 (the point the ray leaves)";
 /// A distance along a ray, as `precise` writes it, or `≈ 0 (the point the
 /// ray leaves)`. The inspect text, the details pane and `explain` write a
 /// root or a blocker's distance here or through `root`.
-pub fn along(t: f64) -> String {
+pub(crate) fn along(t: f64) -> String {
     if leaves(t) { LEAVES.into() } else { precise(t) }
 }
 
 /// A root of a ray's quadratic: `t0 = 1.6081`, or `t0 ≈ 0 (the point the
 /// ray leaves)`.
-pub fn root(name: &str, t: f64) -> String {
+pub(crate) fn root(name: &str, t: f64) -> String {
     if leaves(t) {
         format!("{name} {LEAVES}")
     } else {
@@ -54,12 +54,12 @@ pub fn root(name: &str, t: f64) -> String {
     }
 }
 
-pub fn vector(v: DVec3) -> String {
+pub(crate) fn vector(v: DVec3) -> String {
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
 
 /// A colour with three decimals per channel (never `-0.000`).
-pub fn color(c: DVec3) -> String {
+pub(crate) fn color(c: DVec3) -> String {
     let channel = |x: f64| {
         let s = format!("{x:.3}");
         if s == "-0.000" { "0.000".into() } else { s }
@@ -68,7 +68,7 @@ pub fn color(c: DVec3) -> String {
 }
 
 /// A cutoff such as 1/512 as a fraction when it is one, else as `num` writes it.
-pub fn fraction(x: f64) -> String {
+pub(crate) fn fraction(x: f64) -> String {
     let inverse = 1.0 / x;
     if x > 0.0 && inverse.fract() == 0.0 && inverse <= 1e6 {
         format!("1/{inverse}")
@@ -78,7 +78,7 @@ pub fn fraction(x: f64) -> String {
 }
 
 /// "1 primitive", "2 primitives": a count with its noun.
-pub fn count(n: impl Into<u64>, singular: &str, plural: &str) -> String {
+pub(crate) fn count(n: impl Into<u64>, singular: &str, plural: &str) -> String {
     let n = n.into();
     format!("{n} {}", if n == 1 { singular } else { plural })
 }

@@ -11,16 +11,16 @@ use crate::math::Color;
 /// One ray's own part of the pixel: what its surface (or the background,
 /// for a miss) adds after every weight and attenuation above it.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Source {
-    pub node: NodeId,
+pub(crate) struct Source {
+    pub(crate) node: NodeId,
     /// The object hit, `None` for the background.
-    pub object: Option<String>,
-    pub color: Color,
+    pub(crate) object: Option<String>,
+    pub(crate) color: Color,
 }
 
 /// Every ray's own part, largest brightness (sum of channels) first; ties
 /// in tree order. The colours sum to the pixel's colour before clamping.
-pub fn sources(tree: &RayTree) -> Vec<Source> {
+pub(crate) fn sources(tree: &RayTree) -> Vec<Source> {
     let mut all: Vec<Source> = tree
         .nodes
         .iter()
@@ -45,6 +45,6 @@ pub fn sources(tree: &RayTree) -> Vec<Source> {
 }
 
 /// The brightness used to compare parts: the sum of the three channels.
-pub fn brightness(c: Color) -> f64 {
+pub(crate) fn brightness(c: Color) -> f64 {
     c.x + c.y + c.z
 }

@@ -16,7 +16,7 @@ use crate::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Wor
 use crate::trace::{NotCast, PruneRule, RayKind};
 
 /// A secondary ray a rule kept from being cast, and the rule, in one line.
-pub fn not_cast_line(ray: &NotCast) -> String {
+pub(crate) fn not_cast_line(ray: &NotCast) -> String {
     format!(
         "{} ray not cast: {}",
         kind_name(ray.kind),
@@ -25,7 +25,7 @@ pub fn not_cast_line(ray: &NotCast) -> String {
 }
 
 /// "light key", or just the name when it already says "light" (NFF's "light 0").
-pub fn light_label(name: &str) -> String {
+pub(crate) fn light_label(name: &str) -> String {
     if name.starts_with("light") {
         name.to_string()
     } else {
@@ -34,7 +34,7 @@ pub fn light_label(name: &str) -> String {
 }
 
 /// Why a rule kept a secondary ray from being cast.
-pub fn not_cast_reason(ray: &NotCast) -> String {
+pub(crate) fn not_cast_reason(ray: &NotCast) -> String {
     match ray.rule {
         PruneRule::MinWeight { min_weight } => format!(
             "accumulated weight {} < min_weight {}",
@@ -47,7 +47,7 @@ pub fn not_cast_reason(ray: &NotCast) -> String {
     }
 }
 
-pub fn kind_name(kind: RayKind) -> &'static str {
+pub(crate) fn kind_name(kind: RayKind) -> &'static str {
     match kind {
         RayKind::Primary => "primary",
         RayKind::Reflected => "reflected",
@@ -56,7 +56,7 @@ pub fn kind_name(kind: RayKind) -> &'static str {
 }
 
 /// The intersection worked as in the course notes, a line per step.
-pub fn working_lines(working: &Working) -> Vec<String> {
+pub(crate) fn working_lines(working: &Working) -> Vec<String> {
     match working {
         Working::Sphere(w) => {
             let mut lines = vec![format!(
@@ -156,7 +156,7 @@ fn point_name(inside: bool) -> &'static str {
 
 /// The crossing test edge by edge: the edges that reach V = 0, where, and
 /// whether they count (MODEL §3).
-pub fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
+pub(crate) fn crossing_lines(figure: &CrossingFigure) -> Vec<String> {
     let (_, u, v) = figure.axes();
     let corners: Vec<String> = figure
         .vertices
@@ -252,7 +252,7 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
 
 /// What one light did at a hit: its fate, then each term with its factors
 /// (MODEL §4), so that a student can check the formula by hand.
-pub fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> {
+pub(crate) fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> {
     let about = Some(About::Light(light.light_index));
     if light.at_point {
         return vec![Line::text(
@@ -378,7 +378,7 @@ fn indented_strings(lines: Vec<String>) -> Vec<String> {
 }
 
 /// "N·H" for Blinn, "R·V" for Phong.
-pub fn cosine_name(model: SpecularModel) -> &'static str {
+pub(crate) fn cosine_name(model: SpecularModel) -> &'static str {
     match model {
         SpecularModel::Blinn => "N·H",
         SpecularModel::Phong => "R·V",
@@ -571,7 +571,7 @@ fn secondary_lines(tree: &RayTree, id: NodeId) -> Vec<Line> {
 /// The formula of a child ray's term (MODEL §1): "reflected = k_s · att ·
 /// I_r" ((k_s + k_t) on TIR) or "transmitted = k_t · att · I_t", and the
 /// symbol of its returned colour.
-pub fn child_formula(tree: &RayTree, child: NodeId) -> String {
+pub(crate) fn child_formula(tree: &RayTree, child: NodeId) -> String {
     let node = &tree.nodes[child];
     let parent = node.parent.map(|p| &tree.nodes[p]);
     match node.kind {
@@ -617,7 +617,7 @@ fn child_line(tree: &RayTree, child: NodeId) -> Line {
 
 /// "reflected ray, depth 1, weight 0.5": a ray's first line (no weight for
 /// the primary ray), in the text form and the details pane.
-pub fn ray_header(node: &Node) -> String {
+pub(crate) fn ray_header(node: &Node) -> String {
     let mut text = format!("{} ray, depth {}", kind_name(node.kind), node.depth);
     if node.kind != RayKind::Primary {
         let _ = write!(text, ", weight {}", num(node.weight));

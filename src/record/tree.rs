@@ -12,16 +12,16 @@ use crate::scene::SpecularModel;
 use crate::shapes::{CrossingFigure, Working};
 use crate::trace::{DepthLimit, NotCast, RayKind, Refraction};
 
-pub type NodeId = usize;
+pub(crate) type NodeId = usize;
 
 /// One shading ray (primary, reflected or transmitted) and all it computed.
 #[derive(Clone, Debug, Serialize)]
 pub struct Node {
     #[serde(skip)]
-    pub parent: Option<NodeId>,
-    pub kind: RayKind,
+    pub(crate) parent: Option<NodeId>,
+    pub(crate) kind: RayKind,
     pub depth: u32,
-    pub origin: DVec3,
+    pub(crate) origin: DVec3,
     pub direction: DVec3,
     /// The factor this ray's colour is scaled by in its parent (1 for the primary ray).
     pub weight: f64,
@@ -44,7 +44,7 @@ pub struct Node {
     /// At a hit the depth limit kept from spawning, the rays it cut (MODEL
     /// §5), as the tracer reported them; absent elsewhere.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub depth_limit: Option<DepthLimit>,
+    pub(crate) depth_limit: Option<DepthLimit>,
     /// The colour this ray returns, the sum of its stored terms.
     pub color: Color,
     /// weight * attenuation * color: what it adds to its parent.
@@ -59,41 +59,41 @@ impl Node {
 
     /// Whether the ray hit at the depth limit, where nothing is spawned:
     /// max_depth, or one less under `depth-off-by-one` (MODEL §5, §8).
-    pub fn at_depth_limit(&self) -> bool {
+    pub(crate) fn at_depth_limit(&self) -> bool {
         self.depth_limit.is_some()
     }
 
     /// The secondary rays the depth limit kept this ray's hit from
     /// spawning, by kind and weight; none below the limit, where every ray
     /// is cast or recorded as not cast.
-    pub fn depth_cut(&self) -> impl Iterator<Item = (RayKind, f64)> {
+    pub(crate) fn depth_cut(&self) -> impl Iterator<Item = (RayKind, f64)> {
         self.depth_limit.into_iter().flat_map(|limit| limit.cut())
     }
 }
 
 #[derive(Clone, Debug, Serialize)]
 pub struct HitRecord {
-    pub object: String,
+    pub(crate) object: String,
     /// 0-based, in file order.
-    pub object_index: usize,
-    pub kind: &'static str,
-    pub material: String,
+    pub(crate) object_index: usize,
+    pub(crate) kind: &'static str,
+    pub(crate) material: String,
     pub t: f64,
-    pub point: DVec3,
+    pub(crate) point: DVec3,
     /// N_g.
-    pub geometric_normal: DVec3,
+    pub(crate) geometric_normal: DVec3,
     /// N: N_g facing the ray (MODEL §3), as in the tracer's `SurfaceHit`.
     pub normal: DVec3,
     pub entering: bool,
     /// The intersection worked the way the course notes teach it.
-    pub working: Working,
+    pub(crate) working: Working,
     /// A polygon's or patch's crossing test edge by edge; absent for others.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub crossing_figure: Option<CrossingFigure>,
+    pub(crate) crossing_figure: Option<CrossingFigure>,
     /// The material's numbers the terms were computed with (MODEL §4, §5).
     pub factors: MaterialFactors,
     /// I_a, the scene's ambient light (the ambient term is I_a k_a O_d).
-    pub i_a: Color,
+    pub(crate) i_a: Color,
 }
 
 /// A material's coefficients as the course notes name them, so that every
@@ -101,20 +101,20 @@ pub struct HitRecord {
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct MaterialFactors {
     /// O_d, the diffuse colour.
-    pub o_d: Color,
-    pub ka: f64,
-    pub kd: f64,
+    pub(crate) o_d: Color,
+    pub(crate) ka: f64,
+    pub(crate) kd: f64,
     pub ks: f64,
     /// The specular exponent.
-    pub n: f64,
+    pub(crate) n: f64,
     pub kt: f64,
-    pub ior: f64,
+    pub(crate) ior: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
 pub struct NearMiss {
     pub object: String,
-    pub object_index: usize,
+    pub(crate) object_index: usize,
     pub working: Working,
     /// A polygon's or patch's crossing test edge by edge; absent for others.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -136,10 +136,10 @@ pub struct ClosestApproach {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct LightRecord {
-    pub light: String,
-    pub light_index: usize,
+    pub(crate) light: String,
+    pub(crate) light_index: usize,
     /// I_p, the light's colour.
-    pub i_p: Color,
+    pub(crate) i_p: Color,
     pub to_light: DVec3,
     pub distance: f64,
     pub n_dot_l: f64,
@@ -149,7 +149,7 @@ pub struct LightRecord {
     pub at_point: bool,
     pub shadow: Option<ShadowRecord>,
     pub f_att: f64,
-    pub specular_model: SpecularModel,
+    pub(crate) specular_model: SpecularModel,
     /// N·H with Blinn, R·V with Phong, before clamping.
     pub specular_cosine: f64,
     pub diffuse: Color,
@@ -158,9 +158,9 @@ pub struct LightRecord {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct ShadowRecord {
-    pub origin: DVec3,
-    pub direction: DVec3,
-    pub distance: f64,
+    pub(crate) origin: DVec3,
+    pub(crate) direction: DVec3,
+    pub(crate) distance: f64,
     /// Every crossing of the segment, nearest first.
     pub blockers: Vec<BlockerRecord>,
     pub s: f64,
@@ -172,18 +172,18 @@ pub struct BlockerRecord {
     pub object: String,
     pub object_index: usize,
     pub t: f64,
-    pub kt: f64,
+    pub(crate) kt: f64,
     /// Which root of the quadratic this crossing is ("t0" or "t1"), for a
     /// sphere, cylinder or cone; absent for a plane or polygon (one root).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub root: Option<&'static str>,
+    pub(crate) root: Option<&'static str>,
     /// The shadow ray's intersection with the blocker, worked as for a hit.
-    pub working: Working,
+    pub(crate) working: Working,
 }
 
 impl BlockerRecord {
     /// Which of the working's two roots is nearer to `t`, if it has two.
-    pub fn root_of(working: &Working, t: f64) -> Option<&'static str> {
+    pub(crate) fn root_of(working: &Working, t: f64) -> Option<&'static str> {
         let (t0, t1) = match working {
             Working::Sphere(w) => (w.t0?, w.t1?),
             Working::Cone(w) => (w.t0?, w.t1?),
@@ -266,7 +266,7 @@ fn is_false(value: &bool) -> bool {
 pub struct RayTree {
     pub pixel: (u32, u32),
     /// The scene's max_depth when recorded.
-    pub max_depth: u32,
+    pub(crate) max_depth: u32,
     /// The mistakes traced with (MODEL §8); they decide the pixel's bytes too.
     pub mistakes: Mistakes,
     pub nodes: Vec<Node>,
@@ -288,7 +288,7 @@ impl RayTree {
         self.mistakes.rgb8(self.color())
     }
 
-    pub fn children(&self, id: NodeId) -> impl Iterator<Item = NodeId> + '_ {
+    pub(crate) fn children(&self, id: NodeId) -> impl Iterator<Item = NodeId> + '_ {
         let node = &self.nodes[id];
         node.reflected.into_iter().chain(node.transmitted)
     }

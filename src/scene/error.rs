@@ -11,27 +11,27 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 /// The most characters of the offending line quoted, ellipses aside.
-pub const MAX_EXCERPT_CHARS: usize = 120;
+pub(crate) const MAX_EXCERPT_CHARS: usize = 120;
 /// How many of them come before the column, when the line is cut.
 const EXCERPT_CONTEXT_BEFORE: usize = 40;
 /// The most characters of a message kept, ellipsis aside.
-pub const MAX_MESSAGE_CHARS: usize = 400;
+pub(crate) const MAX_MESSAGE_CHARS: usize = 400;
 /// Marks where a quoted line or a message was cut.
 const ELLIPSIS: char = '…';
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SourceLocation {
-    pub path: PathBuf,
+    pub(crate) path: PathBuf,
     /// 1-based line and column (in characters) in the file.
     pub line: usize,
     pub column: usize,
     /// The offending line, or at most `MAX_EXCERPT_CHARS` of it around the
     /// column with `…` where it was cut.
-    pub excerpt: String,
+    pub(crate) excerpt: String,
     /// 1-based column of the error within `excerpt`, and how many
     /// characters to underline there.
-    pub excerpt_column: usize,
-    pub width: usize,
+    pub(crate) excerpt_column: usize,
+    pub(crate) width: usize,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -42,7 +42,7 @@ pub struct SceneError {
 
 impl SceneError {
     /// An error that belongs to no place in a file (an unreadable file, a bad size).
-    pub fn plain(message: impl Into<String>) -> Self {
+    pub(crate) fn plain(message: impl Into<String>) -> Self {
         Self {
             message: bounded(message.into(), MAX_MESSAGE_CHARS),
             location: None,
@@ -51,7 +51,12 @@ impl SceneError {
 
     /// An error at a byte range of `text`, the contents of `path`. The range
     /// is moved back to character boundaries if it falls inside one.
-    pub fn at(path: &Path, text: &str, span: Range<usize>, message: impl Into<String>) -> Self {
+    pub(crate) fn at(
+        path: &Path,
+        text: &str,
+        span: Range<usize>,
+        message: impl Into<String>,
+    ) -> Self {
         let start = floor_boundary(text, span.start);
         let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
         let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);

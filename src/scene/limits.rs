@@ -13,40 +13,40 @@ use glam::DVec3;
 
 /// An inclusive range `min..=max` and what the numbers in it are.
 #[derive(Clone, Copy, Debug)]
-pub struct Bounds {
-    pub min: f64,
-    pub max: f64,
+pub(crate) struct Bounds {
+    pub(crate) min: f64,
+    pub(crate) max: f64,
 }
 
 /// Every coordinate and every vector component: positions, centres,
 /// vertices, cone ends, `eye`, `look_at`, `up`, normals.
-pub const COORDINATE: Bounds = Bounds::new(-1e4, 1e4);
+pub(crate) const COORDINATE: Bounds = Bounds::new(-1e4, 1e4);
 /// A sphere's radius, a cone's non-zero radii (NFF: their absolute values)
 /// and the distance between a cone's ends.
-pub const SIZE: Bounds = Bounds::new(1e-3, 1e4);
+pub(crate) const SIZE: Bounds = Bounds::new(1e-3, 1e4);
 /// Colours and light intensities: O_d, I_p, I_a, the background.
-pub const COLOR: Bounds = Bounds::new(0.0, 1e6);
+pub(crate) const COLOR: Bounds = Bounds::new(0.0, 1e6);
 /// The material coefficients kd, ks and ka.
-pub const COEFFICIENT: Bounds = Bounds::new(0.0, 100.0);
+pub(crate) const COEFFICIENT: Bounds = Bounds::new(0.0, 100.0);
 /// The transmission coefficient kt.
-pub const TRANSMISSION: Bounds = Bounds::new(0.0, 1.0);
+pub(crate) const TRANSMISSION: Bounds = Bounds::new(0.0, 1.0);
 /// The specular exponent n (the SPD writes 100000 where Ks = 0).
-pub const SHININESS: Bounds = Bounds::new(0.0, 1e6);
+pub(crate) const SHININESS: Bounds = Bounds::new(0.0, 1e6);
 /// The index of refraction (MODEL §5); real materials lie between 1 and about 4.
-pub const IOR: Bounds = Bounds::new(0.1, 10.0);
+pub(crate) const IOR: Bounds = Bounds::new(0.1, 10.0);
 /// The attenuation coefficients (c1, c2, c3) and (a1, a2, a3).
-pub const ATTENUATION: Bounds = Bounds::new(0.0, 1e6);
+pub(crate) const ATTENUATION: Bounds = Bounds::new(0.0, 1e6);
 /// `min_weight`, the cutoff of a ray's accumulated weight (MODEL §5).
-pub const WEIGHT: Bounds = Bounds::new(0.0, 1.0);
+pub(crate) const WEIGHT: Bounds = Bounds::new(0.0, 1.0);
 
 impl Bounds {
-    pub const fn new(min: f64, max: f64) -> Self {
+    pub(crate) const fn new(min: f64, max: f64) -> Self {
         Self { min, max }
     }
 
     /// `Ok` when `min <= value <= max` (never for NaN), else why not:
     /// "must be between MIN and MAX".
-    pub fn check(&self, value: f64) -> Result<(), String> {
+    pub(crate) fn check(&self, value: f64) -> Result<(), String> {
         if (self.min..=self.max).contains(&value) {
             Ok(())
         } else {
@@ -57,18 +57,10 @@ impl Bounds {
             ))
         }
     }
-
-    /// The first component of `v` out of range, by index, with the reason.
-    pub fn check_vec(&self, v: DVec3) -> Result<(), (usize, String)> {
-        for (i, c) in v.to_array().into_iter().enumerate() {
-            self.check(c).map_err(|reason| (i, reason))?;
-        }
-        Ok(())
-    }
 }
 
 /// A cone radius: 0 (a pointed end) or within `SIZE`.
-pub fn check_cone_radius(radius: f64) -> Result<(), String> {
+pub(crate) fn check_cone_radius(radius: f64) -> Result<(), String> {
     if radius == 0.0 {
         return Ok(());
     }
@@ -78,7 +70,7 @@ pub fn check_cone_radius(radius: f64) -> Result<(), String> {
 
 /// The distance between a cone's ends, within `SIZE`; ends that coincide
 /// are left to the shape, which names them.
-pub fn check_cone_length(base: DVec3, apex: DVec3) -> Result<(), String> {
+pub(crate) fn check_cone_length(base: DVec3, apex: DVec3) -> Result<(), String> {
     let length = (apex - base).length();
     if length == 0.0 {
         return Ok(());
@@ -92,7 +84,7 @@ pub fn check_cone_length(base: DVec3, apex: DVec3) -> Result<(), String> {
 }
 
 /// A number as short as it can be read: `10000`, `0.5`, `1e300`, `1e-7`.
-pub fn show(value: f64) -> String {
+pub(crate) fn show(value: f64) -> String {
     let magnitude = value.abs();
     if magnitude == 0.0 || (1e-4..1e5).contains(&magnitude) || !value.is_finite() {
         format!("{value}")
@@ -114,13 +106,6 @@ mod tests {
             Err("must be between 0.1 and 10".into())
         );
         assert!(COLOR.check(f64::NAN).is_err());
-        assert_eq!(
-            COORDINATE
-                .check_vec(DVec3::new(0.0, 2e4, 3e4))
-                .unwrap_err()
-                .0,
-            1
-        );
     }
 
     #[test]

@@ -3,11 +3,11 @@
 
 pub mod builtin;
 mod error;
-pub mod limits;
-pub mod nff;
-pub mod overrides;
+pub(crate) mod limits;
+pub(crate) mod nff;
+pub(crate) mod overrides;
 mod switches;
-pub mod toml_format;
+pub(crate) mod toml_format;
 mod toml_sections;
 
 use std::path::Path;
@@ -15,8 +15,9 @@ use std::path::Path;
 use glam::DVec3;
 use serde::Serialize;
 
-pub use error::{SceneError, SourceLocation};
-pub use switches::{Switch, Switches};
+pub use error::SceneError;
+pub use switches::Switch;
+pub(crate) use switches::Switches;
 
 use crate::accel::{Accel, ObjectTables};
 use crate::camera::Camera;
@@ -27,17 +28,17 @@ pub use crate::object::Object;
 
 /// The largest image side accepted; beyond it a render would take minutes and
 /// gigabytes, which is never what a teaching scene wants.
-pub const MAX_IMAGE_SIDE: u32 = 16_384;
+pub(crate) const MAX_IMAGE_SIDE: u32 = 16_384;
 /// The largest number of pixels accepted (a 8192 x 8192 image).
-pub const MAX_IMAGE_PIXELS: u64 = 8192 * 8192;
+pub(crate) const MAX_IMAGE_PIXELS: u64 = 8192 * 8192;
 
 /// Below half an 8-bit step, like POV-Ray's adc_bailout (1/255): a ray worth
 /// less than this changes a pixel by at most about half a step per unit of colour.
-pub const DEFAULT_MIN_WEIGHT: f64 = 1.0 / 512.0;
+pub(crate) const DEFAULT_MIN_WEIGHT: f64 = 1.0 / 512.0;
 /// Rays per pixel tree by default: a full binary tree of depth 12 has 4095.
-pub const DEFAULT_MAX_RAYS: u32 = 4096;
+pub(crate) const DEFAULT_MAX_RAYS: u32 = 4096;
 /// The largest `max_rays` accepted: bounds a pixel's time and recording.
-pub const MAX_RAYS_LIMIT: u32 = 65_536;
+pub(crate) const MAX_RAYS_LIMIT: u32 = 65_536;
 
 /// Blinn's N·H (the default) or Phong's R·V for the specular term (MODEL §1, §4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
@@ -96,21 +97,21 @@ impl Default for Settings {
 pub struct Material {
     pub name: String,
     /// O_d, the object's diffuse colour.
-    pub color: Color,
+    pub(crate) color: Color,
     pub kd: f64,
     pub ks: f64,
     /// The specular exponent n.
-    pub shininess: f64,
+    pub(crate) shininess: f64,
     pub kt: f64,
     pub ior: f64,
-    pub ka: f64,
+    pub(crate) ka: f64,
     /// Overrides the scene's specular model for this material (to show both side by side).
     pub specular: Option<SpecularModel>,
 }
 
 impl Material {
     /// NFF's material before the first `f` line: white, k_d = 1, all else 0 (MODEL §4).
-    pub fn default_white() -> Self {
+    pub(crate) fn default_white() -> Self {
         Self {
             name: "default".into(),
             color: Color::ONE,
@@ -127,8 +128,8 @@ impl Material {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
-    pub name: String,
-    pub position: DVec3,
+    pub(crate) name: String,
+    pub(crate) position: DVec3,
     /// I_p.
     pub color: Color,
 }
@@ -143,14 +144,14 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub lights: Vec<Light>,
     pub objects: Vec<Object>,
-    pub accel: Accel,
+    pub(crate) accel: Accel,
     /// Each object's material and normal recipe, read without the object.
     tables: ObjectTables,
 }
 
 impl Scene {
     /// The scene of a file's parts, with its acceleration structure built.
-    pub fn new(
+    pub(crate) fn new(
         camera: Camera,
         (width, height): (u32, u32),
         settings: Settings,
@@ -181,18 +182,18 @@ impl Scene {
         Ok(self)
     }
 
-    pub fn material_of(&self, object: usize) -> &Material {
+    pub(crate) fn material_of(&self, object: usize) -> &Material {
         &self.materials[self.tables.material(object)]
     }
 
     /// An object's name for messages, "?" for an index the scene lacks.
-    pub fn object_name(&self, object: usize) -> &str {
+    pub(crate) fn object_name(&self, object: usize) -> &str {
         self.objects.get(object).map_or("?", |o| o.name.as_str())
     }
 
     /// `object`'s geometric normal N_g at `point` (MODEL §3).
     #[inline]
-    pub fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {
+    pub(crate) fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {
         self.tables.geometric_normal(&self.objects, object, point)
     }
 }
@@ -243,7 +244,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
 }
 
 /// Refuses empty or absurd image sizes, saying why.
-pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
+pub(crate) fn check_image_size(width: u32, height: u32) -> Result<(), String> {
     if width == 0 || height == 0 {
         return Err(format!(
             "image size {width}x{height} is empty: both sides must be at least 1"
@@ -263,7 +264,7 @@ pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
 }
 
 /// Refuses a field of view outside (0, 180) degrees.
-pub fn check_fov(fov: f64) -> Result<(), String> {
+pub(crate) fn check_fov(fov: f64) -> Result<(), String> {
     if fov > 0.0 && fov < 180.0 {
         Ok(())
     } else {
@@ -274,7 +275,7 @@ pub fn check_fov(fov: f64) -> Result<(), String> {
 }
 
 /// Refuses a camera whose frame is undefined.
-pub fn check_camera(camera: &Camera) -> Result<(), String> {
+pub(crate) fn check_camera(camera: &Camera) -> Result<(), String> {
     check_fov(camera.fov)?;
     let forward = camera.look_at - camera.eye;
     if !exceeds(forward.length(), 0.0) {

@@ -10,7 +10,7 @@ use super::toml_format::MAX_DEPTH_LIMIT;
 use super::{MAX_RAYS_LIMIT, Scene, SpecularModel};
 
 /// Applies `KEY=VALUE` to `scene`, or says why it cannot.
-pub fn apply(scene: &mut Scene, assignment: &str) -> Result<(), String> {
+pub(crate) fn apply(scene: &mut Scene, assignment: &str) -> Result<(), String> {
     let (key, value) = assignment
         .split_once('=')
         .ok_or_else(|| format!("`{assignment}` is not KEY=VALUE, e.g. settings.max_depth=2"))?;

@@ -15,7 +15,7 @@ pub enum Switch {
 }
 
 impl Switch {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Switch::Shadows => "shadows",
             Switch::Reflection => "reflection",
@@ -47,7 +47,7 @@ impl Default for Switches {
 
 impl Switches {
     /// Turns `switch` over; true when it is now on.
-    pub fn flip(&mut self, switch: Switch) -> bool {
+    pub(crate) fn flip(&mut self, switch: Switch) -> bool {
         let flag = match switch {
             Switch::Shadows => &mut self.shadows,
             Switch::Reflection => &mut self.reflection,

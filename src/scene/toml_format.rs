@@ -264,11 +264,11 @@ struct ConeDef {
 }
 
 /// The default image size when a file has no `[image]` table.
-pub const DEFAULT_SIZE: (u32, u32) = (320, 240);
+pub(crate) const DEFAULT_SIZE: (u32, u32) = (320, 240);
 /// The default vertical field of view in degrees.
-pub const DEFAULT_FOV: f64 = 45.0;
+pub(crate) const DEFAULT_FOV: f64 = 45.0;
 /// Deeper recursion than this is refused as a mistake.
-pub const MAX_DEPTH_LIMIT: u32 = 64;
+pub(crate) const MAX_DEPTH_LIMIT: u32 = 64;
 
 /// Collects the file's context so that every check can point into it.
 #[derive(Clone, Copy)]
@@ -336,7 +336,7 @@ fn read_file(source: &Source) -> Result<(FileDef, ObjectDefs), SceneError> {
     Ok((file, ObjectDefs::Read(objects)))
 }
 
-pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     let source = Source {
         path,
         text,

@@ -21,20 +21,20 @@ use toml_parser::Source;
 use toml_parser::lexer::{Token, TokenKind};
 
 /// A TOML document cut into its object sections and everything else.
-pub struct Sections {
+pub(crate) struct Sections {
     /// The document with each object section blanked out by spaces.
-    pub rest: String,
+    pub(crate) rest: String,
     /// Byte ranges of the `[[object]]` sections, in file order.
-    pub objects: Vec<Range<usize>>,
+    pub(crate) objects: Vec<Range<usize>>,
 }
 
 /// The TOML reader refuses dotted keys of this many parts (its recursion
 /// limit) without saying where they are; `split` finds them.
-pub const MAX_KEY_PARTS: usize = 81;
+pub(crate) const MAX_KEY_PARTS: usize = 81;
 
 /// Cuts `text` into sections, or `Ok(None)` when the cut could change its
 /// meaning. `Err` is the span of a dotted key of `MAX_KEY_PARTS` or more parts.
-pub fn split(text: &str) -> Result<Option<Sections>, Range<usize>> {
+pub(crate) fn split(text: &str) -> Result<Option<Sections>, Range<usize>> {
     let mut keys = KeyParts::default();
     let mut tokens = Source::new(text).lex().inspect(|t| keys.see(t));
     let mut cut = true;

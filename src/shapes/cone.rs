@@ -10,10 +10,10 @@ use crate::math::{Interval, Ray, exceeds};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cone {
-    pub base: DVec3,
-    pub base_radius: f64,
-    pub apex: DVec3,
-    pub apex_radius: f64,
+    pub(crate) base: DVec3,
+    pub(crate) base_radius: f64,
+    pub(crate) apex: DVec3,
+    pub(crate) apex_radius: f64,
     /// Unit axis from base to apex, and the distance between them.
     axis: DVec3,
     height: f64,
@@ -26,23 +26,23 @@ pub struct Cone {
 /// when its height lies between the two ends, 0 <= s <= h.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ConeWorking {
-    pub a: f64,
-    pub b: f64,
-    pub c: f64,
-    pub discriminant: f64,
-    pub t0: Option<f64>,
-    pub t1: Option<f64>,
+    pub(crate) a: f64,
+    pub(crate) b: f64,
+    pub(crate) c: f64,
+    pub(crate) discriminant: f64,
+    pub(crate) t0: Option<f64>,
+    pub(crate) t1: Option<f64>,
     /// The heights of the two roots along the axis (0 at the base, h at the apex end).
-    pub s0: Option<f64>,
-    pub s1: Option<f64>,
-    pub height: f64,
+    pub(crate) s0: Option<f64>,
+    pub(crate) s1: Option<f64>,
+    pub(crate) height: f64,
     /// Whether each root is in front of the ray and between the two ends.
-    pub on_surface: [bool; 2],
+    pub(crate) on_surface: [bool; 2],
 }
 
 impl ConeWorking {
     /// The root taken: the nearer one that lies on the surface.
-    pub fn t(&self) -> Option<f64> {
+    pub(crate) fn t(&self) -> Option<f64> {
         match self.on_surface {
             [true, _] => self.t0,
             [false, true] => self.t1,
@@ -78,11 +78,11 @@ impl Cone {
         })
     }
 
-    pub fn is_cylinder(&self) -> bool {
+    pub(crate) fn is_cylinder(&self) -> bool {
         self.base_radius == self.apex_radius
     }
 
-    pub fn solve(&self, ray: &Ray, range: Interval) -> ConeWorking {
+    pub(crate) fn solve(&self, ray: &Ray, range: Interval) -> ConeWorking {
         let delta = ray.origin - self.base;
         let (delta_s, d_s) = (delta.dot(self.axis), ray.direction.dot(self.axis));
         let delta_perp = delta - delta_s * self.axis;
@@ -134,7 +134,7 @@ impl Cone {
         working
     }
 
-    pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {
+    pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         let w = self.solve(ray, range);
         let mut roots = Roots::NONE;
         for (t, on_surface) in [w.t0, w.t1].into_iter().zip(w.on_surface) {
@@ -147,13 +147,13 @@ impl Cone {
 
     /// The outward normal of the lateral surface: radial, tilted along the axis
     /// by the slope for a cone.
-    pub fn normal_at(&self, point: DVec3) -> DVec3 {
+    pub(crate) fn normal_at(&self, point: DVec3) -> DVec3 {
         let delta = point - self.base;
         let radial = delta - delta.dot(self.axis) * self.axis;
         (radial.normalize_or_zero() - self.slope * self.axis).normalize_or_zero()
     }
 
-    pub fn bounds(&self) -> Aabb {
+    pub(crate) fn bounds(&self) -> Aabb {
         // Each end circle lies in the box centre +- r * sqrt(1 - axis_i^2).
         let extent = |r: f64| {
             r * (DVec3::ONE - self.axis * self.axis)

@@ -11,41 +11,41 @@ use super::polygon::{Axis, Polygon, crosses, straddles, u_at_axis};
 /// The projected polygon around the hit point, and every edge's verdict.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CrossingFigure {
-    pub dropped_axis: Axis,
+    pub(crate) dropped_axis: Axis,
     /// The hit point projected to (U, V), before the move to the origin.
-    pub point: [f64; 2],
+    pub(crate) point: [f64; 2],
     /// Each vertex in (U, V) minus `point`, in the polygon's order.
-    pub vertices: Vec<[f64; 2]>,
+    pub(crate) vertices: Vec<[f64; 2]>,
     /// Edge i runs from vertex i to vertex i + 1 (the last back to 0).
-    pub edges: Vec<EdgeCrossing>,
+    pub(crate) edges: Vec<EdgeCrossing>,
 }
 
 /// One edge of the crossing test (MODEL §3).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct EdgeCrossing {
-    pub from: usize,
-    pub to: usize,
+pub(crate) struct EdgeCrossing {
+    pub(crate) from: usize,
+    pub(crate) to: usize,
     /// One end has V >= 0 and the other V < 0: the edge meets the line V = 0.
-    pub straddles: bool,
+    pub(crate) straddles: bool,
     /// Where it meets V = 0, when it straddles.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub u: Option<f64>,
+    pub(crate) u: Option<f64>,
     /// It crosses the +U half-line (U > 0): one of the counted crossings.
-    pub counts: bool,
+    pub(crate) counts: bool,
 }
 
 impl CrossingFigure {
     /// How many edges count: the same number as `CrossingTest::crossings`.
-    pub fn crossings(&self) -> usize {
+    pub(crate) fn crossings(&self) -> usize {
         self.edges.iter().filter(|e| e.counts).count()
     }
 
-    pub fn inside(&self) -> bool {
+    pub(crate) fn inside(&self) -> bool {
         self.crossings() % 2 == 1
     }
 
     /// The (U, V) coordinate names: "dropped z: U = x, V = y".
-    pub fn axes(&self) -> (&'static str, &'static str, &'static str) {
+    pub(crate) fn axes(&self) -> (&'static str, &'static str, &'static str) {
         match self.dropped_axis {
             Axis::X => ("x", "y", "z"),
             Axis::Y => ("y", "x", "z"),
@@ -57,7 +57,7 @@ impl CrossingFigure {
 impl Polygon {
     /// The crossing test for `point` (on the polygon's plane), edge by edge.
     /// Each edge's verdict is `crosses`, the tracer's own test.
-    pub fn crossing_figure(&self, point: DVec3) -> CrossingFigure {
+    pub(crate) fn crossing_figure(&self, point: DVec3) -> CrossingFigure {
         let p = self.dropped.project(point);
         let moved: Vec<DVec2> = self.projected().iter().map(|v| *v - p).collect();
         let n = moved.len();

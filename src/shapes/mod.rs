@@ -12,12 +12,17 @@ mod sphere;
 use glam::DVec3;
 use serde::Serialize;
 
-pub use cone::{Cone, ConeWorking};
-pub use crossing::{CrossingFigure, EdgeCrossing};
-pub use patch::{Patch, PatchWorking, blended_normal};
-pub use plane::{Plane, PlaneWorking};
-pub use polygon::{Axis, CrossingTest, Polygon, PolygonWorking, count_crossings, crosses};
-pub use sphere::{RootChoice, Sphere, SphereWorking};
+pub use cone::Cone;
+pub(crate) use cone::ConeWorking;
+pub(crate) use crossing::CrossingFigure;
+pub use patch::Patch;
+pub(crate) use patch::{PatchWorking, blended_normal};
+pub use plane::Plane;
+pub(crate) use plane::PlaneWorking;
+pub use polygon::{Axis, Polygon, crosses};
+pub(crate) use polygon::{PolygonWorking, count_crossings};
+pub(crate) use sphere::SphereWorking;
+pub use sphere::{RootChoice, Sphere};
 
 use crate::math::{Interval, Ray};
 
@@ -48,18 +53,18 @@ pub enum Working {
 
 /// Up to two ray distances where a segment crosses a surface, in increasing order.
 #[derive(Clone, Copy, Debug)]
-pub struct Roots {
+pub(crate) struct Roots {
     ts: [f64; 2],
     count: usize,
 }
 
 impl Roots {
-    pub const NONE: Roots = Roots {
+    pub(crate) const NONE: Roots = Roots {
         ts: [0.0; 2],
         count: 0,
     };
 
-    pub fn of_one(t: Option<f64>) -> Roots {
+    pub(crate) fn of_one(t: Option<f64>) -> Roots {
         let mut roots = Roots::NONE;
         if let Some(t) = t {
             roots.push(t);
@@ -84,7 +89,7 @@ impl Roots {
         self.count += 1;
     }
 
-    pub fn as_slice(&self) -> &[f64] {
+    pub(crate) fn as_slice(&self) -> &[f64] {
         &self.ts[..self.count]
     }
 }
@@ -92,7 +97,7 @@ impl Roots {
 impl Shape {
     /// The nearest distance in `range` where the ray hits the surface.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, range: Interval) -> Option<f64> {
+    pub(crate) fn intersect(&self, ray: &Ray, range: Interval) -> Option<f64> {
         match self {
             Shape::Sphere(s) => s.solve(ray, range).t(),
             Shape::Plane(p) => p.solve(ray, range).hit_t(),
@@ -104,7 +109,7 @@ impl Shape {
 
     /// Every crossing of the segment `range` of the ray, for shadow rays.
     #[inline]
-    pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {
+    pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         match self {
             Shape::Sphere(s) => s.roots(ray, range),
             Shape::Plane(p) => p.roots(ray, range),
@@ -115,7 +120,7 @@ impl Shape {
     }
 
     /// The same computation as `intersect`, with every intermediate value kept.
-    pub fn working(&self, ray: &Ray, range: Interval) -> Working {
+    pub(crate) fn working(&self, ray: &Ray, range: Interval) -> Working {
         match self {
             Shape::Sphere(s) => Working::Sphere(s.solve(ray, range)),
             Shape::Plane(p) => Working::Plane(p.solve(ray, range)),
@@ -134,7 +139,7 @@ impl Shape {
     }
 
     /// N_g at a point of the surface, unit length, before facing the ray (MODEL §3).
-    pub fn geometric_normal(&self, point: DVec3) -> DVec3 {
+    pub(crate) fn geometric_normal(&self, point: DVec3) -> DVec3 {
         match self {
             Shape::Sphere(s) => s.normal_at(point),
             Shape::Plane(p) => p.normal,
@@ -176,37 +181,37 @@ pub struct Aabb {
 }
 
 impl Aabb {
-    pub const EMPTY: Aabb = Aabb {
+    pub(crate) const EMPTY: Aabb = Aabb {
         min: DVec3::INFINITY,
         max: DVec3::NEG_INFINITY,
     };
 
-    pub fn new(min: DVec3, max: DVec3) -> Self {
+    pub(crate) fn new(min: DVec3, max: DVec3) -> Self {
         Self { min, max }
     }
 
-    pub fn around(points: &[DVec3]) -> Self {
+    pub(crate) fn around(points: &[DVec3]) -> Self {
         points
             .iter()
             .fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(*p, *p)))
     }
 
-    pub fn union(&self, other: &Aabb) -> Aabb {
+    pub(crate) fn union(&self, other: &Aabb) -> Aabb {
         Aabb::new(self.min.min(other.min), self.max.max(other.max))
     }
 
-    pub fn diagonal(&self) -> f64 {
+    pub(crate) fn diagonal(&self) -> f64 {
         (self.max - self.min).length()
     }
 
     /// True when the point lies in the box, its faces included.
-    pub fn contains(&self, point: DVec3) -> bool {
+    pub(crate) fn contains(&self, point: DVec3) -> bool {
         point.cmpge(self.min).all() && point.cmple(self.max).all()
     }
 
     /// Whether the ray meets the box, faces included, for some t in `range`
     /// (the slab test). Used by the recorder only, never by a render.
-    pub fn crossed_by(&self, ray: &Ray, range: Interval) -> bool {
+    pub(crate) fn crossed_by(&self, ray: &Ray, range: Interval) -> bool {
         let (mut near, mut far) = (range.min, range.max);
         for axis in 0..3 {
             let (o, d) = (ray.origin[axis], ray.direction[axis]);

@@ -11,19 +11,19 @@ use super::polygon::{Axis, Polygon, PolygonWorking};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
-    pub polygon: Polygon,
+    pub(crate) polygon: Polygon,
     /// One unit normal per vertex.
-    pub normals: Vec<DVec3>,
+    pub(crate) normals: Vec<DVec3>,
 }
 
 /// Where in the fan a hit landed and how its normal was blended.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct PatchWorking {
-    pub polygon: PolygonWorking,
+    pub(crate) polygon: PolygonWorking,
     /// The fan triangle (v0, v_i, v_i+1) that holds the hit: i.
-    pub fan_triangle: Option<usize>,
+    pub(crate) fan_triangle: Option<usize>,
     /// Barycentric weights of v0, v_i, v_i+1.
-    pub barycentric: Option<[f64; 3]>,
+    pub(crate) barycentric: Option<[f64; 3]>,
 }
 
 impl Patch {
@@ -51,12 +51,12 @@ impl Patch {
     }
 
     /// The fan triangle holding `point` and the point's barycentric weights in it.
-    pub fn locate(&self, point: DVec3) -> (usize, [f64; 3]) {
+    pub(crate) fn locate(&self, point: DVec3) -> (usize, [f64; 3]) {
         locate(self.polygon.projected(), self.polygon.dropped, point)
     }
 
     /// The interpolated unit normal at a point of the patch.
-    pub fn normal_at(&self, point: DVec3) -> DVec3 {
+    pub(crate) fn normal_at(&self, point: DVec3) -> DVec3 {
         blended_normal(
             self.polygon.projected(),
             self.polygon.dropped,
@@ -97,7 +97,7 @@ fn locate(projected: &[DVec2], dropped: Axis, point: DVec3) -> (usize, [f64; 3])
 /// The vertex normals blended at `point` with its weights in the fan
 /// triangle holding it, normalized; `flat` (the polygon's normal) where the
 /// blend vanishes.
-pub fn blended_normal(
+pub(crate) fn blended_normal(
     projected: &[DVec2],
     dropped: Axis,
     normals: &[DVec3],

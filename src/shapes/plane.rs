@@ -10,27 +10,27 @@ use crate::math::{Interval, Ray, exceeds};
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plane {
     /// P_n = [A, B, C], unit length.
-    pub normal: DVec3,
-    pub d: f64,
+    pub(crate) normal: DVec3,
+    pub(crate) d: f64,
 }
 
 /// The working of the lecture: v_d = P_n·d, v_0 = -(P_n·o + D), t = v_0 / v_d.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct PlaneWorking {
-    pub v_d: f64,
-    pub v_0: f64,
+    pub(crate) v_d: f64,
+    pub(crate) v_0: f64,
     /// v_d = 0: the ray runs parallel to the plane.
-    pub parallel: bool,
+    pub(crate) parallel: bool,
     /// v_d > 0: the plane faces away from the ray (still hit: surfaces are two-sided).
-    pub faces_away: bool,
+    pub(crate) faces_away: bool,
     /// The distance to the plane, when not parallel (negative: behind the ray).
     pub t: Option<f64>,
     /// t lies outside the accepted interval (behind the ray, or too far).
-    pub behind: bool,
+    pub(crate) behind: bool,
 }
 
 impl PlaneWorking {
-    pub fn hit_t(&self) -> Option<f64> {
+    pub(crate) fn hit_t(&self) -> Option<f64> {
         if self.behind { None } else { self.t }
     }
 }
@@ -51,7 +51,7 @@ impl Plane {
         })
     }
 
-    pub fn solve(&self, ray: &Ray, range: Interval) -> PlaneWorking {
+    pub(crate) fn solve(&self, ray: &Ray, range: Interval) -> PlaneWorking {
         let v_d = self.normal.dot(ray.direction);
         let v_0 = -(self.normal.dot(ray.origin) + self.d);
         if v_d == 0.0 {
@@ -75,7 +75,7 @@ impl Plane {
         }
     }
 
-    pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {
+    pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         Roots::of_one(self.solve(ray, range).hit_t())
     }
 }

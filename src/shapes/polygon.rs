@@ -12,10 +12,10 @@ use crate::math::{Interval, Ray, exceeds};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
-    pub vertices: Vec<DVec3>,
+    pub(crate) vertices: Vec<DVec3>,
     /// The polygon's plane; its normal is the normalized (v1 - v0) x (v2 - v0).
-    pub plane: Plane,
-    pub dropped: Axis,
+    pub(crate) plane: Plane,
+    pub(crate) dropped: Axis,
     /// The vertices projected to (U, V) by dropping `dropped`, computed once.
     projected: Vec<DVec2>,
 }
@@ -39,16 +39,16 @@ pub struct PolygonWorking {
 
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct CrossingTest {
-    pub dropped_axis: Axis,
+    pub(crate) dropped_axis: Axis,
     /// The plane's hit point projected to (U, V); the vertices are translated by its negation.
-    pub projected_point: [f64; 2],
+    pub(crate) projected_point: [f64; 2],
     /// How many edges cross the +U axis: odd means inside.
     pub crossings: u32,
     pub inside: bool,
 }
 
 impl PolygonWorking {
-    pub fn hit_t(&self) -> Option<f64> {
+    pub(crate) fn hit_t(&self) -> Option<f64> {
         match self.crossing {
             Some(test) if test.inside => self.plane.hit_t(),
             _ => None,
@@ -58,7 +58,7 @@ impl PolygonWorking {
 
 impl Axis {
     /// The axis of the largest absolute component; on a tie the first of x, y, z.
-    pub fn dominant(v: DVec3) -> Axis {
+    pub(crate) fn dominant(v: DVec3) -> Axis {
         let a = v.abs();
         if a.x >= a.y && a.x >= a.z {
             Axis::X
@@ -70,7 +70,7 @@ impl Axis {
     }
 
     /// (U, V): the two remaining coordinates in x-y-z order.
-    pub fn project(self, p: DVec3) -> DVec2 {
+    pub(crate) fn project(self, p: DVec3) -> DVec2 {
         match self {
             Axis::X => DVec2::new(p.y, p.z),
             Axis::Y => DVec2::new(p.x, p.z),
@@ -83,13 +83,13 @@ impl Axis {
 /// V = 0: one end has V >= 0 and the other V < 0, so a vertex on the line
 /// counts as above it.
 #[inline]
-pub fn straddles(a: DVec2, b: DVec2) -> bool {
+pub(crate) fn straddles(a: DVec2, b: DVec2) -> bool {
     (a.y >= 0.0) != (b.y >= 0.0)
 }
 
 /// The U where a straddling edge from a to b meets V = 0.
 #[inline]
-pub fn u_at_axis(a: DVec2, b: DVec2) -> f64 {
+pub(crate) fn u_at_axis(a: DVec2, b: DVec2) -> f64 {
     a.x - a.y * (b.x - a.x) / (b.y - a.y)
 }
 
@@ -101,7 +101,7 @@ pub fn crosses(a: DVec2, b: DVec2) -> bool {
 
 /// How many edges of the projected polygon cross the +U axis from `p`.
 #[inline]
-pub fn count_crossings(projected: &[DVec2], p: DVec2) -> u32 {
+pub(crate) fn count_crossings(projected: &[DVec2], p: DVec2) -> u32 {
     let mut crossings = 0;
     let mut a = projected[projected.len() - 1] - p;
     for vertex in projected {
@@ -148,20 +148,20 @@ impl Polygon {
         })
     }
 
-    pub fn solve(&self, ray: &Ray, range: Interval) -> PolygonWorking {
+    pub(crate) fn solve(&self, ray: &Ray, range: Interval) -> PolygonWorking {
         let plane = self.plane.solve(ray, range);
         let crossing = plane.hit_t().map(|t| self.crossing_test(ray.at(t)));
         PolygonWorking { plane, crossing }
     }
 
-    pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {
+    pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         Roots::of_one(self.solve(ray, range).hit_t())
     }
 
     /// Counts the edges that cross the +U axis once the point is moved to the
     /// origin. A vertex with V >= 0 is above the axis, so a vertex lying on it
     /// is counted once.
-    pub fn crossing_test(&self, point: DVec3) -> CrossingTest {
+    pub(crate) fn crossing_test(&self, point: DVec3) -> CrossingTest {
         let p = self.dropped.project(point);
         let crossings = count_crossings(&self.projected, p);
         CrossingTest {
@@ -176,7 +176,7 @@ impl Polygon {
         &self.projected
     }
 
-    pub fn bounds(&self) -> Aabb {
+    pub(crate) fn bounds(&self) -> Aabb {
         Aabb::around(&self.vertices)
     }
 }

@@ -8,8 +8,8 @@ use crate::math::{Interval, Ray, exceeds};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sphere {
-    pub center: DVec3,
-    pub radius: f64,
+    pub(crate) center: DVec3,
+    pub(crate) radius: f64,
 }
 
 /// Which root of the quadratic a ray took, and so why.
@@ -29,12 +29,12 @@ pub enum RootChoice {
 /// The working of the lecture: A t^2 + B t + C = 0 and its roots t0 <= t1.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SphereWorking {
-    pub a: f64,
-    pub b: f64,
-    pub c: f64,
+    pub(crate) a: f64,
+    pub(crate) b: f64,
+    pub(crate) c: f64,
     pub discriminant: f64,
     /// Both roots, or `None` when the discriminant is negative.
-    pub t0: Option<f64>,
+    pub(crate) t0: Option<f64>,
     pub t1: Option<f64>,
     pub choice: RootChoice,
 }
@@ -50,7 +50,7 @@ impl Sphere {
     }
 
     /// A = |d|^2, B = 2 d·(o - c), C = |o - c|^2 - r^2, the discriminant and roots.
-    pub fn solve(&self, ray: &Ray, range: Interval) -> SphereWorking {
+    pub(crate) fn solve(&self, ray: &Ray, range: Interval) -> SphereWorking {
         let oc = ray.origin - self.center;
         let a = ray.direction.length_squared();
         let b = 2.0 * ray.direction.dot(oc);
@@ -88,7 +88,7 @@ impl Sphere {
         }
     }
 
-    pub fn roots(&self, ray: &Ray, range: Interval) -> Roots {
+    pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         let w = self.solve(ray, range);
         match (w.t0, w.t1) {
             (Some(t0), Some(t1)) => Roots::of_pair(t0, t1, range),
@@ -96,11 +96,11 @@ impl Sphere {
         }
     }
 
-    pub fn normal_at(&self, point: DVec3) -> DVec3 {
+    pub(crate) fn normal_at(&self, point: DVec3) -> DVec3 {
         (point - self.center) / self.radius
     }
 
-    pub fn bounds(&self) -> Aabb {
+    pub(crate) fn bounds(&self) -> Aabb {
         Aabb::new(
             self.center - DVec3::splat(self.radius),
             self.center + DVec3::splat(self.radius),
@@ -110,7 +110,7 @@ impl Sphere {
 
 impl SphereWorking {
     /// The distance the ray takes, following `choice`.
-    pub fn t(&self) -> Option<f64> {
+    pub(crate) fn t(&self) -> Option<f64> {
         match self.choice {
             RootChoice::NearerRoot => self.t0,
             RootChoice::FartherRoot => self.t1,

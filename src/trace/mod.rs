@@ -6,9 +6,8 @@ mod rules;
 mod stats;
 mod tracer;
 
-pub use recorder::{
-    Blocker, ChildTerm, DepthLimit, LightTerm, NoRecorder, NotCast, PruneRule, RayKind, Recorder,
-    Refraction, ShadowOutcome, SurfaceHit,
-};
+pub use recorder::{Blocker, NoRecorder, NotCast, PruneRule, RayKind, Refraction};
+pub(crate) use recorder::{ChildTerm, DepthLimit, LightTerm, Recorder, SurfaceHit};
 pub use stats::RayStats;
-pub use tracer::{trace, trace_in_row};
+pub use tracer::trace;
+pub(crate) use tracer::trace_in_row;

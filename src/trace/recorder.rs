@@ -21,57 +21,57 @@ pub enum RayKind {
 /// The surface a ray hit, expanded from the winning candidate only.
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceHit {
-    pub object: usize,
-    pub t: f64,
-    pub point: DVec3,
+    pub(crate) object: usize,
+    pub(crate) t: f64,
+    pub(crate) point: DVec3,
     /// N_g, unit length (for a patch, the interpolated normal).
-    pub geometric_normal: DVec3,
+    pub(crate) geometric_normal: DVec3,
     /// N: N_g turned to face the incoming ray (N·d <= 0), unit length.
-    pub normal: DVec3,
+    pub(crate) normal: DVec3,
     /// N_g·d < 0: the ray arrives on the front side.
-    pub entering: bool,
+    pub(crate) entering: bool,
 }
 
 /// One crossing of a shadow ray's segment.
 #[derive(Clone, Copy, Debug)]
 pub struct Blocker {
-    pub object: usize,
-    pub t: f64,
-    pub kt: f64,
+    pub(crate) object: usize,
+    pub(crate) t: f64,
+    pub(crate) kt: f64,
 }
 
 /// The result of one shadow ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ShadowOutcome {
+pub(crate) struct ShadowOutcome {
     /// S_i: the product of k_t over the crossings.
-    pub s: f64,
+    pub(crate) s: f64,
     /// How many crossings were found (the render stops at the first opaque one).
-    pub crossings: u32,
-    pub cost: Cost,
+    pub(crate) crossings: u32,
+    pub(crate) cost: Cost,
 }
 
 /// Everything one light contributes at a hit (MODEL §4).
 #[derive(Clone, Copy, Debug)]
 pub struct LightTerm {
-    pub light: usize,
+    pub(crate) light: usize,
     /// L, unit length.
-    pub to_light: DVec3,
-    pub distance: f64,
-    pub n_dot_l: f64,
+    pub(crate) to_light: DVec3,
+    pub(crate) distance: f64,
+    pub(crate) n_dot_l: f64,
     /// N·L <= 0: no shadow ray, no contribution.
-    pub faces_away: bool,
+    pub(crate) faces_away: bool,
     /// The light is closer to the point than EPS: L is undefined, so it is
     /// recorded as L = 0, N·L = 0, facing away (MODEL §4).
-    pub at_point: bool,
+    pub(crate) at_point: bool,
     /// The shadow ray's result; `None` when none was cast (faces away, or shadows off).
-    pub shadow: Option<ShadowOutcome>,
-    pub f_att: f64,
+    pub(crate) shadow: Option<ShadowOutcome>,
+    pub(crate) f_att: f64,
     /// Which specular model this material used: Blinn's N·H or Phong's R·V.
-    pub specular_model: SpecularModel,
+    pub(crate) specular_model: SpecularModel,
     /// N·H (Blinn) or R·V (Phong), before clamping to 0.
-    pub specular_cosine: f64,
-    pub diffuse: Color,
-    pub specular: Color,
+    pub(crate) specular_cosine: f64,
+    pub(crate) diffuse: Color,
+    pub(crate) specular: Color,
 }
 
 /// Snell's law at a transparent surface (MODEL §5).
@@ -89,16 +89,11 @@ pub struct Refraction {
 /// A secondary ray's returned colour and what it adds to its parent.
 #[derive(Clone, Copy, Debug)]
 pub struct ChildTerm {
-    pub kind: RayKind,
-    pub weight: f64,
+    pub(crate) kind: RayKind,
     /// Distance attenuation; 1 for a miss.
-    pub attenuation: f64,
-    /// The child's hit distance, `None` for a miss.
-    pub distance: Option<f64>,
-    /// The colour the child ray returned.
-    pub color: Color,
+    pub(crate) attenuation: f64,
     /// weight * attenuation * color: the term added to the parent.
-    pub contribution: Color,
+    pub(crate) contribution: Color,
 }
 
 /// Why a secondary ray was not cast (MODEL §5).
@@ -130,13 +125,13 @@ pub struct NotCast {
 /// material, or its switch off).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct DepthLimit {
-    pub reflected: f64,
-    pub transmitted: f64,
+    pub(crate) reflected: f64,
+    pub(crate) transmitted: f64,
 }
 
 impl DepthLimit {
     /// The rays the limit cut, by kind and weight: those of weight above 0.
-    pub fn cut(self) -> impl Iterator<Item = (RayKind, f64)> {
+    pub(crate) fn cut(self) -> impl Iterator<Item = (RayKind, f64)> {
         [
             (RayKind::Reflected, self.reflected),
             (RayKind::Transmitted, self.transmitted),

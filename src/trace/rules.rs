@@ -21,7 +21,7 @@ pub(super) struct Rules<'a, const MISTAKES: bool> {
 }
 
 impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
-    pub fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
+    pub(crate) fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
         Rules { settings }
     }
 
@@ -32,21 +32,21 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Whether the ambient term is added: the switch, unless `no-ambient`.
     #[inline]
-    pub fn ambient(&self) -> bool {
+    pub(crate) fn ambient(&self) -> bool {
         self.settings.switches.ambient && !self.has(Mistake::NoAmbient)
     }
 
     /// Whether a light that faces the point casts a shadow ray: the switch
     /// (off, every light is unblocked, S = 1).
     #[inline]
-    pub fn shadows(&self) -> bool {
+    pub(crate) fn shadows(&self) -> bool {
         self.settings.switches.shadows
     }
 
     /// The mirror weight of the reflected ray: k_s, or 0 with reflection
     /// switched off (a TIR's k_t still moves to it).
     #[inline]
-    pub fn mirror_weight(&self, material: &Material) -> f64 {
+    pub(crate) fn mirror_weight(&self, material: &Material) -> f64 {
         if self.settings.switches.reflection {
             material.ks
         } else {
@@ -56,14 +56,14 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Whether the material refracts: k_t > 0 with transmission switched on.
     #[inline]
-    pub fn transmits(&self, material: &Material) -> bool {
+    pub(crate) fn transmits(&self, material: &Material) -> bool {
         material.kt > 0.0 && self.settings.switches.transmission
     }
 
     /// Hits at a depth below this spawn secondary rays: max_depth, or one
     /// fewer under `depth-off-by-one`.
     #[inline]
-    pub fn spawn_below_depth(&self) -> u32 {
+    pub(crate) fn spawn_below_depth(&self) -> u32 {
         let max_depth = self.settings.max_depth;
         if self.has(Mistake::DepthOffByOne) {
             max_depth.saturating_sub(1)
@@ -74,7 +74,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// (c1, c2, c3) of f_att; (1, 0, 0), so f_att = 1, under `no-light-attenuation`.
     #[inline]
-    pub fn light_attenuation(&self) -> [f64; 3] {
+    pub(crate) fn light_attenuation(&self) -> [f64; 3] {
         if self.has(Mistake::NoLightAttenuation) {
             [1.0, 0.0, 0.0]
         } else {
@@ -85,7 +85,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The material's specular model, else the scene's; Phong for every
     /// material under `phong-not-blinn`.
     #[inline]
-    pub fn specular_model(&self, material: &Material) -> SpecularModel {
+    pub(crate) fn specular_model(&self, material: &Material) -> SpecularModel {
         if self.has(Mistake::PhongNotBlinn) {
             SpecularModel::Phong
         } else {
@@ -97,7 +97,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// facing the ray (MODEL §3), or N_g under `no-normal-flip`. Reflection
     /// and refraction always use N.
     #[inline]
-    pub fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
+    pub(crate) fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
         if self.has(Mistake::NoNormalFlip) {
             hit.geometric_normal
         } else {
@@ -108,7 +108,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The shadow segment towards a light `distance` away: (EPS, d_L); it
     /// starts at 0 under `shadow-acne` and has no end under `shadows-past-light`.
     #[inline]
-    pub fn shadow_segment(&self, distance: f64) -> Interval {
+    pub(crate) fn shadow_segment(&self, distance: f64) -> Interval {
         let start = if self.has(Mistake::ShadowAcne) {
             0.0
         } else {
@@ -124,14 +124,14 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Every shadow crossing counts as k_t = 0 (`opaque-shadows`).
     #[inline]
-    pub fn opaque_shadows(&self) -> bool {
+    pub(crate) fn opaque_shadows(&self) -> bool {
         self.has(Mistake::OpaqueShadows)
     }
 
     /// Snell's eta: 1 / ior entering, ior leaving (MODEL §5); the other way
     /// round under `eta-inverted`.
     #[inline]
-    pub fn eta(&self, entering: bool, ior: f64) -> f64 {
+    pub(crate) fn eta(&self, entering: bool, ior: f64) -> f64 {
         if entering != self.has(Mistake::EtaInverted) {
             1.0 / ior
         } else {
@@ -141,7 +141,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// At TIR k_t moves to the reflected ray, unless `tir-dropped`.
     #[inline]
-    pub fn tir_adds_kt(&self) -> bool {
+    pub(crate) fn tir_adds_kt(&self) -> bool {
         !self.has(Mistake::TirDropped)
     }
 }

@@ -9,16 +9,16 @@ use crate::math::{Color, Ray};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct RayStats {
     pub primary: u64,
-    pub primary_hit: u64,
+    pub(crate) primary_hit: u64,
     /// Reflected rays, TIR included.
     pub reflected: u64,
     pub transmitted: u64,
     /// Secondary rays not cast: below `min_weight` or over `max_rays`.
     pub not_cast: u64,
     /// Shadow rays cast (lights facing away cast none).
-    pub shadow: u64,
+    pub(crate) shadow: u64,
     /// Shadow rays with at least one crossing, transparent or not.
-    pub shadow_blocked: u64,
+    pub(crate) shadow_blocked: u64,
     /// Shadow rays fully blocked (S = 0).
     pub shadow_opaque: u64,
     /// What the closest-hit queries of all primary, reflected and transmitted

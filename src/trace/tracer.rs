@@ -31,7 +31,7 @@ pub fn trace<R: Recorder>(scene: &Scene, settings: &Settings, ray: &Ray, rec: &m
 
 /// `trace` for a render that goes along a row with one shadow cache: the
 /// colour is the same, only the shadow queries get cheaper.
-pub fn trace_in_row<R: Recorder>(
+pub(crate) fn trace_in_row<R: Recorder>(
     scene: &Scene,
     settings: &Settings,
     ray: &Ray,
@@ -373,10 +373,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         let contribution = traced.color * (weight * attenuation);
         self.rec.child(&ChildTerm {
             kind,
-            weight,
             attenuation,
-            distance: traced.distance,
-            color: traced.color,
             contribution,
         });
         contribution

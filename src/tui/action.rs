@@ -107,12 +107,12 @@ impl Pane {
         Pane::Diagram,
     ];
 
-    pub fn next(self) -> Pane {
+    pub(crate) fn next(self) -> Pane {
         let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
         Pane::ALL[(i + 1) % Pane::ALL.len()]
     }
 
-    pub fn previous(self) -> Pane {
+    pub(crate) fn previous(self) -> Pane {
         let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
         Pane::ALL[(i + Pane::ALL.len() - 1) % Pane::ALL.len()]
     }

@@ -33,7 +33,7 @@ pub fn action(event: &Event, app: &App) -> Option<Action> {
 
 /// A key's action in `mode` (help or menu open or not) with `focus` the
 /// focused pane.
-pub fn key_action(key: &KeyEvent, mode: Mode, focus: Pane) -> Option<Action> {
+pub(crate) fn key_action(key: &KeyEvent, mode: Mode, focus: Pane) -> Option<Action> {
     match (keymap::key_command(key, mode)?, key.code) {
         (Command::Type, KeyCode::Char(c)) => Some(Action::PromptChar(c)),
         (Command::Type, _) => None,

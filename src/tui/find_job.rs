@@ -15,15 +15,15 @@ use crate::tui::action::Find;
 use crate::tui::view::find;
 
 /// The first pixel after the start that has what was looked for.
-pub struct Found {
-    pub pixel: (u32, u32),
-    pub tree: RayTree,
+pub(crate) struct Found {
+    pub(crate) pixel: (u32, u32),
+    pub(crate) tree: RayTree,
     /// Its first matching event.
-    pub event: usize,
+    pub(crate) event: usize,
 }
 
 /// A running find.
-pub struct FindJob {
+pub(crate) struct FindJob {
     /// The row of the pixel being recorded, for "row N of H".
     row: Arc<AtomicU32>,
     cancel: Arc<AtomicBool>,
@@ -34,7 +34,7 @@ pub struct FindJob {
 impl FindJob {
     /// Scans the image after `from` for `what` (`object`: the breakpoint
     /// object, see `find::first_event`): on the caller's thread when `sync` (tests), else on its own.
-    pub fn start(
+    pub(crate) fn start(
         scene: Arc<Scene>,
         settings: Settings,
         (what, object): (Find, Option<usize>),
@@ -81,12 +81,12 @@ impl FindJob {
     }
 
     /// The scan's outcome once it has ended: `Some(None)` when no pixel has it.
-    pub fn poll(&self) -> Option<Option<Found>> {
+    pub(crate) fn poll(&self) -> Option<Option<Found>> {
         self.result.try_recv().ok()
     }
 
     /// The row being scanned, from 0.
-    pub fn row(&self) -> u32 {
+    pub(crate) fn row(&self) -> u32 {
         self.row.load(Ordering::Relaxed)
     }
 }

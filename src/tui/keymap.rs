@@ -8,7 +8,7 @@ use super::action::{Action, Breakpoint, Find, Pane, Step};
 use crate::scene::Switch;
 
 /// How far Shift (or H J K L) moves the pixel cursor.
-pub const BIG_STEP: i32 = 10;
+pub(crate) const BIG_STEP: i32 = 10;
 
 /// One input a row answers to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,8 +52,9 @@ pub enum Mode {
     Find,
 }
 
+#[cfg(test)]
 impl Mode {
-    pub const ALL: [Mode; 5] = [
+    pub(crate) const ALL: [Mode; 5] = [
         Mode::Browsing,
         Mode::Help,
         Mode::Menu,
@@ -85,10 +86,10 @@ pub enum Command {
 
 /// The status line's short form of a row: `rank` orders the hints.
 #[derive(Clone, Copy, Debug)]
-pub struct Hint {
-    pub rank: u8,
-    pub keys: &'static str,
-    pub what: &'static str,
+pub(crate) struct Hint {
+    pub(crate) rank: u8,
+    pub(crate) keys: &'static str,
+    pub(crate) what: &'static str,
 }
 
 /// One row: its inputs, each with its command, and the help text.
@@ -97,7 +98,7 @@ pub struct Binding {
     pub context: Context,
     pub inputs: &'static [(Input, Command)],
     pub what: &'static str,
-    pub hint: Option<Hint>,
+    pub(crate) hint: Option<Hint>,
 }
 
 const ROW: Binding = Binding {
@@ -122,7 +123,7 @@ const fn hint(rank: u8, keys: &'static str, what: &'static str) -> Option<Hint> 
 const B: i32 = BIG_STEP;
 
 /// Every key, grouped as the help shows them: (group title, rows).
-pub const KEYMAP: &[(&str, &[Binding])] = &[
+pub(crate) const KEYMAP: &[(&str, &[Binding])] = &[
     ("Pixel and view", PIXEL_AND_VIEW),
     ("Step through the trace", STEPPING),
     ("Teaching toggles (re-render at once)", TOGGLES),
@@ -505,12 +506,12 @@ pub fn rows() -> impl Iterator<Item = &'static Binding> {
 
 /// The command for `key`, from the rows that apply: the most specific input
 /// wins (Ctrl+ or Shift+ a key, then the key, then any key).
-pub fn key_command(key: &KeyEvent, mode: Mode) -> Option<Command> {
+pub(crate) fn key_command(key: &KeyEvent, mode: Mode) -> Option<Command> {
     lookup(mode, |input| input.fit(key))
 }
 
 /// The command for a mouse input (`Click`, `WheelUp`, `WheelDown`).
-pub fn mouse_command(mouse: Input, mode: Mode) -> Option<Command> {
+pub(crate) fn mouse_command(mouse: Input, mode: Mode) -> Option<Command> {
     lookup(mode, |input| (input == mouse).then_some(1))
 }
 
@@ -599,14 +600,14 @@ impl Binding {
 }
 
 /// The status line's hints, in their order.
-pub fn hints() -> Vec<Hint> {
+pub(crate) fn hints() -> Vec<Hint> {
     let mut hints: Vec<Hint> = rows().filter_map(|row| row.hint).collect();
     hints.sort_by_key(|h| h.rank);
     hints
 }
 
 /// What the arrows and + - 0 do while the diagram has the focus.
-pub const DIAGRAM_HINTS: [Hint; 3] = [
+pub(crate) const DIAGRAM_HINTS: [Hint; 3] = [
     Hint {
         rank: 2,
         keys: "arrows",
@@ -625,7 +626,7 @@ pub const DIAGRAM_HINTS: [Hint; 3] = [
 ];
 
 /// The hints with `focus` on `pane`: in the diagram the arrows pan it.
-pub fn hints_in(pane: Pane) -> Vec<Hint> {
+pub(crate) fn hints_in(pane: Pane) -> Vec<Hint> {
     let hints = hints();
     if pane != Pane::Diagram {
         return hints;

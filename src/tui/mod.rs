@@ -24,14 +24,14 @@
 //! The main loop is generic over the ratatui `Backend`, so tests drive the
 //! real app on a `TestBackend`.
 
-pub mod action;
+pub(crate) mod action;
 pub mod app;
 pub mod event;
-pub mod find_job;
+pub(crate) mod find_job;
 pub mod keymap;
 pub mod pane;
-pub mod render_job;
-pub mod source;
+pub(crate) mod render_job;
+pub(crate) mod source;
 mod terminal;
 pub mod view;
 
@@ -46,10 +46,9 @@ use crossterm::event::Event;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-pub use crate::diagram::DiagramPlane;
 pub use crate::scene::Switch;
 pub use action::{Action, Breakpoint, Find, Pane, Picture, Step};
-pub use app::{App, Overlay, StudentComparison};
+pub use app::App;
 pub use keymap::Mode;
 
 /// Where terminal events come from: the real terminal, or a script in tests.
@@ -69,7 +68,7 @@ pub trait Input {
 }
 
 /// crossterm's event queue.
-pub struct TerminalInput;
+pub(crate) struct TerminalInput;
 
 impl Input for TerminalInput {
     fn next(&mut self, timeout: Duration) -> io::Result<Option<Event>> {
@@ -170,7 +169,7 @@ where
 /// debugger in the terminal. The student's image is read and the pixel
 /// checked first: a bad one is reported (exit 1) whether or not there is a
 /// terminal, and before it is taken.
-pub fn run(
+pub(crate) fn run(
     path: Option<&Path>,
     compare: Option<&Path>,
     pixel: Option<(u32, u32)>,

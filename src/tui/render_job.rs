@@ -21,33 +21,33 @@ use crate::trace::NoRecorder;
 
 /// What to render: the image alone, or every term (which includes the image).
 #[derive(Clone)]
-pub struct Request {
-    pub generation: u64,
-    pub scene: Arc<Scene>,
+pub(crate) struct Request {
+    pub(crate) generation: u64,
+    pub(crate) scene: Arc<Scene>,
     /// The settings to trace with: the scene's own or the user's toggles.
-    pub settings: Settings,
-    pub terms: bool,
+    pub(crate) settings: Settings,
+    pub(crate) terms: bool,
 }
 
 /// A finished render.
-pub enum Output {
+pub(crate) enum Output {
     Image(RgbImage),
     Terms(TermImages),
     /// Stopped early by a newer request or by quitting: nothing to show.
     Cancelled,
 }
 
-pub struct Finished {
-    pub generation: u64,
-    pub output: Result<Output, String>,
-    pub elapsed: Duration,
+pub(crate) struct Finished {
+    pub(crate) generation: u64,
+    pub(crate) output: Result<Output, String>,
+    pub(crate) elapsed: Duration,
 }
 
 /// How far the running render is, for the progress indicator.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Progress {
-    pub rows_done: u32,
-    pub rows: u32,
+pub(crate) struct Progress {
+    pub(crate) rows_done: u32,
+    pub(crate) rows: u32,
 }
 
 struct Running {
@@ -58,7 +58,7 @@ struct Running {
 }
 
 /// Starts renders and collects their results.
-pub struct Renderer {
+pub(crate) struct Renderer {
     /// Render on the caller's thread (tests): results are ready at once.
     sync: bool,
     sender: Sender<Finished>,
@@ -70,7 +70,7 @@ pub struct Renderer {
 }
 
 impl Renderer {
-    pub fn new(sync: bool) -> Self {
+    pub(crate) fn new(sync: bool) -> Self {
         let (sender, receiver) = channel();
         Self {
             sync,
@@ -84,7 +84,7 @@ impl Renderer {
 
     /// Renders `request` now, or as soon as the running render, cancelled
     /// because this one supersedes it, has stopped.
-    pub fn request(&mut self, request: Request) {
+    pub(crate) fn request(&mut self, request: Request) {
         if let Some(running) = &self.running {
             running.cancel.store(true, Ordering::Relaxed);
             self.pending = Some(request);
@@ -95,32 +95,32 @@ impl Renderer {
 
     /// Drops the pending request and stops the running render at its next
     /// row, without waiting for it.
-    pub fn cancel(&mut self) {
+    pub(crate) fn cancel(&mut self) {
         self.pending = None;
         if let Some(running) = &self.running {
             running.cancel.store(true, Ordering::Relaxed);
         }
     }
 
-    pub fn progress(&self) -> Option<Progress> {
+    pub(crate) fn progress(&self) -> Option<Progress> {
         self.running.as_ref().map(|r| Progress {
             rows_done: r.rows_done.load(Ordering::Relaxed),
             rows: r.rows,
         })
     }
 
-    pub fn busy(&self) -> bool {
+    pub(crate) fn busy(&self) -> bool {
         self.running.is_some() || self.pending.is_some()
     }
 
     /// A preview that came in, if any. It is sent before its render's result,
     /// so draining previews before results never shows a stale one.
-    pub fn poll_preview(&mut self) -> Option<Preview> {
+    pub(crate) fn poll_preview(&mut self) -> Option<Preview> {
         self.previews.1.try_recv().ok()
     }
 
     /// A finished render, if any; starts the pending one when the last ends.
-    pub fn poll(&mut self) -> Option<Finished> {
+    pub(crate) fn poll(&mut self) -> Option<Finished> {
         let finished = self.receiver.try_recv().ok()?;
         self.running = None;
         if let Some(next) = self.pending.take() {
@@ -129,8 +129,9 @@ impl Renderer {
         Some(finished)
     }
 
-    /// Blocks until a render finishes (tests and benchmarks).
-    pub fn wait(&mut self) -> Option<Finished> {
+    /// Blocks until a render finishes (the unit tests).
+    #[cfg(test)]
+    pub(crate) fn wait(&mut self) -> Option<Finished> {
         self.running.as_ref()?;
         let finished = self.receiver.recv().ok()?;
         self.running = None;
@@ -189,9 +190,9 @@ impl Drop for Renderer {
 }
 
 /// A render sent ahead of a large image, scaled up to its size.
-pub struct Preview {
-    pub generation: u64,
-    pub image: RgbImage,
+pub(crate) struct Preview {
+    pub(crate) generation: u64,
+    pub(crate) image: RgbImage,
 }
 
 /// Images with more pixels than this get a preview first.

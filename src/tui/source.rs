@@ -12,21 +12,21 @@ use crate::scene::{Scene, SceneError, Settings};
 /// The scene file, or `None` for the built-in scene, and the size it is
 /// traced at when not its own (a compared image's).
 #[derive(Clone, Debug)]
-pub struct SceneSource {
-    pub path: Option<PathBuf>,
-    pub size: Option<(u32, u32)>,
+pub(crate) struct SceneSource {
+    pub(crate) path: Option<PathBuf>,
+    pub(crate) size: Option<(u32, u32)>,
 }
 
 impl SceneSource {
     /// The name shown in the header.
-    pub fn name(&self) -> String {
+    pub(crate) fn name(&self) -> String {
         match &self.path {
             Some(path) => path.display().to_string(),
             None => builtin::NAME.to_string(),
         }
     }
 
-    pub fn load(&self) -> Result<Scene, SceneError> {
+    pub(crate) fn load(&self) -> Result<Scene, SceneError> {
         let scene = load_file_or_builtin(self.path.as_deref())?;
         match self.size {
             Some((width, height)) => scene.with_size(width, height),
@@ -39,7 +39,11 @@ impl SceneSource {
 /// the user set them;
 /// the specular model and max depth follow the file only where the file
 /// changed them, so an edit to `max_depth` takes effect and a toggle is kept.
-pub fn merge_settings(old_file: &Settings, new_file: &Settings, current: &Settings) -> Settings {
+pub(crate) fn merge_settings(
+    old_file: &Settings,
+    new_file: &Settings,
+    current: &Settings,
+) -> Settings {
     let mut merged = *new_file;
     merged.switches = current.switches;
     merged.mistakes = current.mistakes;
@@ -54,13 +58,13 @@ pub fn merge_settings(old_file: &Settings, new_file: &Settings, current: &Settin
 
 /// Watches a scene file. It watches the file's directory, so editors that
 /// save by writing a new file and renaming it over the old one are seen too.
-pub struct FileWatcher {
+pub(crate) struct FileWatcher {
     _watcher: notify::RecommendedWatcher,
     changes: Receiver<()>,
 }
 
 impl FileWatcher {
-    pub fn new(path: &Path) -> notify::Result<Self> {
+    pub(crate) fn new(path: &Path) -> notify::Result<Self> {
         let name = path.file_name().map(|n| n.to_os_string());
         let dir = match path.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -91,7 +95,7 @@ impl FileWatcher {
     }
 
     /// Whether the file changed since the last call.
-    pub fn changed(&self) -> bool {
+    pub(crate) fn changed(&self) -> bool {
         let mut changed = false;
         while self.changes.try_recv().is_ok() {
             changed = true;

@@ -29,7 +29,7 @@ use signal_hook::iterator::Signals;
 
 /// The signals that end the debugger; each exits with 128 + its number,
 /// as a shell reports a process killed by it.
-pub const SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
+pub(crate) const SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
 
 /// Whether the terminal is ours to give back. The lock also makes a restore
 /// that is under way finish before a second one (a signal during quit) exits.
@@ -45,7 +45,7 @@ static OWN_STOP: AtomicBool = AtomicBool::new(false);
 
 /// Raw mode, the alternate screen and mouse capture, with the signal thread
 /// and the panic hook that undo them.
-pub fn take() -> Result<Terminal<CrosstermBackend<Stdout>>> {
+pub(crate) fn take() -> Result<Terminal<CrosstermBackend<Stdout>>> {
     // Signals first: from the moment raw mode is on, any of them restores it.
     watch_signals().context("cannot watch for signals")?;
     install_panic_hook();
@@ -59,7 +59,7 @@ pub fn take() -> Result<Terminal<CrosstermBackend<Stdout>>> {
 
 /// Gives the terminal back, once; later calls do nothing. Errors are ignored:
 /// on a hangup there is no terminal left to write to, and the rest must run.
-pub fn restore() {
+pub(crate) fn restore() {
     let mut taken = TAKEN.lock().unwrap_or_else(PoisonError::into_inner);
     if !*taken {
         return;
@@ -88,7 +88,7 @@ fn enter(out: &mut impl Write) -> io::Result<()> {
 /// the process again (SIGTTOU, "Stopped (tty output)") until `fg`: it
 /// neither hangs nor spins, and nothing is drawn over the shell meanwhile,
 /// as stdout stays locked until the terminal is ours again.
-pub fn suspend() {
+pub(crate) fn suspend() {
     let taken = TAKEN.lock().unwrap_or_else(PoisonError::into_inner);
     if !*taken {
         return;
@@ -175,13 +175,13 @@ fn cooked() -> bool {
 
 /// Whether the process was continued after a stop since the last call: the
 /// screen must then be cleared and drawn whole.
-pub fn continued() -> bool {
+pub(crate) fn continued() -> bool {
     CONTINUED.swap(false, Ordering::SeqCst)
 }
 
 /// The escape sequences that undo `take`'s: mouse reporting off, colours
 /// reset, the main screen back, the cursor shown.
-pub fn write_restore(out: &mut impl Write) -> io::Result<()> {
+pub(crate) fn write_restore(out: &mut impl Write) -> io::Result<()> {
     queue!(
         out,
         DisableMouseCapture,

@@ -98,7 +98,7 @@ fn module_graph(src: &Path) -> Graph {
 /// last by custom) may build a whole scene and are not the layout.
 fn library_part(file: &Path) -> String {
     let text = fs::read_to_string(file).unwrap();
-    text.split("#[cfg(test)]")
+    text.split("#[cfg(test)]\nmod ")
         .next()
         .unwrap_or_default()
         .to_string()
@@ -249,7 +249,7 @@ fn the_reader_sees_paths_groups_and_circles() {
 /// The module names in `text`'s `use` declarations and inline paths
 /// (`a::b::c` gives a, b and c), outside its unit tests.
 fn path_segments(text: &str) -> BTreeSet<String> {
-    let library = text.split("#[cfg(test)]").next().unwrap_or_default();
+    let library = text.split("#[cfg(test)]\nmod ").next().unwrap_or_default();
     let mut names = BTreeSet::new();
     let ident = |c: char| c.is_alphanumeric() || c == '_';
     for (at, _) in library.match_indices("use ") {
@@ -302,7 +302,7 @@ fn the_debuggers_state_and_views_know_no_pane() {
 fn the_path_reader_sees_uses_groups_and_inline_paths() {
     let text = "use super::view::{layout, tree};\npub use crate::tui::pane;\n\
                 // because it is;\nfn f() { super::super::app::x() }\n\
-                #[cfg(test)]\nuse crate::other;";
+                #[cfg(test)]\nmod tests { use crate::other; }";
     let names: Vec<_> = path_segments(text).into_iter().collect();
     assert_eq!(
         names,
@@ -419,7 +419,7 @@ fn the_diagram_is_assembled_once_and_the_media_only_draw_it() {
     media.push(src.join("tui/pane/diagram.rs"));
     for file in media {
         let text = fs::read_to_string(&file).unwrap();
-        let library = text.split("#[cfg(test)]").next().unwrap_or_default();
+        let library = text.split("#[cfg(test)]\nmod ").next().unwrap_or_default();
         for assembling in ["ray_segments", "involved_objects", "Projection"] {
             assert!(
                 !library.contains(assembling),
@@ -428,4 +428,113 @@ fn the_diagram_is_assembled_once_and_the_media_only_draw_it() {
             );
         }
     }
+}
+
+/// The names of the `pub` items and fields declared in `text` (not `pub mod`
+/// or `pub use`, and not `pub(crate)`).
+fn public_names(text: &str) -> Vec<String> {
+    let mut names = Vec::new();
+    for line in text.lines() {
+        let Some(rest) = line.trim_start().strip_prefix("pub ") else {
+            continue;
+        };
+        let mut words = rest.split(|c: char| !(c.is_alphanumeric() || c == '_'));
+        let first = words.next().unwrap_or_default();
+        let name = match first {
+            "fn" | "struct" | "enum" | "const" | "static" | "type" | "trait" | "union" => {
+                words.find(|w| !w.is_empty())
+            }
+            "unsafe" | "async" => words.find(|w| !w.is_empty() && *w != "fn"),
+            "mod" | "use" | "" => None,
+            field if rest[field.len()..].trim_start().starts_with(':') => Some(field),
+            _ => None,
+        };
+        names.extend(name.map(String::from));
+    }
+    names
+}
+
+/// What `pub` items of `text` show of other items: each `pub` line's
+/// signature (up to its `{` or `;`, less the name it declares) and the
+/// variants of a `pub enum`.
+fn public_interfaces(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut shown = String::new();
+    for (i, line) in lines.iter().enumerate() {
+        if !line.trim_start().starts_with("pub ") {
+            continue;
+        }
+        let declared = public_names(line);
+        let mut signature = String::new();
+        for next in &lines[i..] {
+            let end = next.find(['{', ';']);
+            signature += &next[..end.unwrap_or(next.len())];
+            signature.push(' ');
+            if end.is_some() {
+                break;
+            }
+        }
+        if line.trim_start().starts_with("pub enum") || line.trim_start().starts_with("pub trait") {
+            let indent = line.len() - line.trim_start().len();
+            for next in &lines[i + 1..] {
+                if next.len() - next.trim_start().len() <= indent
+                    && next.trim_start().starts_with('}')
+                {
+                    break;
+                }
+                signature += next;
+                signature.push(' ');
+            }
+        }
+        for word in signature.split(|c: char| !(c.is_alphanumeric() || c == '_')) {
+            if !declared.iter().any(|d| d == word) {
+                shown += word;
+                shown.push(' ');
+            }
+        }
+    }
+    shown
+}
+
+#[test]
+fn the_library_makes_public_only_what_is_used_outside_it() {
+    // Issue 25: an item is `pub(crate)` unless a test, bench, fuzz target or
+    // the binary needs it, so that the compiler finds dead code. A `pub`
+    // item whose name no file outside the library mentions is needed by
+    // nobody there (a method, field or type the outside reaches is named).
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut outside = String::new();
+    for dir in ["tests", "benches", "fuzz/fuzz_targets"] {
+        for file in rust_files(&root.join(dir)) {
+            outside += &fs::read_to_string(file).unwrap();
+        }
+    }
+    outside += &fs::read_to_string(root.join("src/main.rs")).unwrap();
+    let mentioned: BTreeSet<&str> = outside
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .collect();
+    // A type that a public signature, field or enum variant names is needed
+    // wherever that item is: the compiler refuses it more private.
+    let files = rust_files(&root.join("src"));
+    let mut interfaces = String::new();
+    for file in &files {
+        interfaces += &public_interfaces(&library_part(file));
+    }
+    let in_interfaces: BTreeSet<&str> = interfaces
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .collect();
+    let mut unneeded = Vec::new();
+    for file in &files {
+        for name in public_names(&library_part(file)) {
+            if !mentioned.contains(name.as_str()) && !in_interfaces.contains(name.as_str()) {
+                unneeded.push(format!("{}: {name}", file.display()));
+            }
+        }
+    }
+    assert!(
+        unneeded.is_empty(),
+        "pub, but named nowhere outside src/: {unneeded:#?}"
+    );
+    let example = "pub fn a() {}\npub(crate) fn b() {}\npub struct C {\n    pub d: u8,\n}\npub mod e;\npub use f::G;\npub unsafe fn h() {}";
+    assert_eq!(public_names(example), ["a", "C", "d", "h"]);
 }

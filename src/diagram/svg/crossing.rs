@@ -24,18 +24,18 @@ const COUNTS: &str = "#ee7733";
 const LEFT: &str = "#999999";
 
 /// The polygon the figure is about, and how the ray met it.
-pub struct Subject<'a> {
-    pub object: &'a str,
-    pub object_index: usize,
-    pub node: NodeId,
+pub(crate) struct Subject<'a> {
+    pub(crate) object: &'a str,
+    pub(crate) object_index: usize,
+    pub(crate) node: NodeId,
     /// True for a hit, false for a polygon the ray passed by.
-    pub hit: bool,
-    pub figure: &'a CrossingFigure,
+    pub(crate) hit: bool,
+    pub(crate) figure: &'a CrossingFigure,
 }
 
 /// The first polygon or patch hit in the tree, in event order; failing
 /// that, the first one a ray passed by (a near miss); else none.
-pub fn subject(tree: &RayTree) -> Option<Subject<'_>> {
+pub(crate) fn subject(tree: &RayTree) -> Option<Subject<'_>> {
     let hit = tree.events.iter().find_map(|event| {
         let hit = tree.nodes[event.node].hit.as_ref()?;
         let figure = hit.crossing_figure.as_ref()?;
@@ -63,7 +63,7 @@ pub fn subject(tree: &RayTree) -> Option<Subject<'_>> {
 }
 
 /// The figure of `subject`'s crossing test, for pixel `pixel`.
-pub fn svg(pixel: (u32, u32), subject: &Subject) -> String {
+pub(crate) fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     let figure = subject.figure;
     let vertices: Vec<DVec2> = figure.vertices.iter().map(|v| DVec2::from(*v)).collect();
     let map = UvMap::fit(&vertices);

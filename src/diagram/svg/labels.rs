@@ -9,10 +9,10 @@ use std::fmt::Write;
 use glam::DVec2;
 
 /// A box as its (top-left, bottom-right) corners.
-pub type Box2 = (DVec2, DVec2);
+pub(crate) type Box2 = (DVec2, DVec2);
 
 /// Placed labels' and marks' boxes, and the rays to keep labels off.
-pub struct Labels {
+pub(crate) struct Labels {
     font_size: f64,
     /// Where labels may go: the figure less its title and legend.
     bounds: Box2,
@@ -21,7 +21,7 @@ pub struct Labels {
 }
 
 impl Labels {
-    pub fn new(font_size: f64, bounds: Box2) -> Labels {
+    pub(crate) fn new(font_size: f64, bounds: Box2) -> Labels {
         Labels {
             font_size,
             bounds,
@@ -32,26 +32,26 @@ impl Labels {
 
     /// The size of the labels placed from now on (the text's own
     /// `font-size` attribute must say the same).
-    pub fn set_font_size(&mut self, size: f64) {
+    pub(crate) fn set_font_size(&mut self, size: f64) {
         self.font_size = size;
     }
 
     /// Keeps labels off text written elsewhere, its baseline starting at
     /// `corner` (an axis name).
-    pub fn reserve_text(&mut self, corner: DVec2, text: &str) {
+    pub(crate) fn reserve_text(&mut self, corner: DVec2, text: &str) {
         let size = self.size(text);
         self.boxes.push(text_box(corner, size));
     }
 
     /// Keeps labels off a mark (a dot, a crossing) of this radius.
-    pub fn reserve(&mut self, centre: DVec2, radius: f64) {
+    pub(crate) fn reserve(&mut self, centre: DVec2, radius: f64) {
         let r = DVec2::splat(radius);
         self.boxes.push((centre - r, centre + r));
     }
 
     /// Keeps labels off a drawn ray from `a` to `b` where there is room;
     /// unlike a mark, a label may cross a ray when nothing near is free.
-    pub fn reserve_ray(&mut self, a: DVec2, b: DVec2) {
+    pub(crate) fn reserve_ray(&mut self, a: DVec2, b: DVec2) {
         self.rays.push((a, b));
     }
 
@@ -66,7 +66,7 @@ impl Labels {
 
     /// As `place`, but centred on `at` first (a vertex number just outside
     /// its corner).
-    pub fn place_centred(&mut self, out: &mut String, at: DVec2, text: &str, attrs: &str) {
+    pub(crate) fn place_centred(&mut self, out: &mut String, at: DVec2, text: &str, attrs: &str) {
         let size = self.size(text);
         let centred = at + DVec2::new(-size.x / 2.0, size.y / 2.0 - 2.0);
         let candidates: Vec<DVec2> = std::iter::once(centred)
@@ -150,7 +150,7 @@ fn overlap(a: Box2, b: Box2) -> bool {
 }
 
 /// `inner` lies wholly inside `outer`.
-pub fn contains(outer: Box2, inner: Box2) -> bool {
+pub(crate) fn contains(outer: Box2, inner: Box2) -> bool {
     outer.0.x <= inner.0.x
         && outer.0.y <= inner.0.y
         && inner.1.x <= outer.1.x
@@ -160,7 +160,7 @@ pub fn contains(outer: Box2, inner: Box2) -> bool {
 /// The part of the segment from `a` to `b` inside `frame` (Liang-Barsky:
 /// the segment's parameter range narrowed by each of the four edges), or
 /// none when it misses the box.
-pub fn clip(a: DVec2, b: DVec2, frame: Box2) -> Option<(DVec2, DVec2)> {
+pub(crate) fn clip(a: DVec2, b: DVec2, frame: Box2) -> Option<(DVec2, DVec2)> {
     let d = b - a;
     let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
     for (p, q) in [
@@ -185,7 +185,7 @@ pub fn clip(a: DVec2, b: DVec2, frame: Box2) -> Option<(DVec2, DVec2)> {
     (t0 <= t1).then(|| (a + d * t0, a + d * t1))
 }
 
-pub fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")

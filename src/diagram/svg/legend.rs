@@ -13,7 +13,7 @@ const SIZE: f64 = 11.0;
 const CHAR: f64 = SIZE * 0.6;
 
 /// Writes the legend's `rows` (the assembly says which the figure holds).
-pub fn write(out: &mut String, rows: &[LegendRow]) {
+pub(crate) fn write(out: &mut String, rows: &[LegendRow]) {
     let line = |stroke: Stroke, dash: &str| {
         format!(
             "<line x1=\"0\" y1=\"0\" x2=\"20\" y2=\"0\" stroke=\"{}\" stroke-width=\"2\"{dash}/>",
@@ -57,7 +57,7 @@ pub fn write(out: &mut String, rows: &[LegendRow]) {
 /// Each (mark, meaning) pair left to right from the margin at height `y`,
 /// a new row when one is full; a mark is drawn in a 20-unit box at its
 /// row's middle height.
-pub fn write_rows(out: &mut String, items: &[(&str, &str)], y: f64) {
+pub(crate) fn write_rows(out: &mut String, items: &[(&str, &str)], y: f64) {
     let (mut x, mut y) = (MARGIN, y);
     for (mark, name) in items {
         let width = 24.0 + name.chars().count() as f64 * CHAR;

@@ -31,7 +31,7 @@ const RGB: [&str; 3] = ["red", "green", "blue"];
 const MAX_PREALLOCATED_VERTICES: usize = 4096;
 
 /// Parses NFF text; `path` names it in messages.
-pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     let mut parser = Parser::new(path, text);
     let mut scene = Builder::default();
     while let Some(keyword) = parser.next() {

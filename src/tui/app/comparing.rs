@@ -23,7 +23,7 @@ impl StudentComparison {
     }
 
     /// The student's image.
-    pub fn yours(&self) -> &RgbImage {
+    pub(crate) fn yours(&self) -> &RgbImage {
         &self.yours
     }
 

@@ -45,13 +45,13 @@ mod screen;
 mod search;
 mod session;
 
-pub use comparing::StudentComparison;
-pub use overlay::{Overlay, Overlays};
-pub use pixel::TracedPixel;
-pub use renders::Renders;
-pub use screen::Screen;
+pub(crate) use comparing::StudentComparison;
+pub(crate) use overlay::{Overlay, Overlays};
+pub(crate) use pixel::TracedPixel;
+pub(crate) use renders::Renders;
+pub(crate) use screen::Screen;
 use search::Search;
-pub use session::Session;
+pub(crate) use session::Session;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
@@ -454,7 +454,7 @@ impl App {
     }
 
     /// Whether background work is under way (the loop then polls more often).
-    pub fn busy(&self) -> bool {
+    pub(crate) fn busy(&self) -> bool {
         self.renders.busy() || self.session.reload_waits() || self.search.is_some()
     }
 
@@ -466,7 +466,7 @@ impl App {
     }
 
     /// Whether the status line shows timings (off in tests, for stable screens).
-    pub fn show_timings(&self) -> bool {
+    pub(crate) fn show_timings(&self) -> bool {
         self.show_timings
     }
 
@@ -486,7 +486,7 @@ impl App {
     }
 
     /// Our pixel at the cursor, as the render (with the toggles) has it.
-    pub fn our_pixel(&self) -> Option<[u8; 3]> {
+    pub(crate) fn our_pixel(&self) -> Option<[u8; 3]> {
         let (x, y) = self.pixel.cursor();
         self.renders.image().and_then(|i| pixel(i, x, y))
     }

@@ -9,7 +9,7 @@ use crate::tui::view::help;
 
 /// The one thing open over the panes.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Overlay {
+pub(crate) enum Overlay {
     /// The `?` help, scrolled by this many lines.
     Help { scroll: u16 },
     /// The `M` menu of classic mistakes.
@@ -74,7 +74,7 @@ impl Overlays {
     }
 
     /// What is open over the panes, if anything.
-    pub fn open(&self) -> Option<&Overlay> {
+    pub(crate) fn open(&self) -> Option<&Overlay> {
         self.open.as_ref()
     }
 
@@ -90,7 +90,7 @@ impl Overlays {
     }
 
     /// The mistakes menu's selected mistake, open or not.
-    pub fn menu_mistake(&self) -> Mistake {
+    pub(crate) fn menu_mistake(&self) -> Mistake {
         Mistake::ALL[self.menu_row]
     }
 

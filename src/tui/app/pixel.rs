@@ -94,7 +94,7 @@ impl TracedPixel {
     }
 
     /// Manual scroll of the details; `None` follows the current event.
-    pub fn details_scroll(&self) -> Option<u16> {
+    pub(crate) fn details_scroll(&self) -> Option<u16> {
         self.details_scroll
     }
 
@@ -114,12 +114,12 @@ impl TracedPixel {
     }
 
     /// The node the tree and details show: the current event's ray.
-    pub fn selected_node(&self) -> NodeId {
+    pub(crate) fn selected_node(&self) -> NodeId {
         self.tree.events.get(self.current).map_or(0, |e| e.node)
     }
 
     /// The object breakpoint: the chosen one, else the selected ray's object.
-    pub fn break_target(&self) -> Option<usize> {
+    pub(crate) fn break_target(&self) -> Option<usize> {
         self.break_object.or_else(|| {
             self.tree.nodes[self.selected_node()]
                 .hit

@@ -107,12 +107,12 @@ impl Renders {
     }
 
     /// Whether a render is under way.
-    pub fn busy(&self) -> bool {
+    pub(crate) fn busy(&self) -> bool {
         self.renderer.busy()
     }
 
     /// How far the running render is.
-    pub fn progress(&self) -> Option<Progress> {
+    pub(crate) fn progress(&self) -> Option<Progress> {
         self.renderer.progress()
     }
 

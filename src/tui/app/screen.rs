@@ -53,7 +53,7 @@ impl Screen {
     }
 
     /// The terminal's size, as the last `Action::Resize` gave it.
-    pub fn size(&self) -> Rect {
+    pub(crate) fn size(&self) -> Rect {
         self.size
     }
 

@@ -10,7 +10,7 @@ use crate::tui::find_job::{FindJob, Found};
 use super::pixel::TracedPixel;
 use super::session::Session;
 
-pub struct Search {
+pub(crate) struct Search {
     job: FindJob,
     /// "a total internal reflection", "a hit on glass" ...
     what: String,
@@ -65,7 +65,7 @@ impl Search {
     }
 
     /// What it looks for and the row it is on, from 0.
-    pub fn progress(&self) -> (&str, u32) {
+    pub(crate) fn progress(&self) -> (&str, u32) {
         (&self.what, self.job.row())
     }
 

@@ -69,7 +69,7 @@ impl Session {
     }
 
     /// Whether a reload waits for the file to be quiet.
-    pub fn reload_waits(&self) -> bool {
+    pub(crate) fn reload_waits(&self) -> bool {
         self.reload_due.is_some()
     }
 
@@ -140,7 +140,7 @@ impl Session {
     }
 
     /// The scene's file (or the built-in scene) and the size it is traced at.
-    pub fn source(&self) -> &SceneSource {
+    pub(crate) fn source(&self) -> &SceneSource {
         &self.source
     }
 

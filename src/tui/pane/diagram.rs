@@ -144,7 +144,7 @@ fn mark_key(diagram: &Diagram) -> Vec<(&'static str, Color)> {
 
 /// Draws the app's diagram into `area` (block included): its pixel's tree
 /// at its current event, on its plane, panned and zoomed as it says.
-pub fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
+pub(crate) fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
     let (scene, pixel, screen) = (app.session().scene(), app.pixel(), app.screen());
     let tree = pixel.tree();
     let diagram = Diagram::new(scene, tree, screen.plane(), progress(tree, pixel.current()));

@@ -8,7 +8,7 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use crate::tui::view::help::{hidden_lines, lines};
 
 /// The overlay, scrolled by `scroll` lines when the terminal is too short.
-pub fn draw(frame: &mut Frame, area: Rect, scroll: u16) {
+pub(crate) fn draw(frame: &mut Frame, area: Rect, scroll: u16) {
     let lines = lines();
     let width = (lines.iter().map(|l| l.width()).max().unwrap_or(40) as u16 + 2).min(area.width);
     let height = (lines.len() as u16 + 2).min(area.height);

@@ -19,7 +19,7 @@ use crate::tui::view::mistakes_menu;
 use crate::tui::view::tree::rgb_swatch;
 use crate::tui::{App, Pane, Picture};
 
-pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
+pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let (x, y) = app.pixel().cursor();
     let mut title = vec![Span::raw(format!(" Pixel ({x}, {y}) "))];
     if let Some(rgb) = app
@@ -115,10 +115,10 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
 }
 
 /// The half-block drawing of an image through its grid, with the cursor.
-pub struct ImageWidget<'a> {
-    pub grid: ImageGrid,
-    pub pixel: &'a dyn Fn(u32, u32) -> [u8; 3],
-    pub cursor: (u32, u32),
+pub(crate) struct ImageWidget<'a> {
+    pub(crate) grid: ImageGrid,
+    pub(crate) pixel: &'a dyn Fn(u32, u32) -> [u8; 3],
+    pub(crate) cursor: (u32, u32),
 }
 
 /// The cursor's colour: one that stands out against the pixel under it.

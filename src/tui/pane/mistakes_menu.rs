@@ -9,7 +9,7 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use crate::tui::App;
 use crate::tui::view::mistakes_menu::lines;
 
-pub fn draw(frame: &mut Frame, app: &App, area: Rect, selected: usize) {
+pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect, selected: usize) {
     let ranked = app
         .comparison()
         .map_or(&[][..], |c| &c.findings().mistakes[..]);

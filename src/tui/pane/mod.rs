@@ -4,12 +4,12 @@
 
 mod bars;
 pub mod details;
-pub mod diagram;
-pub mod help;
-pub mod image;
-pub mod mistakes_menu;
-pub mod steps;
-pub mod tree;
+pub(crate) mod diagram;
+pub(crate) mod help;
+pub(crate) mod image;
+pub(crate) mod mistakes_menu;
+pub(crate) mod steps;
+pub(crate) mod tree;
 
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Rect};

@@ -9,7 +9,7 @@ use super::pane_block;
 use crate::tui::view::steps::lines;
 use crate::tui::{App, Pane};
 
-pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
+pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let (pixel, scene) = (app.pixel(), app.session().scene());
     let count = pixel.tree().events.len();
     let mut title = format!(" Step-through · event {} of {count} ", pixel.current() + 1);

@@ -10,7 +10,7 @@ use super::pane_block;
 use crate::tui::view::tree::{row_line, rows, scroll_offset, selected_row, selected_style};
 use crate::tui::{App, Pane};
 
-pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
+pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let pixel = app.pixel();
     let tree = pixel.tree();
     let rays = tree.nodes.len();

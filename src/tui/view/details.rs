@@ -53,7 +53,7 @@ fn wrap(line: &record::Line, width: usize, style: Style) -> Vec<Line<'static>> {
 const SWATCH_WIDTH: usize = 3;
 
 /// The pane's lines wrapped to `width`, and the first line of the marked part.
-pub fn lines(
+pub(crate) fn lines(
     tree: &RayTree,
     id: NodeId,
     at: Option<usize>,
@@ -79,7 +79,7 @@ pub fn lines(
 }
 
 /// With `--compare`: the student's pixel beside ours, each with a swatch.
-pub fn compare_line(yours: [u8; 3], ours: Option<[u8; 3]>) -> Line<'static> {
+pub(crate) fn compare_line(yours: [u8; 3], ours: Option<[u8; 3]>) -> Line<'static> {
     let rgb = |[r, g, b]: [u8; 3]| format!("({r}, {g}, {b})");
     let mut spans = vec![
         Span::raw(format!("yours {} ", rgb(yours))),
@@ -94,7 +94,7 @@ pub fn compare_line(yours: [u8; 3], ours: Option<[u8; 3]>) -> Line<'static> {
 
 /// The what-if section above the ray's lines: how the pixel changed with
 /// the last toggle, wrapped to `width`, in italics, then a blank line.
-pub fn what_if_lines(what_if: &str, width: usize) -> Vec<Line<'static>> {
+pub(crate) fn what_if_lines(what_if: &str, width: usize) -> Vec<Line<'static>> {
     let style = Style::new().add_modifier(Modifier::ITALIC);
     let mut out = vec![
         Line::from("What changed with the last toggle:").style(style.add_modifier(Modifier::BOLD)),

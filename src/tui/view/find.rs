@@ -9,7 +9,7 @@ use crate::tui::action::{Breakpoint, Find};
 
 impl Find {
     /// For the status line: "no pixel with {what}".
-    pub fn what(self) -> &'static str {
+    pub(crate) fn what(self) -> &'static str {
         match self {
             Find::BlockedShadow => "a blocked shadow ray",
             Find::PartialShadow => "a partly blocked shadow ray (0 < S < 1)",
@@ -26,7 +26,7 @@ impl Find {
 /// The first event of `tree` that `find` looks for; `object` is the
 /// breakpoint object (`Find::BreakObject` needs one; `Find::NearMiss`
 /// looks at it alone when there is one). Everything is read from `tree`.
-pub fn first_event(tree: &RayTree, find: Find, object: Option<usize>) -> Option<usize> {
+pub(crate) fn first_event(tree: &RayTree, find: Find, object: Option<usize>) -> Option<usize> {
     let breakpoint = match find {
         Find::BlockedShadow => Breakpoint::BlockedShadow,
         Find::Tir => Breakpoint::Tir,
@@ -71,7 +71,10 @@ fn partly_blocked(tree: &RayTree, i: usize) -> bool {
 
 /// The pixels after `from` in reading order (left to right, rows down),
 /// wrapping at the end and ending with `from` itself: each pixel once.
-pub fn reading_order(from: (u32, u32), size: (u32, u32)) -> impl Iterator<Item = (u32, u32)> {
+pub(crate) fn reading_order(
+    from: (u32, u32),
+    size: (u32, u32),
+) -> impl Iterator<Item = (u32, u32)> {
     let count = size.0 as u64 * size.1 as u64;
     let start = from.1 as u64 * size.0 as u64 + from.0 as u64;
     (1..=count).map(move |k| {
@@ -81,7 +84,7 @@ pub fn reading_order(from: (u32, u32), size: (u32, u32)) -> impl Iterator<Item =
 }
 
 /// The go-to prompt's text as a pixel of an image of `size`, or why not.
-pub fn parse_goto(text: &str, size: (u32, u32)) -> Result<(u32, u32), String> {
+pub(crate) fn parse_goto(text: &str, size: (u32, u32)) -> Result<(u32, u32), String> {
     let bad =
         || format!("`{text}` is not a pixel: expected X,Y with whole numbers from 0, e.g. 120,40");
     let (x, y) = text.split_once(',').ok_or_else(bad)?;
@@ -96,7 +99,7 @@ pub fn parse_goto(text: &str, size: (u32, u32)) -> Result<(u32, u32), String> {
 }
 
 /// Why a pixel is not in the image.
-pub fn outside((x, y): (u32, u32), (width, height): (u32, u32)) -> String {
+pub(crate) fn outside((x, y): (u32, u32), (width, height): (u32, u32)) -> String {
     format!(
         "pixel ({x}, {y}) is outside the {width}x{height} image: x must be below {width} and y below {height}"
     )

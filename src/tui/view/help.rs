@@ -8,7 +8,7 @@ use crate::tui::keymap::KEYMAP;
 
 const KEY_WIDTH: usize = 22;
 
-pub fn lines() -> Vec<Line<'static>> {
+pub(crate) fn lines() -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     for (group, rows) in KEYMAP {
         if !lines.is_empty() {
@@ -28,7 +28,7 @@ pub fn lines() -> Vec<Line<'static>> {
 }
 
 /// How many lines of the help a terminal `height` rows tall cannot show.
-pub fn hidden_lines(height: u16) -> u16 {
+pub(crate) fn hidden_lines(height: u16) -> u16 {
     (lines().len() as u16 + 2).saturating_sub(height)
 }
 

@@ -18,20 +18,20 @@ pub struct ImageGrid {
     /// The image point at the top-left corner of the shown part.
     pub origin: (f64, f64),
     /// Display pixels shown (width, height); a cell holds two rows.
-    pub shown: (u32, u32),
+    pub(crate) shown: (u32, u32),
     /// Cells left empty before the image, to centre it.
-    pub offset: (u16, u16),
-    pub image: (u32, u32),
+    pub(crate) offset: (u16, u16),
+    pub(crate) image: (u32, u32),
 }
 
 /// Image pixels per display pixel when the whole image fits the area.
-pub fn fit_scale(area: Rect, image: (u32, u32)) -> f64 {
+pub(crate) fn fit_scale(area: Rect, image: (u32, u32)) -> f64 {
     let (cols, rows) = (area.width.max(1) as f64, 2.0 * area.height.max(1) as f64);
     (image.0 as f64 / cols).max(image.1 as f64 / rows)
 }
 
 /// The largest useful zoom: one image pixel per display pixel.
-pub fn max_zoom(area: Rect, image: (u32, u32)) -> u32 {
+pub(crate) fn max_zoom(area: Rect, image: (u32, u32)) -> u32 {
     let mut zoom = 1;
     while fit_scale(area, image) / zoom as f64 > 1.0 && zoom < 1 << 16 {
         zoom *= 2;
@@ -40,7 +40,7 @@ pub fn max_zoom(area: Rect, image: (u32, u32)) -> u32 {
 }
 
 impl ImageGrid {
-    pub fn new(area: Rect, image: (u32, u32), zoom: u32, cursor: (u32, u32)) -> Self {
+    pub(crate) fn new(area: Rect, image: (u32, u32), zoom: u32, cursor: (u32, u32)) -> Self {
         let scale = (fit_scale(area, image) / zoom.max(1) as f64).max(1.0);
         let (cols, rows) = (area.width as u32, 2 * area.height as u32);
         let shown_w = cols.min((image.0 as f64 / scale).ceil() as u32);

@@ -11,26 +11,31 @@
 
 /// A label asked for, at a cell (column, row) of the drawing area.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Wanted<'a> {
-    pub at: (i32, i32),
-    pub text: &'a str,
+pub(crate) struct Wanted<'a> {
+    pub(crate) at: (i32, i32),
+    pub(crate) text: &'a str,
     /// A marker: exactly at `at` or nowhere.
-    pub fixed: bool,
+    pub(crate) fixed: bool,
     /// Placed only if the label at this index (earlier in the list) was:
     /// a name that says what its marker is, meaningless without it.
-    pub with: Option<usize>,
+    pub(crate) with: Option<usize>,
 }
 
 /// A label's place: the cell its text starts in, and the text shown.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Placed {
-    pub at: (u16, u16),
-    pub text: String,
+pub(crate) struct Placed {
+    pub(crate) at: (u16, u16),
+    pub(crate) text: String,
 }
 
 /// The cell of a world point on a canvas of `size` cells showing `x` and
 /// `y` (ratatui's canvas puts its labels there too); none when outside.
-pub fn cell(p: (f64, f64), x: [f64; 2], y: [f64; 2], size: (u16, u16)) -> Option<(i32, i32)> {
+pub(crate) fn cell(
+    p: (f64, f64),
+    x: [f64; 2],
+    y: [f64; 2],
+    size: (u16, u16),
+) -> Option<(i32, i32)> {
     let inside = (x[0]..=x[1]).contains(&p.0) && (y[0]..=y[1]).contains(&p.1);
     let (w, h) = (x[1] - x[0], y[1] - y[0]);
     if !inside || w <= 0.0 || h <= 0.0 || size.0 == 0 || size.1 == 0 {

@@ -6,20 +6,20 @@ use ratatui::layout::{Constraint, Layout, Margin, Rect};
 use crate::tui::action::Pane;
 
 /// The smallest terminal the debugger draws in.
-pub const MIN_WIDTH: u16 = 80;
-pub const MIN_HEIGHT: u16 = 24;
+pub(crate) const MIN_WIDTH: u16 = 80;
+pub(crate) const MIN_HEIGHT: u16 = 24;
 
 /// The screen, cut into its parts.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Panes {
-    pub header: Rect,
-    pub image: Rect,
+    pub(crate) header: Rect,
+    pub(crate) image: Rect,
     pub diagram: Rect,
     pub tree: Rect,
-    pub steps: Rect,
-    pub details: Rect,
-    pub banner: Rect,
-    pub status: Rect,
+    pub(crate) steps: Rect,
+    pub(crate) details: Rect,
+    pub(crate) banner: Rect,
+    pub(crate) status: Rect,
 }
 
 impl Panes {
@@ -34,7 +34,7 @@ impl Panes {
     }
 
     /// The pane under a screen cell.
-    pub fn pane_at(&self, column: u16, row: u16) -> Option<Pane> {
+    pub(crate) fn pane_at(&self, column: u16, row: u16) -> Option<Pane> {
         let position = ratatui::layout::Position::new(column, row);
         Pane::ALL
             .into_iter()
@@ -43,17 +43,17 @@ impl Panes {
 }
 
 /// The inside of a bordered pane.
-pub fn inner(area: Rect) -> Rect {
+pub(crate) fn inner(area: Rect) -> Rect {
     area.inner(Margin::new(1, 1))
 }
 
-pub fn too_small(area: Rect) -> bool {
+pub(crate) fn too_small(area: Rect) -> bool {
     area.width < MIN_WIDTH || area.height < MIN_HEIGHT
 }
 
 /// Cuts `area`: `banner_lines` of error text (0 for none), `tree_rows` rows
 /// wanted by the ray tree.
-pub fn panes(area: Rect, banner_lines: u16, tree_rows: u16) -> Panes {
+pub(crate) fn panes(area: Rect, banner_lines: u16, tree_rows: u16) -> Panes {
     let banner = if banner_lines == 0 {
         0
     } else {

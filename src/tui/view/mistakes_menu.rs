@@ -8,7 +8,7 @@ use crate::compare::Ranked;
 use crate::mistakes::{Mistake, Mistakes};
 
 /// "#1 explains 100%": where the comparison ranks `mistake`, if it does.
-pub fn rank_label(ranked: &[Ranked], mistake: Mistake) -> Option<String> {
+pub(crate) fn rank_label(ranked: &[Ranked], mistake: Mistake) -> Option<String> {
     let place = ranked.iter().position(|r| r.mistake == mistake)?;
     Some(format!(
         "#{} explains {}",
@@ -18,12 +18,12 @@ pub fn rank_label(ranked: &[Ranked], mistake: Mistake) -> Option<String> {
 }
 
 /// A share as a whole percentage, 0 to 100.
-pub fn percent(share: f64) -> String {
+pub(crate) fn percent(share: f64) -> String {
     format!("{:.0}%", (share * 100.0).clamp(0.0, 100.0))
 }
 
 /// "no-ambient 100% · shadow-acne 17%", or that nothing is ranked.
-pub fn ranking(ranked: &[Ranked], matches: bool) -> String {
+pub(crate) fn ranking(ranked: &[Ranked], matches: bool) -> String {
     if ranked.is_empty() {
         return if matches {
             "your image matches".into()
@@ -39,7 +39,7 @@ pub fn ranking(ranked: &[Ranked], matches: bool) -> String {
 }
 
 /// The menu's lines, the `selected` row highlighted.
-pub fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Line<'static>> {
+pub(crate) fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Line<'static>> {
     // The names' column: the longest name and two spaces.
     let width = Mistake::ALL
         .iter()

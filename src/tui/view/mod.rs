@@ -6,14 +6,14 @@
 //! read them, and nothing here knows either.
 
 pub mod details;
-pub mod find;
-pub mod help;
-pub mod image_grid;
-pub mod labels;
-pub mod layout;
-pub mod mistakes_menu;
-pub mod pan_zoom;
-pub mod stepper;
+pub(crate) mod find;
+pub(crate) mod help;
+pub(crate) mod image_grid;
+pub(crate) mod labels;
+pub(crate) mod layout;
+pub(crate) mod mistakes_menu;
+pub(crate) mod pan_zoom;
+pub(crate) mod stepper;
 pub mod steps;
 pub mod tree;
 
@@ -34,7 +34,7 @@ pub(crate) mod fixture {
     /// | 0 r0 cast | 1 r0 hit | 2 r0 ambient | 3 r0 shadow ray to the lamp |
     /// 4 r0 lamp's terms | 5 r1 cast | 6 r1 miss | 7 r1 done |
     /// 8 r0: r1 returns | 9 r0 done |
-    pub const BALL: &str = r#"
+    pub(crate) const BALL: &str = r#"
 [camera]
 eye = [0, 0, 10]
 look_at = [0, 0, 0]
@@ -66,7 +66,7 @@ sphere = { center = [0, 0, 0], radius = 1 }
 "#;
 
     /// The ball scene and its centre pixel's recording.
-    pub fn ball() -> (Scene, RayTree) {
+    pub(crate) fn ball() -> (Scene, RayTree) {
         let scene = crate::scene::parse(Path::new("ball.toml"), BALL).unwrap();
         let tree = record_pixel(&scene, &scene.settings, 5, 5);
         (scene, tree)

@@ -26,7 +26,7 @@ const ZOOM_IN: i32 = 12;
 
 impl PanZoom {
     /// The fitted window: the whole figure.
-    pub fn fit() -> PanZoom {
+    pub(crate) fn fit() -> PanZoom {
         PanZoom::default()
     }
 
@@ -40,12 +40,12 @@ impl PanZoom {
     }
 
     /// How many times bigger than the fitted window the figure is shown.
-    pub fn magnification(&self) -> f64 {
+    pub(crate) fn magnification(&self) -> f64 {
         FACTOR.powi(self.zoom)
     }
 
     /// The magnification for a title ("zoom 2.25×"), none when 1.
-    pub fn label(&self) -> Option<String> {
+    pub(crate) fn label(&self) -> Option<String> {
         (self.zoom != 0).then(|| {
             let factor = format!("{:.3}", self.magnification());
             let factor = factor.trim_end_matches('0').trim_end_matches('.');
@@ -55,14 +55,14 @@ impl PanZoom {
 
     /// Moves the window by (dx, dy) quarters of what it shows: dx > 0 to
     /// the right, dy > 0 down (as the arrow keys point).
-    pub fn pan(&mut self, dx: i32, dy: i32) {
+    pub(crate) fn pan(&mut self, dx: i32, dy: i32) {
         let step = 0.5 / self.magnification();
         self.pan.0 += f64::from(dx) * step;
         self.pan.1 -= f64::from(dy) * step;
     }
 
     /// Zooms in (steps > 0) or out, within the allowed steps.
-    pub fn zoom_by(&mut self, steps: i32) {
+    pub(crate) fn zoom_by(&mut self, steps: i32) {
         self.zoom = (self.zoom + steps).clamp(ZOOM_OUT, ZOOM_IN);
     }
 
@@ -72,7 +72,12 @@ impl PanZoom {
     /// by the magnification squared: shown magnified, it is divided by the
     /// magnification), so a hit near the edge stays in view; zoomed out,
     /// the window keeps its centre.
-    pub fn window(&self, x: [f64; 2], y: [f64; 2], focus: (f64, f64)) -> ([f64; 2], [f64; 2]) {
+    pub(crate) fn window(
+        &self,
+        x: [f64; 2],
+        y: [f64; 2],
+        focus: (f64, f64),
+    ) -> ([f64; 2], [f64; 2]) {
         let m = self.magnification();
         let half = DVec2::new(x[1] - x[0], y[1] - y[0]) / 2.0;
         let middle = DVec2::new(x[0] + x[1], y[0] + y[1]) / 2.0;

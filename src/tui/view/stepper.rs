@@ -16,7 +16,7 @@ fn find_after(tree: &RayTree, at: usize, test: impl Fn(usize) -> bool) -> Option
     (at + 1..tree.events.len()).find(|&i| test(i))
 }
 
-pub fn step(tree: &RayTree, at: usize, step: Step) -> usize {
+pub(crate) fn step(tree: &RayTree, at: usize, step: Step) -> usize {
     let Some(event) = tree.events.get(at) else {
         return 0;
     };
@@ -42,7 +42,7 @@ pub fn step(tree: &RayTree, at: usize, step: Step) -> usize {
 }
 
 /// Whether event `i` is where `breakpoint` stops.
-pub fn matches(tree: &RayTree, i: usize, breakpoint: Breakpoint) -> bool {
+pub(crate) fn matches(tree: &RayTree, i: usize, breakpoint: Breakpoint) -> bool {
     match (breakpoint, &tree.events[i].kind) {
         (Breakpoint::BlockedShadow, EventKind::Blocker { .. }) => {
             i > 0 && matches!(tree.events[i - 1].kind, EventKind::ShadowCast { .. })
@@ -54,12 +54,12 @@ pub fn matches(tree: &RayTree, i: usize, breakpoint: Breakpoint) -> bool {
 }
 
 /// The next event after `at` where `breakpoint` stops, if any.
-pub fn run_to(tree: &RayTree, at: usize, breakpoint: Breakpoint) -> Option<usize> {
+pub(crate) fn run_to(tree: &RayTree, at: usize, breakpoint: Breakpoint) -> Option<usize> {
     find_after(tree, at, |i| matches(tree, i, breakpoint))
 }
 
 /// The event where `node`'s ray is cast.
-pub fn cast_event(tree: &RayTree, node: usize) -> Option<usize> {
+pub(crate) fn cast_event(tree: &RayTree, node: usize) -> Option<usize> {
     tree.events
         .iter()
         .position(|e| e.node == node && matches!(e.kind, EventKind::RayCast { .. }))
@@ -67,7 +67,7 @@ pub fn cast_event(tree: &RayTree, node: usize) -> Option<usize> {
 
 /// The event where `node` casts its shadow ray to `light`, or where it finds
 /// the light facing away.
-pub fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<usize> {
+pub(crate) fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<usize> {
     let shadow = tree.events.iter().position(|e| {
         e.node == node && matches!(e.kind, EventKind::ShadowCast { light: l } if l == light)
     });
@@ -81,7 +81,7 @@ pub fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<usize> {
 /// How far the step-through at event `current` has come, for the diagram:
 /// the current event's ray is its node's, or its shadow ray when the event
 /// is about a light.
-pub fn progress(tree: &RayTree, current: usize) -> Progress {
+pub(crate) fn progress(tree: &RayTree, current: usize) -> Progress {
     let ray = tree.events.get(current).map(|e| CurrentRay {
         node: e.node,
         light: event_light(&e.kind),
@@ -93,7 +93,7 @@ pub fn progress(tree: &RayTree, current: usize) -> Progress {
 }
 
 /// The light an event is about, if any.
-pub fn event_light(kind: &EventKind) -> Option<usize> {
+pub(crate) fn event_light(kind: &EventKind) -> Option<usize> {
     match kind {
         EventKind::ShadowCast { light }
         | EventKind::Blocker { light, .. }

@@ -126,14 +126,19 @@ pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option
 }
 
 /// The first event shown when `height` lines centre `current`.
-pub fn first_line(current: usize, count: usize, height: usize) -> usize {
+pub(crate) fn first_line(current: usize, count: usize, height: usize) -> usize {
     current
         .saturating_sub(height / 2)
         .min(count.saturating_sub(height))
 }
 
 /// The lines of events around `current`, `height` of them, current marked.
-pub fn lines(tree: &RayTree, scene: &Scene, current: usize, height: usize) -> Vec<Line<'static>> {
+pub(crate) fn lines(
+    tree: &RayTree,
+    scene: &Scene,
+    current: usize,
+    height: usize,
+) -> Vec<Line<'static>> {
     let count = tree.events.len();
     let first = first_line(current, count, height);
     (first..count.min(first + height))

@@ -14,7 +14,7 @@ use super::stepper::event_light;
 
 /// What a row shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RowKind {
+pub(crate) enum RowKind {
     Ray(NodeId),
     /// `light` indexes the node's `lights` (the scene's order).
     Light {
@@ -25,8 +25,8 @@ pub enum RowKind {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Row {
-    pub kind: RowKind,
-    pub indent: usize,
+    pub(crate) kind: RowKind,
+    pub(crate) indent: usize,
 }
 
 /// The visible rows, depth first: a ray, its lights, then its child rays.
@@ -65,7 +65,7 @@ fn push_rows(
 
 /// The row that stands for event `at`: its light's row, else its ray's row,
 /// else (when collapsed away) the nearest visible ancestor's.
-pub fn selected_row(tree: &RayTree, rows: &[Row], at: usize) -> Option<usize> {
+pub(crate) fn selected_row(tree: &RayTree, rows: &[Row], at: usize) -> Option<usize> {
     let event = tree.events.get(at)?;
     let node = event.node;
     if let Some(light) = event_light(&event.kind) {
@@ -91,13 +91,13 @@ pub fn selected_row(tree: &RayTree, rows: &[Row], at: usize) -> Option<usize> {
 }
 
 /// The first row shown when `selected` must be visible in `height` rows.
-pub fn scroll_offset(selected: usize, height: usize) -> usize {
+pub(crate) fn scroll_offset(selected: usize, height: usize) -> usize {
     (selected + 1).saturating_sub(height.max(1))
 }
 
 /// The product of weights and attenuations from the primary ray down to `id`:
 /// what one unit of this ray's colour is worth in the pixel.
-pub fn path_factor(tree: &RayTree, id: NodeId) -> f64 {
+pub(crate) fn path_factor(tree: &RayTree, id: NodeId) -> f64 {
     let mut factor = 1.0;
     let mut node = Some(id);
     while let Some(n) = node {
@@ -118,15 +118,15 @@ fn share(tree: &RayTree, part: crate::math::Color) -> String {
 }
 
 /// A colour as the pixel shows it: two full blocks in its rgb8.
-pub fn swatch(color: crate::math::Color) -> Span<'static> {
+pub(crate) fn swatch(color: crate::math::Color) -> Span<'static> {
     rgb_swatch(to_rgb8(color))
 }
 
-pub fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
+pub(crate) fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
     Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
 }
 
-pub use crate::record::light_label;
+pub(crate) use crate::record::light_label;
 
 fn light_text(light: &LightRecord) -> String {
     let name = light_label(&light.light);
@@ -148,7 +148,7 @@ fn light_text(light: &LightRecord) -> String {
 }
 
 /// One row as text: marker, description, swatch and share, `width` columns.
-pub fn row_line(
+pub(crate) fn row_line(
     tree: &RayTree,
     collapsed: &BTreeSet<NodeId>,
     row: &Row,
@@ -194,7 +194,7 @@ pub fn row_line(
 }
 
 /// The style of the selected row.
-pub fn selected_style(focused: bool) -> Style {
+pub(crate) fn selected_style(focused: bool) -> Style {
     let style = Style::new().add_modifier(Modifier::REVERSED);
     if focused {
         style.add_modifier(Modifier::BOLD)
