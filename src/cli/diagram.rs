@@ -40,8 +40,8 @@ pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
 
 /// `--plane crossing`: the first polygon hit, or else passed by; none is an error.
 fn crossing_figure(tree: &RayTree, target: &Target) -> Result<ExitCode> {
-    use crate::diagram::svg::crossing;
-    let Some(subject) = crossing::subject(tree) else {
+    use crate::diagram::svg::crossing_figure;
+    let Some(subject) = crossing_figure::subject(tree) else {
         anyhow::bail!(
             "pixel ({}, {}): no ray of its tree hits a polygon or patch or passes one by, \
              so there is no crossing test to draw (try --plane top)",
@@ -49,6 +49,6 @@ fn crossing_figure(tree: &RayTree, target: &Target) -> Result<ExitCode> {
             tree.pixel.1
         );
     };
-    output::write_text(target, &crossing::svg(tree.pixel, &subject))?;
+    output::write_text(target, &crossing_figure::svg(tree.pixel, &subject))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -7,8 +7,8 @@
 use std::fmt::Write;
 
 use super::numbers::color;
+use super::ray_tree::{Node, NodeId, RayTree};
 use super::text::kind_name;
-use super::tree::{Node, NodeId, RayTree};
 use crate::math::Color;
 
 /// A change smaller than this in every channel is not reported (well below

@@ -6,8 +6,8 @@
 use std::fmt::Write;
 
 use super::numbers::{color, num};
+use super::ray_tree::{LightRecord, Node, NodeId, RayTree};
 use super::text::{kind_name, not_cast_reason};
-use super::tree::{LightRecord, Node, NodeId, RayTree};
 use crate::math::{Color, to_rgb8};
 use crate::trace::{PruneRule, RayKind};
 

@@ -5,10 +5,10 @@ use std::fmt::{self, Write};
 
 use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
+use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
 use super::sources::{brightness, sources};
 use super::text::{kind_name, not_cast_reason};
-use super::tree::{LightRecord, NodeId, RayTree};
 use crate::math::{Color, EPS};
 use crate::shapes::{CrossingFigure, RootChoice, Working};
 use crate::trace::{PruneRule, RayKind};

@@ -6,7 +6,7 @@
 use std::fmt;
 
 use super::numbers::color;
-use super::tree::{Event, EventKind, NodeId, RayTree};
+use super::ray_tree::{Event, EventKind, NodeId, RayTree};
 use crate::math::Color;
 use crate::trace::RayKind;
 

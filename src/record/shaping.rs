@@ -4,8 +4,8 @@
 //! down is told as plainly as a shadow on the first hit.
 
 use super::numbers::{color, num, root};
+use super::ray_tree::{LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use super::text::{cosine_name, kind_name, not_cast_reason};
-use super::tree::{LightRecord, MaterialFactors, Node, NodeId, RayTree};
 use crate::math::Color;
 
 /// One event and how much it matters to the pixel: the mean over the three

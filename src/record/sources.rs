@@ -4,8 +4,8 @@
 //! it, sum over the tree to the pixel's colour (before clamping), since a
 //! node's colour is its local terms plus its children's contributions.
 
+use super::ray_tree::{NodeId, RayTree};
 use super::shaping::reach;
-use super::tree::{NodeId, RayTree};
 use crate::math::Color;
 
 /// One ray's own part of the pixel: what its surface (or the background,

@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use super::lines::{About, Line};
 use super::numbers::{color, count, fraction, num, precise, root, vector};
-use super::tree::{
+use super::ray_tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
 };
 use crate::math::EPS;

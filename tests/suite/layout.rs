@@ -538,3 +538,32 @@ fn the_library_makes_public_only_what_is_used_outside_it() {
     let example = "pub fn a() {}\npub(crate) fn b() {}\npub struct C {\n    pub d: u8,\n}\npub mod e;\npub use f::G;\npub unsafe fn h() {}";
     assert_eq!(public_names(example), ["a", "C", "d", "h"]);
 }
+
+#[test]
+fn a_file_name_says_one_thing() {
+    // Issue 25: four files were called mistakes.rs, two recorder.rs, three
+    // tree.rs. A name is used once in src/, except for a debugger pane's
+    // pair (what it shows, in view/, and how, in pane/) and a command's
+    // body in cli/ (named after its command).
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut by_name: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for file in rust_files(&src) {
+        let name = file.file_name().unwrap().to_string_lossy().into_owned();
+        let relative = file
+            .strip_prefix(&src)
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        if name != "mod.rs" && !relative.starts_with("cli/") {
+            by_name.entry(name).or_default().push(relative);
+        }
+    }
+    let shared: Vec<_> = by_name
+        .into_iter()
+        .filter(|(name, files)| {
+            let pane_pair = [format!("tui/pane/{name}"), format!("tui/view/{name}")];
+            files.len() > 1 && !(files.len() == 2 && pane_pair.iter().all(|p| files.contains(p)))
+        })
+        .collect();
+    assert!(shared.is_empty(), "one name, several things: {shared:#?}");
+}

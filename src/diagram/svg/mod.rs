@@ -7,7 +7,7 @@
 //! lights facing away from a hit dotted), with labels that never overlap,
 //! never sit on a mark and stay inside the figure, and a legend.
 
-pub(crate) mod crossing;
+pub(crate) mod crossing_figure;
 mod labels;
 mod legend;
 mod plane_map;

@@ -18,7 +18,7 @@ use crate::diagram::{Anchor, Diagram, LegendRow, Named, ObjectOutline, Outline, 
 use crate::math::to_rgb8;
 use crate::scene::Scene;
 use crate::tui::App;
-use crate::tui::view::labels::{Wanted, cell, place};
+use crate::tui::view::cell_labels::{Wanted, cell, place};
 use crate::tui::view::pan_zoom::PanZoom;
 use crate::tui::view::stepper::progress;
 
@@ -323,7 +323,7 @@ impl<'a> Label<'a> {
     }
 }
 
-/// Writes the labels over the drawing, none over another (`view::labels`);
+/// Writes the labels over the drawing, none over another (`view::cell_labels`);
 /// earlier ones win.
 fn write_labels(
     buf: &mut ratatui::buffer::Buffer,

@@ -5,11 +5,11 @@
 //! each file tests its own; the app (`app/`) and the panes (`pane/`) both
 //! read them, and nothing here knows either.
 
+pub(crate) mod cell_labels;
 pub mod details;
 pub(crate) mod find;
 pub(crate) mod help;
 pub(crate) mod image_grid;
-pub(crate) mod labels;
 pub(crate) mod layout;
 pub(crate) mod mistakes_menu;
 pub(crate) mod pan_zoom;

@@ -1,5 +1,5 @@
 //! A pixel's recording: the ray tree with every term, and the events in the
-//! order the tracer performed them. `recorder.rs` fills it in.
+//! order the tracer performed them. `tree_recorder.rs` fills it in.
 
 use glam::DVec3;
 use serde::Serialize;

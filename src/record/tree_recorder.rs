@@ -15,7 +15,7 @@ use crate::trace::{
     trace,
 };
 
-use super::tree::{
+use super::ray_tree::{
     BlockerRecord, ClosestApproach, Event, EventKind, HitRecord, LightRecord, MaterialFactors,
     NearMiss, Node, NodeId, RayTree, ShadowRecord,
 };
