@@ -97,7 +97,10 @@ fn module_graph(src: &Path) -> Graph {
 /// The library part of a file: its unit tests (its `#[cfg(test)]` module,
 /// last by custom) may build a whole scene and are not the layout.
 fn library_part(file: &Path) -> String {
-    let text = fs::read_to_string(file).unwrap();
+    library_part_of(&fs::read_to_string(file).unwrap())
+}
+
+fn library_part_of(text: &str) -> String {
     text.split("#[cfg(test)]\nmod ")
         .next()
         .unwrap_or_default()
@@ -566,4 +569,56 @@ fn a_file_name_says_one_thing() {
         })
         .collect();
     assert!(shared.is_empty(), "one name, several things: {shared:#?}");
+}
+
+#[test]
+fn switches_and_mistakes_enter_the_tracer_only_through_its_rules() {
+    // Issue 25: the ambient switch went through `Rules` while shadows,
+    // reflection and transmission were read from the settings in the
+    // tracer: one mechanism now, `trace/rules.rs`.
+    let tracer =
+        fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("src/trace/tracer.rs"))
+            .unwrap();
+    let code: String = library_part_of(&tracer)
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect();
+    // (It may ask whether there are mistakes at all, to pick the tracer
+    // whose rules are constants; never which ones, nor any switch.)
+    for reach in ["switches", "Mistake::", "mistakes.contains"] {
+        assert!(!code.contains(reach), "the tracer reads {reach} itself");
+    }
+}
+
+#[test]
+fn the_integration_tests_are_one_binary_and_snapshots_go_through_one_helper() {
+    // Issue 25: 29 test binaries each linked the whole crate. tests/ holds
+    // the suite and signals.rs (which forks the debugger into ptys); every
+    // snapshot is taken by support's snapshot! or json_snapshot!.
+    let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let mut binaries: Vec<String> = fs::read_dir(&tests)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "rs") || p.join("main.rs").exists())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    binaries.sort();
+    assert_eq!(binaries, ["signals.rs", "suite"]);
+    for file in rust_files(&tests.join("suite")) {
+        if file.ends_with("support/mod.rs") {
+            continue;
+        }
+        let text = fs::read_to_string(&file).unwrap();
+        for direct in [
+            "assert_snapshot!",
+            "assert_json_snapshot!",
+            "set_snapshot_path",
+        ] {
+            assert!(
+                !text.contains(&format!("insta::{direct}")),
+                "{} takes a snapshot without support's helper",
+                file.display()
+            );
+        }
+    }
 }
