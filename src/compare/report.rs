@@ -4,6 +4,7 @@
 use std::fmt::Write;
 
 use super::{Comparison, MATCH_SHARE, RegionReport};
+use crate::record::count;
 
 pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
     let mut out = String::new();
@@ -94,13 +95,13 @@ fn write_region(out: &mut String, number: usize, r: &RegionReport) {
         .map(|o| format!("{} ({})", o.object, o.pixels))
         .collect();
     if r.more_objects > 0 {
-        objects.push(format!("{} more objects", r.more_objects));
+        objects.push(count(r.more_objects as u64, "more object", "more objects"));
     }
     let [x0, y0, x1, y1] = r.bounds;
     let _ = writeln!(
         out,
-        "  {number}. {} pixels in ({x0}, {y0})-({x1}, {y1}), on {}",
-        r.pixels,
+        "  {number}. {} in ({x0}, {y0})-({x1}, {y1}), on {}",
+        count(r.pixels as u64, "pixel", "pixels"),
         objects.join(", ")
     );
     let _ = writeln!(
@@ -122,5 +123,36 @@ fn percent(share: f64) -> String {
         format!("{p:.2}%")
     } else {
         format!("{p:.1}%")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compare::ObjectShare;
+
+    #[test]
+    fn one_pixel_and_one_more_object_are_singular() {
+        let region = RegionReport {
+            pixels: 1,
+            bounds: [3, 4, 3, 4],
+            objects: vec![ObjectShare {
+                object: "floor".into(),
+                pixels: 1,
+            }],
+            more_objects: 1,
+            pixel: [3, 4],
+            yours: [0, 0, 0],
+            reference: [255, 255, 255],
+            explain: Vec::new(),
+            diagnosis: None,
+        };
+        let mut out = String::new();
+        write_region(&mut out, 1, &region);
+        let first = out.lines().next().unwrap();
+        assert_eq!(
+            first,
+            "  1. 1 pixel in (3, 4)-(3, 4), on floor (1), 1 more object"
+        );
     }
 }

@@ -4,6 +4,7 @@
 use image::RgbImage;
 
 use crate::compare::{Comparison, RegionReport};
+use crate::record::count;
 
 /// The student's image, its comparison with the scene (made once, when the
 /// app opens), and the region `w` went to last.
@@ -49,9 +50,9 @@ impl StudentComparison {
             format!("of {shown}")
         };
         let message = format!(
-            "region {} {of}: {} pixels on {}",
+            "region {} {of}: {} on {}",
             index + 1,
-            region.pixels,
+            count(region.pixels as u64, "pixel", "pixels"),
             objects(region)
         );
         self.region = Some(index);
