@@ -137,7 +137,10 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
             let words = words
                 .rfind(" at line ")
                 .map_or(words.as_str(), |end| &words[..end]);
-            (column_of(text, at), format!("not JSON: {words}"))
+            (
+                column_of(text, at),
+                format!("not JSON: {words}{}", spelling_hint(text, at)),
+            )
         })?;
         let Value::Object(map) = value else {
             return Err((1, "not a JSON object: a line is one ray, {...}".to_string()));
@@ -507,6 +510,26 @@ fn prepare(text: &str) -> Prepared {
         .json
         .push_str(text.get(copied..).unwrap_or_default());
     prepared
+}
+
+/// A hint when the word at byte `at` is NaN or infinity spelt as C's
+/// printf spells it (`nan`, `inf`, `-inf`), which JSON does not read.
+fn spelling_hint(text: &str, at: usize) -> &'static str {
+    let bytes = text.as_bytes();
+    let mut start = at.min(bytes.len());
+    while start > 0 && bytes[start - 1].is_ascii_alphabetic() {
+        start -= 1;
+    }
+    let word: String = text[start..]
+        .chars()
+        .take_while(|c| c.is_ascii_alphabetic())
+        .collect::<String>()
+        .to_ascii_lowercase();
+    if ["nan", "inf", "infinity"].contains(&word.as_str()) {
+        " (write NaN, Infinity or -Infinity)"
+    } else {
+        ""
+    }
 }
 
 /// The column (in characters, from 1) of byte `offset` of `text`.
