@@ -10,4 +10,4 @@ mod write;
 pub use logged_ray::{Hit, LoggedRay};
 pub use path::{RayPath, Step};
 pub use read::{MAX_LINE_BYTES, RaylogError, RaylogReader};
-pub use write::{line_of, raylog, rays_of};
+pub use write::{raylog, rays_of};

@@ -84,7 +84,7 @@ pub fn raylog(tree: &RayTree) -> String {
 
 /// `ray` as one JSON object on one line, keys in docs/RAYLOG.md's order,
 /// the fields it lacks left out.
-pub fn line_of(ray: &LoggedRay) -> String {
+pub(crate) fn line_of(ray: &LoggedRay) -> String {
     let mut line = format!(
         "{{\"pixel\": [{}, {}], \"path\": \"{}\"",
         ray.pixel.0, ray.pixel.1, ray.path
