@@ -474,3 +474,68 @@ fn the_raylog_of_seven_rays_80_60_is_pinned() {
     );
     snapshot!("seven_rays_80_60", rounded(&log));
 }
+
+/// Pieces of ray-log lines, right and wrong, for the reader's property test.
+const PIECES: [&str; 32] = [
+    "{",
+    "}",
+    "[",
+    "]",
+    ":",
+    ",",
+    " ",
+    "\"",
+    "\\",
+    "\n",
+    "#",
+    "é",
+    "\"pixel\"",
+    "\"path\"",
+    "\"dir\"",
+    "\"hit\"",
+    "\"diffuse\"",
+    "\"S\"",
+    "\"P\"",
+    "\"P/R\"",
+    "\"P/S1\"",
+    "\"P/S",
+    "NaN",
+    "-Infinity",
+    "Infinity",
+    "nan",
+    "null",
+    "1",
+    "-0.5e3",
+    "160",
+    "1e400",
+    "\"floor\"",
+];
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 512, failure_persistence: None, ..Default::default()
+    })]
+
+    /// Whatever the log holds, the reader answers rays or an error that
+    /// names a line and column within it: it never panics.
+    #[test]
+    fn the_reader_never_panics(
+        pieces in proptest::collection::vec(0..PIECES.len(), 0..40),
+        bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..40),
+    ) {
+        let scene = scene_at(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/seven-rays.toml"),
+            None,
+        );
+        let text: String = pieces.iter().map(|&i| PIECES[i]).collect();
+        for log in [text.into_bytes(), bytes] {
+            let lines = log.split(|&b| b == b'\n').count();
+            if let Err(e) = RaylogReader::new("LOG", log.as_slice(), &scene)
+                .collect::<Result<Vec<_>, _>>()
+            {
+                proptest::prop_assert!(e.line >= 1 && e.line <= lines, "{e}");
+                proptest::prop_assert!(e.column >= 1, "{e}");
+            }
+        }
+    }
+}
