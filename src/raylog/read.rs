@@ -438,7 +438,11 @@ fn prepare(text: &str) -> Prepared {
         replaced: Vec::new(),
         value_at: HashMap::new(),
     };
-    let (mut i, mut copied, mut depth) = (0, 0, 0i32);
+    let (mut i, mut copied) = (0, 0);
+    // The objects and arrays open (`{` or `[`), and the last byte outside a
+    // string that was not blank (`"` after a string): a stand-in goes only
+    // where a value may, so `{NaN: 1}` stays not JSON.
+    let (mut open, mut last): (Vec<u8>, u8) = (Vec::new(), b' ');
     // A top-level string before its ':' (a key), and a key awaiting its value.
     let (mut key, mut awaiting): (Option<String>, Option<String>) = (None, None);
     while i < bytes.len() {
@@ -459,15 +463,17 @@ fn prepare(text: &str) -> Prepared {
                 let end = i.min(bytes.len());
                 if let Some(k) = awaiting.take() {
                     prepared.value_at.insert(k, start);
-                } else if depth == 1 {
+                } else if open.len() == 1 {
                     key = text
                         .get(start..end)
                         .and_then(|s| serde_json::from_str(s).ok());
                 }
+                last = b'"';
                 continue;
             }
-            b':' if depth == 1 => {
+            b':' if open.len() == 1 => {
                 awaiting = key.take();
+                last = b':';
                 i += 1;
                 continue;
             }
@@ -481,19 +487,18 @@ fn prepare(text: &str) -> Prepared {
             prepared.value_at.insert(k, i);
         }
         key = None;
-        match bytes[i] {
-            b'{' | b'[' => depth += 1,
-            b'}' | b']' => depth -= 1,
-            _ => {}
-        }
-        let after_word = i > 0 && bytes[i - 1].is_ascii_alphanumeric();
-        let token = STAND_INS.iter().find(|(token, _, _)| {
-            let end = i + token.len();
-            bytes[i..].starts_with(token.as_bytes())
-                && !bytes.get(end).is_some_and(|b| b.is_ascii_alphanumeric())
-        });
+        let in_array = open.last() == Some(&b'[');
+        let value_goes_here = last == b':' || (in_array && matches!(last, b'[' | b','));
+        let token = STAND_INS
+            .iter()
+            .filter(|_| value_goes_here)
+            .find(|(token, _, _)| {
+                let end = i + token.len();
+                bytes[i..].starts_with(token.as_bytes())
+                    && !bytes.get(end).is_some_and(|b| b.is_ascii_alphanumeric())
+            });
         match token {
-            Some((token, stand_in, _)) if !after_word => {
+            Some((token, stand_in, _)) => {
                 prepared.json.push_str(&text[copied..i]);
                 let quoted = serde_json::to_string(stand_in).unwrap_or_default();
                 prepared
@@ -502,8 +507,19 @@ fn prepare(text: &str) -> Prepared {
                 prepared.json.push_str(&quoted);
                 i += token.len();
                 copied = i;
+                last = b'0';
             }
-            _ => i += 1,
+            None => {
+                match bytes[i] {
+                    b'{' | b'[' => open.push(bytes[i]),
+                    b'}' | b']' => {
+                        open.pop();
+                    }
+                    _ => {}
+                }
+                last = bytes[i];
+                i += 1;
+            }
         }
     }
     prepared
@@ -520,7 +536,10 @@ fn spelling_hint(text: &str, at: usize) -> &'static str {
     while start > 0 && bytes[start - 1].is_ascii_alphabetic() {
         start -= 1;
     }
-    let word: String = text[start..]
+    // `at` may fall inside a character (serde_json counts bytes).
+    let word: String = text
+        .get(start..)
+        .unwrap_or_default()
         .chars()
         .take_while(|c| c.is_ascii_alphabetic())
         .collect::<String>()
@@ -573,5 +592,15 @@ mod tests {
     fn words_that_merely_contain_the_tokens_are_left_alone() {
         assert_eq!(prepare("{\"a\": xNaN}").json, "{\"a\": xNaN}");
         assert_eq!(prepare("{\"a\": NaNx}").json, "{\"a\": NaNx}");
+    }
+
+    #[test]
+    fn only_a_value_becomes_a_stand_in() {
+        // A key, a second word, or a word at the top are left as written.
+        for line in ["{NaN: 1}", "{\"a\": 1 NaN}", "NaN", "{\"a\": [1 NaN]}"] {
+            assert_eq!(prepare(line).json, line);
+        }
+        let prepared = prepare("{\"a\": [NaN, Infinity], \"b\": {\"c\": -Infinity}}");
+        assert_eq!(prepared.replaced.len(), 3);
     }
 }

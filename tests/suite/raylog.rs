@@ -539,3 +539,18 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn an_error_just_after_a_wide_character_names_its_column() {
+    // Found by the_reader_never_panics: serde_json's column can fall inside
+    // a character of several bytes (`é` is two), and the hint's look at the
+    // word there sliced the line inside it. A string cut short after `é`:
+    // serde_json's column is the line's length, 10 bytes, so its last byte
+    // is the second of `é` (column 9 of 9 characters). A stray `é`: its
+    // first byte, at column 11.
+    for (log, column) in [("{\"a\": \"é", 9), ("{\"a\": \"é\" é}", 11), ("[é]", 2)] {
+        let e = error(log);
+        assert!(e.problem.starts_with("not JSON"), "{e}");
+        assert_eq!((e.line, e.column), (1, column), "{log}: {e}");
+    }
+}
