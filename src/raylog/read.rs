@@ -217,8 +217,8 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
                 format!(
                     "pixel [{x}, {y}] is outside the image, which is {width}x{height} \
                      (x from 0 to {}, y from 0 to {})",
-                    width - 1,
-                    height - 1
+                    width.saturating_sub(1),
+                    height.saturating_sub(1)
                 ),
             ));
         }
