@@ -12,6 +12,7 @@ pub mod math;
 pub mod mistakes;
 pub(crate) mod object;
 pub(crate) mod output;
+pub mod raylog;
 pub mod record;
 pub mod render;
 pub mod scene;

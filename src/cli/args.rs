@@ -160,7 +160,8 @@ pub(crate) struct PixelArgs {
 pub(crate) struct InspectArgs {
     #[command(flatten)]
     pub(crate) pixel: PixelArgs,
-    /// Output form: an indented tree, the complete recording as JSON, or Graphviz.
+    /// Output form: an indented tree, the complete recording as JSON,
+    /// Graphviz, or a ray log (docs/RAYLOG.md: one JSON line per ray).
     #[arg(long, value_enum, default_value_t = InspectFormat::Text)]
     pub(crate) format: InspectFormat,
 }
@@ -170,6 +171,7 @@ pub(crate) enum InspectFormat {
     Text,
     Json,
     Dot,
+    Raylog,
 }
 
 #[derive(Args, Debug)]

@@ -1,5 +1,5 @@
-//! `raystep inspect`: one pixel's ray tree with every term, as text, JSON
-//! or Graphviz.
+//! `raystep inspect`: one pixel's ray tree with every term, as text, JSON,
+//! Graphviz or a ray log.
 
 use std::process::ExitCode;
 
@@ -7,6 +7,7 @@ use anyhow::Result;
 
 use super::recorded::record;
 use super::{InspectArgs, InspectFormat, emit};
+use crate::raylog::raylog;
 use crate::record::{dot, text};
 
 pub(super) fn run(args: &InspectArgs) -> Result<ExitCode> {
@@ -28,6 +29,7 @@ pub(super) fn run(args: &InspectArgs) -> Result<ExitCode> {
             ))?
         }
         InspectFormat::Dot => emit(&dot(tree))?,
+        InspectFormat::Raylog => emit(&raylog(tree))?,
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -21,7 +21,7 @@ pub struct Node {
     pub(crate) parent: Option<NodeId>,
     pub(crate) kind: RayKind,
     pub depth: u32,
-    pub(crate) origin: DVec3,
+    pub origin: DVec3,
     pub direction: DVec3,
     /// The factor this ray's colour is scaled by in its parent (1 for the primary ray).
     pub weight: f64,
@@ -75,11 +75,11 @@ impl Node {
 pub struct HitRecord {
     pub(crate) object: String,
     /// 0-based, in file order.
-    pub(crate) object_index: usize,
+    pub object_index: usize,
     pub(crate) kind: &'static str,
     pub(crate) material: String,
     pub t: f64,
-    pub(crate) point: DVec3,
+    pub point: DVec3,
     /// N_g.
     pub(crate) geometric_normal: DVec3,
     /// N: N_g facing the ray (MODEL §3), as in the tracer's `SurfaceHit`.
@@ -137,7 +137,7 @@ pub struct ClosestApproach {
 #[derive(Clone, Debug, Serialize)]
 pub struct LightRecord {
     pub(crate) light: String,
-    pub(crate) light_index: usize,
+    pub light_index: usize,
     /// I_p, the light's colour.
     pub(crate) i_p: Color,
     pub to_light: DVec3,
@@ -158,8 +158,8 @@ pub struct LightRecord {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct ShadowRecord {
-    pub(crate) origin: DVec3,
-    pub(crate) direction: DVec3,
+    pub origin: DVec3,
+    pub direction: DVec3,
     pub(crate) distance: f64,
     /// Every crossing of the segment, nearest first.
     pub blockers: Vec<BlockerRecord>,

@@ -25,6 +25,7 @@ mod mistakes;
 mod nff_import;
 mod one_engine;
 mod pruning;
+mod raylog;
 mod readme;
 mod scene_bounds;
 mod scene_props;

@@ -1,0 +1,62 @@
+//! One line of a ray log: a ray of one pixel, named by its path, with the
+//! numbers its tracer printed for it. Every field but the pixel and the
+//! path is optional: a student's tracer prints what it has.
+
+use glam::DVec3;
+
+use super::path::RayPath;
+
+/// What a ray hit: an object, by its index in the scene's file order, or
+/// nothing (`null` in the log).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Hit {
+    Object(usize),
+    Miss,
+}
+
+/// One ray of a log, with the keys of docs/RAYLOG.md.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoggedRay {
+    pub pixel: (u32, u32),
+    pub path: RayPath,
+    pub origin: Option<DVec3>,
+    pub dir: Option<DVec3>,
+    pub hit: Option<Hit>,
+    pub t: Option<f64>,
+    pub point: Option<DVec3>,
+    /// N, facing the ray.
+    pub normal: Option<DVec3>,
+    /// What the ray brings back, before its parent weights it.
+    pub color: Option<DVec3>,
+    pub ambient: Option<DVec3>,
+    /// One per light, in the scene's order of lights.
+    pub diffuse: Option<Vec<DVec3>>,
+    pub specular: Option<Vec<DVec3>>,
+    /// A shadow ray's factor.
+    pub s: Option<f64>,
+    /// The ray's accumulated weight: the product of the weights from the
+    /// primary ray (1) down to it.
+    pub weight: Option<f64>,
+}
+
+impl LoggedRay {
+    /// A ray with only its pixel and path.
+    pub fn new(pixel: (u32, u32), path: RayPath) -> Self {
+        Self {
+            pixel,
+            path,
+            origin: None,
+            dir: None,
+            hit: None,
+            t: None,
+            point: None,
+            normal: None,
+            color: None,
+            ambient: None,
+            diffuse: None,
+            specular: None,
+            s: None,
+            weight: None,
+        }
+    }
+}

@@ -1,0 +1,13 @@
+//! Ray logs (docs/RAYLOG.md): one JSON object per ray of a pixel, as a
+//! student's tracer prints them and as raystep prints its own tree, so the
+//! two can be set side by side.
+
+mod logged_ray;
+mod path;
+mod read;
+mod write;
+
+pub use logged_ray::{Hit, LoggedRay};
+pub use path::{RayPath, Step};
+pub use read::{MAX_LINE_BYTES, RaylogError, RaylogReader};
+pub use write::{raylog, rays_of};

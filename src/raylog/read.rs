@@ -1,0 +1,606 @@
+//! Reading a ray log line by line (never the whole file), as a student's
+//! tracer printed it: every error names LOG:line:column and what is wrong,
+//! and none panics.
+
+use std::collections::{BTreeSet, HashMap};
+use std::fmt;
+use std::io::{BufRead, Read};
+
+use glam::DVec3;
+use serde_json::{Map, Value};
+
+use super::logged_ray::{Hit, LoggedRay};
+use super::path::RayPath;
+use crate::scene::Scene;
+
+/// The longest line read: one ray never needs more.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// The keys docs/RAYLOG.md defines; others are ignored and listed.
+const KEYS: [&str; 14] = [
+    "pixel", "path", "origin", "dir", "hit", "t", "point", "normal", "color", "ambient", "diffuse",
+    "specular", "S", "weight",
+];
+
+/// What is wrong with a log, and where: `LOG:line:column: problem`, both
+/// counted from 1, the column in characters.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RaylogError {
+    pub log: String,
+    pub line: usize,
+    pub column: usize,
+    pub problem: String,
+}
+
+impl fmt::Display for RaylogError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: {}",
+            self.log, self.line, self.column, self.problem
+        )
+    }
+}
+
+impl std::error::Error for RaylogError {}
+
+/// The rays of a log for `scene` (its size, lights and objects decide what
+/// is valid), one at a time with their line numbers. It stops at the first
+/// error; an empty log is one.
+pub struct RaylogReader<'a, R> {
+    log: String,
+    input: R,
+    scene: &'a Scene,
+    line: usize,
+    rays: usize,
+    /// Each pixel and path read, with its line, to name a repeat.
+    seen: HashMap<((u32, u32), RayPath), usize>,
+    unknown_keys: BTreeSet<String>,
+    finished: bool,
+    buffer: Vec<u8>,
+}
+
+/// Where a problem is in a line (a column from 1) and what it is.
+type Problem = (usize, String);
+
+impl<'a, R: BufRead> RaylogReader<'a, R> {
+    /// Reads `input`, named `log` in errors.
+    pub fn new(log: impl Into<String>, input: R, scene: &'a Scene) -> Self {
+        Self {
+            log: log.into(),
+            input,
+            scene,
+            line: 0,
+            rays: 0,
+            seen: HashMap::new(),
+            unknown_keys: BTreeSet::new(),
+            finished: false,
+            buffer: Vec::new(),
+        }
+    }
+
+    /// The keys raystep doesn't know, in the lines read so far.
+    pub fn unknown_keys(&self) -> &BTreeSet<String> {
+        &self.unknown_keys
+    }
+
+    fn error(&mut self, (column, problem): Problem) -> RaylogError {
+        self.finished = true;
+        RaylogError {
+            log: self.log.clone(),
+            line: self.line.max(1),
+            column,
+            problem,
+        }
+    }
+
+    /// The next line, without its line ending; `None` at the end.
+    fn next_line(&mut self) -> Result<Option<String>, Problem> {
+        self.buffer.clear();
+        // One byte past the limit tells a line that is too long.
+        let limit = MAX_LINE_BYTES as u64 + 1;
+        let read = (&mut self.input)
+            .take(limit)
+            .read_until(b'\n', &mut self.buffer)
+            .map_err(|e| (1, format!("cannot read the log: {e}")))?;
+        if read == 0 {
+            return Ok(None);
+        }
+        self.line += 1;
+        if self.buffer.last() == Some(&b'\n') {
+            self.buffer.pop();
+        }
+        if self.buffer.last() == Some(&b'\r') {
+            self.buffer.pop();
+        }
+        if self.buffer.len() > MAX_LINE_BYTES {
+            return Err((
+                MAX_LINE_BYTES + 1,
+                format!("the line is over 1 MB ({MAX_LINE_BYTES} bytes): a log has one ray a line"),
+            ));
+        }
+        match std::str::from_utf8(&self.buffer) {
+            Ok(text) => Ok(Some(text.to_string())),
+            Err(e) => {
+                let valid = std::str::from_utf8(&self.buffer[..e.valid_up_to()]).unwrap_or("");
+                Err((valid.chars().count() + 1, "not UTF-8 text".to_string()))
+            }
+        }
+    }
+
+    /// One line's ray.
+    fn ray(&mut self, text: &str) -> Result<LoggedRay, Problem> {
+        let prepared = prepare(text);
+        let value: Value = serde_json::from_str(&prepared.json).map_err(|e| {
+            let at = prepared.text_offset(e.column().saturating_sub(1));
+            let words = e.to_string();
+            let words = words
+                .rfind(" at line ")
+                .map_or(words.as_str(), |end| &words[..end]);
+            (
+                column_of(text, at),
+                format!("not JSON: {words}{}", spelling_hint(text, at)),
+            )
+        })?;
+        let Value::Object(map) = value else {
+            return Err((1, "not a JSON object: a line is one ray, {...}".to_string()));
+        };
+        for key in map.keys() {
+            if !KEYS.contains(&key.as_str()) {
+                self.unknown_keys.insert(key.clone());
+            }
+        }
+        let fields = Fields {
+            map: &map,
+            text,
+            prepared: &prepared,
+        };
+        let pixel = self.pixel(&fields)?;
+        let path = match fields.get("path")? {
+            Value::String(path) => RayPath::parse(path, self.scene.lights.len())
+                .map_err(|e| (fields.column("path"), e))?,
+            _ => {
+                return Err((
+                    fields.column("path"),
+                    "path is not a string such as \"P/R\"".into(),
+                ));
+            }
+        };
+        if let Some(first) = self.seen.get(&(pixel, path.clone())) {
+            return Err((
+                fields.column("path"),
+                format!(
+                    "pixel [{}, {}] path {path} is logged twice: first on line {first}",
+                    pixel.0, pixel.1
+                ),
+            ));
+        }
+        let lights = self.scene.lights.len();
+        let ray = LoggedRay {
+            origin: fields.vector("origin")?,
+            dir: fields.vector("dir")?,
+            hit: self.hit(&fields)?,
+            t: fields.number("t")?,
+            point: fields.vector("point")?,
+            normal: fields.vector("normal")?,
+            color: fields.vector("color")?,
+            ambient: fields.vector("ambient")?,
+            diffuse: fields.per_light("diffuse", lights)?,
+            specular: fields.per_light("specular", lights)?,
+            s: fields.number("S")?,
+            weight: fields.number("weight")?,
+            ..LoggedRay::new(pixel, path.clone())
+        };
+        self.seen.insert((pixel, path), self.line);
+        Ok(ray)
+    }
+
+    fn pixel(&self, fields: &Fields) -> Result<(u32, u32), Problem> {
+        let value = fields.get("pixel")?;
+        let column = fields.column("pixel");
+        let coordinates: Option<Vec<u32>> = value.as_array().and_then(|items| {
+            items
+                .iter()
+                .map(|v| v.as_u64().and_then(|n| u32::try_from(n).ok()))
+                .collect()
+        });
+        let Some([x, y]) = coordinates.as_deref() else {
+            return Err((
+                column,
+                format!("pixel is not [x, y], two whole numbers from 0: {value}"),
+            ));
+        };
+        let (width, height) = (self.scene.width, self.scene.height);
+        if *x >= width || *y >= height {
+            return Err((
+                column,
+                format!(
+                    "pixel [{x}, {y}] is outside the image, which is {width}x{height} \
+                     (x from 0 to {}, y from 0 to {})",
+                    width.saturating_sub(1),
+                    height.saturating_sub(1)
+                ),
+            ));
+        }
+        Ok((*x, *y))
+    }
+
+    fn hit(&self, fields: &Fields) -> Result<Option<Hit>, Problem> {
+        let Some(value) = fields.map.get("hit") else {
+            return Ok(None);
+        };
+        let column = fields.column("hit");
+        let objects = &self.scene.objects;
+        match value {
+            Value::Null => Ok(Some(Hit::Miss)),
+            Value::String(name) => match objects.iter().position(|o| &o.name == name) {
+                Some(i) => Ok(Some(Hit::Object(i))),
+                None => Err((
+                    column,
+                    format!("hit names no object of the scene: there is no object {name:?}"),
+                )),
+            },
+            Value::Number(n) => match n.as_u64().and_then(|i| usize::try_from(i).ok()) {
+                Some(i) if i < objects.len() => Ok(Some(Hit::Object(i))),
+                _ => Err((
+                    column,
+                    format!(
+                        "hit {n} names no object of the scene: it has {} objects, \
+                         counted from 0 in file order",
+                        objects.len()
+                    ),
+                )),
+            },
+            _ => Err((
+                column,
+                "hit is not an object's index, its name or null (a miss)".to_string(),
+            )),
+        }
+    }
+}
+
+impl<R: BufRead> Iterator for RaylogReader<'_, R> {
+    /// A ray and the line it is on.
+    type Item = Result<(usize, LoggedRay), RaylogError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        while !self.finished {
+            let text = match self.next_line() {
+                Ok(Some(text)) => text,
+                Ok(None) => {
+                    self.finished = true;
+                    if self.rays > 0 {
+                        return None;
+                    }
+                    let problem = "the log holds no ray (it is empty, or only comments and \
+                                   blank lines): print one line per ray of a pixel"
+                        .to_string();
+                    return Some(Err(self.error((1, problem))));
+                }
+                Err(problem) => return Some(Err(self.error(problem))),
+            };
+            let content = text.trim_start();
+            if content.is_empty() || content.starts_with('#') {
+                continue;
+            }
+            return Some(match self.ray(&text) {
+                Ok(ray) => {
+                    self.rays += 1;
+                    Ok((self.line, ray))
+                }
+                Err(problem) => Err(self.error(problem)),
+            });
+        }
+        None
+    }
+}
+
+/// A line's object with what finds its values' columns.
+struct Fields<'a> {
+    map: &'a Map<String, Value>,
+    text: &'a str,
+    prepared: &'a Prepared,
+}
+
+impl Fields<'_> {
+    /// The column where `key`'s value starts (1 if not found).
+    fn column(&self, key: &str) -> usize {
+        self.prepared
+            .value_at
+            .get(key)
+            .map_or(1, |&at| column_of(self.text, at))
+    }
+
+    fn get(&self, key: &str) -> Result<&Value, Problem> {
+        self.map.get(key).ok_or_else(|| {
+            (
+                1,
+                format!("no \"{key}\": every ray names its pixel and path"),
+            )
+        })
+    }
+
+    fn number(&self, key: &str) -> Result<Option<f64>, Problem> {
+        match self.map.get(key) {
+            None => Ok(None),
+            Some(value) => number(value)
+                .map(Some)
+                .ok_or_else(|| (self.column(key), format!("{key} is not a number: {value}"))),
+        }
+    }
+
+    fn vector(&self, key: &str) -> Result<Option<DVec3>, Problem> {
+        match self.map.get(key) {
+            None => Ok(None),
+            Some(value) => vector(value)
+                .map(Some)
+                .map_err(|e| (self.column(key), format!("{key} {e}"))),
+        }
+    }
+
+    /// One vector per light.
+    fn per_light(&self, key: &str, lights: usize) -> Result<Option<Vec<DVec3>>, Problem> {
+        let Some(value) = self.map.get(key) else {
+            return Ok(None);
+        };
+        let column = self.column(key);
+        let items = value.as_array().ok_or_else(|| {
+            (
+                column,
+                format!("{key} is not a list of [r, g, b], one per light"),
+            )
+        })?;
+        if items.len() != lights {
+            return Err((
+                column,
+                format!(
+                    "{key} holds {} [r, g, b], but the scene has {lights} light{}: one per light",
+                    items.len(),
+                    if lights == 1 { "" } else { "s" }
+                ),
+            ));
+        }
+        items
+            .iter()
+            .enumerate()
+            .map(|(i, item)| vector(item).map_err(|e| (column, format!("{key}[{i}] {e}"))))
+            .collect::<Result<_, _>>()
+            .map(Some)
+    }
+}
+
+/// A number, or the student's NaN or infinity (`prepare`'s stand-ins).
+fn number(value: &Value) -> Option<f64> {
+    match value {
+        Value::Number(n) => n.as_f64(),
+        Value::String(s) => STAND_INS
+            .iter()
+            .find(|(_, stand_in, _)| &s.as_str() == stand_in)
+            .map(|(_, _, x)| *x),
+        _ => None,
+    }
+}
+
+/// Exactly three numbers; the error completes "KEY ...".
+fn vector(value: &Value) -> Result<DVec3, String> {
+    let items = value
+        .as_array()
+        .ok_or_else(|| format!("is not a vector of 3 numbers: {value}"))?;
+    if items.len() != 3 {
+        return Err(format!("has {} numbers, not 3: {value}", items.len()));
+    }
+    let mut v = [0.0; 3];
+    for (x, item) in v.iter_mut().zip(items) {
+        *x = number(item).ok_or_else(|| format!("is not 3 numbers: {item} is not a number"))?;
+    }
+    Ok(DVec3::from_array(v))
+}
+
+/// The bare tokens JSON lacks, the strings they stand in as for serde_json
+/// (a NUL no tracer prints in a key's value), and what they read as.
+const STAND_INS: [(&str, &str, f64); 3] = [
+    ("-Infinity", "\u{0}-Infinity", f64::NEG_INFINITY),
+    ("Infinity", "\u{0}Infinity", f64::INFINITY),
+    ("NaN", "\u{0}NaN", f64::NAN),
+];
+
+/// A line made JSON: NaN and infinities outside strings become stand-in
+/// strings, remembered so that an error's column points into the line as
+/// written; and where each top-level key's value starts.
+struct Prepared {
+    json: String,
+    /// (start in json, length there, start in the line, length there).
+    replaced: Vec<(usize, usize, usize, usize)>,
+    value_at: HashMap<String, usize>,
+}
+
+impl Prepared {
+    /// The byte offset in the line of byte `offset` of the JSON.
+    fn text_offset(&self, offset: usize) -> usize {
+        let mut shift = 0isize;
+        for &(json_start, json_len, text_start, text_len) in &self.replaced {
+            if offset < json_start {
+                break;
+            }
+            if offset < json_start + json_len {
+                return text_start;
+            }
+            shift = (text_start + text_len) as isize - (json_start + json_len) as isize;
+        }
+        offset.saturating_add_signed(shift)
+    }
+}
+
+fn prepare(text: &str) -> Prepared {
+    let bytes = text.as_bytes();
+    let mut prepared = Prepared {
+        json: String::with_capacity(text.len() + 8),
+        replaced: Vec::new(),
+        value_at: HashMap::new(),
+    };
+    let (mut i, mut copied) = (0, 0);
+    // The objects and arrays open (`{` or `[`), and the last byte outside a
+    // string that was not blank (`"` after a string): a stand-in goes only
+    // where a value may, so `{NaN: 1}` stays not JSON.
+    let (mut open, mut last): (Vec<u8>, u8) = (Vec::new(), b' ');
+    // A top-level string before its ':' (a key), and a key awaiting its value.
+    let (mut key, mut awaiting): (Option<String>, Option<String>) = (None, None);
+    while i < bytes.len() {
+        match bytes[i] {
+            b'"' => {
+                let start = i;
+                i += 1;
+                while i < bytes.len() {
+                    match bytes[i] {
+                        b'\\' => i += 2,
+                        b'"' => {
+                            i += 1;
+                            break;
+                        }
+                        _ => i += 1,
+                    }
+                }
+                let end = i.min(bytes.len());
+                if let Some(k) = awaiting.take() {
+                    prepared.value_at.insert(k, start);
+                } else if open.len() == 1 {
+                    key = text
+                        .get(start..end)
+                        .and_then(|s| serde_json::from_str(s).ok());
+                }
+                last = b'"';
+                continue;
+            }
+            b':' if open.len() == 1 => {
+                awaiting = key.take();
+                last = b':';
+                i += 1;
+                continue;
+            }
+            b' ' | b'\t' | b'\r' | b'\n' => {
+                i += 1;
+                continue;
+            }
+            _ => {}
+        }
+        if let Some(k) = awaiting.take() {
+            prepared.value_at.insert(k, i);
+        }
+        key = None;
+        let in_array = open.last() == Some(&b'[');
+        let value_goes_here = last == b':' || (in_array && matches!(last, b'[' | b','));
+        let token = STAND_INS
+            .iter()
+            .filter(|_| value_goes_here)
+            .find(|(token, _, _)| {
+                let end = i + token.len();
+                bytes[i..].starts_with(token.as_bytes())
+                    && !bytes.get(end).is_some_and(|b| b.is_ascii_alphanumeric())
+            });
+        match token {
+            Some((token, stand_in, _)) => {
+                prepared.json.push_str(&text[copied..i]);
+                let quoted = serde_json::to_string(stand_in).unwrap_or_default();
+                prepared
+                    .replaced
+                    .push((prepared.json.len(), quoted.len(), i, token.len()));
+                prepared.json.push_str(&quoted);
+                i += token.len();
+                copied = i;
+                last = b'0';
+            }
+            None => {
+                match bytes[i] {
+                    b'{' | b'[' => open.push(bytes[i]),
+                    b'}' | b']' => {
+                        open.pop();
+                    }
+                    _ => {}
+                }
+                last = bytes[i];
+                i += 1;
+            }
+        }
+    }
+    prepared
+        .json
+        .push_str(text.get(copied..).unwrap_or_default());
+    prepared
+}
+
+/// A hint when the word at byte `at` is NaN or infinity spelt as C's
+/// printf spells it (`nan`, `inf`, `-inf`), which JSON does not read.
+fn spelling_hint(text: &str, at: usize) -> &'static str {
+    let bytes = text.as_bytes();
+    let mut start = at.min(bytes.len());
+    while start > 0 && bytes[start - 1].is_ascii_alphabetic() {
+        start -= 1;
+    }
+    // `at` may fall inside a character (serde_json counts bytes).
+    let word: String = text
+        .get(start..)
+        .unwrap_or_default()
+        .chars()
+        .take_while(|c| c.is_ascii_alphabetic())
+        .collect::<String>()
+        .to_ascii_lowercase();
+    if ["nan", "inf", "infinity"].contains(&word.as_str()) {
+        " (write NaN, Infinity or -Infinity)"
+    } else {
+        ""
+    }
+}
+
+/// The column (in characters, from 1) of byte `offset` of `text`.
+fn column_of(text: &str, offset: usize) -> usize {
+    text.char_indices().take_while(|(i, _)| *i < offset).count() + 1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nan_and_infinities_become_stand_ins_outside_strings_only() {
+        let prepared = prepare(r#"{"t": NaN, "c": [Infinity, -Infinity], "s": "NaN"}"#);
+        let value: Value = serde_json::from_str(&prepared.json).unwrap();
+        assert!(number(&value["t"]).unwrap().is_nan());
+        assert_eq!(number(&value["c"][0]), Some(f64::INFINITY));
+        assert_eq!(number(&value["c"][1]), Some(f64::NEG_INFINITY));
+        assert_eq!(value["s"], "NaN");
+        assert_eq!(number(&value["s"]), None);
+        // Where each value starts in the line as written.
+        assert_eq!(prepared.value_at["t"], 6);
+        assert_eq!(prepared.value_at["c"], 16);
+        assert_eq!(prepared.value_at["s"], 44);
+    }
+
+    #[test]
+    fn an_offset_past_a_stand_in_maps_back_into_the_line() {
+        // `NaN` (3 bytes) became `"\u0000NaN"` (11 bytes): 8 more.
+        let prepared = prepare(r#"{"t": NaN, x}"#);
+        let e = serde_json::from_str::<Value>(&prepared.json).unwrap_err();
+        // The `x` is byte 11 of the line (from 0), its column 12.
+        assert_eq!(
+            column_of(r#"{"t": NaN, x}"#, prepared.text_offset(e.column() - 1)),
+            12
+        );
+        assert_eq!(prepared.text_offset(8), 6, "inside the stand-in: its token");
+    }
+
+    #[test]
+    fn words_that_merely_contain_the_tokens_are_left_alone() {
+        assert_eq!(prepare("{\"a\": xNaN}").json, "{\"a\": xNaN}");
+        assert_eq!(prepare("{\"a\": NaNx}").json, "{\"a\": NaNx}");
+    }
+
+    #[test]
+    fn only_a_value_becomes_a_stand_in() {
+        // A key, a second word, or a word at the top are left as written.
+        for line in ["{NaN: 1}", "{\"a\": 1 NaN}", "NaN", "{\"a\": [1 NaN]}"] {
+            assert_eq!(prepare(line).json, line);
+        }
+        let prepared = prepare("{\"a\": [NaN, Infinity], \"b\": {\"c\": -Infinity}}");
+        assert_eq!(prepared.replaced.len(), 3);
+    }
+}
