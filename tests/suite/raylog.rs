@@ -554,3 +554,122 @@ fn an_error_just_after_a_wide_character_names_its_column() {
         assert_eq!((e.line, e.column), (1, column), "{log}: {e}");
     }
 }
+
+/// The code block of `language` in docs/RAYLOG.md's "Printing a log" section.
+fn emitter(language: &str) -> String {
+    let doc = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/RAYLOG.md"))
+        .unwrap();
+    let fence = format!("```{language}\n");
+    let start = doc
+        .find(&fence)
+        .unwrap_or_else(|| panic!("no {language} block"))
+        + fence.len();
+    let end = start + doc[start..].find("```").unwrap();
+    doc[start..end].to_string()
+}
+
+/// A 4x4 scene with one light and two objects, for the emitters' logs.
+const EMITTED_SCENE: &str = r#"
+[camera]
+eye = [0, 0, 5]
+look_at = [0, 0, 0]
+[image]
+width = 4
+height = 4
+[materials.mirror]
+ks = 0.5
+[[light]]
+position = [0, 4, 4]
+[[object]]
+name = "ball"
+material = "mirror"
+sphere = { center = [0, 0, 0], radius = 1 }
+[[object]]
+name = "floor"
+material = "mirror"
+plane = { normal = [0, 1, 0], point = [0, -1, 0] }
+"#;
+
+/// Runs `program` with `args` in `dir`; its standard output.
+fn run_in(dir: &Path, program: &str, args: &[&str]) -> String {
+    let output = std::process::Command::new(program)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("{program} could not run: {e}"));
+    assert!(
+        output.status.success(),
+        "{program} {args:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).unwrap()
+}
+
+/// What the emitters' drivers below log, as raystep reads it: pixel (1, 2);
+/// the primary ray from the eye (0, 0, 5) along -z hits object 0 at t = 4;
+/// its reflected ray goes back up +z and misses, with t = Infinity (as a
+/// tracer's "nothing hit" often is) and, where the emitter logs a colour,
+/// (NaN, 0, -Infinity).
+fn check_emitted(language: &str, log: &str, with_color: bool) {
+    let scene = crate::support::scene(EMITTED_SCENE);
+    let rays = read(log, &scene).unwrap_or_else(|e| panic!("{language}: {e}\n{log}"));
+    let paths: Vec<String> = rays.iter().map(|(_, r)| r.path.to_string()).collect();
+    assert_eq!(paths, ["P", "P/R"], "{language}");
+    let (primary, reflected) = (&rays[0].1, &rays[1].1);
+    assert_eq!(primary.pixel, (1, 2));
+    assert_eq!(primary.origin, Some(glam::DVec3::new(0.0, 0.0, 5.0)));
+    assert_eq!(primary.dir, Some(glam::DVec3::new(0.0, 0.0, -1.0)));
+    assert_eq!(primary.hit, Some(Hit::Object(0)));
+    assert_eq!(primary.t, Some(4.0));
+    assert_eq!(reflected.hit, Some(Hit::Miss));
+    assert_eq!(reflected.t, Some(f64::INFINITY));
+    if with_color {
+        let color = reflected.color.expect("a colour");
+        assert!(color.x.is_nan() && color.y == 0.0 && color.z == f64::NEG_INFINITY);
+    }
+}
+
+#[test]
+fn the_python_emitter_of_raylog_md_prints_what_raystep_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = emitter("python")
+        + r#"
+log_ray(1, 2, "P", origin=[0.0, 0.0, 5.0], dir=[0.0, 0.0, -1.0], hit=0, t=4.0)
+log_ray(1, 2, "P/R", origin=[0.0, 0.0, 1.0], dir=[0.0, 0.0, 1.0], hit=None,
+        t=float("inf"), color=[float("nan"), 0.0, float("-inf")])
+"#;
+    std::fs::write(dir.path().join("emit.py"), program).unwrap();
+    let log = run_in(dir.path(), "python3", &["emit.py"]);
+    check_emitted("python", &log, true);
+}
+
+#[test]
+fn the_cpp_emitter_of_raylog_md_prints_what_raystep_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = emitter("cpp")
+        + r#"
+int main() {
+    const double eye[3] = {0, 0, 5}, down[3] = {0, 0, -1};
+    const double hit_point[3] = {0, 0, 1}, up[3] = {0, 0, 1};
+    log_ray(1, 2, "P", eye, down, 0, 4.0);
+    log_ray(1, 2, "P/R", hit_point, up, -1, INFINITY);
+}
+"#;
+    std::fs::write(dir.path().join("emit.cpp"), program).unwrap();
+    run_in(dir.path(), "g++", &["-std=c++17", "-o", "emit", "emit.cpp"]);
+    let log = run_in(dir.path(), "./emit", &[]);
+    check_emitted("c++", &log, false);
+}
+
+#[test]
+fn the_javascript_emitter_of_raylog_md_prints_what_raystep_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let program = emitter("js")
+        + r#"
+logRay(1, 2, "P", { origin: [0, 0, 5], dir: [0, 0, -1], hit: 0, t: 4 });
+logRay(1, 2, "P/R", { origin: [0, 0, 1], dir: [0, 0, 1], hit: null, t: Infinity, color: [NaN, 0, -Infinity] });
+"#;
+    std::fs::write(dir.path().join("emit.js"), program).unwrap();
+    let log = run_in(dir.path(), "node", &["emit.js"]);
+    check_emitted("javascript", &log, true);
+}
