@@ -18,5 +18,7 @@ pub mod render;
 pub mod scene;
 pub mod shapes;
 pub mod terms;
+#[cfg(test)]
+mod test_scenes;
 pub mod trace;
 pub mod tui;

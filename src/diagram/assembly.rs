@@ -336,56 +336,9 @@ fn passed_objects(tree: &RayTree, met: &[usize]) -> Vec<usize> {
 }
 
 #[cfg(test)]
-pub(crate) mod tests {
-    use std::path::Path;
-
+mod tests {
     use super::*;
-    use crate::record::record_pixel;
-
-    /// A matte ball (no reflected ray) at the origin seen from (0, 0, 10),
-    /// the lamp at (5, 0, 10) and a second light, "back", behind the ball
-    /// at (0, 0, -10); a pebble of radius 1 at (0.9, 0.9, 4) beside the
-    /// primary ray's way. The centre pixel's ray runs down the z axis and
-    /// hits the ball at (0, 0, 1), N = (0, 0, 1).
-    pub(crate) const PEBBLE: &str = r#"
-[camera]
-eye = [0, 0, 10]
-look_at = [0, 0, 0]
-up = [0, 1, 0]
-fov = 40
-
-[image]
-width = 11
-height = 11
-
-[materials.matte]
-color = [1, 1, 1]
-kd = 1
-
-[[light]]
-name = "lamp"
-position = [5, 0, 10]
-
-[[light]]
-name = "back"
-position = [0, 0, -10]
-
-[[object]]
-name = "ball"
-material = "matte"
-sphere = { center = [0, 0, 0], radius = 1 }
-
-[[object]]
-name = "pebble"
-material = "matte"
-sphere = { center = [0.9, 0.9, 4], radius = 1 }
-"#;
-
-    pub(crate) fn pebble() -> (Scene, RayTree) {
-        let scene = crate::scene::parse(Path::new("pebble.toml"), PEBBLE).unwrap();
-        let tree = record_pixel(&scene, &scene.settings, 5, 5);
-        (scene, tree)
-    }
+    use crate::test_scenes::{PEBBLE, centre_pixel, pebble};
 
     fn close(a: DVec2, b: DVec2) -> bool {
         (a - b).length() < 1e-9
@@ -476,8 +429,7 @@ sphere = { center = [0.9, 0.9, 4], radius = 1 }
         // The lamp at x 5 is the furthest right.
         assert_eq!(right(&d), 5.0);
         let far = PEBBLE.replace("[0.9, 0.9, 4]", "[100, 0, 4]");
-        let scene = crate::scene::parse(Path::new("far.toml"), &far).unwrap();
-        let tree = record_pixel(&scene, &scene.settings, 5, 5);
+        let (scene, tree) = centre_pixel("far.toml", &far);
         let d = Diagram::new(&scene, &tree, DiagramPlane::Top, Progress::done(&tree));
         assert!(d.passed.is_empty());
         assert_eq!(d.objects[1].role, Role::Context);

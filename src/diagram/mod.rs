@@ -20,6 +20,3 @@ pub(crate) use outline::Outline;
 pub(crate) use projection::{DiagramPlane, magnified_centre};
 pub use rays::Progress;
 pub(crate) use rays::{CurrentRay, Segment, Stroke};
-
-#[cfg(test)]
-pub(crate) use assembly::tests::pebble;

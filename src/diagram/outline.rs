@@ -99,7 +99,7 @@ fn closed(mut points: Vec<DVec2>) -> Outline {
 mod tests {
     use super::*;
     use crate::diagram::DiagramPlane;
-    use crate::tui::view::fixture::ball;
+    use crate::test_scenes::ball;
 
     #[test]
     fn a_sphere_is_a_circle_and_a_plane_its_cut() {

@@ -99,7 +99,7 @@ pub(crate) fn magnified_centre(centre: DVec2, focus: DVec2, m: f64) -> DVec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::view::fixture::ball;
+    use crate::test_scenes::ball;
 
     fn close(a: DVec2, b: DVec2) -> bool {
         (a - b).length() < 1e-9

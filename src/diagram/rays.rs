@@ -187,7 +187,7 @@ fn miss_length(tree: &RayTree, scene: &Scene) -> f64 {
 mod tests {
     use super::*;
     use crate::diagram::DiagramPlane;
-    use crate::tui::view::fixture::ball;
+    use crate::test_scenes::ball;
     use crate::tui::view::stepper::progress;
 
     fn close(a: DVec2, b: DVec2) -> bool {

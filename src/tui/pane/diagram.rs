@@ -379,7 +379,8 @@ mod tests {
     use ratatui::buffer::Buffer;
 
     use super::*;
-    use crate::diagram::{DiagramPlane, Progress, pebble, svg};
+    use crate::diagram::{DiagramPlane, Progress, svg};
+    use crate::test_scenes::pebble;
 
     #[test]
     fn both_media_draw_the_marks_of_one_diagram() {

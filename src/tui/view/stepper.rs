@@ -105,7 +105,7 @@ pub(crate) fn event_light(kind: &EventKind) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::view::fixture::ball;
+    use crate::test_scenes::ball;
 
     #[test]
     fn steps_move_through_the_ball_pixels_events() {

@@ -165,7 +165,7 @@ pub(crate) fn lines(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::view::fixture::ball;
+    use crate::test_scenes::ball;
 
     #[test]
     fn the_current_event_is_centred_until_an_end_is_reached() {

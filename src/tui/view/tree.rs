@@ -206,7 +206,7 @@ pub(crate) fn selected_style(focused: bool) -> Style {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::view::fixture::ball;
+    use crate::test_scenes::ball;
 
     #[test]
     fn rows_list_a_ray_its_lights_then_its_children() {
