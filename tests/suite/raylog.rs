@@ -10,17 +10,9 @@ use raystep::raylog::{
     Hit, LoggedRay, MAX_LINE_BYTES, RayPath, RaylogError, RaylogReader, Step, raylog, rays_of,
 };
 use raystep::record::{RayTree, record_pixel};
-use raystep::scene::{Scene, load};
+use raystep::scene::Scene;
 
-use crate::support::{raystep, stdout};
-
-fn scene_at(path: &Path, size: Option<(u32, u32)>) -> Scene {
-    let scene = load(path).unwrap();
-    match size {
-        Some((w, h)) => scene.with_size(w, h).unwrap(),
-        None => scene,
-    }
-}
+use crate::support::{raystep, scene_at, stdout};
 
 /// Every ray of `log`, with its line, or the first error.
 fn read(log: &str, scene: &Scene) -> Result<Vec<(usize, LoggedRay)>, RaylogError> {

@@ -4,19 +4,11 @@
 
 use std::path::Path;
 
+use crate::support::scene_at;
 use raystep::record::{explain, record_pixel};
 use raystep::render::render;
-use raystep::scene::{Scene, load};
 use raystep::trace::NoRecorder;
 use serde_json::Value;
-
-fn scene_at(path: &Path, size: Option<(u32, u32)>) -> Scene {
-    let scene = load(path).unwrap();
-    match size {
-        Some((w, h)) => scene.with_size(w, h).unwrap(),
-        None => scene,
-    }
-}
 
 fn scene_path(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -61,6 +61,15 @@ pub fn scene(text: &str) -> Scene {
     parse(Path::new("test.toml"), text).unwrap()
 }
 
+/// The scene file at `path`, at `size` if given (its field of view kept).
+pub fn scene_at(path: &Path, size: Option<(u32, u32)>) -> Scene {
+    let scene = raystep::scene::load(path).unwrap();
+    match size {
+        Some((w, h)) => scene.with_size(w, h).unwrap(),
+        None => scene,
+    }
+}
+
 /// The tree of one primary ray from `origin` along `direction`.
 pub fn record(scene: &Scene, origin: [f64; 3], direction: [f64; 3]) -> RayTree {
     let ray = Ray::new(DVec3::from_array(origin), DVec3::from_array(direction));
