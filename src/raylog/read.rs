@@ -11,6 +11,7 @@ use serde_json::{Map, Value};
 
 use super::logged_ray::{Hit, LoggedRay};
 use super::path::RayPath;
+use crate::record::count;
 use crate::scene::Scene;
 
 /// The longest line read: one ray never needs more.
@@ -245,9 +246,9 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
                 _ => Err((
                     column,
                     format!(
-                        "hit {n} names no object of the scene: it has {} objects, \
+                        "hit {n} names no object of the scene: it has {}, \
                          counted from 0 in file order",
-                        objects.len()
+                        count(objects.len() as u64, "object", "objects")
                     ),
                 )),
             },
