@@ -53,7 +53,6 @@ pub struct RaylogReader<'a, R> {
     input: R,
     scene: &'a Scene,
     line: usize,
-    rays: usize,
     /// Each pixel and path read, with its line, to name a repeat.
     seen: HashMap<((u32, u32), RayPath), usize>,
     unknown_keys: BTreeSet<String>,
@@ -72,7 +71,6 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
             input,
             scene,
             line: 0,
-            rays: 0,
             seen: HashMap::new(),
             unknown_keys: BTreeSet::new(),
             finished: false,
@@ -270,7 +268,7 @@ impl<R: BufRead> Iterator for RaylogReader<'_, R> {
                 Ok(Some(text)) => text,
                 Ok(None) => {
                     self.finished = true;
-                    if self.rays > 0 {
+                    if !self.seen.is_empty() {
                         return None;
                     }
                     let problem = "the log holds no ray (it is empty, or only comments and \
@@ -285,10 +283,7 @@ impl<R: BufRead> Iterator for RaylogReader<'_, R> {
                 continue;
             }
             return Some(match self.ray(&text) {
-                Ok(ray) => {
-                    self.rays += 1;
-                    Ok((self.line, ray))
-                }
+                Ok(ray) => Ok((self.line, ray)),
                 Err(problem) => Err(self.error(problem)),
             });
         }
