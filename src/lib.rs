@@ -8,6 +8,7 @@ pub(crate) mod camera;
 pub mod cli;
 pub mod compare;
 pub mod diagram;
+pub mod divergence;
 pub mod math;
 pub mod mistakes;
 pub(crate) mod object;

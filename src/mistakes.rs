@@ -124,6 +124,26 @@ impl Mistake {
         }
     }
 
+    /// Whether the mistake acts only on the bytes, after every ray is
+    /// traced: no ray log can show it (docs/RAYLOG.md).
+    pub(crate) fn acts_only_on_bytes(self) -> bool {
+        match self {
+            Mistake::ByteWrap | Mistake::Gamma => true,
+            Mistake::ShadowAcne
+            | Mistake::NoNormalFlip
+            | Mistake::EtaInverted
+            | Mistake::TirDropped
+            | Mistake::PhongNotBlinn
+            | Mistake::OpaqueShadows
+            | Mistake::ShadowsPastLight
+            | Mistake::NoLightAttenuation
+            | Mistake::DepthOffByOne
+            | Mistake::NoAmbient
+            | Mistake::FlippedY
+            | Mistake::PixelCorner => false,
+        }
+    }
+
     fn bit(self) -> u16 {
         1 << self as u16
     }

@@ -113,7 +113,23 @@ pub(crate) struct CompareArgs {
     /// Scene file (.toml or .nff); rendered at the image's size.
     pub(crate) scene: PathBuf,
     /// Your render of the scene, a PNG (alpha and 16 bits are converted).
-    pub(crate) image: PathBuf,
+    /// Optional with --rays.
+    #[arg(required_unless_present = "rays")]
+    pub(crate) image: Option<PathBuf>,
+    /// Your tracer's rays, a ray log (docs/RAYLOG.md; `-` reads stdin):
+    /// each logged pixel's rays beside ours, down to the first number
+    /// that differs.
+    #[arg(long, value_name = "LOG.jsonl")]
+    pub(crate) rays: Option<PathBuf>,
+    /// The image size the log's pixels belong to, WIDTHxHEIGHT (default:
+    /// the image's, else the scene's). Only with --rays.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, requires = "rays")]
+    pub(crate) size: Option<(u32, u32)>,
+    /// When two logged numbers agree: GEOMETRY (relative, on positions,
+    /// directions and t; default 1e-4) and optionally COLOUR (absolute,
+    /// on colours, terms, S and weights; default 1/512). Only with --rays.
+    #[arg(long, value_name = "GEOMETRY[,COLOUR]", value_parser = crate::divergence::Tolerance::parse, requires = "rays")]
+    pub(crate) tolerance: Option<crate::divergence::Tolerance>,
     /// Output form: a report for people, or JSON for graders.
     #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
     pub(crate) format: CompareFormat,

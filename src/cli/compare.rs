@@ -1,48 +1,142 @@
 //! `raystep compare`: the student's render against raystep's, as a report
-//! or JSON, with the error map and the graders' thresholds.
+//! or JSON, with the error map and the graders' thresholds; with `--rays`,
+//! the student's ray log beside raystep's trees.
 
+use std::fs::File;
+use std::io::{BufRead, BufReader};
+use std::path::Path;
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{Context, Result, bail};
 
 use super::{CompareArgs, CompareFormat, SizeArg, emit, load_scene};
+use crate::compare::Comparison;
+use crate::divergence::{LogComparison, compare_log};
 use crate::output;
+use crate::raylog::RaylogReader;
+use crate::scene::Scene;
 
 /// Exit status of `compare` when a `--max-*` threshold is exceeded.
 const OVER_THRESHOLD: u8 = 3;
 
 pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
-    let student = crate::compare::student::load(&args.image)?;
-    let (width, height) = student.image.dimensions();
+    let student = args
+        .image
+        .as_deref()
+        .map(crate::compare::student::load)
+        .transpose()?;
+    let image_size = student.as_ref().map(|s| s.image.dimensions());
+    if let (Some((w, h)), Some((sw, sh))) = (image_size, args.size)
+        && (w, h) != (sw, sh)
+    {
+        bail!(
+            "--size {sw}x{sh} is not your image's size, {w}x{h}: leave --size out to use the image's"
+        );
+    }
     let scene = load_scene(
         Some(&args.scene),
         SizeArg {
-            size: Some((width, height)),
+            size: image_size.or(args.size),
         },
     )?;
     let diff = args.output.as_deref().map(output::file).transpose()?;
     if let Some(diff) = &diff {
         output::refuse_clashes(&args.scene, &[(diff, "the error map (-o)".to_owned())])?;
-        output::refuse_input(diff, &args.image, "your image")?;
+        if let Some(image) = &args.image {
+            output::refuse_input(diff, image, "your image")?;
+        }
+        if let Some(log) = &args.rays {
+            output::refuse_input(diff, log, "your ray log")?;
+        }
     }
-    let comparison = crate::compare::compare(&scene, student);
-    if let Some(diff) = diff {
+    // The log is read before the image is compared: a bad log is told at once.
+    let rays = args
+        .rays
+        .as_deref()
+        .map(|log| read_log(&scene, log, args.tolerance.unwrap_or_default()))
+        .transpose()?;
+    let comparison = student.map(|student| crate::compare::compare(&scene, student));
+    if let (Some(diff), Some(comparison)) = (diff, &comparison) {
         output::write_all(None, std::iter::once((&diff, comparison.error_map.clone())))?;
     }
+    let scene_name = args.scene.display().to_string();
     match args.format {
-        CompareFormat::Text => emit(&crate::compare::text(
-            &comparison,
-            &args.image.display().to_string(),
-            &args.scene.display().to_string(),
-        ))?,
-        CompareFormat::Json => emit(&format!("{}\n", serde_json::to_string_pretty(&comparison)?))?,
+        CompareFormat::Text => emit(&text(args, &scene_name, comparison.as_ref(), rays.as_ref()))?,
+        CompareFormat::Json => emit(&format!("{}\n", json(comparison.as_ref(), rays.as_ref())?))?,
     }
-    let m = &comparison.metrics;
-    let over = args.max_flip.is_some_and(|f| m.flip_mean > f)
-        || args.max_mean_abs.is_some_and(|e| m.mean_abs > e);
+    let over = comparison.as_ref().is_some_and(|c| {
+        let m = &c.metrics;
+        args.max_flip.is_some_and(|f| m.flip_mean > f)
+            || args.max_mean_abs.is_some_and(|e| m.mean_abs > e)
+    });
     Ok(if over {
         ExitCode::from(OVER_THRESHOLD)
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// The log compared with the scene; `-` is stdin.
+fn read_log(
+    scene: &Scene,
+    log: &Path,
+    tolerance: crate::divergence::Tolerance,
+) -> Result<LogComparison> {
+    let name = log.display().to_string();
+    let input: Box<dyn BufRead> = if log == Path::new("-") {
+        Box::new(BufReader::new(std::io::stdin().lock()))
+    } else {
+        let file = File::open(log).with_context(|| format!("cannot open the ray log {name}"))?;
+        Box::new(BufReader::new(file))
+    };
+    Ok(compare_log(
+        scene,
+        RaylogReader::new(name, input, scene),
+        tolerance,
+    )?)
+}
+
+fn text(
+    args: &CompareArgs,
+    scene: &str,
+    comparison: Option<&Comparison>,
+    rays: Option<&LogComparison>,
+) -> String {
+    let mut out = String::new();
+    if let (Some(comparison), Some(image)) = (comparison, &args.image) {
+        out.push_str(&crate::compare::text(
+            comparison,
+            &image.display().to_string(),
+            scene,
+        ));
+    }
+    if let (Some(rays), Some(log)) = (rays, &args.rays) {
+        if !out.is_empty() {
+            out.push('\n');
+        }
+        out.push_str(&crate::divergence::text(
+            rays,
+            &log.display().to_string(),
+            scene,
+            comparison.map(|c| c.matches),
+        ));
+    }
+    out
+}
+
+/// The image's JSON as before; the log's on its own, or with the image's
+/// beside it under "image".
+fn json(comparison: Option<&Comparison>, rays: Option<&LogComparison>) -> Result<String> {
+    let image = comparison.map(serde_json::to_value).transpose()?;
+    let value = match (rays.map(crate::divergence::json), image) {
+        (Some(mut rays), image) => {
+            if let (Some(object), Some(image)) = (rays.as_object_mut(), image) {
+                object.insert("image".into(), image);
+            }
+            rays
+        }
+        (None, Some(image)) => image,
+        (None, None) => serde_json::Value::Null,
+    };
+    Ok(serde_json::to_string_pretty(&value)?)
 }

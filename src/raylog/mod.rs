@@ -10,4 +10,5 @@ mod write;
 pub use logged_ray::{Hit, LoggedRay};
 pub use path::{RayPath, Step};
 pub use read::{MAX_LINE_BYTES, RaylogError, RaylogReader};
+pub(crate) use write::rays_with_nodes;
 pub use write::{raylog, rays_of};

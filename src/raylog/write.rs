@@ -8,11 +8,20 @@ use glam::DVec3;
 
 use super::logged_ray::{Hit, LoggedRay};
 use super::path::{RayPath, Step};
-use crate::record::{EventKind, RayTree};
+use crate::record::{EventKind, NodeId, RayTree};
 use crate::trace::RayKind;
 
 /// The recorded rays of `tree` as log records, in the order they were cast.
 pub fn rays_of(tree: &RayTree) -> Vec<LoggedRay> {
+    rays_with_nodes(tree)
+        .into_iter()
+        .map(|(ray, _)| ray)
+        .collect()
+}
+
+/// The recorded rays of `tree` in the order they were cast, each with the
+/// node it belongs to: its own, or for a shadow ray the node whose hit cast it.
+pub(crate) fn rays_with_nodes(tree: &RayTree) -> Vec<(LoggedRay, NodeId)> {
     // A node is recorded when cast, so its parent comes before it.
     let mut paths: Vec<RayPath> = Vec::with_capacity(tree.nodes.len());
     let mut weights: Vec<f64> = Vec::with_capacity(tree.nodes.len());
@@ -51,7 +60,7 @@ pub fn rays_of(tree: &RayTree) -> Vec<LoggedRay> {
                     ray.diffuse = Some(node.lights.iter().map(|l| l.diffuse).collect());
                     ray.specular = Some(node.lights.iter().map(|l| l.specular).collect());
                 }
-                rays.push(ray);
+                rays.push((ray, event.node));
             }
             EventKind::ShadowCast { light } => {
                 let shadow = node
@@ -66,7 +75,7 @@ pub fn rays_of(tree: &RayTree) -> Vec<LoggedRay> {
                     ray.dir = Some(shadow.direction);
                     ray.s = Some(shadow.s);
                 }
-                rays.push(ray);
+                rays.push((ray, event.node));
             }
             _ => {}
         }

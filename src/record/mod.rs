@@ -19,7 +19,7 @@ pub(crate) use explain::{Said, Told, explain_lines};
 pub use explain::{explain, explain_unwrapped};
 pub(crate) use finite::{NonFinite, check_finite};
 pub(crate) use lines::{About, Line};
-pub(crate) use numbers::{color, count, num, root};
+pub(crate) use numbers::{color, count, num, precise, root, vector};
 pub use ray_tree::{Event, EventKind, Node, RayTree};
 pub(crate) use ray_tree::{LightRecord, NearMiss, NodeId};
 pub use shaping::{place, reach, shaping_events};

@@ -1,0 +1,538 @@
+//! What a difference looks like, in words a student recognises: negated,
+//! mirrored, not normalised, scaled by a factor with a name, η and 1/η
+//! swapped, another object, a missing epsilon, a NaN.
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::checks::{Check, Value};
+use super::moment::Field;
+use super::ours::OurRays;
+use crate::raylog::{Hit, Step};
+use crate::record::{Node, num};
+use crate::scene::Scene;
+use crate::shapes::Working;
+
+/// The kinds of difference `compare --rays` recognises; their JSON names
+/// are a contract (docs/RAYLOG.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// A ray in your log that our tree does not cast.
+    OnlyYours,
+    /// A ray of our tree your log does not have.
+    OnlyOurs,
+    Nan,
+    Infinite,
+    Negated,
+    /// Reflected in the surface's plane, or turned half a turn about N.
+    Mirrored,
+    /// The same direction with another length.
+    NotNormalised,
+    /// A constant factor times ours.
+    Scaled,
+    /// Refracted with 1/η in place of η.
+    EtaSwapped,
+    /// Refracted with the normal that faces away from the ray.
+    OutwardNormal,
+    /// A primary ray through another point of the image plane, as another
+    /// field of view gives.
+    FieldOfView,
+    OtherObject,
+    /// Yours hit nothing where ours hit an object.
+    Missed,
+    /// Yours hit an object where ours hit nothing.
+    HitWhereOursMissed,
+    /// The surface the ray starts on, at t ≈ 0: a missing epsilon.
+    SelfHit,
+    /// The same object at another distance.
+    OtherT,
+    /// Yours is 0 where ours is not: a term or factor left out.
+    Zero,
+    /// A primary ray through another point of the image than the pixel's
+    /// centre.
+    OtherPixel,
+    Other,
+}
+
+impl Kind {
+    /// The JSON name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::OnlyYours => "only_yours",
+            Kind::OnlyOurs => "only_ours",
+            Kind::Nan => "nan",
+            Kind::Infinite => "infinite",
+            Kind::Negated => "negated",
+            Kind::Mirrored => "mirrored",
+            Kind::NotNormalised => "not_normalised",
+            Kind::Scaled => "scaled",
+            Kind::EtaSwapped => "eta_swapped",
+            Kind::OutwardNormal => "outward_normal",
+            Kind::FieldOfView => "field_of_view",
+            Kind::OtherObject => "other_object",
+            Kind::Missed => "missed",
+            Kind::HitWhereOursMissed => "hit_where_ours_missed",
+            Kind::SelfHit => "self_hit",
+            Kind::OtherT => "other_t",
+            Kind::Zero => "zero",
+            Kind::OtherPixel => "other_pixel",
+            Kind::Other => "other",
+        }
+    }
+}
+
+/// A distance below which a hit is on the surface the ray left: a
+/// tracer without MODEL §3's EPS finds its own surface at t ≈ 1e-16.
+const SELF_HIT_T: f64 = 1e-6;
+
+/// Two vectors equal up to rounding, for recognising a kind (looser than
+/// any tolerance a student would set, so the kind is found at any).
+fn close(a: DVec3, b: DVec3) -> bool {
+    (a - b).length() <= 1e-3 * a.length().max(b.length()).max(1e-12)
+}
+
+fn close_numbers(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-3 * a.abs().max(b.abs()).max(1e-12)
+}
+
+/// What ray `ray` of `ours` (the one `check` is on) tells about the
+/// difference, and the kind, in words.
+pub(crate) fn classify(scene: &Scene, ours: &OurRays, ray: usize, check: &Check) -> (Kind, String) {
+    if let Some(what) = check.yours.non_finite() {
+        let kind = if what == "NaN" {
+            Kind::Nan
+        } else {
+            Kind::Infinite
+        };
+        return (kind, format!("yours is {what}; ours is finite"));
+    }
+    let Some(our_value) = check.ours else {
+        return match check.yours {
+            Value::Number(_) | Value::Vector(_) if ours.rays()[ray].hit == Some(Hit::Miss) => (
+                Kind::HitWhereOursMissed,
+                format!("yours has a {}; ours hit nothing, so has none", check.field),
+            ),
+            _ => (Kind::Other, format!("ours has no {}", check.field)),
+        };
+    };
+    match (check.yours, our_value) {
+        (Value::Hit(yours), Value::Hit(theirs)) => hit(scene, ours, ray, yours, theirs),
+        (Value::Number(yours), Value::Number(theirs)) => {
+            number(ours, ray, check.field, yours, theirs)
+        }
+        (Value::Vector(yours), Value::Vector(theirs)) => {
+            vector(scene, ours, ray, check.field, yours, theirs)
+        }
+        _ => (Kind::Other, String::new()),
+    }
+}
+
+fn hit(scene: &Scene, ours: &OurRays, ray: usize, yours: Hit, theirs: Hit) -> (Kind, String) {
+    let name = |o: usize| format!("{o} ({})", scene.object_name(o));
+    let logged_t = ours.rays()[ray].t;
+    match (yours, theirs) {
+        (Hit::Miss, Hit::Object(o)) => (
+            Kind::Missed,
+            format!("yours hit nothing; ours hit object {}", name(o)),
+        ),
+        (Hit::Object(o), Hit::Miss) => (
+            Kind::HitWhereOursMissed,
+            format!("yours hit object {}; ours hit nothing", name(o)),
+        ),
+        (Hit::Object(y), Hit::Object(o)) => {
+            let starts_on = ours
+                .source(ray)
+                .and_then(|s| s.hit.as_ref())
+                .map(|h| h.object_index);
+            if starts_on == Some(y) {
+                (
+                    Kind::SelfHit,
+                    format!(
+                        "yours hit object {}, the surface the ray starts on; ours hit object {}{}: \
+                         a hit must lie at t > EPS = 1e-4 (MODEL §3), or a ray finds its own surface",
+                        name(y),
+                        name(o),
+                        logged_t.map_or(String::new(), |t| format!(" at t = {}", num(t)))
+                    ),
+                )
+            } else {
+                (
+                    Kind::OtherObject,
+                    format!("yours hit object {}; ours hit object {}", name(y), name(o)),
+                )
+            }
+        }
+        (Hit::Miss, Hit::Miss) => (Kind::Other, String::new()),
+    }
+}
+
+fn number(ours: &OurRays, ray: usize, field: Field, yours: f64, theirs: f64) -> (Kind, String) {
+    if field == Field::T {
+        if yours.abs() < SELF_HIT_T {
+            return (
+                Kind::SelfHit,
+                format!(
+                    "yours is t = {yours:e}, the point the ray starts from: a hit must lie at \
+                     t > EPS = 1e-4 (MODEL §3), or a ray finds its own surface"
+                ),
+            );
+        }
+        let node = ours.node(ray);
+        if let Some(other) = node
+            .hit
+            .as_ref()
+            .and_then(|h| other_root(&h.working, theirs))
+            && close_numbers(yours, other)
+        {
+            return (
+                Kind::OtherT,
+                format!(
+                    "yours is the other root of the quadratic, t = {}; the nearest hit past EPS is t = {}",
+                    num(other),
+                    num(theirs)
+                ),
+            );
+        }
+    }
+    if field == Field::S {
+        let light = match ours.rays()[ray].path.steps.last() {
+            Some(Step::Shadow(i)) => *i,
+            _ => 0,
+        };
+        let seen = |s: f64| match s {
+            0.0 => "fully blocked".to_string(),
+            1.0 => "unblocked".to_string(),
+            s => format!("partly blocked, S = {}", num(s)),
+        };
+        return (
+            if yours == 0.0 {
+                Kind::Zero
+            } else {
+                Kind::Other
+            },
+            format!(
+                "your shadow ray to light {light} is {}; ours is {}",
+                seen(yours),
+                seen(theirs)
+            ),
+        );
+    }
+    if theirs != 0.0 && yours == 0.0 {
+        return (
+            Kind::Zero,
+            format!("yours is 0 where ours is {}: left out?", num(theirs)),
+        );
+    }
+    if theirs != 0.0 && close_numbers(yours, -theirs) {
+        return (Kind::Negated, "yours is ours with its sign changed".into());
+    }
+    if theirs != 0.0 && yours != 0.0 {
+        let factor = yours / theirs;
+        return (
+            Kind::Scaled,
+            scaled_words(factor, &candidates(ours, ray, field)),
+        );
+    }
+    let kind = if field == Field::T {
+        Kind::OtherT
+    } else {
+        Kind::Other
+    };
+    (kind, String::new())
+}
+
+/// A sphere's or cone's other root than `t`, if it has two.
+fn other_root(working: &Working, t: f64) -> Option<f64> {
+    let (t0, t1) = match working {
+        Working::Sphere(w) => (w.t0?, w.t1?),
+        Working::Cone(w) => (w.t0?, w.t1?),
+        _ => return None,
+    };
+    Some(if (t - t0).abs() <= (t - t1).abs() {
+        t1
+    } else {
+        t0
+    })
+}
+
+fn vector(
+    scene: &Scene,
+    ours: &OurRays,
+    ray: usize,
+    field: Field,
+    yours: DVec3,
+    theirs: DVec3,
+) -> (Kind, String) {
+    let direction = matches!(field, Field::Dir | Field::Normal);
+    if direction && yours.length() > 0.0 && theirs.length() > 0.0 {
+        let (unit_yours, unit_ours) = (yours.normalize(), theirs.normalize());
+        if close(unit_yours, unit_ours) {
+            return (
+                Kind::NotNormalised,
+                format!(
+                    "the same direction with length {} (ours {}): MODEL normalises it",
+                    num(yours.length()),
+                    num(theirs.length())
+                ),
+            );
+        }
+    }
+    if theirs != DVec3::ZERO && yours == DVec3::ZERO {
+        return (
+            Kind::Zero,
+            format!("yours is 0 where ours is {}: left out?", vec3(theirs)),
+        );
+    }
+    if theirs != DVec3::ZERO && close(yours, -theirs) {
+        return (Kind::Negated, "yours is −1 × ours".into());
+    }
+    if direction && let Some(found) = direction_kind(scene, ours, ray, field, yours, theirs) {
+        return found;
+    }
+    if let Some(factor) = common_factor(yours, theirs) {
+        return (
+            Kind::Scaled,
+            scaled_words(factor, &candidates(ours, ray, field)),
+        );
+    }
+    (Kind::Other, String::new())
+}
+
+/// The factor c with yours = c × ours, when there is one (c ≠ 1).
+fn common_factor(yours: DVec3, theirs: DVec3) -> Option<f64> {
+    let norm = theirs.length_squared();
+    if norm == 0.0 {
+        return None;
+    }
+    let c = yours.dot(theirs) / norm;
+    (c != 0.0 && close(yours, c * theirs) && !close_numbers(c, 1.0)).then_some(c)
+}
+
+/// The kinds only a direction can have, from the hit the ray leaves.
+fn direction_kind(
+    scene: &Scene,
+    ours: &OurRays,
+    ray: usize,
+    field: Field,
+    yours: DVec3,
+    theirs: DVec3,
+) -> Option<(Kind, String)> {
+    let path = &ours.rays()[ray].path;
+    if field == Field::Dir && path.steps.is_empty() {
+        return field_of_view(scene, ours, yours);
+    }
+    let surface = if field == Field::Normal {
+        ours.node(ray).hit.as_ref()
+    } else {
+        ours.source(ray)?.hit.as_ref()
+    }?;
+    let n = surface.normal;
+    let yours_unit = yours.normalize_or_zero();
+    let in_plane = theirs - 2.0 * theirs.dot(n) * n;
+    if close(yours_unit, in_plane.normalize_or_zero()) {
+        return Some((
+            Kind::Mirrored,
+            format!(
+                "yours is ours reflected in the surface's plane (N = {})",
+                vec3(n)
+            ),
+        ));
+    }
+    if close(yours_unit, (-in_plane).normalize_or_zero()) {
+        return Some((
+            Kind::Mirrored,
+            format!("yours is ours turned half a turn about N = {}", vec3(n)),
+        ));
+    }
+    if field == Field::Dir && path.steps.last() == Some(&Step::Transmitted) {
+        return refraction_kind(ours.source(ray)?, yours);
+    }
+    None
+}
+
+/// A transmitted direction refracted with η and 1/η swapped, or with N
+/// not turned to face the ray.
+fn refraction_kind(parent: &Node, yours: DVec3) -> Option<(Kind, String)> {
+    let hit = parent.hit.as_ref()?;
+    let d = parent.direction;
+    let ior = hit.factors.ior;
+    let eta = if hit.entering { 1.0 / ior } else { ior };
+    let refract = |eta: f64, n: DVec3| {
+        let cos_i = -d.dot(n);
+        let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+        (k >= 0.0).then(|| eta * d + (eta * cos_i - k.sqrt()) * n)
+    };
+    let matches = |t: Option<DVec3>| {
+        t.is_some_and(|t| close(yours.normalize_or_zero(), t.normalize_or_zero()))
+    };
+    let n = hit.normal;
+    if matches(refract(1.0 / eta, n)) {
+        return Some((
+            Kind::EtaSwapped,
+            format!(
+                "yours is refracted with η = {}, ours with η = {} ({}, ior {}): η is n_i / n_t",
+                num(1.0 / eta),
+                num(eta),
+                if hit.entering { "entering" } else { "leaving" },
+                num(ior)
+            ),
+        ));
+    }
+    for (eta_used, words) in [(eta, "the same η"), (1.0 / eta, "η and 1/η swapped")] {
+        if matches(refract(eta_used, -n)) {
+            return Some((
+                Kind::OutwardNormal,
+                format!(
+                    "yours is refracted with −N, the normal facing away from the ray \
+                     (N_g when leaving), and {words}; MODEL §5 uses N facing the ray, N·d ≤ 0"
+                ),
+            ));
+        }
+    }
+    None
+}
+
+/// A primary direction another field of view would give: yours crosses
+/// the image plane at the same point scaled about its centre.
+fn field_of_view(scene: &Scene, ours: &OurRays, yours: DVec3) -> Option<(Kind, String)> {
+    let frame = scene.camera.frame();
+    let ours_dir = ours.rays().first()?.dir?;
+    let plane = |d: DVec3| {
+        let along = d.dot(frame.forward);
+        (along > 0.0).then(|| (d.dot(frame.right) / along, d.dot(frame.true_up) / along))
+    };
+    let ((yx, yy), (ox, oy)) = (plane(yours)?, plane(ours_dir)?);
+    // The larger offset decides the ratio; the other must follow it.
+    let ratio = if ox.abs() >= oy.abs() {
+        yx / ox
+    } else {
+        yy / oy
+    };
+    let scale = ox.abs().max(oy.abs());
+    let same = (yx - ratio * ox).abs() <= 1e-3 * scale && (yy - ratio * oy).abs() <= 1e-3 * scale;
+    let fov = scene.camera.fov;
+    if same && ratio.is_finite() && ratio > 0.0 && !close_numbers(ratio, 1.0) {
+        let yours_fov = 2.0 * (ratio * (fov.to_radians() / 2.0).tan()).atan().to_degrees();
+        return Some((
+            Kind::FieldOfView,
+            format!(
+                "yours is the ray of a vertical field of view of {}° (ours {}°, edge to edge, \
+                 MODEL §2): its offsets px and py on the image plane are {} × ours",
+                num(yours_fov),
+                num(fov),
+                num(ratio)
+            ),
+        ));
+    }
+    // Where yours crosses the image plane, in pixel units (MODEL §2 read
+    // backwards): ours crosses at the pixel's centre.
+    let (w, h) = (scene.width as f64, scene.height as f64);
+    let s = (fov.to_radians() / 2.0).tan();
+    let image_x = (yx / (s * w / h) + 1.0) * w / 2.0;
+    let image_y = (1.0 - yy / s) * h / 2.0;
+    let (x, y) = ours.tree.pixel;
+    Some((
+        Kind::OtherPixel,
+        format!(
+            "yours crosses the image at ({}, {}) in pixel units; ours at ({}, {}), the centre of \
+             pixel ({x}, {y})",
+            num(image_x),
+            num(image_y),
+            x as f64 + 0.5,
+            y as f64 + 0.5
+        ),
+    ))
+}
+
+/// Named factors a difference of `field` may be, with their values.
+fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(String, f64)> {
+    let node = ours.node(ray);
+    let mut named = Vec::new();
+    let hit = node.hit.as_ref();
+    match field {
+        Field::Diffuse(i) | Field::Specular(i) => {
+            if let Some(light) = node.lights.iter().find(|l| l.light_index == i) {
+                let d = light.distance;
+                named.push((format!("1/d_L² (d_L = {})", num(d)), 1.0 / (d * d)));
+                named.push((format!("1/d_L (d_L = {})", num(d)), 1.0 / d));
+                named.push((
+                    format!("1/f_att (f_att = {})", num(light.f_att)),
+                    1.0 / light.f_att,
+                ));
+                named.push((format!("N·L = {}", num(light.n_dot_l)), light.n_dot_l));
+                named.push((
+                    format!("1/(N·L) (N·L = {})", num(light.n_dot_l)),
+                    1.0 / light.n_dot_l,
+                ));
+                if let Some(shadow) = &light.shadow {
+                    named.push((format!("1/S (S = {})", num(shadow.s)), 1.0 / shadow.s));
+                }
+            }
+            if let Some(hit) = hit {
+                let k = if matches!(field, Field::Diffuse(_)) {
+                    hit.factors.kd
+                } else {
+                    hit.factors.ks
+                };
+                named.push((format!("the k once more ({})", num(k)), k));
+                named.push((format!("1/k (k = {}): k left out", num(k)), 1.0 / k));
+            }
+        }
+        Field::Ambient => {
+            if let Some(hit) = hit {
+                let f = hit.factors;
+                named.push((
+                    format!(
+                        "k_d / k_a = {} / {}: k_d where k_a belongs",
+                        num(f.kd),
+                        num(f.ka)
+                    ),
+                    f.kd / f.ka,
+                ));
+                named.push((
+                    format!("1/k_a (k_a = {}): k_a left out", num(f.ka)),
+                    1.0 / f.ka,
+                ));
+            }
+        }
+        Field::Color | Field::Weight => {
+            named.push((
+                format!("the ray's weight {}", num(node.weight)),
+                node.weight,
+            ));
+            named.push((
+                format!("the attenuation {}", num(node.attenuation)),
+                node.attenuation,
+            ));
+            named.push((
+                format!(
+                    "the ray's weight × attenuation {}",
+                    num(node.weight * node.attenuation)
+                ),
+                node.weight * node.attenuation,
+            ));
+        }
+        Field::T => {
+            let d = node.direction.length();
+            named.push((format!("1/|dir| (|dir| = {})", num(d)), 1.0 / d));
+        }
+        _ => {}
+    }
+    named.retain(|(_, value)| value.is_finite() && *value != 0.0);
+    named
+}
+
+fn scaled_words(factor: f64, named: &[(String, f64)]) -> String {
+    match named
+        .iter()
+        .find(|(_, value)| close_numbers(factor, *value))
+    {
+        Some((name, _)) => format!("yours is {} × ours: {name}", num(factor)),
+        None => format!("yours is {} × ours", num(factor)),
+    }
+}
+
+fn vec3(v: DVec3) -> String {
+    crate::record::vector(v)
+}
