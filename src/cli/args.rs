@@ -61,7 +61,9 @@ pub(crate) enum Command {
     /// Explain in plain words why one pixel has its colour.
     Explain(PixelArgs),
     /// Compare your own render of a scene with raystep's: how far apart,
-    /// where, and which classic mistake explains the difference.
+    /// where, and which classic mistake explains the difference; with
+    /// --rays, your tracer's rays beside ours, down to the first number
+    /// that differs.
     Compare(CompareArgs),
     /// Draw one pixel's rays as an SVG figure for a slide.
     Diagram(DiagramArgs),
