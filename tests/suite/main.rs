@@ -32,6 +32,7 @@ mod scene_bounds;
 mod scene_props;
 mod shading;
 mod snapshots;
+mod student_tracer;
 mod term_images;
 mod toml_sections;
 mod tui;

@@ -1,0 +1,342 @@
+#!/usr/bin/env python3
+"""A student's Whitted ray tracer, written from docs/MODEL.md and docs/RAYLOG.md.
+
+It traces one pixel (or a rectangle of pixels) of a raystep TOML scene and
+prints every ray it casts as a ray log, for `raystep compare SCENE --rays LOG`:
+
+    python3 tests/student/whitted.py scenes/glass.toml 72 45 > mine.jsonl
+    python3 tests/student/whitted.py scenes/glass.toml 70 40 --size 4x3
+
+--size WxH traces the W x H pixels whose top-left one is X, Y.
+--mistake NAME switches on one of the slips students make (see MISTAKES);
+each is a one-line change at the place marked `if "NAME" in mistakes`.
+Python 3.11, standard library only.
+"""
+import argparse
+import json
+import math
+import tomllib
+
+EPS = 1e-4
+MISTAKES = {
+    "reflect-sign": "R = 2 (N.d) N - d",
+    "outward-normal": "refraction uses N_g, not N, when leaving",
+    "unnormalised-l": "L = P_L - p is not normalised",
+    "abs-ndotl": "|N.L|: lights behind the surface count",
+    "fov-radians": "fov read as radians",
+    "fov-horizontal": "fov taken as the horizontal field of view",
+    "no-shadow-ray": "lights are never blocked, no shadow rays",
+    "past-max-depth": "one level deeper than max_depth",
+    "nan": "V = normalize(p - p), a zero vector: NaN",
+    "no-epsilon": "t > 0 instead of t > EPS",
+}
+mistakes = set()
+
+
+def log_ray(x, y, path, **fields):
+    print(json.dumps({"pixel": [x, y], "path": path, **fields}))
+
+
+# --- vectors are tuples of three floats ---------------------------------------
+def add(a, b): return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+def sub(a, b): return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+def mul(a, s): return (a[0] * s, a[1] * s, a[2] * s)
+def vmul(a, b): return (a[0] * b[0], a[1] * b[1], a[2] * b[2])
+def dot(a, b): return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+def cross(a, b): return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+def length(a): return math.sqrt(dot(a, a))
+
+
+def normalize(a):
+    n = length(a)
+    if n == 0:
+        return (math.nan, math.nan, math.nan)  # what 0/0 gives in C
+    return (a[0] / n, a[1] / n, a[2] / n)
+
+
+# --- shapes: every t where the ray's line meets the surface, and N_g at p -----
+def sphere_ts(s, o, d):
+    oc = sub(o, s["center"])
+    a, b, c = dot(d, d), 2 * dot(d, oc), dot(oc, oc) - s["radius"] ** 2
+    disc = b * b - 4 * a * c
+    if disc < 0:
+        return []
+    root = math.sqrt(disc)
+    return [(-b - root) / (2 * a), (-b + root) / (2 * a)]
+
+
+def plane_ts(pn, dd, o, d):
+    vd = dot(pn, d)
+    return [] if vd == 0 else [-(dot(pn, o) + dd) / vd]
+
+
+def polygon_ts(s, o, d):
+    ts = plane_ts(s["normal"], s["D"], o, d)
+    return [t for t in ts if inside(s, add(o, mul(d, t)))]
+
+
+def inside(s, p):
+    """Jordan curve test: drop the largest normal axis, count edges crossing +U."""
+    n = [abs(c) for c in s["normal"]]
+    drop = n.index(max(n))
+    u, v = [i for i in range(3) if i != drop]
+    pts = [(q[u] - p[u], q[v] - p[v]) for q in s["vertices"]]
+    crossings = 0
+    for i, (ua, va) in enumerate(pts):
+        ub, vb = pts[(i + 1) % len(pts)]
+        if (va >= 0) != (vb >= 0) and ua - va * (ub - ua) / (vb - va) > 0:
+            crossings += 1
+    return crossings % 2 == 1
+
+
+def patch_normal(s, p):
+    """The vertex normals interpolated on the fan triangle (v0, vi, vi+1) holding p."""
+    vs, ns = s["vertices"], s["normals"]
+    for i in range(1, len(vs) - 1):
+        a, b, c = vs[0], vs[i], vs[i + 1]
+        n = cross(sub(b, a), sub(c, a))
+        wa = dot(cross(sub(c, b), sub(p, b)), n) / dot(n, n)
+        wb = dot(cross(sub(a, c), sub(p, c)), n) / dot(n, n)
+        wc = 1 - wa - wb
+        if min(wa, wb, wc) >= 0 or i == len(vs) - 2:
+            return normalize(add(mul(ns[0], wa), add(mul(ns[i], wb), mul(ns[i + 1], wc))))
+
+
+def cone_ts(s, o, d):
+    """Open cone or cylinder: |q - (q.a) a| = r0 + k (q.a) with 0 <= q.a <= h."""
+    a, h, r0, k = s["axis"], s["height"], s["r0"], s["k"]
+    q = sub(o, s["base"])
+    yo, yd = dot(q, a), dot(d, a)
+    ro, rd = sub(q, mul(a, yo)), sub(d, mul(a, yd))
+    ro_r = r0 + k * yo
+    qa = dot(rd, rd) - k * k * yd * yd
+    qb = 2 * (dot(ro, rd) - k * ro_r * yd)
+    qc = dot(ro, ro) - ro_r * ro_r
+    if qa == 0:
+        ts = [] if qb == 0 else [-qc / qb]
+    else:
+        disc = qb * qb - 4 * qa * qc
+        if disc < 0:
+            return []
+        root = math.sqrt(disc)
+        ts = [(-qb - root) / (2 * qa), (-qb + root) / (2 * qa)]
+    return [t for t in ts if 0 <= yo + t * yd <= h]
+
+
+def hits(s, o, d):
+    kind = s["kind"]
+    if kind == "sphere":
+        return sphere_ts(s, o, d)
+    if kind == "plane":
+        return plane_ts(s["normal"], s["D"], o, d)
+    if kind in ("polygon", "patch"):
+        return polygon_ts(s, o, d)
+    return cone_ts(s, o, d)
+
+
+def geometric_normal(s, p):
+    if s["kind"] == "sphere":
+        return mul(sub(p, s["center"]), 1 / s["radius"])
+    if s["kind"] in ("plane", "polygon"):
+        return s["normal"]
+    if s["kind"] == "patch":
+        return patch_normal(s, p)
+    q = sub(p, s["base"])
+    y = dot(q, s["axis"])
+    radial = sub(q, mul(s["axis"], y))
+    return normalize(sub(radial, mul(s["axis"], s["k"] * (s["r0"] + s["k"] * y))))
+
+
+# --- the scene ---------------------------------------------------------------
+def load(path):
+    with open(path, "rb") as f:
+        toml = tomllib.load(f)
+    cam, img, st = toml["camera"], toml.get("image", {}), toml.get("settings", {})
+    scene = {
+        "eye": tuple(cam["eye"]), "look_at": tuple(cam["look_at"]),
+        "up": tuple(cam.get("up", (0, 1, 0))), "fov": cam.get("fov", 45),
+        "width": img.get("width", 320), "height": img.get("height", 240),
+        "background": tuple(st.get("background", (0, 0, 0))),
+        "ambient": tuple(st.get("ambient", (0, 0, 0))),
+        "light_att": st.get("light_attenuation", (1, 0, 0)),
+        "ray_att": st.get("ray_attenuation", (1, 0, 0)),
+        "max_depth": st.get("max_depth", 5), "min_weight": st.get("min_weight", 1 / 512),
+        "max_rays": st.get("max_rays", 4096), "specular": st.get("specular", "blinn"),
+    }
+    materials = {}
+    for name, m in toml.get("materials", {}).items():
+        materials[name] = {
+            "color": tuple(m.get("color", (1, 1, 1))), "kd": m.get("kd", 1), "ks": m.get("ks", 0),
+            "n": m.get("n", 20), "kt": m.get("kt", 0), "ior": m.get("ior", 1), "ka": m.get("ka", 1),
+            "specular": m.get("specular", scene["specular"]),
+        }
+    scene["lights"] = [(tuple(l["position"]), tuple(l.get("color", (1, 1, 1)))) for l in toml.get("light", [])]
+    scene["objects"] = [shape(o) | {"material": materials[o["material"]]} for o in toml.get("object", [])]
+    return scene
+
+
+def shape(obj):
+    if "sphere" in obj:
+        s = obj["sphere"]
+        return {"kind": "sphere", "center": tuple(s["center"]), "radius": s["radius"]}
+    if "plane" in obj:
+        n = normalize(tuple(obj["plane"]["normal"]))
+        return {"kind": "plane", "normal": n, "D": -dot(n, tuple(obj["plane"]["point"]))}
+    if "polygon" in obj or "patch" in obj:
+        kind = "polygon" if "polygon" in obj else "patch"
+        vs = [tuple(v) for v in obj[kind]["vertices"]]
+        n = normalize(cross(sub(vs[1], vs[0]), sub(vs[2], vs[0])))
+        normals = [tuple(v) for v in obj[kind].get("normals", [])]
+        return {"kind": kind, "vertices": vs, "normals": normals, "normal": n, "D": -dot(n, vs[0])}
+    if "cylinder" in obj or "cone" in obj:
+        c = obj.get("cylinder") or obj["cone"]
+        base, apex = tuple(c["base"]), tuple(c["apex"])
+        r0, r1 = c.get("radius", c.get("base_radius")), c.get("radius", c.get("apex_radius"))
+        h = length(sub(apex, base))
+        return {"kind": "cone", "base": base, "axis": normalize(sub(apex, base)), "height": h,
+                "r0": r0, "k": (r1 - r0) / h}
+    raise SystemExit(f"whitted.py: shape not supported: {obj.get('name')}")
+
+
+# --- tracing -------------------------------------------------------------------
+def nearest_hit(scene, o, d):
+    eps = 0 if "no-epsilon" in mistakes else EPS
+    best, best_t = None, math.inf
+    for i, s in enumerate(scene["objects"]):
+        for t in hits(s, o, d):
+            if eps < t < best_t:
+                best, best_t = i, t
+    return best, best_t
+
+
+def shadow(scene, p, L, d_l):
+    """S: the product of k_t over every crossing with EPS < t < d_L."""
+    eps = 0 if "no-epsilon" in mistakes else EPS
+    s_factor = 1.0
+    for s in scene["objects"]:
+        for t in hits(s, p, L):
+            if eps < t < d_l:
+                s_factor *= s["material"]["kt"]
+    return s_factor
+
+
+def attenuation(c, dist):
+    return min(1.0, 1 / (c[0] + c[1] * dist + c[2] * dist * dist))
+
+
+class Pixel:
+    def __init__(self, scene, x, y):
+        self.scene, self.x, self.y, self.rays = scene, x, y, 0
+
+    def log(self, path, **fields):
+        log_ray(self.x, self.y, path, **fields)
+
+    def trace(self, o, d, depth, weight, path):
+        scene = self.scene
+        self.rays += 1
+        i, t = nearest_hit(scene, o, d)
+        if i is None:
+            self.log(path, origin=o, dir=d, hit=None, color=scene["background"], weight=weight)
+            return scene["background"], None
+        obj = scene["objects"][i]
+        m = obj["material"]
+        p = add(o, mul(d, t))
+        n_g = geometric_normal(obj, p)
+        entering = dot(n_g, d) < 0
+        n = mul(n_g, -1) if dot(n_g, d) > 0 else n_g
+        v = mul(d, -1)
+        if "nan" in mistakes:
+            v = normalize(sub(p, p))  # meant o - p: a zero vector, normalised to NaN
+        ambient = mul(vmul(scene["ambient"], m["color"]), m["ka"])
+        color = ambient
+        diffuse, specular = [], []
+        for li, (pos, intensity) in enumerate(scene["lights"]):
+            to_light = sub(pos, p)
+            d_l = length(to_light)
+            l = normalize(to_light)
+            if "unnormalised-l" in mistakes:
+                l = to_light
+            ndotl = dot(n, l)
+            if "abs-ndotl" in mistakes:
+                ndotl = abs(ndotl)
+            if d_l < EPS or ndotl <= 0:
+                diffuse.append((0.0, 0.0, 0.0))
+                specular.append((0.0, 0.0, 0.0))
+                continue
+            s_factor = 1.0
+            if "no-shadow-ray" not in mistakes:
+                s_factor = shadow(scene, p, l, d_l)
+                self.log(f"{path}/S{li}", origin=p, dir=l, S=s_factor)
+            light = mul(intensity, s_factor * attenuation(scene["light_att"], d_l))
+            if m["specular"] == "phong":
+                cosine = dot(sub(mul(n, 2 * ndotl), l), v)
+            else:
+                cosine = dot(n, normalize(add(l, v)))
+            diffuse.append(mul(vmul(light, m["color"]), m["kd"] * ndotl))
+            specular.append(mul(light, m["ks"] * max(cosine, 0.0) ** m["n"]))
+            color = add(color, add(diffuse[-1], specular[-1]))
+
+        max_depth = scene["max_depth"] + (1 if "past-max-depth" in mistakes else 0)
+        if depth < max_depth:
+            transmitted, tir = None, False
+            if m["kt"] > 0:
+                cos_i = -dot(d, n)
+                eta = 1 / m["ior"] if entering else m["ior"]
+                k = 1 - eta * eta * (1 - cos_i * cos_i)
+                if k < 0:
+                    tir = True
+                else:
+                    n_t = n_g if "outward-normal" in mistakes and not entering else n
+                    cos_t = -dot(d, n_t)
+                    transmitted = add(mul(d, eta), mul(n_t, eta * cos_t - math.sqrt(k)))
+            children = []
+            if m["ks"] > 0 or tir:
+                r = sub(d, mul(n, 2 * dot(d, n)))
+                if "reflect-sign" in mistakes:
+                    r = sub(mul(n, 2 * dot(n, d)), d)
+                children.append(("R", r, m["ks"] + (m["kt"] if tir else 0)))
+            if transmitted is not None:
+                children.append(("T", transmitted, m["kt"]))
+            for step, direction, w in children:
+                if weight * w < scene["min_weight"] or self.rays >= scene["max_rays"]:
+                    continue
+                child, child_t = self.trace(p, direction, depth + 1, weight * w, f"{path}/{step}")
+                att = 1.0 if child_t is None else attenuation(scene["ray_att"], child_t)
+                color = add(color, mul(child, w * att))
+        self.log(path, origin=o, dir=d, hit=i, t=t, point=p, normal=n, color=color,
+                 ambient=ambient, diffuse=diffuse, specular=specular, weight=weight)
+        return color, t
+
+
+def primary_ray(scene, x, y):
+    w, h = scene["width"], scene["height"]
+    f = normalize(sub(scene["look_at"], scene["eye"]))
+    r = normalize(cross(f, scene["up"]))
+    u = cross(r, f)
+    fov = scene["fov"] if "fov-radians" in mistakes else math.radians(scene["fov"])
+    s = math.tan(fov / 2)
+    px = (2 * (x + 0.5) / w - 1) * s * (w / h)
+    py = (1 - 2 * (y + 0.5) / h) * s
+    if "fov-horizontal" in mistakes:
+        px, py = px * h / w, py * h / w
+    return normalize(add(f, add(mul(r, px), mul(u, py))))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scene")
+    ap.add_argument("x", type=int)
+    ap.add_argument("y", type=int)
+    ap.add_argument("--size", default="1x1", help="WxH pixels from X, Y")
+    ap.add_argument("--mistake", action="append", default=[], choices=sorted(MISTAKES))
+    args = ap.parse_args()
+    mistakes.update(args.mistake)
+    scene = load(args.scene)
+    w, h = (int(v) for v in args.size.split("x"))
+    for y in range(args.y, args.y + h):
+        for x in range(args.x, args.x + w):
+            Pixel(scene, x, y).trace(scene["eye"], primary_ray(scene, x, y), 1, 1.0, "P")
+
+
+if __name__ == "__main__":
+    main()

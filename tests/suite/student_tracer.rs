@@ -1,0 +1,247 @@
+//! `compare --rays` tried as a student would (issue 21): a tracer of our own,
+//! `tests/student/whitted.py`, written from docs/MODEL.md and docs/RAYLOG.md
+//! alone (never from raystep's source), prints its rays for a few pixels.
+//! Without a mistake every logged pixel must match raystep's tree: the
+//! strongest check we have that MODEL.md is a complete contract. With each
+//! of its `--mistake`s (student slips outside raystep's catalogue), the
+//! first divergence must be the ray and the number where the slip acts.
+
+use std::process::Command;
+
+use serde_json::Value;
+
+use crate::support::{raystep, stdout};
+
+const TRACER: &str = "tests/student/whitted.py";
+
+/// Whether python3 runs here; CI has it, a machine without it skips.
+fn python_available() -> bool {
+    let found = Command::new("python3")
+        .arg("--version")
+        .output()
+        .is_ok_and(|output| output.status.success());
+    if !found {
+        eprintln!("student_tracer: python3 not found, the student's tracer is not run");
+    }
+    found
+}
+
+/// The student's log for pixel (x, y) of `scene`, or a `w`x`h` rectangle
+/// from it, with `mistakes` switched on.
+fn student_log(scene: &str, (x, y): (u32, u32), size: (u32, u32), mistakes: &[&str]) -> String {
+    let (x, y, size) = (
+        x.to_string(),
+        y.to_string(),
+        format!("{}x{}", size.0, size.1),
+    );
+    let mut args = vec![TRACER, scene, &x, &y, "--size", &size];
+    for mistake in mistakes {
+        args.extend(["--mistake", mistake]);
+    }
+    let output = Command::new("python3")
+        .args(&args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("python3 runs");
+    assert!(
+        output.status.success(),
+        "whitted.py {args:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).unwrap()
+}
+
+/// `raystep compare SCENE --rays LOG --format json` on `log`.
+fn compare(scene: &str, log: &str) -> Value {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("student.jsonl");
+    std::fs::write(&path, log).unwrap();
+    let path = path.to_str().unwrap();
+    let output = raystep(&["compare", scene, "--rays", path, "--format", "json"]);
+    assert!(output.status.success(), "compare {scene}: {output:?}");
+    serde_json::from_str(&stdout(&output)).unwrap()
+}
+
+/// The top-left pixel (x, y) of a rectangle, and its size (w, h).
+type Rectangle = ((u32, u32), (u32, u32));
+
+/// Every pixel the student logged matches raystep's tree, ray for ray.
+fn assert_all_match(scene: &str, pixels: &[Rectangle]) {
+    let log: String = pixels
+        .iter()
+        .map(|&(at, size)| student_log(scene, at, size, &[]))
+        .collect();
+    let report = compare(scene, &log);
+    let expected: u32 = pixels.iter().map(|(_, (w, h))| w * h).sum();
+    assert_eq!(report["pixel_count"], expected, "{scene}");
+    for pixel in report["pixels"].as_array().unwrap() {
+        assert_eq!(pixel["matches"], true, "{scene}: {pixel:#}");
+        assert_eq!(
+            pixel["rays_yours"], pixel["rays_ours"],
+            "{scene}: {pixel:#}"
+        );
+    }
+    assert_eq!(report["matching_pixels"], expected, "{scene}");
+}
+
+#[test]
+fn the_student_tracer_prints_raylog_md_s_own_log_ray() {
+    // The student copies the Python block of docs/RAYLOG.md, as asked.
+    let doc = include_str!("../../docs/RAYLOG.md");
+    let tracer = include_str!("../student/whitted.py");
+    let function = "def log_ray(x, y, path, **fields):\n    \
+                    print(json.dumps({\"pixel\": [x, y], \"path\": path, **fields}))\n";
+    assert!(doc.contains(function), "RAYLOG.md's log_ray changed");
+    assert!(
+        tracer.contains(function),
+        "whitted.py's log_ray is not RAYLOG.md's"
+    );
+}
+
+#[test]
+fn a_tracer_written_from_model_md_matches_raystep_ray_for_ray() {
+    if !python_available() {
+        return;
+    }
+    // The pixels each scene's opening comment points at, and a rectangle
+    // near them (not overlapping them: a pixel's ray logged twice is an
+    // error). Glass: through the ball (in, out) onto the board; the ball's
+    // rim (k = 0.0002 on the way out, no TIR); TIR at the block's bottom,
+    // and twice inside it; the rectangle is on the block, along row 88.
+    let glass = [(72, 45), (93, 40), (132, 88), (135, 58)];
+    let mut pixels: Vec<_> = glass.iter().map(|&p| (p, (1, 1))).collect();
+    pixels.push(((124, 86), (6, 4)));
+    assert_all_match("scenes/glass.toml", &pixels);
+    // Two lights: S = 0 from the right light behind the red ball, and
+    // S = 0.6 x 0.6 x 0.8 = 0.288 through the glass ball and the pane.
+    assert_all_match(
+        "scenes/two-lights.toml",
+        &[((92, 61), (1, 1)), ((3, 64), (1, 1)), ((84, 56), (6, 4))],
+    );
+    // Mirrors: the ball, its images one to four bounces deep (weights 0.85^k),
+    // the mirror hit at depth 5 that spawns nothing.
+    let mirrors = [
+        (30, 72),
+        (97, 50),
+        (114, 50),
+        (123, 50),
+        (127, 48),
+        (140, 50),
+    ];
+    let mut pixels: Vec<_> = mirrors.iter().map(|&p| (p, (1, 1))).collect();
+    pixels.push(((104, 52), (8, 4)));
+    assert_all_match("scenes/mirrors.toml", &pixels);
+    // Shadows: the box's shadow (two blockers), the glass ball's (S = 0.36),
+    // the cone's flank facing away, the open cylinder seen from inside.
+    assert_all_match(
+        "scenes/shadows.toml",
+        &[
+            ((14, 66), (1, 1)),
+            ((66, 68), (1, 1)),
+            ((123, 80), (1, 1)),
+            ((117, 35), (1, 1)),
+        ],
+    );
+}
+
+/// Asserts that the first divergence of the student's log for one pixel
+/// under `mistake` is `path`'s `field`, of `kind`; its words, for more.
+fn assert_first(scene: &str, pixel: (u32, u32), mistake: &str, expected: [&str; 3]) -> String {
+    let report = compare(scene, &student_log(scene, pixel, (1, 1), &[mistake]));
+    let first = &report["pixels"][0]["first_divergence"];
+    assert!(first.is_object(), "{mistake}: no divergence found");
+    let text = |key: &str| first[key].as_str().unwrap_or_default();
+    let found = [text("path"), text("field"), text("kind")];
+    assert_eq!(found, expected, "{mistake}: {}", text("words"));
+    text("words").to_string()
+}
+
+#[test]
+fn each_student_slip_is_found_at_the_ray_and_number_where_it_acts() {
+    if !python_available() {
+        return;
+    }
+    let glass = "scenes/glass.toml";
+    // Pixel 72,45 of glass.toml: P hits the glass ball (ks 0.1, kt 0.9,
+    // ior 1.5); in cast order come P's shadow rays S0 and S1, then P/R
+    // (leaves the ball outwards, misses), then P/T (into the ball), whose
+    // reflected subtree P/T/R, P/T/R/R, P/T/R/R/T comes before P/T/T.
+    let ball = (72, 45);
+
+    // R = 2 (N·d) N − d is exactly −(d − 2 (d·N) N): P/R, the first
+    // reflected ray, points the opposite way.
+    assert_first(glass, ball, "reflect-sign", ["P/R", "dir", "negated"]);
+
+    // Leaving the glass with N_g (pointing out, along the ray) instead of
+    // N: T = η d + (η cos_i − √k) N_g with cos_i = −d·N_g < 0 keeps η d's
+    // tangential part but flips the √k N part, so T is the true T mirrored
+    // in the surface's plane. Entering, N_g = N, nothing changes: the first
+    // ray leaving the glass, in cast order, is P/T/R/R/T (P/T/R/R/R, of
+    // weight 0.9 x 0.1^3 < 1/512, is not cast).
+    assert_first(
+        glass,
+        ball,
+        "outward-normal",
+        ["P/T/R/R/T", "dir", "mirrored"],
+    );
+
+    // L = P_L − p without normalising: the shadow ray P/S0 has L's direction
+    // and length d_L = |(-4, 7, 5) − p| = 7.8667 (raystep's working shows p).
+    let words = assert_first(
+        glass,
+        ball,
+        "unnormalised-l",
+        ["P/S0", "dir", "not_normalised"],
+    );
+    assert!(words.contains("7.8667"), "{words}");
+
+    // fov = 40 read as radians: s = tan(20) = 2.2372 instead of
+    // tan(20°) = 0.36397, the primary ray's offsets 6.1465 times ours.
+    let words = assert_first(glass, ball, "fov-radians", ["P", "dir", "field_of_view"]);
+    assert!(words.contains("6.1465"), "{words}");
+    // fov = 40 taken as the horizontal extent: both offsets shrink by
+    // H / W = 120 / 160 = 0.75.
+    let words = assert_first(glass, ball, "fov-horizontal", ["P", "dir", "field_of_view"]);
+    assert!(words.contains("0.75"), "{words}");
+
+    // V = normalize(p − p) = 0 / 0: NaN. The diffuse term has no V, so the
+    // first number it spoils is P's specular term for light 0, through
+    // H = normalize(L + V) (max(NaN, 0) stays NaN in Python).
+    assert_first(glass, ball, "nan", ["P", "specular[0]", "nan"]);
+
+    // t > 0 instead of t > EPS: P/T starts on the ball and goes in; rounding
+    // puts its own surface at t ≈ 6e-15 > 0, which the student takes as the
+    // hit. (P/S0, P/S1 and P/R leave the ball outwards; their root near 0
+    // rounds to t ≤ 0 here, so they are not yet wrong.)
+    assert_first(glass, ball, "no-epsilon", ["P/T", "t", "self_hit"]);
+
+    // Pixel 123,80 of shadows.toml: the green cone's flank turned away from
+    // the key light (N·L < 0, the scene's comment says so). |N·L| > 0 makes
+    // the student cast the shadow ray that MODEL §4 never casts.
+    assert_first(
+        "scenes/shadows.toml",
+        (123, 80),
+        "abs-ndotl",
+        ["P/S0", "ray", "only_yours"],
+    );
+
+    // Pixel 92,61 of two-lights.toml: the floor, both lights in front. The
+    // student never casts a shadow ray; the first ray of ours missing from
+    // the log is P's shadow ray to light 0.
+    assert_first(
+        "scenes/two-lights.toml",
+        (92, 61),
+        "no-shadow-ray",
+        ["P/S0", "ray", "only_ours"],
+    );
+
+    // Pixel 140,50 of mirrors.toml: the flat panel, a mirror hit at depth
+    // max_depth = 5 that spawns nothing (5 < 5 is false). The student tests
+    // depth < 6 and casts a sixth ray, P/R/R/R/R/R.
+    assert_first(
+        "scenes/mirrors.toml",
+        (140, 50),
+        "past-max-depth",
+        ["P/R/R/R/R/R", "ray", "only_yours"],
+    );
+}
