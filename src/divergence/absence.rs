@@ -95,7 +95,7 @@ pub(crate) fn why_ours(scene: &Scene, ours: &OurRays, ray: usize) -> String {
         Some(Step::Shadow(i)) => match ours.light(ray) {
             Some(light) => format!(
                 "MODEL §4: a shadow ray to each light in front of the surface; light {i} is \
-                 (N·L = {} > 0)",
+                 in front (N·L = {} > 0)",
                 num(light.n_dot_l)
             ),
             None => format!("MODEL §4: a shadow ray to light {i}"),

@@ -61,6 +61,14 @@ pub(crate) fn checks(yours: &LoggedRay, ours: &LoggedRay, tolerance: &Tolerance)
     };
     let vector = |v: Option<DVec3>| v.map(Value::Vector);
     let number = |x: Option<f64>| x.map(Value::Number);
+    if ours.path.is_shadow() {
+        // A shadow ray has an origin, a direction and S (MODEL §4); a hit,
+        // a weight or a colour a tracer prints for it is its own business.
+        check(Field::Origin, vector(yours.origin), vector(ours.origin));
+        check(Field::Dir, vector(yours.dir), vector(ours.dir));
+        check(Field::S, number(yours.s), number(ours.s));
+        return out;
+    }
     check(Field::Origin, vector(yours.origin), vector(ours.origin));
     check(Field::Dir, vector(yours.dir), vector(ours.dir));
     check(Field::Weight, number(yours.weight), number(ours.weight));
@@ -136,6 +144,27 @@ mod tests {
         assert_eq!(fields, ["dir", "t", "diffuse[0]", "diffuse[1]", "color"]);
         let agrees: Vec<bool> = found.iter().map(|c| c.agrees).collect();
         assert_eq!(agrees, [false, true, true, false, true]);
+    }
+
+    #[test]
+    fn a_shadow_ray_is_checked_on_its_origin_direction_and_s_only() {
+        // An unblocked shadow ray, logged with hit null, a t and a weight
+        // as a student's tracer may print them: none of those is a shadow
+        // ray's number in MODEL §4, so only dir and S are checked.
+        let path = RayPath::primary().child(crate::raylog::Step::Shadow(0));
+        let mut ours = LoggedRay::new((0, 0), path.clone());
+        ours.dir = Some(DVec3::Y);
+        ours.s = Some(1.0);
+        let mut yours = LoggedRay::new((0, 0), path);
+        yours.dir = Some(DVec3::Y);
+        yours.s = Some(1.0);
+        yours.hit = Some(Hit::Miss);
+        yours.t = Some(4.0);
+        yours.weight = Some(1.0);
+        let found = checks(&yours, &ours, &Tolerance::default());
+        let fields: Vec<String> = found.iter().map(|c| c.field.to_string()).collect();
+        assert_eq!(fields, ["dir", "S"]);
+        assert!(found.iter().all(|c| c.agrees));
     }
 
     #[test]
