@@ -99,7 +99,8 @@ def patch_normal(s, p):
         wb = dot(cross(sub(a, c), sub(p, c)), n) / dot(n, n)
         wc = 1 - wa - wb
         if min(wa, wb, wc) >= 0 or i == len(vs) - 2:
-            return normalize(add(mul(ns[0], wa), add(mul(ns[i], wb), mul(ns[i + 1], wc))))
+            blend = add(mul(ns[0], wa), add(mul(ns[i], wb), mul(ns[i + 1], wc)))
+            return normalize(blend) if length(blend) > 0 else s["normal"]
 
 
 def cone_ts(s, o, d):
@@ -144,6 +145,8 @@ def geometric_normal(s, p):
     q = sub(p, s["base"])
     y = dot(q, s["axis"])
     radial = sub(q, mul(s["axis"], y))
+    if length(radial) == 0:  # the tip: the axis, from the wide end towards it
+        return s["axis"] if s["k"] < 0 else mul(s["axis"], -1)
     return normalize(sub(radial, mul(s["axis"], s["k"] * (s["r0"] + s["k"] * y))))
 
 
@@ -186,7 +189,7 @@ def shape(obj):
         kind = "polygon" if "polygon" in obj else "patch"
         vs = [tuple(v) for v in obj[kind]["vertices"]]
         n = normalize(cross(sub(vs[1], vs[0]), sub(vs[2], vs[0])))
-        normals = [tuple(v) for v in obj[kind].get("normals", [])]
+        normals = [normalize(tuple(v)) for v in obj[kind].get("normals", [])]
         return {"kind": kind, "vertices": vs, "normals": normals, "normal": n, "D": -dot(n, vs[0])}
     if "cylinder" in obj or "cone" in obj:
         c = obj.get("cylinder") or obj["cone"]

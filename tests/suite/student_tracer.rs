@@ -245,3 +245,42 @@ fn each_student_slip_is_found_at_the_ray_and_number_where_it_acts() {
         ["P/R/R/R/R/R", "ray", "only_yours"],
     );
 }
+
+#[test]
+fn where_model_md_was_silent_it_now_says_what_raystep_does() {
+    // Two rules the student's tracer could not match before MODEL §3 said
+    // them: a patch whose vertex normals differ in length (each is
+    // normalised before the blend; blending them as given tilts the normal
+    // towards the longest), and a cone's tip, where the radial direction
+    // vanishes (N_g is the axis towards the tip; normalising the zero
+    // vector gave NaN). Every pixel of both must match.
+    if !python_available() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let common = "[settings]\nambient = [0.1, 0.1, 0.1]\n\
+        [materials.chalk]\ncolor = [0.9, 0.8, 0.7]\nkd = 0.8\nks = 0.3\n\
+        [[light]]\nposition = [2, 6, 4]\ncolor = [1, 1, 1]\n";
+    let patch = format!(
+        "[camera]\neye = [0, 0, 4]\nlook_at = [0, 0, 0]\nup = [0, 1, 0]\nfov = 40\n\
+         [image]\nwidth = 16\nheight = 12\n{common}\
+         [[object]]\nname = \"leaf\"\nmaterial = \"chalk\"\n\
+         patch = {{ vertices = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], \
+         normals = [[0, 0, 1], [3, 0, 3], [0, 0.1, 0.1], [-1, 1, 1]] }}\n"
+    );
+    let cone = format!(
+        "[camera]\neye = [0, 5, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, -1]\nfov = 30\n\
+         [image]\nwidth = 3\nheight = 3\n{common}\
+         [[object]]\nname = \"spike\"\nmaterial = \"chalk\"\n\
+         cone = {{ base = [0, 0, 0], base_radius = 1, apex = [0, 1, 0], apex_radius = 0 }}\n"
+    );
+    for (name, text, size) in [("patch.toml", patch, (16, 12)), ("cone.toml", cone, (3, 3))] {
+        let file = dir.path().join(name);
+        std::fs::write(&file, text).unwrap();
+        let scene = file.to_str().unwrap();
+        let log = student_log(scene, (0, 0), size, &[]);
+        let report = compare(scene, &log);
+        assert_eq!(report["pixel_count"], size.0 * size.1, "{name}");
+        assert_eq!(report["matching_pixels"], size.0 * size.1, "{name}: {report:#}");
+    }
+}
