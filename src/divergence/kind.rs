@@ -327,6 +327,15 @@ fn direction_kind(
     } else {
         ours.source(ray)?.hit.as_ref()
     }?;
+    // Refracted with −N is also ours mirrored in the surface's plane (both
+    // differ from ours by 2√k N): the refraction's own mistake is the one
+    // a student recognises, so it is tried first.
+    if field == Field::Dir
+        && path.steps.last() == Some(&Step::Transmitted)
+        && let Some(found) = refraction_kind(ours.source(ray)?, yours)
+    {
+        return Some(found);
+    }
     let n = surface.normal;
     let yours_unit = yours.normalize_or_zero();
     let in_plane = theirs - 2.0 * theirs.dot(n) * n;
@@ -344,9 +353,6 @@ fn direction_kind(
             Kind::Mirrored,
             format!("yours is ours turned half a turn about N = {}", vec3(n)),
         ));
-    }
-    if field == Field::Dir && path.steps.last() == Some(&Step::Transmitted) {
-        return refraction_kind(ours.source(ray)?, yours);
     }
     None
 }
@@ -535,4 +541,52 @@ fn scaled_words(factor: f64, named: &[(String, f64)]) -> String {
 
 fn vec3(v: DVec3) -> String {
     crate::record::vector(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::raylog::RayPath;
+
+    /// A water ball (ior 4/3, k_t = 1) at the origin; the only pixel's ray
+    /// runs down -z at height 0.8 and enters at p = (0, 0.8, 0.6).
+    const WATER_BALL: &str = r#"
+        [camera]
+        eye = [0, 0.8, 5]
+        look_at = [0, 0.8, 0]
+        [image]
+        width = 1
+        height = 1
+        [materials.water]
+        kd = 0
+        kt = 1
+        ior = 1.3333333333333333
+        [[object]]
+        material = "water"
+        sphere = { center = [0, 0, 0], radius = 1 }
+    "#;
+
+    #[test]
+    fn refraction_with_the_outward_normal_is_named_so_not_mirrored() {
+        let scene = crate::scene::parse(Path::new("x.toml"), WATER_BALL).unwrap();
+        let ours = OurRays::record(&scene, &scene.settings, (0, 0));
+        // In at p = (0, 0.8, 0.6), N = p, cos_i = 0.6, η = 3/4, k = 0.64:
+        // T = 0.75 (0, 0, -1) − 0.35 N = (0, −0.28, −0.96). Out after
+        // t = 1.6 at q = (0, 0.352, −0.936), N = −q, cos_i = 0.8, η = 4/3,
+        // k = 1 − (16/9)(0.36) = 0.36: ours (0, −0.5376, −0.8432). With
+        // N_g = q instead: cos_i = −0.8, T = (4/3) d + (−16/15 − 0.6) q
+        // = (0, −0.96, 0.28), which is also ours mirrored in the plane.
+        let ray = ours.find(&RayPath::parse("P/T/T", 0).unwrap()).unwrap();
+        let check = Check {
+            field: Field::Dir,
+            yours: Value::Vector(DVec3::new(0.0, -0.96, 0.28)),
+            ours: ours.rays()[ray].dir.map(Value::Vector),
+            agrees: false,
+        };
+        let (kind, words) = classify(&scene, &ours, ray, &check);
+        assert_eq!(kind, Kind::OutwardNormal, "{words}");
+        assert!(words.contains("the same η"), "{words}");
+    }
 }
