@@ -14,6 +14,7 @@ mod accel;
 mod cli;
 mod cli_outputs;
 mod compare;
+mod compare_rays_mistakes;
 mod crossing;
 mod details_pane;
 mod explain_story;
