@@ -131,38 +131,43 @@ pub(crate) fn classify(scene: &Scene, ours: &OurRays, ray: usize, check: &Check)
 fn hit(scene: &Scene, ours: &OurRays, ray: usize, yours: Hit, theirs: Hit) -> (Kind, String) {
     let name = |o: usize| format!("{o} ({})", scene.object_name(o));
     let logged_t = ours.rays()[ray].t;
+    let starts_on = ours
+        .source(ray)
+        .and_then(|s| s.hit.as_ref())
+        .map(|h| h.object_index);
     match (yours, theirs) {
         (Hit::Miss, Hit::Object(o)) => (
             Kind::Missed,
             format!("yours hit nothing; ours hit object {}", name(o)),
         ),
+        // Where ours hits nothing as much as where it hits another object:
+        // a reflected ray leaving a plane finds that plane only at t ≈ 0.
+        (Hit::Object(y), _) if starts_on == Some(y) => {
+            let ours_hit = match theirs {
+                Hit::Object(o) => format!(
+                    "ours hit object {}{}",
+                    name(o),
+                    logged_t.map_or(String::new(), |t| format!(" at t = {}", num(t)))
+                ),
+                Hit::Miss => "ours hit nothing".to_string(),
+            };
+            (
+                Kind::SelfHit,
+                format!(
+                    "yours hit object {}, the surface the ray starts on; {ours_hit}: \
+                     a hit must lie at t > EPS = 1e-4 (MODEL §3), or a ray finds its own surface",
+                    name(y),
+                ),
+            )
+        }
         (Hit::Object(o), Hit::Miss) => (
             Kind::HitWhereOursMissed,
             format!("yours hit object {}; ours hit nothing", name(o)),
         ),
-        (Hit::Object(y), Hit::Object(o)) => {
-            let starts_on = ours
-                .source(ray)
-                .and_then(|s| s.hit.as_ref())
-                .map(|h| h.object_index);
-            if starts_on == Some(y) {
-                (
-                    Kind::SelfHit,
-                    format!(
-                        "yours hit object {}, the surface the ray starts on; ours hit object {}{}: \
-                         a hit must lie at t > EPS = 1e-4 (MODEL §3), or a ray finds its own surface",
-                        name(y),
-                        name(o),
-                        logged_t.map_or(String::new(), |t| format!(" at t = {}", num(t)))
-                    ),
-                )
-            } else {
-                (
-                    Kind::OtherObject,
-                    format!("yours hit object {}; ours hit object {}", name(y), name(o)),
-                )
-            }
-        }
+        (Hit::Object(y), Hit::Object(o)) => (
+            Kind::OtherObject,
+            format!("yours hit object {}; ours hit object {}", name(y), name(o)),
+        ),
         (Hit::Miss, Hit::Miss) => (Kind::Other, String::new()),
     }
 }
@@ -588,5 +593,43 @@ mod tests {
         let (kind, words) = classify(&scene, &ours, ray, &check);
         assert_eq!(kind, Kind::OutwardNormal, "{words}");
         assert!(words.contains("the same η"), "{words}");
+    }
+
+    /// A plane mirror, the floor y = 0, seen from (0, 1, 1): the only
+    /// pixel's ray meets it at the origin, and its reflected ray
+    /// (0, a, −a), a = 1/√2, rises away from it and hits nothing.
+    const MIRROR_FLOOR: &str = r#"
+        [camera]
+        eye = [0, 1, 1]
+        look_at = [0, 0, 0]
+        [image]
+        width = 1
+        height = 1
+        [materials.mirror]
+        ks = 0.5
+        [[object]]
+        name = "floor"
+        material = "mirror"
+        plane = { normal = [0, 1, 0], point = [0, 0, 0] }
+    "#;
+
+    #[test]
+    fn a_ray_that_finds_the_surface_it_leaves_is_a_self_hit_where_ours_misses() {
+        let scene = crate::scene::parse(Path::new("x.toml"), MIRROR_FLOOR).unwrap();
+        let ours = OurRays::record(&scene, &scene.settings, (0, 0));
+        let ray = ours.find(&RayPath::parse("P/R", 0).unwrap()).unwrap();
+        // Without EPS the student's P/R finds the floor it starts on.
+        let check = Check {
+            field: Field::Hit,
+            yours: Value::Hit(Hit::Object(0)),
+            ours: Some(Value::Hit(Hit::Miss)),
+            agrees: false,
+        };
+        let (kind, words) = classify(&scene, &ours, ray, &check);
+        assert_eq!(kind, Kind::SelfHit, "{words}");
+        assert!(
+            words.contains("the surface the ray starts on; ours hit nothing"),
+            "{words}"
+        );
     }
 }
