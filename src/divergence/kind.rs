@@ -292,6 +292,12 @@ fn vector(
     if theirs != DVec3::ZERO && close(yours, -theirs) {
         return (Kind::Negated, "yours is −1 × ours".into());
     }
+    if theirs == DVec3::ZERO
+        && yours != DVec3::ZERO
+        && let Some(found) = light_facing_away(ours, ray, field)
+    {
+        return found;
+    }
     if direction && let Some(found) = direction_kind(scene, ours, ray, field, yours, theirs) {
         return found;
     }
@@ -302,6 +308,26 @@ fn vector(
         );
     }
     (Kind::Other, String::new())
+}
+
+/// A light's term that ours leaves at 0 because the light is behind the
+/// surface, and yours does not.
+fn light_facing_away(ours: &OurRays, ray: usize, field: Field) -> Option<(Kind, String)> {
+    let (Field::Diffuse(i) | Field::Specular(i)) = field else {
+        return None;
+    };
+    let light = ours.node(ray).lights.iter().find(|l| l.light_index == i)?;
+    (light.faces_away && !light.at_point).then(|| {
+        (
+            Kind::Other,
+            format!(
+                "ours is 0: light {i} is behind the surface (N·L = {} ≤ 0) and adds nothing \
+                 (MODEL §4); yours adds to it: |N·L| in place of N·L, or N_g in place of N \
+                 facing the ray?",
+                num(light.n_dot_l)
+            ),
+        )
+    })
 }
 
 /// The factor c with yours = c × ours, when there is one (c ≠ 1).
@@ -479,6 +505,10 @@ fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(String, f64)> {
                 if let Some(shadow) = &light.shadow {
                     named.push((format!("1/S (S = {})", num(shadow.s)), 1.0 / shadow.s));
                 }
+                // N·L with L = P_L − p is d_L times N·L with L normalised.
+                if matches!(field, Field::Diffuse(_)) {
+                    named.push((format!("d_L = {}: L = P_L − p not normalised", num(d)), d));
+                }
             }
             if let Some(hit) = hit {
                 let k = if matches!(field, Field::Diffuse(_)) {
@@ -631,5 +661,65 @@ mod tests {
             words.contains("the surface the ray starts on; ours hit nothing"),
             "{words}"
         );
+    }
+
+    /// A chalk ball (k_d = 0.5, white) at the origin seen from (0, 0, 5),
+    /// the lamp at (0, 3, 5): the only ray meets it at p = (0, 0, 1),
+    /// N = (0, 0, 1), P_L − p = (0, 3, 4), d_L = 5, N·L = 0.8; diffuse
+    /// 0.5 × 0.8 = 0.4 grey. With the lamp at (0, 3, −3) instead,
+    /// P_L − p = (0, 3, −4) and N·L = −0.8: behind the surface.
+    fn chalk_ball(lamp_z: f64) -> Scene {
+        let text = format!(
+            r#"
+            [camera]
+            eye = [0, 0, 5]
+            look_at = [0, 0, 0]
+            [image]
+            width = 1
+            height = 1
+            [materials.chalk]
+            kd = 0.5
+            [[light]]
+            position = [0, 3, {lamp_z}]
+            [[object]]
+            material = "chalk"
+            sphere = {{ center = [0, 0, 0], radius = 1 }}
+            "#
+        );
+        crate::scene::parse(Path::new("x.toml"), &text).unwrap()
+    }
+
+    fn diffuse_check(scene: &Scene, yours: f64) -> (Kind, String) {
+        let ours = OurRays::record(scene, &scene.settings, (0, 0));
+        let check = Check {
+            field: Field::Diffuse(0),
+            yours: Value::Vector(DVec3::splat(yours)),
+            ours: ours.rays()[0].diffuse.as_ref().map(|d| Value::Vector(d[0])),
+            agrees: false,
+        };
+        classify(scene, &ours, 0, &check)
+    }
+
+    #[test]
+    fn a_diffuse_term_d_l_times_ours_is_named_an_unnormalised_l() {
+        // The student's N·L with L = (0, 3, 4): 4, diffuse 0.5 × 4 = 2.
+        let (kind, words) = diffuse_check(&chalk_ball(5.0), 2.0);
+        assert_eq!(kind, Kind::Scaled);
+        assert!(
+            words.contains("yours is 5 × ours: d_L = 5: L = P_L − p not normalised"),
+            "{words}"
+        );
+    }
+
+    #[test]
+    fn a_term_of_a_light_behind_the_surface_is_said_to_be_one() {
+        // The student's |N·L| = 0.8: diffuse 0.4 where ours is 0.
+        let (kind, words) = diffuse_check(&chalk_ball(-3.0), 0.4);
+        assert_eq!(kind, Kind::Other);
+        assert!(
+            words.contains("light 0 is behind the surface (N·L = -0.8 ≤ 0)"),
+            "{words}"
+        );
+        assert!(words.contains("|N·L|"), "{words}");
     }
 }
