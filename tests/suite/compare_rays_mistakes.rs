@@ -88,6 +88,30 @@ fn a_reflection_with_its_sign_changed_is_named_negated() {
     );
 }
 
+#[test]
+fn a_reflected_ray_without_eps_finds_the_mirror_it_leaves() {
+    // The mirror floor again: ours P/R leaves the origin along (0, a, −a),
+    // rising away from y = 0, and hits nothing. The student's intersection
+    // test accepts t > 0: rounding puts P/R's start a hair below the floor,
+    // and P/R finds the floor itself at t = 1e-17.
+    let s = scene(MIRROR_FLOOR);
+    let log = r#"
+{"pixel": [0, 0], "path": "P", "origin": [0, 1, 1], "dir": [0, -0.7071067811865476, -0.7071067811865476], "hit": 0, "t": 1.4142135623730951}
+{"pixel": [0, 0], "path": "P/R", "origin": [0, 0, 0], "dir": [0, 0.7071067811865476, -0.7071067811865476], "hit": 0, "t": 1e-17}
+"#;
+    let report = compared(&s, log);
+    let d = first(&report, "P/R", "hit", Kind::SelfHit);
+    assert_eq!(d.ours, Some(Value::Hit(raystep::raylog::Hit::Miss)));
+    assert!(
+        d.words.contains(
+            "yours hit object 0 (floor), the surface the ray starts on; ours hit nothing"
+        ),
+        "{}",
+        d.words
+    );
+    assert!(d.words.contains("t > EPS = 1e-4"), "{}", d.words);
+}
+
 /// A water ball (ior 4/3, k_t = 1, nothing else) at the origin; the only
 /// pixel's ray runs down −z at height 0.8.
 const WATER_BALL: &str = r#"
@@ -187,6 +211,26 @@ fn an_unnormalised_l_is_named_with_its_length() {
 }
 
 #[test]
+fn an_unnormalised_l_seen_only_in_the_diffuse_term_is_named_by_its_factor() {
+    // The same student, whose log gives the shadow ray's S but not its
+    // direction: the diffuse term (2, 1, 0.5) is the first number that
+    // differs, 5 = d_L times ours.
+    let s = scene(CHALK_BALL);
+    let log = r#"
+{"pixel": [0, 0], "path": "P", "origin": [0, 0, 5], "dir": [0, 0, -1], "hit": 0, "t": 4, "point": [0, 0, 1], "normal": [0, 0, 1], "diffuse": [[2, 1, 0.5]]}
+{"pixel": [0, 0], "path": "P/S0", "S": 1}
+"#;
+    let report = compared(&s, log);
+    let d = first(&report, "P", "diffuse[0]", Kind::Scaled);
+    assert!(
+        d.words
+            .contains("yours is 5 × ours: d_L = 5: L = P_L − p not normalised"),
+        "{}",
+        d.words
+    );
+}
+
+#[test]
 fn a_missing_shadow_ray_is_only_ours_with_the_rule_that_casts_it() {
     // The student shades with S = 1 and casts no shadow ray: their diffuse
     // is right, (0.4, 0.2, 0.1), but MODEL §4 casts P/S0 (N·L = 0.8 > 0).
@@ -265,6 +309,13 @@ fn abs_n_dot_l_without_a_shadow_ray_shows_in_the_diffuse_term() {
     let report = compared(&s, log);
     let d = first(&report, "P", "diffuse[0]", Kind::Other);
     assert_eq!(vector(d.ours), [0.0; 3]);
+    assert!(
+        d.words
+            .contains("light 0 is behind the surface (N·L = -0.8 ≤ 0) and adds nothing"),
+        "{}",
+        d.words
+    );
+    assert!(d.words.contains("|N·L|"), "{}", d.words);
     assert!(
         d.meaning[0].contains("behind the surface"),
         "{:?}",
