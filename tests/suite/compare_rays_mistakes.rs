@@ -81,11 +81,10 @@ fn a_reflection_with_its_sign_changed_is_named_negated() {
         "{:?}",
         d.meaning
     );
-    let ours = vector(d.ours);
-    assert!(
-        (ours[1] - 0.7071067811865476).abs() < 1e-12
-            && (ours[2] + 0.7071067811865476).abs() < 1e-12
-    );
+    // Ours is R = (0, a, −a).
+    let [x, y, z] = vector(d.ours);
+    let a = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(x.abs() < 1e-12 && (y - a).abs() < 1e-12 && (z + a).abs() < 1e-12);
 }
 
 #[test]
@@ -166,6 +165,36 @@ fn refraction_leaving_a_ball_with_the_outward_normal_is_named() {
         "{:?}",
         d.meaning
     );
+}
+
+#[test]
+fn refraction_entering_with_eta_and_one_over_eta_swapped_is_named() {
+    // The water ball, the ray at height 0.3: p = (0, 0.3, √0.91),
+    // N = p, cos_i = √0.91 = 0.953939, sin² = 0.09.
+    // Ours, η = 1/ior = 0.75: k = 1 − 0.5625 × 0.09 = 0.949375,
+    // √k = 0.974359; T = 0.75 d + (0.715454 − 0.974359) N
+    // = (0, −0.077671, −0.75 − 0.246980) = (0, −0.077671, −0.996980).
+    // The student's η = ior = 4/3: k = 1 − (16/9) 0.09 = 0.84, √k = 0.916515;
+    // T = (4/3) d + (1.271919 − 0.916515) N = (0, 0.106621, −0.994299).
+    let s = scene(
+        &WATER_BALL
+            .replace("0.8, 5]", "0.3, 5]")
+            .replace("0.8, 0]", "0.3, 0]"),
+    );
+    let log = r#"
+{"pixel": [0, 0], "path": "P", "dir": [0, 0, -1], "hit": 0}
+{"pixel": [0, 0], "path": "P/T", "dir": [0, 0.106621, -0.994299]}
+"#;
+    let report = compared(&s, log);
+    let d = first(&report, "P/T", "dir", Kind::EtaSwapped);
+    assert!(
+        d.words
+            .contains("yours is refracted with η = 1.3333, ours with η = 0.75 (entering"),
+        "{}",
+        d.words
+    );
+    let [x, y, z] = vector(d.ours);
+    assert!(x.abs() < 1e-9 && (y + 0.077671).abs() < 1e-6 && (z + 0.996980).abs() < 1e-6);
 }
 
 /// A chalk ball (k_d = 0.5, O_d = (1, 0.5, 0.25)) at the origin seen from
@@ -587,10 +616,12 @@ fn rows() -> Vec<Row> {
             "S",
             "fully blocked; ours is partly blocked, S = 0.9",
         ),
-        // prism.toml (7, 6): P hits the prism's front; the lamp (0, 5, 8)
-        // is in front of it, and the green wall at z = 12 stands beyond the
-        // lamp on the same line. The segment (EPS, ∞) reaches the wall:
-        // P/S0, the first shadow ray, is fully blocked where ours is not.
+        // prism.toml (7, 6): P hits the prism's front face (z = 0); the
+        // lamp at (0, 5, 8) is in front of it with nothing between, and the
+        // green wall, the plane z = 12, lies beyond the lamp: the shadow
+        // ray's line, going towards +z, meets it past d_L. The segment
+        // (EPS, ∞) takes it: P/S0, the first shadow ray, is fully blocked
+        // where ours is not.
         row(
             Mistake::ShadowsPastLight,
             "prism",
