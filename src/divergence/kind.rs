@@ -131,38 +131,43 @@ pub(crate) fn classify(scene: &Scene, ours: &OurRays, ray: usize, check: &Check)
 fn hit(scene: &Scene, ours: &OurRays, ray: usize, yours: Hit, theirs: Hit) -> (Kind, String) {
     let name = |o: usize| format!("{o} ({})", scene.object_name(o));
     let logged_t = ours.rays()[ray].t;
+    let starts_on = ours
+        .source(ray)
+        .and_then(|s| s.hit.as_ref())
+        .map(|h| h.object_index);
     match (yours, theirs) {
         (Hit::Miss, Hit::Object(o)) => (
             Kind::Missed,
             format!("yours hit nothing; ours hit object {}", name(o)),
         ),
+        // Where ours hits nothing as much as where it hits another object:
+        // a reflected ray leaving a plane finds that plane only at t ≈ 0.
+        (Hit::Object(y), _) if starts_on == Some(y) => {
+            let ours_hit = match theirs {
+                Hit::Object(o) => format!(
+                    "ours hit object {}{}",
+                    name(o),
+                    logged_t.map_or(String::new(), |t| format!(" at t = {}", num(t)))
+                ),
+                Hit::Miss => "ours hit nothing".to_string(),
+            };
+            (
+                Kind::SelfHit,
+                format!(
+                    "yours hit object {}, the surface the ray starts on; {ours_hit}: \
+                     a hit must lie at t > EPS = 1e-4 (MODEL §3), or a ray finds its own surface",
+                    name(y),
+                ),
+            )
+        }
         (Hit::Object(o), Hit::Miss) => (
             Kind::HitWhereOursMissed,
             format!("yours hit object {}; ours hit nothing", name(o)),
         ),
-        (Hit::Object(y), Hit::Object(o)) => {
-            let starts_on = ours
-                .source(ray)
-                .and_then(|s| s.hit.as_ref())
-                .map(|h| h.object_index);
-            if starts_on == Some(y) {
-                (
-                    Kind::SelfHit,
-                    format!(
-                        "yours hit object {}, the surface the ray starts on; ours hit object {}{}: \
-                         a hit must lie at t > EPS = 1e-4 (MODEL §3), or a ray finds its own surface",
-                        name(y),
-                        name(o),
-                        logged_t.map_or(String::new(), |t| format!(" at t = {}", num(t)))
-                    ),
-                )
-            } else {
-                (
-                    Kind::OtherObject,
-                    format!("yours hit object {}; ours hit object {}", name(y), name(o)),
-                )
-            }
-        }
+        (Hit::Object(y), Hit::Object(o)) => (
+            Kind::OtherObject,
+            format!("yours hit object {}; ours hit object {}", name(y), name(o)),
+        ),
         (Hit::Miss, Hit::Miss) => (Kind::Other, String::new()),
     }
 }
@@ -287,6 +292,12 @@ fn vector(
     if theirs != DVec3::ZERO && close(yours, -theirs) {
         return (Kind::Negated, "yours is −1 × ours".into());
     }
+    if theirs == DVec3::ZERO
+        && yours != DVec3::ZERO
+        && let Some(found) = light_facing_away(ours, ray, field)
+    {
+        return found;
+    }
     if direction && let Some(found) = direction_kind(scene, ours, ray, field, yours, theirs) {
         return found;
     }
@@ -297,6 +308,26 @@ fn vector(
         );
     }
     (Kind::Other, String::new())
+}
+
+/// A light's term that ours leaves at 0 because the light is behind the
+/// surface, and yours does not.
+fn light_facing_away(ours: &OurRays, ray: usize, field: Field) -> Option<(Kind, String)> {
+    let (Field::Diffuse(i) | Field::Specular(i)) = field else {
+        return None;
+    };
+    let light = ours.node(ray).lights.iter().find(|l| l.light_index == i)?;
+    (light.faces_away && !light.at_point).then(|| {
+        (
+            Kind::Other,
+            format!(
+                "ours is 0: light {i} is behind the surface (N·L = {} ≤ 0) and adds nothing \
+                 (MODEL §4); yours adds to it: |N·L| in place of N·L, or N_g in place of N \
+                 facing the ray?",
+                num(light.n_dot_l)
+            ),
+        )
+    })
 }
 
 /// The factor c with yours = c × ours, when there is one (c ≠ 1).
@@ -327,6 +358,15 @@ fn direction_kind(
     } else {
         ours.source(ray)?.hit.as_ref()
     }?;
+    // Refracted with −N is also ours mirrored in the surface's plane (both
+    // differ from ours by 2√k N): the refraction's own mistake is the one
+    // a student recognises, so it is tried first.
+    if field == Field::Dir
+        && path.steps.last() == Some(&Step::Transmitted)
+        && let Some(found) = refraction_kind(ours.source(ray)?, yours)
+    {
+        return Some(found);
+    }
     let n = surface.normal;
     let yours_unit = yours.normalize_or_zero();
     let in_plane = theirs - 2.0 * theirs.dot(n) * n;
@@ -344,9 +384,6 @@ fn direction_kind(
             Kind::Mirrored,
             format!("yours is ours turned half a turn about N = {}", vec3(n)),
         ));
-    }
-    if field == Field::Dir && path.steps.last() == Some(&Step::Transmitted) {
-        return refraction_kind(ours.source(ray)?, yours);
     }
     None
 }
@@ -468,6 +505,10 @@ fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(String, f64)> {
                 if let Some(shadow) = &light.shadow {
                     named.push((format!("1/S (S = {})", num(shadow.s)), 1.0 / shadow.s));
                 }
+                // N·L with L = P_L − p is d_L times N·L with L normalised.
+                if matches!(field, Field::Diffuse(_)) {
+                    named.push((format!("d_L = {}: L = P_L − p not normalised", num(d)), d));
+                }
             }
             if let Some(hit) = hit {
                 let k = if matches!(field, Field::Diffuse(_)) {
@@ -535,4 +576,150 @@ fn scaled_words(factor: f64, named: &[(String, f64)]) -> String {
 
 fn vec3(v: DVec3) -> String {
     crate::record::vector(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::raylog::RayPath;
+
+    /// A water ball (ior 4/3, k_t = 1) at the origin; the only pixel's ray
+    /// runs down -z at height 0.8 and enters at p = (0, 0.8, 0.6).
+    const WATER_BALL: &str = r#"
+        [camera]
+        eye = [0, 0.8, 5]
+        look_at = [0, 0.8, 0]
+        [image]
+        width = 1
+        height = 1
+        [materials.water]
+        kd = 0
+        kt = 1
+        ior = 1.3333333333333333
+        [[object]]
+        material = "water"
+        sphere = { center = [0, 0, 0], radius = 1 }
+    "#;
+
+    #[test]
+    fn refraction_with_the_outward_normal_is_named_so_not_mirrored() {
+        let scene = crate::scene::parse(Path::new("x.toml"), WATER_BALL).unwrap();
+        let ours = OurRays::record(&scene, &scene.settings, (0, 0));
+        // In at p = (0, 0.8, 0.6), N = p, cos_i = 0.6, η = 3/4, k = 0.64:
+        // T = 0.75 (0, 0, -1) − 0.35 N = (0, −0.28, −0.96). Out after
+        // t = 1.6 at q = (0, 0.352, −0.936), N = −q, cos_i = 0.8, η = 4/3,
+        // k = 1 − (16/9)(0.36) = 0.36: ours (0, −0.5376, −0.8432). With
+        // N_g = q instead: cos_i = −0.8, T = (4/3) d + (−16/15 − 0.6) q
+        // = (0, −0.96, 0.28), which is also ours mirrored in the plane.
+        let ray = ours.find(&RayPath::parse("P/T/T", 0).unwrap()).unwrap();
+        let check = Check {
+            field: Field::Dir,
+            yours: Value::Vector(DVec3::new(0.0, -0.96, 0.28)),
+            ours: ours.rays()[ray].dir.map(Value::Vector),
+            agrees: false,
+        };
+        let (kind, words) = classify(&scene, &ours, ray, &check);
+        assert_eq!(kind, Kind::OutwardNormal, "{words}");
+        assert!(words.contains("the same η"), "{words}");
+    }
+
+    /// A plane mirror, the floor y = 0, seen from (0, 1, 1): the only
+    /// pixel's ray meets it at the origin, and its reflected ray
+    /// (0, a, −a), a = 1/√2, rises away from it and hits nothing.
+    const MIRROR_FLOOR: &str = r#"
+        [camera]
+        eye = [0, 1, 1]
+        look_at = [0, 0, 0]
+        [image]
+        width = 1
+        height = 1
+        [materials.mirror]
+        ks = 0.5
+        [[object]]
+        name = "floor"
+        material = "mirror"
+        plane = { normal = [0, 1, 0], point = [0, 0, 0] }
+    "#;
+
+    #[test]
+    fn a_ray_that_finds_the_surface_it_leaves_is_a_self_hit_where_ours_misses() {
+        let scene = crate::scene::parse(Path::new("x.toml"), MIRROR_FLOOR).unwrap();
+        let ours = OurRays::record(&scene, &scene.settings, (0, 0));
+        let ray = ours.find(&RayPath::parse("P/R", 0).unwrap()).unwrap();
+        // Without EPS the student's P/R finds the floor it starts on.
+        let check = Check {
+            field: Field::Hit,
+            yours: Value::Hit(Hit::Object(0)),
+            ours: Some(Value::Hit(Hit::Miss)),
+            agrees: false,
+        };
+        let (kind, words) = classify(&scene, &ours, ray, &check);
+        assert_eq!(kind, Kind::SelfHit, "{words}");
+        assert!(
+            words.contains("the surface the ray starts on; ours hit nothing"),
+            "{words}"
+        );
+    }
+
+    /// A chalk ball (k_d = 0.5, white) at the origin seen from (0, 0, 5),
+    /// the lamp at (0, 3, 5): the only ray meets it at p = (0, 0, 1),
+    /// N = (0, 0, 1), P_L − p = (0, 3, 4), d_L = 5, N·L = 0.8; diffuse
+    /// 0.5 × 0.8 = 0.4 grey. With the lamp at (0, 3, −3) instead,
+    /// P_L − p = (0, 3, −4) and N·L = −0.8: behind the surface.
+    fn chalk_ball(lamp_z: f64) -> Scene {
+        let text = format!(
+            r#"
+            [camera]
+            eye = [0, 0, 5]
+            look_at = [0, 0, 0]
+            [image]
+            width = 1
+            height = 1
+            [materials.chalk]
+            kd = 0.5
+            [[light]]
+            position = [0, 3, {lamp_z}]
+            [[object]]
+            material = "chalk"
+            sphere = {{ center = [0, 0, 0], radius = 1 }}
+            "#
+        );
+        crate::scene::parse(Path::new("x.toml"), &text).unwrap()
+    }
+
+    fn diffuse_check(scene: &Scene, yours: f64) -> (Kind, String) {
+        let ours = OurRays::record(scene, &scene.settings, (0, 0));
+        let check = Check {
+            field: Field::Diffuse(0),
+            yours: Value::Vector(DVec3::splat(yours)),
+            ours: ours.rays()[0].diffuse.as_ref().map(|d| Value::Vector(d[0])),
+            agrees: false,
+        };
+        classify(scene, &ours, 0, &check)
+    }
+
+    #[test]
+    fn a_diffuse_term_d_l_times_ours_is_named_an_unnormalised_l() {
+        // The student's N·L with L = (0, 3, 4): 4, diffuse 0.5 × 4 = 2.
+        let (kind, words) = diffuse_check(&chalk_ball(5.0), 2.0);
+        assert_eq!(kind, Kind::Scaled);
+        assert!(
+            words.contains("yours is 5 × ours: d_L = 5: L = P_L − p not normalised"),
+            "{words}"
+        );
+    }
+
+    #[test]
+    fn a_term_of_a_light_behind_the_surface_is_said_to_be_one() {
+        // The student's |N·L| = 0.8: diffuse 0.4 where ours is 0.
+        let (kind, words) = diffuse_check(&chalk_ball(-3.0), 0.4);
+        assert_eq!(kind, Kind::Other);
+        assert!(
+            words.contains("light 0 is behind the surface (N·L = -0.8 ≤ 0)"),
+            "{words}"
+        );
+        assert!(words.contains("|N·L|"), "{words}");
+    }
 }

@@ -15,6 +15,7 @@ mod cli;
 mod cli_outputs;
 mod compare;
 mod compare_rays;
+mod compare_rays_mistakes;
 mod crossing;
 mod details_pane;
 mod explain_story;
