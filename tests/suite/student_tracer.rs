@@ -175,14 +175,15 @@ fn each_student_slip_is_found_at_the_ray_and_number_where_it_acts() {
     // Leaving the glass with N_g (pointing out, along the ray) instead of
     // N: T = η d + (η cos_i − √k) N_g with cos_i = −d·N_g < 0 keeps η d's
     // tangential part but flips the √k N part, so T is the true T mirrored
-    // in the surface's plane. Entering, N_g = N, nothing changes: the first
+    // in the surface's plane; raystep tries the refraction with −N first
+    // and names the cause, outward_normal. Entering, N_g = N, nothing changes: the first
     // ray leaving the glass, in cast order, is P/T/R/R/T (P/T/R/R/R, of
     // weight 0.9 x 0.1^3 < 1/512, is not cast).
     assert_first(
         glass,
         ball,
         "outward-normal",
-        ["P/T/R/R/T", "dir", "mirrored"],
+        ["P/T/R/R/T", "dir", "outward_normal"],
     );
 
     // L = P_L − p without normalising: the shadow ray P/S0 has L's direction
@@ -281,6 +282,10 @@ fn where_model_md_was_silent_it_now_says_what_raystep_does() {
         let log = student_log(scene, (0, 0), size, &[]);
         let report = compare(scene, &log);
         assert_eq!(report["pixel_count"], size.0 * size.1, "{name}");
-        assert_eq!(report["matching_pixels"], size.0 * size.1, "{name}: {report:#}");
+        assert_eq!(
+            report["matching_pixels"],
+            size.0 * size.1,
+            "{name}: {report:#}"
+        );
     }
 }
