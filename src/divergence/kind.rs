@@ -537,7 +537,7 @@ fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(String, f64)> {
                 ));
             }
         }
-        Field::Color | Field::Weight => {
+        Field::Color => {
             named.push((
                 format!("the ray's weight {}", num(node.weight)),
                 node.weight,
@@ -553,6 +553,32 @@ fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(String, f64)> {
                 ),
                 node.weight * node.attenuation,
             ));
+        }
+        Field::Weight => {
+            // A reflected ray's weight is k_s, or k_s + k_t at total
+            // internal reflection (MODEL §5): one where the other belongs.
+            let parent = ours.source(ray).and_then(|p| p.hit.as_ref());
+            if let (Some(Step::Reflected), Some(parent)) =
+                (ours.rays()[ray].path.steps.last(), parent)
+            {
+                let (ks, kt) = (parent.factors.ks, parent.factors.kt);
+                let tir = ours.source(ray).is_some_and(Node::tir);
+                let (factor, words) = if tir {
+                    (
+                        ks / (ks + kt),
+                        "k_s alone where total internal reflection gives k_s + k_t (MODEL §5)",
+                    )
+                } else {
+                    (
+                        (ks + kt) / ks,
+                        "k_s + k_t, the weight of total internal reflection, where ours has k_s and no TIR",
+                    )
+                };
+                named.push((
+                    format!("{words}; k_s = {}, k_t = {}", num(ks), num(kt)),
+                    factor,
+                ));
+            }
         }
         Field::T => {
             let d = node.direction.length();

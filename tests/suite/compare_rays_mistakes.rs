@@ -580,7 +580,7 @@ fn rows() -> Vec<Row> {
             (12, 6),
             "P/R",
             "weight",
-            "yours is 10 × ours",
+            "yours is 10 × ours: k_s + k_t, the weight of total internal reflection",
         ),
         // prism.toml (9, 6): P enters the long face (no TIR); P/T meets a
         // short face at about 45° inside the glass, TIR. The prism has
