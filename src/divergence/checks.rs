@@ -49,10 +49,28 @@ pub struct Check {
 /// The fields `yours` logged, each against `ours`, in trace order.
 pub(crate) fn checks(yours: &LoggedRay, ours: &LoggedRay, tolerance: &Tolerance) -> Vec<Check> {
     let mut out = Vec::new();
+    each_check(yours, ours, tolerance, |check| out.push(check));
+    out
+}
+
+/// Whether every field `yours` logged agrees with `ours` (what a counted
+/// pixel needs, without keeping the checks).
+pub(crate) fn all_agree(yours: &LoggedRay, ours: &LoggedRay, tolerance: &Tolerance) -> bool {
+    let mut all = true;
+    each_check(yours, ours, tolerance, |check| all &= check.agrees);
+    all
+}
+
+fn each_check(
+    yours: &LoggedRay,
+    ours: &LoggedRay,
+    tolerance: &Tolerance,
+    mut visit: impl FnMut(Check),
+) {
     let mut check = |field, yours: Option<Value>, ours: Option<Value>| {
         let Some(yours) = yours else { return };
         let agrees = ours.is_some_and(|ours| agree(field, yours, ours, tolerance));
-        out.push(Check {
+        visit(Check {
             field,
             yours,
             ours,
@@ -67,7 +85,7 @@ pub(crate) fn checks(yours: &LoggedRay, ours: &LoggedRay, tolerance: &Tolerance)
         check(Field::Origin, vector(yours.origin), vector(ours.origin));
         check(Field::Dir, vector(yours.dir), vector(ours.dir));
         check(Field::S, number(yours.s), number(ours.s));
-        return out;
+        return;
     }
     check(Field::Origin, vector(yours.origin), vector(ours.origin));
     check(Field::Dir, vector(yours.dir), vector(ours.dir));
@@ -87,7 +105,14 @@ pub(crate) fn checks(yours: &LoggedRay, ours: &LoggedRay, tolerance: &Tolerance)
         .as_ref()
         .map_or(0, Vec::len)
         .max(yours.specular.as_ref().map_or(0, Vec::len));
-    let term = |terms: &Option<Vec<DVec3>>, i: usize| terms.as_ref().map(|t| Value::Vector(t[i]));
+    // A log is read against the scene, one term per light; the debugger
+    // keeps it across a reload that may take a light away.
+    let term = |terms: &Option<Vec<DVec3>>, i: usize| {
+        terms
+            .as_ref()
+            .and_then(|t| t.get(i))
+            .map(|&v| Value::Vector(v))
+    };
     for i in 0..lights {
         check(
             Field::Diffuse(i),
@@ -101,7 +126,6 @@ pub(crate) fn checks(yours: &LoggedRay, ours: &LoggedRay, tolerance: &Tolerance)
         );
     }
     check(Field::Color, vector(yours.color), vector(ours.color));
-    out
 }
 
 fn agree(field: Field, yours: Value, ours: Value, tolerance: &Tolerance) -> bool {

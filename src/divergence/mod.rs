@@ -58,6 +58,54 @@ struct Tally {
     differs: bool,
 }
 
+/// The pixels past the first `PIXELS_SHOWN`, compared ray by ray as they
+/// come: on a thread of its own, beside the one reading the log.
+struct Counter<'a> {
+    scene: &'a Scene,
+    tolerance: Tolerance,
+    tallies: HashMap<(u32, u32), Tally>,
+    trees: Vec<OurRays>,
+}
+
+impl Counter<'_> {
+    fn count(&mut self, ray: &LoggedRay) {
+        let pixel = ray.pixel;
+        let at = match self.trees.iter().position(|t| t.tree.pixel == pixel) {
+            Some(at) => at,
+            None => {
+                if self.trees.len() == TREES_KEPT {
+                    self.trees.remove(0);
+                }
+                self.trees
+                    .push(OurRays::record(self.scene, &self.scene.settings, pixel));
+                self.trees.len() - 1
+            }
+        };
+        let ours = &self.trees[at];
+        let tally = self.tallies.entry(pixel).or_default();
+        tally.ours = ours.rays().len();
+        match ours.find(&ray.path) {
+            Some(found) => {
+                tally.logged += 1;
+                tally.differs |= !checks::all_agree(ray, &ours.rays()[found], &self.tolerance);
+            }
+            None => tally.differs = true,
+        }
+    }
+
+    fn matching(&self) -> usize {
+        self.tallies
+            .values()
+            .filter(|t| !t.differs && t.logged == t.ours)
+            .count()
+    }
+}
+
+/// Rays handed to the counting thread at a time, and batches in flight:
+/// enough to keep both threads busy, few enough to bound the memory.
+const BATCH: usize = 4096;
+const BATCHES_IN_FLIGHT: usize = 4;
+
 /// Reads the whole log and compares it with `scene` as written.
 pub fn compare_log<R: BufRead>(
     scene: &Scene,
@@ -66,43 +114,52 @@ pub fn compare_log<R: BufRead>(
 ) -> Result<LogComparison, RaylogError> {
     let mut shown: Vec<((u32, u32), Vec<LoggedRay>)> = Vec::new();
     let mut shown_at: HashMap<(u32, u32), usize> = HashMap::new();
-    let mut counted: HashMap<(u32, u32), Tally> = HashMap::new();
-    let mut trees: Vec<OurRays> = Vec::new();
     let mut rays_read = 0;
-    for item in reader.by_ref() {
-        let (_, ray) = item?;
-        rays_read += 1;
-        let pixel = ray.pixel;
-        if let Some(&at) = shown_at.get(&pixel) {
-            shown[at].1.push(ray);
-            continue;
-        }
-        if shown.len() < PIXELS_SHOWN && !counted.contains_key(&pixel) {
-            shown_at.insert(pixel, shown.len());
-            shown.push((pixel, vec![ray]));
-            continue;
-        }
-        let ours = match trees.iter().position(|t| t.tree.pixel == pixel) {
-            Some(at) => &trees[at],
-            None => {
-                if trees.len() == TREES_KEPT {
-                    trees.remove(0);
+    let (read, counter) = std::thread::scope(|threads| {
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<LoggedRay>>(BATCHES_IN_FLIGHT);
+        let counting = threads.spawn(move || {
+            let mut counter = Counter {
+                scene,
+                tolerance,
+                tallies: HashMap::new(),
+                trees: Vec::new(),
+            };
+            for batch in receive {
+                for ray in &batch {
+                    counter.count(ray);
                 }
-                trees.push(OurRays::record(scene, &scene.settings, pixel));
-                &trees[trees.len() - 1]
             }
-        };
-        let tally = counted.entry(pixel).or_default();
-        tally.ours = ours.rays().len();
-        match ours.find(&ray.path) {
-            Some(at) => {
-                tally.logged += 1;
-                let checked = checks::checks(&ray, &ours.rays()[at], &tolerance);
-                tally.differs |= checked.iter().any(|c| !c.agrees);
+            counter
+        });
+        let mut batch = Vec::with_capacity(BATCH);
+        let read = (|| {
+            for item in reader.by_ref() {
+                let (_, ray) = item?;
+                rays_read += 1;
+                if let Some(&at) = shown_at.get(&ray.pixel) {
+                    shown[at].1.push(ray);
+                } else if shown.len() < PIXELS_SHOWN {
+                    // No pixel is counted before the shown ones are all found.
+                    shown_at.insert(ray.pixel, shown.len());
+                    shown.push((ray.pixel, vec![ray]));
+                } else {
+                    batch.push(ray);
+                    if batch.len() == BATCH {
+                        // The counter only stops when this thread does.
+                        let _ = send.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
+                    }
+                }
             }
-            None => tally.differs = true,
+            Ok(())
+        })();
+        if read.is_ok() && !batch.is_empty() {
+            let _ = send.send(batch);
         }
-    }
+        drop(send);
+        let counter = counting.join().expect("the counting thread does not panic");
+        (read, counter)
+    });
+    read?;
     let unknown_keys = reader.unknown_keys().iter().cloned().collect();
     let pixels: Vec<PixelReport> = shown
         .into_iter()
@@ -111,13 +168,9 @@ pub fn compare_log<R: BufRead>(
             compare_pixel(scene, yours, &ours, &tolerance)
         })
         .collect();
-    let matching = pixels.iter().filter(|p| p.matches).count()
-        + counted
-            .values()
-            .filter(|t| !t.differs && t.logged == t.ours)
-            .count();
+    let matching = pixels.iter().filter(|p| p.matches).count() + counter.matching();
     Ok(LogComparison {
-        pixel_count: pixels.len() + counted.len(),
+        pixel_count: pixels.len() + counter.tallies.len(),
         pixels,
         matching,
         rays_read,

@@ -7,6 +7,10 @@ use crate::raylog::{LoggedRay, RayPath, Step, rays_with_nodes};
 use crate::record::{LightRecord, Node, NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, Settings};
 
+/// Up to this many rays, a path is found by looking at each: cheaper than
+/// hashing it, and most pixels have a handful of rays.
+const SMALL_TREE: usize = 32;
+
 /// One pixel's recording and its rays in the order they were cast.
 pub(crate) struct OurRays {
     pub(crate) tree: RayTree,
@@ -24,11 +28,14 @@ impl OurRays {
     pub(crate) fn of(tree: RayTree) -> Self {
         let (rays, nodes): (Vec<LoggedRay>, Vec<NodeId>) =
             rays_with_nodes(&tree).into_iter().unzip();
-        let by_path = rays
-            .iter()
-            .enumerate()
-            .map(|(i, ray)| (ray.path.clone(), i))
-            .collect();
+        let by_path = if rays.len() > SMALL_TREE {
+            rays.iter()
+                .enumerate()
+                .map(|(i, ray)| (ray.path.clone(), i))
+                .collect()
+        } else {
+            HashMap::new()
+        };
         Self {
             tree,
             rays,
@@ -43,6 +50,9 @@ impl OurRays {
     }
 
     pub(crate) fn find(&self, path: &RayPath) -> Option<usize> {
+        if self.rays.len() <= SMALL_TREE {
+            return self.rays.iter().position(|ray| ray.path == *path);
+        }
         self.by_path.get(path).copied()
     }
 
