@@ -31,3 +31,6 @@ for pixel in 4,3 4,5 0,0; do
         inspect corpus/raylog-scene.toml --pixel "$pixel" --format raylog \
         > "corpus/raylog_reader/pixel-$pixel"
 done
+# raylog_compare: the same logs, compared with the same scene.
+mkdir -p corpus/raylog_compare
+cp corpus/raylog_reader/* corpus/raylog_compare/
