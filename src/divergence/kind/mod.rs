@@ -5,11 +5,17 @@
 use glam::DVec3;
 use serde::Serialize;
 
+mod direction;
+mod factors;
+
+use direction::direction_kind;
+use factors::{candidates, scaled_words};
+
 use super::checks::{Check, Value};
 use super::moment::Field;
 use super::ours::OurRays;
 use crate::raylog::{Hit, Step};
-use crate::record::{Node, num};
+use crate::record::num;
 use crate::scene::Scene;
 use crate::shapes::Working;
 
@@ -88,11 +94,11 @@ const SELF_HIT_T: f64 = 1e-6;
 
 /// Two vectors equal up to rounding, for recognising a kind (looser than
 /// any tolerance a student would set, so the kind is found at any).
-fn close(a: DVec3, b: DVec3) -> bool {
+pub(super) fn close(a: DVec3, b: DVec3) -> bool {
     (a - b).length() <= 1e-3 * a.length().max(b.length()).max(1e-12)
 }
 
-fn close_numbers(a: f64, b: f64) -> bool {
+pub(super) fn close_numbers(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-3 * a.abs().max(b.abs()).max(1e-12)
 }
 
@@ -340,267 +346,7 @@ fn common_factor(yours: DVec3, theirs: DVec3) -> Option<f64> {
     (c != 0.0 && close(yours, c * theirs) && !close_numbers(c, 1.0)).then_some(c)
 }
 
-/// The kinds only a direction can have, from the hit the ray leaves.
-fn direction_kind(
-    scene: &Scene,
-    ours: &OurRays,
-    ray: usize,
-    field: Field,
-    yours: DVec3,
-    theirs: DVec3,
-) -> Option<(Kind, String)> {
-    let path = &ours.rays()[ray].path;
-    if field == Field::Dir && path.steps.is_empty() {
-        return field_of_view(scene, ours, yours);
-    }
-    let surface = if field == Field::Normal {
-        ours.node(ray).hit.as_ref()
-    } else {
-        ours.source(ray)?.hit.as_ref()
-    }?;
-    // Refracted with −N is also ours mirrored in the surface's plane (both
-    // differ from ours by 2√k N): the refraction's own mistake is the one
-    // a student recognises, so it is tried first.
-    if field == Field::Dir
-        && path.steps.last() == Some(&Step::Transmitted)
-        && let Some(found) = refraction_kind(ours.source(ray)?, yours)
-    {
-        return Some(found);
-    }
-    let n = surface.normal;
-    let yours_unit = yours.normalize_or_zero();
-    let in_plane = theirs - 2.0 * theirs.dot(n) * n;
-    if close(yours_unit, in_plane.normalize_or_zero()) {
-        return Some((
-            Kind::Mirrored,
-            format!(
-                "yours is ours reflected in the surface's plane (N = {})",
-                vec3(n)
-            ),
-        ));
-    }
-    if close(yours_unit, (-in_plane).normalize_or_zero()) {
-        return Some((
-            Kind::Mirrored,
-            format!("yours is ours turned half a turn about N = {}", vec3(n)),
-        ));
-    }
-    None
-}
-
-/// A transmitted direction refracted with η and 1/η swapped, or with N
-/// not turned to face the ray.
-fn refraction_kind(parent: &Node, yours: DVec3) -> Option<(Kind, String)> {
-    let hit = parent.hit.as_ref()?;
-    let d = parent.direction;
-    let ior = hit.factors.ior;
-    let eta = if hit.entering { 1.0 / ior } else { ior };
-    let refract = |eta: f64, n: DVec3| {
-        let cos_i = -d.dot(n);
-        let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-        (k >= 0.0).then(|| eta * d + (eta * cos_i - k.sqrt()) * n)
-    };
-    let matches = |t: Option<DVec3>| {
-        t.is_some_and(|t| close(yours.normalize_or_zero(), t.normalize_or_zero()))
-    };
-    let n = hit.normal;
-    if matches(refract(1.0 / eta, n)) {
-        return Some((
-            Kind::EtaSwapped,
-            format!(
-                "yours is refracted with η = {}, ours with η = {} ({}, ior {}): η is n_i / n_t",
-                num(1.0 / eta),
-                num(eta),
-                if hit.entering { "entering" } else { "leaving" },
-                num(ior)
-            ),
-        ));
-    }
-    for (eta_used, words) in [(eta, "the same η"), (1.0 / eta, "η and 1/η swapped")] {
-        if matches(refract(eta_used, -n)) {
-            return Some((
-                Kind::OutwardNormal,
-                format!(
-                    "yours is refracted with −N, the normal facing away from the ray \
-                     (N_g when leaving), and {words}; MODEL §5 uses N facing the ray, N·d ≤ 0"
-                ),
-            ));
-        }
-    }
-    None
-}
-
-/// A primary direction another field of view would give: yours crosses
-/// the image plane at the same point scaled about its centre.
-fn field_of_view(scene: &Scene, ours: &OurRays, yours: DVec3) -> Option<(Kind, String)> {
-    let frame = scene.camera.frame();
-    let ours_dir = ours.rays().first()?.dir?;
-    let plane = |d: DVec3| {
-        let along = d.dot(frame.forward);
-        (along > 0.0).then(|| (d.dot(frame.right) / along, d.dot(frame.true_up) / along))
-    };
-    let ((yx, yy), (ox, oy)) = (plane(yours)?, plane(ours_dir)?);
-    // The larger offset decides the ratio; the other must follow it.
-    let ratio = if ox.abs() >= oy.abs() {
-        yx / ox
-    } else {
-        yy / oy
-    };
-    let scale = ox.abs().max(oy.abs());
-    let same = (yx - ratio * ox).abs() <= 1e-3 * scale && (yy - ratio * oy).abs() <= 1e-3 * scale;
-    let fov = scene.camera.fov;
-    if same && ratio.is_finite() && ratio > 0.0 && !close_numbers(ratio, 1.0) {
-        let yours_fov = 2.0 * (ratio * (fov.to_radians() / 2.0).tan()).atan().to_degrees();
-        return Some((
-            Kind::FieldOfView,
-            format!(
-                "yours is the ray of a vertical field of view of {}° (ours {}°, edge to edge, \
-                 MODEL §2): its offsets px and py on the image plane are {} × ours",
-                num(yours_fov),
-                num(fov),
-                num(ratio)
-            ),
-        ));
-    }
-    // Where yours crosses the image plane, in pixel units (MODEL §2 read
-    // backwards): ours crosses at the pixel's centre.
-    let (w, h) = (scene.width as f64, scene.height as f64);
-    let s = (fov.to_radians() / 2.0).tan();
-    let image_x = (yx / (s * w / h) + 1.0) * w / 2.0;
-    let image_y = (1.0 - yy / s) * h / 2.0;
-    let (x, y) = ours.tree.pixel;
-    Some((
-        Kind::OtherPixel,
-        format!(
-            "yours crosses the image at ({}, {}) in pixel units; ours at ({}, {}), the centre of \
-             pixel ({x}, {y})",
-            num(image_x),
-            num(image_y),
-            x as f64 + 0.5,
-            y as f64 + 0.5
-        ),
-    ))
-}
-
-/// Named factors a difference of `field` may be, with their values.
-fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(String, f64)> {
-    let node = ours.node(ray);
-    let mut named = Vec::new();
-    let hit = node.hit.as_ref();
-    match field {
-        Field::Diffuse(i) | Field::Specular(i) => {
-            if let Some(light) = node.lights.iter().find(|l| l.light_index == i) {
-                let d = light.distance;
-                named.push((format!("1/d_L² (d_L = {})", num(d)), 1.0 / (d * d)));
-                named.push((format!("1/d_L (d_L = {})", num(d)), 1.0 / d));
-                named.push((
-                    format!("1/f_att (f_att = {})", num(light.f_att)),
-                    1.0 / light.f_att,
-                ));
-                named.push((format!("N·L = {}", num(light.n_dot_l)), light.n_dot_l));
-                named.push((
-                    format!("1/(N·L) (N·L = {})", num(light.n_dot_l)),
-                    1.0 / light.n_dot_l,
-                ));
-                if let Some(shadow) = &light.shadow {
-                    named.push((format!("1/S (S = {})", num(shadow.s)), 1.0 / shadow.s));
-                }
-                // N·L with L = P_L − p is d_L times N·L with L normalised.
-                if matches!(field, Field::Diffuse(_)) {
-                    named.push((format!("d_L = {}: L = P_L − p not normalised", num(d)), d));
-                }
-            }
-            if let Some(hit) = hit {
-                let k = if matches!(field, Field::Diffuse(_)) {
-                    hit.factors.kd
-                } else {
-                    hit.factors.ks
-                };
-                named.push((format!("the k once more ({})", num(k)), k));
-                named.push((format!("1/k (k = {}): k left out", num(k)), 1.0 / k));
-            }
-        }
-        Field::Ambient => {
-            if let Some(hit) = hit {
-                let f = hit.factors;
-                named.push((
-                    format!(
-                        "k_d / k_a = {} / {}: k_d where k_a belongs",
-                        num(f.kd),
-                        num(f.ka)
-                    ),
-                    f.kd / f.ka,
-                ));
-                named.push((
-                    format!("1/k_a (k_a = {}): k_a left out", num(f.ka)),
-                    1.0 / f.ka,
-                ));
-            }
-        }
-        Field::Color => {
-            named.push((
-                format!("the ray's weight {}", num(node.weight)),
-                node.weight,
-            ));
-            named.push((
-                format!("the attenuation {}", num(node.attenuation)),
-                node.attenuation,
-            ));
-            named.push((
-                format!(
-                    "the ray's weight × attenuation {}",
-                    num(node.weight * node.attenuation)
-                ),
-                node.weight * node.attenuation,
-            ));
-        }
-        Field::Weight => {
-            // A reflected ray's weight is k_s, or k_s + k_t at total
-            // internal reflection (MODEL §5): one where the other belongs.
-            let parent = ours.source(ray).and_then(|p| p.hit.as_ref());
-            if let (Some(Step::Reflected), Some(parent)) =
-                (ours.rays()[ray].path.steps.last(), parent)
-            {
-                let (ks, kt) = (parent.factors.ks, parent.factors.kt);
-                let tir = ours.source(ray).is_some_and(Node::tir);
-                let (factor, words) = if tir {
-                    (
-                        ks / (ks + kt),
-                        "k_s alone where total internal reflection gives k_s + k_t (MODEL §5)",
-                    )
-                } else {
-                    (
-                        (ks + kt) / ks,
-                        "k_s + k_t, the weight of total internal reflection, where ours has k_s and no TIR",
-                    )
-                };
-                named.push((
-                    format!("{words}; k_s = {}, k_t = {}", num(ks), num(kt)),
-                    factor,
-                ));
-            }
-        }
-        Field::T => {
-            let d = node.direction.length();
-            named.push((format!("1/|dir| (|dir| = {})", num(d)), 1.0 / d));
-        }
-        _ => {}
-    }
-    named.retain(|(_, value)| value.is_finite() && *value != 0.0);
-    named
-}
-
-fn scaled_words(factor: f64, named: &[(String, f64)]) -> String {
-    match named
-        .iter()
-        .find(|(_, value)| close_numbers(factor, *value))
-    {
-        Some((name, _)) => format!("yours is {} × ours: {name}", num(factor)),
-        None => format!("yours is {} × ours", num(factor)),
-    }
-}
-
-fn vec3(v: DVec3) -> String {
+pub(super) fn vec3(v: DVec3) -> String {
     crate::record::vector(v)
 }
 
