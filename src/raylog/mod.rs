@@ -5,6 +5,7 @@
 mod logged_ray;
 mod path;
 mod read;
+mod seen;
 mod write;
 
 pub use logged_ray::{Hit, LoggedRay};

@@ -11,6 +11,7 @@ use serde_json::{Map, Value};
 
 use super::logged_ray::{Hit, LoggedRay};
 use super::path::RayPath;
+use super::seen::SeenRays;
 use crate::record::count;
 use crate::scene::Scene;
 
@@ -54,7 +55,7 @@ pub struct RaylogReader<'a, R> {
     scene: &'a Scene,
     line: usize,
     /// Each pixel and path read, with its line, to name a repeat.
-    seen: HashMap<((u32, u32), RayPath), usize>,
+    seen: SeenRays,
     unknown_keys: BTreeSet<String>,
     finished: bool,
     buffer: Vec<u8>,
@@ -71,7 +72,7 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
             input,
             scene,
             line: 0,
-            seen: HashMap::new(),
+            seen: SeenRays::new(scene.width, scene.height, scene.lights.len()),
             unknown_keys: BTreeSet::new(),
             finished: false,
             buffer: Vec::new(),
@@ -81,6 +82,12 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
     /// The keys raystep doesn't know, in the lines read so far.
     pub fn unknown_keys(&self) -> &BTreeSet<String> {
         &self.unknown_keys
+    }
+
+    /// Whether a ray of `pixel` with `path` was read: at the end of the
+    /// log, whether the log holds it.
+    pub fn was_logged(&self, pixel: (u32, u32), path: &RayPath) -> bool {
+        self.seen.first_line(pixel, path).is_some()
     }
 
     fn error(&mut self, (column, problem): Problem) -> RaylogError {
@@ -165,7 +172,7 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
                 ));
             }
         };
-        if let Some(first) = self.seen.get(&(pixel, path.clone())) {
+        if let Some(first) = self.seen.first_line(pixel, &path) {
             return Err((
                 fields.column("path"),
                 format!(
@@ -188,9 +195,9 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
             specular: fields.per_light("specular", lights)?,
             s: fields.number("S")?,
             weight: fields.number("weight")?,
-            ..LoggedRay::new(pixel, path.clone())
+            ..LoggedRay::new(pixel, path)
         };
-        self.seen.insert((pixel, path), self.line);
+        self.seen.insert(pixel, &ray.path, self.line);
         Ok(ray)
     }
 
@@ -555,6 +562,92 @@ fn column_of(text: &str, offset: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The rays of `log` for the ball of `test_scenes` (11x11, one light),
+    /// and the reader at its end (or first error).
+    fn read_ball(log: &str) -> (Vec<<RaylogReader<'_, &[u8]> as Iterator>::Item>, bool) {
+        let (scene, _) = crate::test_scenes::ball();
+        let mut reader = RaylogReader::new("LOG", log.as_bytes(), &scene);
+        let rays: Vec<_> = reader.by_ref().collect();
+        let deep = RayPath::parse(&deep_path(), 1).unwrap();
+        (rays, reader.was_logged((5, 5), &deep))
+    }
+
+    /// 56 reflections: 11x11 pixels take 7 of a key's 64 bits, the path's
+    /// P, its shadow bit and 56 steps 58 more (1 light takes none): this
+    /// path does not pack and is kept in the reader's plain map.
+    fn deep_path() -> String {
+        format!("P{}", "/R".repeat(56))
+    }
+
+    #[test]
+    fn a_repeat_is_named_with_its_first_line_whether_its_path_packs_or_not() {
+        let deep = deep_path();
+        let ray = |pixel: &str, path: &str| format!(r#"{{"pixel": {pixel}, "path": "{path}"}}"#);
+        // Line 1 the deep path, 2 and 3 packed rays, 4 a comment, 5 the deep
+        // path again.
+        let log = [
+            ray("[5, 5]", &deep),
+            ray("[5, 5]", "P"),
+            ray("[5, 5]", "P/S0"),
+            "# again".to_string(),
+            ray("[5, 5]", &deep),
+        ]
+        .join("\n");
+        let (rays, _) = read_ball(&log);
+        assert_eq!(rays.len(), 4, "three rays, then the error");
+        let error = rays[3].as_ref().unwrap_err();
+        // The path's value starts at column 27: `{"pixel": [5, 5], "path": ` is 26.
+        assert_eq!((error.line, error.column), (5, 27), "{error}");
+        assert_eq!(
+            error.problem,
+            format!("pixel [5, 5] path {deep} is logged twice: first on line 1")
+        );
+        // A packed ray repeated, first read after the deep one (kept apart)
+        // and a blank line: the line its run of lines (4 and 5) starts on.
+        let log = [
+            ray("[5, 5]", "P"),
+            ray("[5, 5]", &deep),
+            String::new(),
+            ray("[0, 10]", "P/R"),
+            ray("[10, 0]", "P/R"),
+            ray("[0, 10]", "P/R"),
+        ]
+        .join("\n");
+        let (rays, deep_logged) = read_ball(&log);
+        assert!(deep_logged);
+        let error = rays.last().unwrap().as_ref().unwrap_err();
+        assert_eq!(error.line, 6, "{error}");
+        assert_eq!(
+            error.problem,
+            "pixel [0, 10] path P/R is logged twice: first on line 4"
+        );
+    }
+
+    #[test]
+    fn the_reader_tells_which_rays_were_logged() {
+        let (scene, _) = crate::test_scenes::ball();
+        let log = "{\"pixel\": [5, 5], \"path\": \"P\"}\n\n\
+                   {\"pixel\": [5, 5], \"path\": \"P/R/S0\"}\n\
+                   {\"pixel\": [10, 10], \"path\": \"P/T\"}\n";
+        let mut reader = RaylogReader::new("LOG", log.as_bytes(), &scene);
+        let lines: Vec<usize> = reader.by_ref().map(|r| r.unwrap().0).collect();
+        assert_eq!(lines, [1, 3, 4]);
+        let logged = |pixel, path| reader.was_logged(pixel, &RayPath::parse(path, 1).unwrap());
+        assert!(logged((5, 5), "P"));
+        assert!(logged((5, 5), "P/R/S0"));
+        assert!(logged((10, 10), "P/T"));
+        // Another path of a logged pixel, a logged path of another pixel,
+        // the parent of a logged ray: none was logged.
+        assert!(!logged((5, 5), "P/R"));
+        assert!(!logged((5, 5), "P/T"));
+        assert!(!logged((10, 10), "P"));
+        assert!(!logged((5, 6), "P"));
+        // A pixel outside the image was never logged.
+        assert!(!logged((11, 5), "P"));
+        // The deep path of the other test, not read here.
+        assert!(!reader.was_logged((5, 5), &RayPath::parse(&deep_path(), 1).unwrap()));
+    }
 
     #[test]
     fn nan_and_infinities_become_stand_ins_outside_strings_only() {
