@@ -2,6 +2,7 @@
 //! tracer printed it: every error names LOG:line:column and what is wrong,
 //! and none panics.
 
+use std::borrow::Cow;
 use std::collections::{BTreeSet, HashMap};
 use std::fmt;
 use std::io::{BufRead, Read};
@@ -100,35 +101,36 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
         }
     }
 
-    /// The next line, without its line ending; `None` at the end.
-    fn next_line(&mut self) -> Result<Option<String>, Problem> {
-        self.buffer.clear();
+    /// The next line in `buffer` (reused: no allocation per line),
+    /// without its line ending; `None` at the end.
+    fn next_line<'b>(&mut self, buffer: &'b mut Vec<u8>) -> Result<Option<&'b str>, Problem> {
+        buffer.clear();
         // One byte past the limit tells a line that is too long.
         let limit = MAX_LINE_BYTES as u64 + 1;
         let read = (&mut self.input)
             .take(limit)
-            .read_until(b'\n', &mut self.buffer)
+            .read_until(b'\n', buffer)
             .map_err(|e| (1, format!("cannot read the log: {e}")))?;
         if read == 0 {
             return Ok(None);
         }
         self.line += 1;
-        if self.buffer.last() == Some(&b'\n') {
-            self.buffer.pop();
+        if buffer.last() == Some(&b'\n') {
+            buffer.pop();
         }
-        if self.buffer.last() == Some(&b'\r') {
-            self.buffer.pop();
+        if buffer.last() == Some(&b'\r') {
+            buffer.pop();
         }
-        if self.buffer.len() > MAX_LINE_BYTES {
+        if buffer.len() > MAX_LINE_BYTES {
             return Err((
                 MAX_LINE_BYTES + 1,
                 format!("the line is over 1 MB ({MAX_LINE_BYTES} bytes): a log has one ray a line"),
             ));
         }
-        match std::str::from_utf8(&self.buffer) {
-            Ok(text) => Ok(Some(text.to_string())),
+        match std::str::from_utf8(buffer) {
+            Ok(text) => Ok(Some(text)),
             Err(e) => {
-                let valid = std::str::from_utf8(&self.buffer[..e.valid_up_to()]).unwrap_or("");
+                let valid = std::str::from_utf8(&buffer[..e.valid_up_to()]).unwrap_or("");
                 Err((valid.chars().count() + 1, "not UTF-8 text".to_string()))
             }
         }
@@ -136,7 +138,7 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
 
     /// One line's ray.
     fn ray(&mut self, text: &str) -> Result<LoggedRay, Problem> {
-        let prepared = prepare(text);
+        let prepared = prepare(text, false);
         let value: Value = serde_json::from_str(&prepared.json).map_err(|e| {
             let at = prepared.text_offset(e.column().saturating_sub(1));
             let words = e.to_string();
@@ -156,11 +158,7 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
                 self.unknown_keys.insert(key.clone());
             }
         }
-        let fields = Fields {
-            map: &map,
-            text,
-            prepared: &prepared,
-        };
+        let fields = Fields { map: &map, text };
         let pixel = self.pixel(&fields)?;
         let path = match fields.get("path")? {
             Value::String(path) => RayPath::parse(path, self.scene.lights.len())
@@ -203,7 +201,6 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
 
     fn pixel(&self, fields: &Fields) -> Result<(u32, u32), Problem> {
         let value = fields.get("pixel")?;
-        let column = fields.column("pixel");
         let coordinates: Option<Vec<u32>> = value.as_array().and_then(|items| {
             items
                 .iter()
@@ -212,14 +209,14 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
         });
         let Some([x, y]) = coordinates.as_deref() else {
             return Err((
-                column,
+                fields.column("pixel"),
                 format!("pixel is not [x, y], two whole numbers from 0: {value}"),
             ));
         };
         let (width, height) = (self.scene.width, self.scene.height);
         if *x >= width || *y >= height {
             return Err((
-                column,
+                fields.column("pixel"),
                 format!(
                     "pixel [{x}, {y}] is outside the image, which is {width}x{height} \
                      (x from 0 to {}, y from 0 to {})",
@@ -235,21 +232,21 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
         let Some(value) = fields.map.get("hit") else {
             return Ok(None);
         };
-        let column = fields.column("hit");
+        let column = || fields.column("hit");
         let objects = &self.scene.objects;
         match value {
             Value::Null => Ok(Some(Hit::Miss)),
             Value::String(name) => match objects.iter().position(|o| &o.name == name) {
                 Some(i) => Ok(Some(Hit::Object(i))),
                 None => Err((
-                    column,
+                    column(),
                     format!("hit names no object of the scene: there is no object {name:?}"),
                 )),
             },
             Value::Number(n) => match n.as_u64().and_then(|i| usize::try_from(i).ok()) {
                 Some(i) if i < objects.len() => Ok(Some(Hit::Object(i))),
                 _ => Err((
-                    column,
+                    column(),
                     format!(
                         "hit {n} names no object of the scene: it has {}, \
                          counted from 0 in file order",
@@ -258,7 +255,7 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
                 )),
             },
             _ => Err((
-                column,
+                column(),
                 "hit is not an object's index, its name or null (a miss)".to_string(),
             )),
         }
@@ -270,8 +267,18 @@ impl<R: BufRead> Iterator for RaylogReader<'_, R> {
     type Item = Result<(usize, LoggedRay), RaylogError>;
 
     fn next(&mut self) -> Option<Self::Item> {
+        let mut buffer = std::mem::take(&mut self.buffer);
+        let item = self.next_ray(&mut buffer);
+        self.buffer = buffer;
+        item
+    }
+}
+
+impl<R: BufRead> RaylogReader<'_, R> {
+    /// The iterator's next item, its lines read into `buffer`.
+    fn next_ray(&mut self, buffer: &mut Vec<u8>) -> Option<<Self as Iterator>::Item> {
         while !self.finished {
-            let text = match self.next_line() {
+            let text = match self.next_line(buffer) {
                 Ok(Some(text)) => text,
                 Ok(None) => {
                     self.finished = true;
@@ -289,7 +296,7 @@ impl<R: BufRead> Iterator for RaylogReader<'_, R> {
             if content.is_empty() || content.starts_with('#') {
                 continue;
             }
-            return Some(match self.ray(&text) {
+            return Some(match self.ray(text) {
                 Ok(ray) => Ok((self.line, ray)),
                 Err(problem) => Err(self.error(problem)),
             });
@@ -298,17 +305,17 @@ impl<R: BufRead> Iterator for RaylogReader<'_, R> {
     }
 }
 
-/// A line's object with what finds its values' columns.
+/// A line's object, and its text to find its values' columns.
 struct Fields<'a> {
     map: &'a Map<String, Value>,
     text: &'a str,
-    prepared: &'a Prepared,
 }
 
 impl Fields<'_> {
-    /// The column where `key`'s value starts (1 if not found).
+    /// The column where `key`'s value starts (1 if not found). Only an
+    /// error asks, so the line is scanned again for it then.
     fn column(&self, key: &str) -> usize {
-        self.prepared
+        prepare(self.text, true)
             .value_at
             .get(key)
             .map_or(1, |&at| column_of(self.text, at))
@@ -346,16 +353,16 @@ impl Fields<'_> {
         let Some(value) = self.map.get(key) else {
             return Ok(None);
         };
-        let column = self.column(key);
+        let column = || self.column(key);
         let items = value.as_array().ok_or_else(|| {
             (
-                column,
+                column(),
                 format!("{key} is not a list of [r, g, b], one per light"),
             )
         })?;
         if items.len() != lights {
             return Err((
-                column,
+                column(),
                 format!(
                     "{key} holds {} [r, g, b], but the scene has {lights} light{}: one per light",
                     items.len(),
@@ -366,7 +373,7 @@ impl Fields<'_> {
         items
             .iter()
             .enumerate()
-            .map(|(i, item)| vector(item).map_err(|e| (column, format!("{key}[{i}] {e}"))))
+            .map(|(i, item)| vector(item).map_err(|e| (column(), format!("{key}[{i}] {e}"))))
             .collect::<Result<_, _>>()
             .map(Some)
     }
@@ -409,15 +416,17 @@ const STAND_INS: [(&str, &str, f64); 3] = [
 
 /// A line made JSON: NaN and infinities outside strings become stand-in
 /// strings, remembered so that an error's column points into the line as
-/// written; and where each top-level key's value starts.
-struct Prepared {
-    json: String,
+/// written; and, when asked (for an error's column), where each top-level
+/// key's value starts.
+struct Prepared<'a> {
+    /// The line itself when it has no NaN or infinity, as most have.
+    json: Cow<'a, str>,
     /// (start in json, length there, start in the line, length there).
     replaced: Vec<(usize, usize, usize, usize)>,
     value_at: HashMap<String, usize>,
 }
 
-impl Prepared {
+impl Prepared<'_> {
     /// The byte offset in the line of byte `offset` of the JSON.
     fn text_offset(&self, offset: usize) -> usize {
         let mut shift = 0isize;
@@ -434,10 +443,12 @@ impl Prepared {
     }
 }
 
-fn prepare(text: &str) -> Prepared {
+/// `text` prepared; `locate_keys` fills `value_at`.
+fn prepare(text: &str, locate_keys: bool) -> Prepared<'_> {
     let bytes = text.as_bytes();
+    let mut json = String::new();
     let mut prepared = Prepared {
-        json: String::with_capacity(text.len() + 8),
+        json: Cow::Borrowed(text),
         replaced: Vec::new(),
         value_at: HashMap::new(),
     };
@@ -466,7 +477,7 @@ fn prepare(text: &str) -> Prepared {
                 let end = i.min(bytes.len());
                 if let Some(k) = awaiting.take() {
                     prepared.value_at.insert(k, start);
-                } else if open.len() == 1 {
+                } else if open.len() == 1 && locate_keys {
                     key = text
                         .get(start..end)
                         .and_then(|s| serde_json::from_str(s).ok());
@@ -502,12 +513,12 @@ fn prepare(text: &str) -> Prepared {
             });
         match token {
             Some((token, stand_in, _)) => {
-                prepared.json.push_str(&text[copied..i]);
+                json.push_str(&text[copied..i]);
                 let quoted = serde_json::to_string(stand_in).unwrap_or_default();
                 prepared
                     .replaced
-                    .push((prepared.json.len(), quoted.len(), i, token.len()));
-                prepared.json.push_str(&quoted);
+                    .push((json.len(), quoted.len(), i, token.len()));
+                json.push_str(&quoted);
                 i += token.len();
                 copied = i;
                 last = b'0';
@@ -525,9 +536,10 @@ fn prepare(text: &str) -> Prepared {
             }
         }
     }
-    prepared
-        .json
-        .push_str(text.get(copied..).unwrap_or_default());
+    if !prepared.replaced.is_empty() {
+        json.push_str(text.get(copied..).unwrap_or_default());
+        prepared.json = Cow::Owned(json);
+    }
     prepared
 }
 
@@ -651,7 +663,10 @@ mod tests {
 
     #[test]
     fn nan_and_infinities_become_stand_ins_outside_strings_only() {
-        let prepared = prepare(r#"{"t": NaN, "c": [Infinity, -Infinity], "s": "NaN"}"#);
+        let prepared = prepare(
+            r#"{"t": NaN, "c": [Infinity, -Infinity], "s": "NaN"}"#,
+            true,
+        );
         let value: Value = serde_json::from_str(&prepared.json).unwrap();
         assert!(number(&value["t"]).unwrap().is_nan());
         assert_eq!(number(&value["c"][0]), Some(f64::INFINITY));
@@ -667,7 +682,7 @@ mod tests {
     #[test]
     fn an_offset_past_a_stand_in_maps_back_into_the_line() {
         // `NaN` (3 bytes) became `"\u0000NaN"` (11 bytes): 8 more.
-        let prepared = prepare(r#"{"t": NaN, x}"#);
+        let prepared = prepare(r#"{"t": NaN, x}"#, true);
         let e = serde_json::from_str::<Value>(&prepared.json).unwrap_err();
         // The `x` is byte 11 of the line (from 0), its column 12.
         assert_eq!(
@@ -679,17 +694,17 @@ mod tests {
 
     #[test]
     fn words_that_merely_contain_the_tokens_are_left_alone() {
-        assert_eq!(prepare("{\"a\": xNaN}").json, "{\"a\": xNaN}");
-        assert_eq!(prepare("{\"a\": NaNx}").json, "{\"a\": NaNx}");
+        assert_eq!(prepare("{\"a\": xNaN}", true).json, "{\"a\": xNaN}");
+        assert_eq!(prepare("{\"a\": NaNx}", true).json, "{\"a\": NaNx}");
     }
 
     #[test]
     fn only_a_value_becomes_a_stand_in() {
         // A key, a second word, or a word at the top are left as written.
         for line in ["{NaN: 1}", "{\"a\": 1 NaN}", "NaN", "{\"a\": [1 NaN]}"] {
-            assert_eq!(prepare(line).json, line);
+            assert_eq!(prepare(line, true).json, line);
         }
-        let prepared = prepare("{\"a\": [NaN, Infinity], \"b\": {\"c\": -Infinity}}");
+        let prepared = prepare("{\"a\": [NaN, Infinity], \"b\": {\"c\": -Infinity}}", true);
         assert_eq!(prepared.replaced.len(), 3);
     }
 }
