@@ -501,6 +501,19 @@ fn prepare(text: &str, locate_keys: bool) -> Prepared<'_> {
             prepared.value_at.insert(k, i);
         }
         key = None;
+        // The rest of a number at once (most of a line): none of its bytes
+        // opens or closes anything, and none starts a stand-in (the `-` of
+        // 1e-7 follows a digit, where no value goes).
+        if bytes[i].is_ascii_digit() {
+            while bytes
+                .get(i)
+                .is_some_and(|b| matches!(b, b'0'..=b'9' | b'.' | b'e' | b'E' | b'+' | b'-'))
+            {
+                i += 1;
+            }
+            last = bytes[i - 1];
+            continue;
+        }
         let in_array = open.last() == Some(&b'[');
         let value_goes_here = last == b':' || (in_array && matches!(last, b'[' | b','));
         let token = STAND_INS
@@ -690,6 +703,23 @@ mod tests {
             12
         );
         assert_eq!(prepared.text_offset(8), 6, "inside the stand-in: its token");
+    }
+
+    #[test]
+    fn numbers_beside_stand_ins_are_read_whole() {
+        // A value after a number and a comma is replaced; a token glued to
+        // a number (`1-Infinity`, `2eNaN`) is not, and stays not JSON.
+        let prepared = prepare(r#"{"c": [1e-7, -Infinity, 2.5E+3, NaN], "t": -0.5}"#, true);
+        assert_eq!(prepared.replaced.len(), 2);
+        let value: Value = serde_json::from_str(&prepared.json).unwrap();
+        assert_eq!(number(&value["c"][0]), Some(1e-7));
+        assert_eq!(number(&value["c"][1]), Some(f64::NEG_INFINITY));
+        assert_eq!(number(&value["c"][2]), Some(2500.0));
+        assert!(number(&value["c"][3]).unwrap().is_nan());
+        assert_eq!(number(&value["t"]), Some(-0.5));
+        for line in ["{\"a\": [1-Infinity]}", "{\"a\": 2eNaN}"] {
+            assert_eq!(prepare(line, true).json, line);
+        }
     }
 
     #[test]
