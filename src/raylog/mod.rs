@@ -4,6 +4,7 @@
 
 mod logged_ray;
 mod path;
+mod quick_line;
 mod read;
 mod seen;
 mod write;
