@@ -4,7 +4,9 @@
 
 mod logged_ray;
 mod path;
+mod quick_line;
 mod read;
+mod seen;
 mod write;
 
 pub use logged_ray::{Hit, LoggedRay};

@@ -665,3 +665,32 @@ logRay(1, 2, "P/R", { origin: [0, 0, 1], dir: [0, 0, 1], hit: null, t: Infinity,
     let log = run_in(dir.path(), "node", &["emit.js"]);
     check_emitted("javascript", &log, true);
 }
+
+#[test]
+fn after_the_log_the_reader_tells_every_ray_it_held_and_no_other() {
+    // The seven rays of seven-rays.toml's pixel (80, 60) with their shadow
+    // rays, read to the end: each was logged; a ray of another pixel, a
+    // child past max_depth (3: P/R/R/R) and a shadow ray to a light the
+    // scene lacks were not.
+    let scene = scene_at(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/seven-rays.toml"),
+        None,
+    );
+    let tree = record_pixel(&scene, &scene.settings, 80, 60);
+    let log = raylog(&tree);
+    let mut reader = RaylogReader::new("LOG", log.as_bytes(), &scene);
+    assert_eq!(
+        reader.by_ref().filter(|r| r.is_ok()).count(),
+        log.lines().count()
+    );
+    let rays = rays_of(&tree);
+    assert!(rays.len() >= 7);
+    for ray in &rays {
+        assert!(reader.was_logged((80, 60), &ray.path), "{}", ray.path);
+        assert!(!reader.was_logged((80, 61), &ray.path), "{}", ray.path);
+    }
+    let path = |steps: Vec<Step>| RayPath { steps };
+    let r = Step::Reflected;
+    assert!(!reader.was_logged((80, 60), &path(vec![r, r, r])));
+    assert!(!reader.was_logged((80, 60), &path(vec![Step::Shadow(2)])));
+}
