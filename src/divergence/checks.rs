@@ -79,7 +79,14 @@ pub(crate) fn checks(yours: &LoggedRay, ours: &LoggedRay, tolerance: &Tolerance)
         .as_ref()
         .map_or(0, Vec::len)
         .max(yours.specular.as_ref().map_or(0, Vec::len));
-    let term = |terms: &Option<Vec<DVec3>>, i: usize| terms.as_ref().map(|t| Value::Vector(t[i]));
+    // A log is read against the scene, one term per light; the debugger
+    // keeps it across a reload that may take a light away.
+    let term = |terms: &Option<Vec<DVec3>>, i: usize| {
+        terms
+            .as_ref()
+            .and_then(|t| t.get(i))
+            .map(|&v| Value::Vector(v))
+    };
     for i in 0..lights {
         check(
             Field::Diffuse(i),
