@@ -362,3 +362,20 @@ fn with_compare_the_logs_pixels_are_at_the_images_size() {
         stderr(&output)
     );
 }
+
+/// The screen a student sees after `D` on a log raystep prints under
+/// eta-inverted (the example, /tmp/x.jsonl in the guide): at
+/// 120x40 the details stack yours over ours, and fields that agree take
+/// one line.
+#[test]
+fn snapshot_first_divergence() {
+    let scene = glass();
+    let settings = raystep::scene::Settings {
+        mistakes: raystep::mistakes::Mistakes::NONE.with(raystep::mistakes::Mistake::EtaInverted),
+        ..scene.settings
+    };
+    let path = log_file(&raylog(&record_pixel(&scene, &settings, 72, 45)));
+    let mut app = debugger_with(&path);
+    chars(&mut app, "D");
+    snapshot!("first_divergence", screen(&mut app, 120, 40).backend());
+}

@@ -18,7 +18,7 @@ use crate::record::{NodeId, RayTree};
 use crate::tui::view::tree::{
     LogLabel, Row, row_line, rows, scroll_offset, selected_row, selected_style,
 };
-use crate::tui::view::your_rays::{LEGEND, RowMarks, mark, only_yours_lines};
+use crate::tui::view::your_rays::{RowMarks, legend, mark, only_yours_lines};
 use crate::tui::{App, Pane};
 
 pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
@@ -30,11 +30,8 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let against = match (log, report) {
         (None, _) => String::new(),
         (Some(_), None) => " · not in your log".into(),
-        (Some(_), Some(r)) if r.matches => " · your log: matches".into(),
-        (Some(_), Some(r)) => match &r.first_divergence {
-            Some(d) => format!(" · your log: differs, first at {} {}", d.path, d.field),
-            None => " · your log: differs".into(),
-        },
+        (Some(_), Some(r)) if r.matches => " · your log matches".into(),
+        (Some(_), Some(_)) => " · your log differs".into(),
     };
     let title = format!(
         " Ray tree · pixel ({}, {}) · {rays} ray{}{against} ",
@@ -44,7 +41,7 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     );
     let mut block = pane_block(app, Pane::Tree, title);
     if report.is_some() {
-        block = block.title_bottom(LEGEND);
+        block = block.title_bottom(legend(area.width as usize));
     }
     let inside = block.inner(area);
     let rows = rows(tree, pixel.collapsed());

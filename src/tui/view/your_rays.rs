@@ -26,9 +26,18 @@ pub(crate) fn mark(status: RayStatus) -> (&'static str, Color) {
     }
 }
 
-/// The tree pane's legend of the marks, for its bottom border.
-pub(crate) const LEGEND: &str =
-    " your log: ✓ same  ≠ differs  − not in your log  + only in yours  · D: first divergence ";
+/// The tree pane's legend of the marks, for its bottom border: the
+/// longest that fits `width` columns.
+pub(crate) fn legend(width: usize) -> &'static str {
+    const LONG: &str =
+        " your log: ✓ same  ≠ differs  − not in your log  + only in yours  · D: first divergence ";
+    const SHORT: &str = " ✓ same ≠ differs − not in your log + only yours · D ";
+    if LONG.chars().count() + 2 <= width {
+        LONG
+    } else {
+        SHORT
+    }
+}
 
 /// Where each of our rays of the pixel shows in the tree: a shading ray
 /// on its node's row, a shadow ray on its light's row.
@@ -268,6 +277,14 @@ fn check_lines(checks: &[Check], scene: &Scene, width: usize) -> Vec<Line<'stati
             let mut spans = head;
             spans.push(Span::styled(
                 format!("{field:field_width$}{yours:yours_width$}{ours}"),
+                style,
+            ));
+            out.push(Line::from(spans));
+        } else if agrees {
+            // Within the tolerance: one line, your value.
+            let mut spans = head;
+            spans.push(Span::styled(
+                format!("{field:field_width$}both  {yours}"),
                 style,
             ));
             out.push(Line::from(spans));
