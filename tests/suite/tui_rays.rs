@@ -215,6 +215,17 @@ fn d_jumps_to_the_hit_of_the_changed_ray_and_the_details_set_yours_beside_ours()
         ["✓ hit", "glass ball (object 0)", "glass ball (object 0)"]
     );
     assert_eq!(row("weight"), ["✓ weight", "0.09", "0.09"]);
+    // r3's lights face away, yet your log casts a shadow ray from it to
+    // light 0: listed under r3's numbers, with MODEL's rule.
+    let at = details
+        .iter()
+        .position(|l| l == "Only in your log, from this ray:")
+        .expect("the rays only in yours under r3");
+    assert!(
+        details[at + 1].starts_with("+ P/T/R/S0: MODEL §4: light 0 is behind the surface"),
+        "{}",
+        details[at + 1]
+    );
     // The tree selects r3's row.
     let rows = pane_text(&mut app, Pane::Tree, 160, 80);
     assert!(rows.iter().any(|r| r.contains("r3 P/T/R")));

@@ -237,7 +237,7 @@ fn check_lines(checks: &[Check], scene: &Scene, width: usize) -> Vec<Line<'stati
             )
         })
         .collect();
-    let field_width = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0) + 1;
+    let field_width = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0) + 2;
     let yours_width = rows
         .iter()
         .map(|r| r.1.chars().count())
@@ -360,6 +360,21 @@ pub(crate) fn detail_lines(
         out.extend(wrapped(&rule.rule, 2, width, Style::new()));
     }
     out.extend(check_lines(checks, scene, width));
+    // Your rays this one would have cast and ours does not (the first
+    // divergence, if one of them, is told above).
+    let first = report.first_divergence.as_ref().map(|d| &d.path);
+    let children: Vec<_> = (report.only_yours.iter())
+        .filter(|u| Some(&u.path) != first)
+        .filter(|u| anchor(tree, &u.path).is_some_and(|(p, _, _)| &p == path))
+        .collect();
+    if !children.is_empty() {
+        out.push(Line::from("Only in your log, from this ray:").style(bold()));
+        let (symbol, _) = mark(RayStatus::OnlyYours);
+        for ray in children {
+            let text = format!("{symbol} {}: {}", ray.path, ray.rule);
+            out.extend(wrapped(&text, 0, width, Style::new()));
+        }
+    }
     let first = report.first_divergence.as_ref();
     if status == RayStatus::Differs
         && let Some(first) = first.filter(|d| &d.path != path)
@@ -409,9 +424,11 @@ fn divergence_lines(
         }
     }
     if report.later_differences > 0 {
-        let later = record::count(report.later_differences as u64, "difference", "differences");
+        let n = report.later_differences;
+        let later = record::count(n as u64, "difference", "differences");
+        let follow = if n == 1 { "follows" } else { "follow" };
         out.extend(wrapped(
-            &format!("{later} after it follow from the first."),
+            &format!("{later} after it {follow} from the first."),
             0,
             width,
             Style::new(),
