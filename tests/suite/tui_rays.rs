@@ -125,6 +125,13 @@ fn the_debugger_opens_on_the_first_logged_pixel_and_marks_each_ray() {
     let mut app = debugger_with(&path);
     // The scene's centre is (80, 60); the log's only pixel is (72, 45).
     assert_eq!(app.pixel().cursor(), (72, 45));
+    // raystep's 16 rays, less P/T/T/S1, plus P/T/R/S0.
+    let opening = format!(
+        "{} (1 pixel, 16 rays): logged pixel 1 of 1, (72, 45): first differs at P/T/R t, \
+         D goes there; y: next",
+        path.display()
+    );
+    assert_eq!(app.message(), Some(opening.as_str()));
     let rows = pane_text(&mut app, Pane::Tree, 160, 80);
     // Each ray of ours, by hand from the changes: r3 (P/T/R) differs and is
     // the first divergence; P/T/T/S1 is not in the log; the rest match. r3's
@@ -157,6 +164,18 @@ fn the_debugger_opens_on_the_first_logged_pixel_and_marks_each_ray() {
     assert_eq!(
         (first.path.to_string(), first.field.to_string()),
         ("P/T/R".into(), "t".into())
+    );
+}
+
+#[test]
+fn with_pixel_the_debugger_opens_there_and_says_how_it_stands_to_the_log() {
+    let path = log_file(&three_changes());
+    let app = debugger_with(&path).at_pixel((73, 45)).unwrap();
+    assert_eq!(app.pixel().cursor(), (73, 45));
+    let message = app.message().unwrap();
+    assert!(
+        message.ends_with("): pixel (73, 45) is not in your log: y goes to a logged pixel"),
+        "{message}"
     );
 }
 

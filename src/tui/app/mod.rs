@@ -165,6 +165,9 @@ impl App {
             return Err(find::outside(pixel, size));
         }
         self.pick(pixel.0, pixel.1);
+        if let Some(log) = &self.ray_log {
+            self.message = Some(log.opening_words(pixel));
+        }
         Ok(self)
     }
 

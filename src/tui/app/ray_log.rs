@@ -63,16 +63,6 @@ impl RayLog {
         }
     }
 
-    /// The log's file, as given.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// The logged pixels the debugger steps through, in the log's order.
-    pub fn pixels(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
-        self.pixels.iter().map(|(pixel, _)| *pixel)
-    }
-
     /// The pixel traced beside your rays of it, when it is in the log.
     pub fn report(&self) -> Option<&PixelReport> {
         self.report.as_ref()
@@ -137,12 +127,14 @@ impl RayLog {
 
     /// The status line's words at open.
     pub(super) fn opening_words(&self, cursor: (u32, u32)) -> String {
+        let logged = self.pixels.iter().any(|(pixel, _)| *pixel == cursor);
         format!(
-            "{} ({}, {}): {}; y: next",
+            "{} ({}, {}): {}{}",
             self.name,
             count(self.pixel_count as u64, "pixel", "pixels"),
             count(self.rays_read as u64, "ray", "rays"),
-            self.pixel_words(cursor)
+            self.pixel_words(cursor),
+            if logged { "; y: next" } else { "" }
         )
     }
 }
