@@ -342,13 +342,23 @@ pub(crate) fn detail_lines(
             if differ == 1 { "differs" } else { "differ" }
         ),
     };
-    let mut out = vec![Line::from(vec![
-        Span::styled(
-            format!("{symbol} "),
-            Style::new().fg(color).add_modifier(Modifier::BOLD),
-        ),
-        Span::styled(said, bold()),
-    ])];
+    // The mark, then the words wrapped beside it.
+    let rows = record::Line::text(None, said).wrap(width.saturating_sub(2), 0);
+    let mut out: Vec<Line<'static>> = rows
+        .into_iter()
+        .enumerate()
+        .map(|(i, row)| {
+            let head = if i == 0 {
+                Span::styled(
+                    format!("{symbol} "),
+                    Style::new().fg(color).add_modifier(Modifier::BOLD),
+                )
+            } else {
+                Span::raw("  ")
+            };
+            Line::from(vec![head, Span::styled(row.text(), bold())])
+        })
+        .collect();
     if let Some(first) = &report.first_divergence
         && anchor(tree, &first.path).is_some_and(|(p, _, _)| &p == path)
     {
