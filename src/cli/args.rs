@@ -26,6 +26,10 @@ use crate::scene::{self, Scene, Settings};
     mut_arg("pixel", |a| a.help(
         "Open the debugger on the pixel X,Y (x to the right, y downward, from 0)"
     )),
+    mut_arg("rays", |a| a.help(
+        "Your tracer's ray log (docs/RAYLOG.md): each logged pixel's rays marked \
+         against ours in the debugger, opening on the first"
+    )),
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -48,6 +52,11 @@ pub(crate) struct DebugArgs {
     /// Open on the pixel X,Y (x to the right, y downward, from 0).
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
     pub(crate) pixel: Option<(u32, u32)>,
+    /// Your tracer's ray log (docs/RAYLOG.md), its pixels at the size
+    /// traced: each logged pixel's rays marked against ours, opening on
+    /// the first.
+    #[arg(long, value_name = "LOG.jsonl")]
+    pub(crate) rays: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]

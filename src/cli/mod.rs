@@ -42,9 +42,14 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-/// `raystep [debug] [SCENE] [--compare IMAGE.png] [--pixel X,Y]`.
+/// `raystep [debug] [SCENE] [--compare IMAGE.png] [--pixel X,Y] [--rays LOG.jsonl]`.
 fn debug(args: &DebugArgs) -> Result<ExitCode> {
-    crate::tui::run(args.scene.as_deref(), args.compare.as_deref(), args.pixel)
+    crate::tui::run(crate::tui::Opening {
+        scene: args.scene.as_deref(),
+        compare: args.compare.as_deref(),
+        pixel: args.pixel,
+        rays: args.rays.as_deref(),
+    })
 }
 
 /// Writes to stdout; a reader that closed the pipe early (`| head`) is not an error.

@@ -24,6 +24,7 @@ pub(crate) use ours::OurRays;
 pub(crate) use pixel_report::compare_pixel;
 pub use pixel_report::{AlignedRay, Divergence, PixelReport, RayStatus, Unpaired};
 pub use tolerance::Tolerance;
+pub(crate) use words::value_text;
 pub use words::{json, text};
 
 use crate::raylog::{LoggedRay, RaylogError, RaylogReader};

@@ -51,6 +51,12 @@ pub enum Action {
     ToggleMistake(Mistake),
     /// With a comparison: the cursor to the next region's pixel.
     NextRegion,
+    /// With a ray log: the cursor to the next (1) or previous (-1) pixel
+    /// of the log, cycling.
+    NextLoggedPixel(i32),
+    /// With a ray log: to the event where the pixel's first divergence
+    /// from the log is made.
+    FirstDivergence,
     CyclePlane,
     /// Pan the diagram by quarters of what it shows (arrows, diagram focused).
     PanDiagram(i32, i32),

@@ -210,6 +210,14 @@ const PIXEL_AND_VIEW: &[Binding] = &[
         ..ROW
     },
     Binding {
+        inputs: &[
+            (key('y'), act(Action::NextLoggedPixel(1))),
+            (key('Y'), act(Action::NextLoggedPixel(-1))),
+        ],
+        what: "with --rays: next / previous pixel of your log, cycling",
+        ..ROW
+    },
+    Binding {
         inputs: &[(key(':'), act(Action::OpenPrompt))],
         what: "go to a pixel: type X,Y then Enter",
         hint: hint(8, ":", "go to"),
@@ -304,6 +312,11 @@ const STEPPING: &[Binding] = &[
     Binding {
         inputs: &[(key('T'), act(Action::RunTo(Breakpoint::Tir)))],
         what: "run to the next total internal reflection",
+        ..ROW
+    },
+    Binding {
+        inputs: &[(key('D'), act(Action::FirstDivergence))],
+        what: "with --rays: to the first divergence from your log",
         ..ROW
     },
 ];

@@ -4,7 +4,7 @@
 //! The structure follows ratatui's event-driven template:
 //!
 //! - `app/`: the state, in parts that own their fields (the overlay, the
-//!   pixel traced, the renders, the session, the comparison);
+//!   pixel traced, the renders, the session, the comparison, the ray log);
 //!   `App::update(Action)` is the only place it changes, and the rest reads
 //!   it through accessors.
 //! - `action.rs`: what can be asked for, and the words it is said in
@@ -165,31 +165,42 @@ where
     Ok(())
 }
 
-/// `raystep [debug] [SCENE] [--compare IMAGE.png] [--pixel X,Y]`: runs the
-/// debugger in the terminal. The student's image is read and the pixel
-/// checked first: a bad one is reported (exit 1) whether or not there is a
-/// terminal, and before it is taken.
-pub(crate) fn run(
-    path: Option<&Path>,
-    compare: Option<&Path>,
-    pixel: Option<(u32, u32)>,
-) -> Result<ExitCode> {
+/// What the debugger opens on: the scene file (`None`: the built-in
+/// scene), the student's image, the pixel and the ray log asked for.
+pub(crate) struct Opening<'a> {
+    pub(crate) scene: Option<&'a Path>,
+    pub(crate) compare: Option<&'a Path>,
+    pub(crate) pixel: Option<(u32, u32)>,
+    pub(crate) rays: Option<&'a Path>,
+}
+
+/// `raystep [debug] [SCENE] [--compare IMAGE.png] [--pixel X,Y] [--rays
+/// LOG.jsonl]`: runs the debugger in the terminal. The student's image and
+/// ray log are read and the pixel checked first: a bad one is reported
+/// (exit 1) whether or not there is a terminal, and before it is taken.
+pub(crate) fn run(opening: Opening) -> Result<ExitCode> {
+    let Opening {
+        scene: path,
+        compare,
+        pixel,
+        rays,
+    } = opening;
     let student = compare.map(crate::compare::student::load).transpose()?;
-    if let Some(pixel) = pixel {
-        let size = match &student {
-            Some(student) => student.image.dimensions(),
-            None => {
-                let source = source::SceneSource {
-                    path: path.map(Path::to_path_buf),
-                    size: None,
-                };
-                let scene = source.load()?;
-                (scene.width, scene.height)
-            }
+    let mut ray_log = None;
+    if pixel.is_some() || rays.is_some() {
+        // Traced at the image's size with --compare, and the log's pixels with it.
+        let source = source::SceneSource {
+            path: path.map(Path::to_path_buf),
+            size: student.as_ref().map(|s| s.image.dimensions()),
         };
-        if pixel.0 >= size.0 || pixel.1 >= size.1 {
+        let scene = source.load()?;
+        let size = (scene.width, scene.height);
+        if let Some(pixel) = pixel
+            && (pixel.0 >= size.0 || pixel.1 >= size.1)
+        {
             bail!("--pixel: {}", view::find::outside(pixel, size));
         }
+        ray_log = rays.map(|log| app::RayLog::read(&scene, log)).transpose()?;
     }
     if !io::stdin().is_terminal() || !io::stdout().is_terminal() {
         bail!(
@@ -203,6 +214,9 @@ pub(crate) fn run(
         eprintln!("comparing {} with the scene…", image.display());
     }
     let mut app = App::open_with(path.map(Path::to_path_buf), student, false)?.watching();
+    if let Some(log) = ray_log {
+        app = app.with_ray_log(log);
+    }
     if let Some(pixel) = pixel {
         app = app.at_pixel(pixel).map_err(anyhow::Error::msg)?;
     }

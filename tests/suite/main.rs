@@ -39,6 +39,7 @@ mod toml_sections;
 mod tui;
 mod tui_compare;
 mod tui_diagram;
+mod tui_rays;
 mod tui_reach;
 mod tui_screens;
 mod what_if;

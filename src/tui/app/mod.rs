@@ -9,6 +9,7 @@
 //! - `renders.rs`: the whole image's renders;
 //! - `session.rs`: the scene, its source and watcher, the settings traced;
 //! - `comparing.rs`: `--compare`'s image, findings and regions;
+//! - `ray_log.rs`: `--rays`' log, and the pixel traced set beside it;
 //! - `screen.rs`: focus, zoom, the image pane's picture, the diagram's
 //!   plane, pan and zoom;
 //! - `search.rs`: a find across the image under way.
@@ -36,10 +37,12 @@ use super::view::find;
 use super::view::image_grid::{ImageGrid, max_zoom};
 use super::view::layout::{self, Panes, inner};
 use super::view::tree;
+use super::view::your_rays;
 
 mod comparing;
 mod overlay;
 mod pixel;
+mod ray_log;
 mod renders;
 mod screen;
 mod search;
@@ -48,6 +51,7 @@ mod session;
 pub(crate) use comparing::StudentComparison;
 pub(crate) use overlay::{Overlay, Overlays};
 pub(crate) use pixel::TracedPixel;
+pub use ray_log::RayLog;
 pub(crate) use renders::Renders;
 pub(crate) use screen::Screen;
 use search::Search;
@@ -56,6 +60,8 @@ pub(crate) use session::Session;
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
 /// with every level).
 pub const MAX_DEPTH: u32 = 16;
+/// What `y` and `D` say without a log.
+const NO_LOG: &str = "no ray log: open with --rays LOG.jsonl (docs/RAYLOG.md)";
 /// The first status message, for someone who has never seen the debugger.
 pub const WELCOME: &str =
     "arrows pick a pixel, n steps through its trace, Tab changes pane, ? lists every key";
@@ -68,6 +74,8 @@ pub struct App {
     screen: Screen,
     /// The student's image and what `compare` found, with `--compare`.
     comparison: Option<StudentComparison>,
+    /// The student's ray log, with `--rays`.
+    ray_log: Option<RayLog>,
     /// The find scanning the image in the background, if one runs.
     search: Option<Search>,
     /// The status line's message.
@@ -127,6 +135,7 @@ impl App {
             overlay: Overlays::default(),
             screen: Screen::default(),
             comparison,
+            ray_log: None,
             search: None,
             message: Some(WELCOME.into()),
             quit: false,
@@ -156,7 +165,24 @@ impl App {
             return Err(find::outside(pixel, size));
         }
         self.pick(pixel.0, pixel.1);
+        if let Some(log) = &self.ray_log {
+            self.message = Some(log.opening_words(pixel));
+        }
         Ok(self)
+    }
+
+    /// The app with the student's ray log (`--rays`, read against this
+    /// app's scene), on the log's first pixel.
+    pub fn with_ray_log(mut self, mut log: RayLog) -> App {
+        let first = log.first_pixel();
+        self.ray_log = Some(log);
+        if let Some((x, y)) = first {
+            self.pick(x, y);
+        }
+        if let Some(log) = &self.ray_log {
+            self.message = Some(log.opening_words(self.pixel.cursor()));
+        }
+        self
     }
 
     /// Carries out an action: the only way the state changes.
@@ -211,6 +237,8 @@ impl App {
             | Action::ToggleMistake(_) => self.toggle(action),
             Action::MenuToggle => self.toggle(Action::ToggleMistake(self.overlay.menu_mistake())),
             Action::NextRegion => self.next_region(),
+            Action::NextLoggedPixel(delta) => self.next_logged_pixel(delta),
+            Action::FirstDivergence => self.first_divergence(),
             Action::PromptSubmit => self.prompt_submit(),
             Action::Find(what) => {
                 self.overlay.update(action, height);
@@ -248,6 +276,14 @@ impl App {
         self.screen.fit_diagram();
         let session = &self.session;
         self.pixel.pick((x, y), session.scene(), session.settings());
+        self.follow_log();
+    }
+
+    /// Sets the pixel traced, as it is now, beside the student's rays of it.
+    fn follow_log(&mut self) {
+        if let Some(log) = &mut self.ray_log {
+            log.follow(self.pixel.tree(), self.session.scene());
+        }
     }
 
     fn move_cursor(&mut self, dx: i32, dy: i32) {
@@ -296,7 +332,13 @@ impl App {
         if let Some(settings) = settings {
             self.apply_settings(settings);
         }
-        self.message = Some(message);
+        let against = (self.ray_log.as_ref().and_then(RayLog::report)).map(|report| match &report
+            .first_divergence
+        {
+            None => " · your rays of this pixel match ours".to_string(),
+            Some(d) => format!(" · your rays first differ at {} {}", d.path, d.field),
+        });
+        self.message = Some(message + &against.unwrap_or_default());
     }
 
     /// Traces the scene with new settings: the pixel, then the image.
@@ -305,6 +347,7 @@ impl App {
         self.session.set_settings(settings);
         let session = &self.session;
         self.pixel.retrace_with(session.scene(), session.settings());
+        self.follow_log();
         self.request_render();
     }
 
@@ -334,6 +377,53 @@ impl App {
                 self.message = Some(message);
             }
             Err(why) => self.message = Some(why),
+        }
+    }
+
+    /// `y` / `Y`: the cursor to the next or previous pixel of the log.
+    fn next_logged_pixel(&mut self, delta: i32) {
+        let Some(log) = &mut self.ray_log else {
+            self.message = Some(NO_LOG.into());
+            return;
+        };
+        let (x, y) = log.step(self.pixel.cursor(), delta);
+        self.pick(x, y);
+        self.message = self.ray_log.as_ref().map(|log| log.pixel_words((x, y)));
+    }
+
+    /// `D`: the current event to where the pixel's first divergence from
+    /// the log is made, its ray selected, the details at their top (yours
+    /// beside ours, and what the divergence is).
+    fn first_divergence(&mut self) {
+        let Some(log) = &self.ray_log else {
+            self.message = Some(NO_LOG.into());
+            return;
+        };
+        let (x, y) = self.pixel.cursor();
+        let Some(report) = log.report() else {
+            self.message = Some(format!(
+                "pixel ({x}, {y}) is not in your log: y goes to a logged pixel"
+            ));
+            return;
+        };
+        let Some(first) = &report.first_divergence else {
+            self.message = Some(format!(
+                "your rays of pixel ({x}, {y}) match ours: no divergence"
+            ));
+            return;
+        };
+        let message = format!(
+            "first divergence: {} {}, {}: yours beside ours in the details",
+            first.path,
+            first.field,
+            first.kind.name()
+        );
+        match your_rays::divergence_event(self.pixel.tree(), first) {
+            Some(event) => {
+                self.pixel.go_to(event);
+                self.message = Some(message);
+            }
+            None => self.message = Some(format!("{message} (no event of ours for it)")),
         }
     }
 
@@ -376,6 +466,7 @@ impl App {
         self.message = Some(search.result_message(found.as_ref().map(|f| f.pixel)));
         if let Some(found) = found {
             self.pixel.take_found(found, search.elapsed());
+            self.follow_log();
         }
     }
 
@@ -426,9 +517,17 @@ impl App {
         self.comparison.as_ref()
     }
 
+    /// The student's ray log, with `--rays`.
+    pub fn ray_log(&self) -> Option<&RayLog> {
+        self.ray_log.as_ref()
+    }
+
     pub fn panes(&self) -> Panes {
         let banner = self.session.error().map_or(0, |e| e.lines().count() as u16);
-        let rows = tree::rows(self.pixel.tree(), self.pixel.collapsed()).len() as u16;
+        let only_yours =
+            (self.ray_log.as_ref().and_then(RayLog::report)).map_or(0, |r| r.only_yours.len());
+        let rows =
+            (tree::rows(self.pixel.tree(), self.pixel.collapsed()).len() + only_yours) as u16;
         layout::panes(self.screen.size(), banner, rows)
     }
 

@@ -196,6 +196,20 @@ impl TracedPixel {
         }
     }
 
+    /// Makes `event` current with its ray's row in sight (its folded
+    /// ancestors opened) and the details at their top.
+    pub(super) fn go_to(&mut self, event: usize) {
+        self.set_current(event);
+        let mut node = Some(self.selected_node());
+        while let Some(n) = node {
+            node = self.tree.nodes[n].parent;
+            if let Some(parent) = node {
+                self.collapsed.remove(&parent);
+            }
+        }
+        self.details_scroll = Some(0);
+    }
+
     fn set_current(&mut self, event: usize) {
         self.current = event.min(self.tree.events.len().saturating_sub(1));
         self.details_scroll = None;

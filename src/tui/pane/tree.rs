@@ -1,37 +1,62 @@
 //! The ray tree pane: the rows of `view::tree`, scrolled to keep the current
-//! event's row in sight and that row highlighted.
+//! event's row in sight and that row highlighted. With a ray log whose
+//! pixel this is, each row starts with its ray's mark against the log
+//! (`view::your_rays`), the rays only in the log follow the tree, and the
+//! marks' legend is on the bottom border.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
-use ratatui::text::Line;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
 use super::pane_block;
-use crate::tui::view::tree::{row_line, rows, scroll_offset, selected_row, selected_style};
+use std::collections::BTreeSet;
+
+use crate::divergence::RayStatus;
+use crate::record::{NodeId, RayTree};
+use crate::tui::view::tree::{
+    LogLabel, Row, row_line, rows, scroll_offset, selected_row, selected_style,
+};
+use crate::tui::view::your_rays::{RowMarks, legend, mark, only_yours_lines};
 use crate::tui::{App, Pane};
 
 pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let pixel = app.pixel();
     let tree = pixel.tree();
     let rays = tree.nodes.len();
+    let log = app.ray_log();
+    let report = log.and_then(|l| l.report());
+    let against = match (log, report) {
+        (None, _) => String::new(),
+        (Some(_), None) => " · not in your log".into(),
+        (Some(_), Some(r)) if r.matches => " · your log matches".into(),
+        (Some(_), Some(_)) => " · your log differs".into(),
+    };
     let title = format!(
-        " Ray tree · pixel ({}, {}) · {rays} ray{} ",
+        " Ray tree · pixel ({}, {}) · {rays} ray{}{against} ",
         tree.pixel.0,
         tree.pixel.1,
         if rays == 1 { "" } else { "s" }
     );
-    let block = pane_block(app, Pane::Tree, title);
+    let mut block = pane_block(app, Pane::Tree, title);
+    if report.is_some() {
+        block = block.title_bottom(legend(area.width as usize));
+    }
     let inside = block.inner(area);
     let rows = rows(tree, pixel.collapsed());
     let selected = selected_row(tree, &rows, pixel.current());
     let first = scroll_offset(selected.unwrap_or(0), inside.height as usize);
-    let lines: Vec<Line> = rows
+    let marks = report.map(|r| RowMarks::new(tree, r));
+    let width = inside.width as usize;
+    let mut lines: Vec<Line> = rows
         .iter()
         .enumerate()
-        .skip(first)
-        .take(inside.height as usize)
         .map(|(i, row)| {
-            let line = row_line(tree, pixel.collapsed(), row, inside.width as usize);
+            let line = match &marks {
+                None => row_line(tree, pixel.collapsed(), row, LogLabel::default(), width),
+                Some(marks) => marked_row(marks, tree, pixel.collapsed(), row, width),
+            };
             if Some(i) == selected {
                 line.patch_style(selected_style(app.screen().focus() == Pane::Tree))
             } else {
@@ -39,5 +64,57 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
             }
         })
         .collect();
+    if let Some(report) = report {
+        let (symbol, color) = mark(RayStatus::OnlyYours);
+        for (text, is_first) in only_yours_lines(report) {
+            let text: String = text.chars().take(width.saturating_sub(2)).collect();
+            let style = if is_first {
+                Style::new().add_modifier(Modifier::BOLD)
+            } else {
+                Style::new()
+            };
+            lines.push(Line::from(vec![
+                Span::styled(format!("{symbol} "), Style::new().fg(color)),
+                Span::styled(text, style),
+            ]));
+        }
+    }
+    let lines: Vec<Line> = lines
+        .into_iter()
+        .skip(first)
+        .take(inside.height as usize)
+        .collect();
     frame.render_widget(Paragraph::new(lines).block(block), area);
+}
+
+/// A row with its ray's mark in front and its path in the log's words;
+/// the first divergence's row says so.
+fn marked_row(
+    marks: &RowMarks,
+    tree: &RayTree,
+    collapsed: &BTreeSet<NodeId>,
+    row: &Row,
+    width: usize,
+) -> Line<'static> {
+    let path = marks.path(row.kind).map(|p| p.to_string());
+    let first = marks.is_first(row.kind);
+    let label = LogLabel {
+        path: path.as_deref(),
+        note: first.then_some("◀ first divergence"),
+    };
+    let line = row_line(tree, collapsed, row, label, width.saturating_sub(2));
+    let head = match marks.status(row.kind) {
+        Some(status) => {
+            let (symbol, color) = mark(status);
+            let mut style = Style::new().fg(color);
+            if first {
+                style = style.add_modifier(Modifier::BOLD | Modifier::REVERSED);
+            }
+            Span::styled(symbol.to_string(), style)
+        }
+        None => Span::raw(" "),
+    };
+    let mut spans = vec![head, Span::raw(" ")];
+    spans.extend(line.spans);
+    Line::from(spans)
 }

@@ -1,7 +1,8 @@
 //! What the panes show, worked out apart from drawing: the ray tree's rows,
 //! the step list, stepping, the diagram's labels and its pan and zoom, where
 //! image pixels land in the image pane, the details' lines, the help's
-//! lines, and where each pane goes. Pure functions of the recording, the scene and sizes, so
+//! lines, a ray log's marks and lines beside the tree, and where each pane
+//! goes. Pure functions of the recording, the scene and sizes, so
 //! each file tests its own; the app (`app/`) and the panes (`pane/`) both
 //! read them, and nothing here knows either.
 
@@ -16,3 +17,4 @@ pub(crate) mod pan_zoom;
 pub(crate) mod stepper;
 pub mod steps;
 pub mod tree;
+pub(crate) mod your_rays;

@@ -13,7 +13,7 @@ use crate::record::{LightRecord, NodeId, RayTree, kind_name, num};
 use super::stepper::event_light;
 
 /// What a row shows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) enum RowKind {
     Ray(NodeId),
     /// `light` indexes the node's `lights` (the scene's order).
@@ -147,14 +147,25 @@ fn light_text(light: &LightRecord) -> String {
     }
 }
 
-/// One row as text: marker, description, swatch and share, `width` columns.
+/// What a row says of a student's ray log: its ray's path in the log's
+/// words, and a note after the description.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct LogLabel<'a> {
+    pub(crate) path: Option<&'a str>,
+    pub(crate) note: Option<&'a str>,
+}
+
+/// One row as text: marker, description, swatch and share, `width`
+/// columns; with `label`, what it says of the student's ray log.
 pub(crate) fn row_line(
     tree: &RayTree,
     collapsed: &BTreeSet<NodeId>,
     row: &Row,
+    label: LogLabel,
     width: usize,
 ) -> Line<'static> {
     let pad = "  ".repeat(row.indent);
+    let path = label.path.map_or(String::new(), |p| format!("{p} "));
     let (text, color, part) = match row.kind {
         RowKind::Ray(id) => {
             let node = &tree.nodes[id];
@@ -168,18 +179,25 @@ pub(crate) fn row_line(
                 .hit
                 .as_ref()
                 .map_or("miss".to_string(), |h| format!("hit {}", h.object));
-            let text = format!("{pad}{marker} r{id} {} → {what}", kind_name(node.kind));
+            let text = format!(
+                "{pad}{marker} r{id} {path}{} → {what}",
+                kind_name(node.kind)
+            );
             (text, node.color, node.color * path_factor(tree, id))
         }
         RowKind::Light { node, light } => {
             let record = &tree.nodes[node].lights[light];
             let color = record.diffuse + record.specular;
             (
-                format!("{pad}  ☼ {}", light_text(record)),
+                format!("{pad}  ☼ {path}{}", light_text(record)),
                 color,
                 color * path_factor(tree, node),
             )
         }
+    };
+    let text = match label.note {
+        Some(note) => format!("{text} {note}"),
+        None => text,
     };
     let room = width.saturating_sub(8);
     let text: String = text.chars().take(room).collect();

@@ -1,0 +1,140 @@
+//! `--rays`: the student's ray log, read once at open, and the pixel traced
+//! set beside it. The log's first pixels are kept whole (as `compare
+//! --rays` reports them); the pixel shown is compared again with the tree
+//! as it is traced now, so that a toggle or a mistake turned on shows
+//! whether it makes your rays and ours agree. `y` goes from logged pixel
+//! to logged pixel.
+
+use std::fs::File;
+use std::io::BufReader;
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
+
+use crate::divergence::{
+    LogComparison, OurRays, PixelReport, Tolerance, compare_log, compare_pixel,
+};
+use crate::raylog::{LoggedRay, RaylogReader};
+use crate::record::{RayTree, count};
+use crate::scene::Scene;
+
+pub struct RayLog {
+    /// The log's file, as given.
+    name: String,
+    /// The pixels kept whole, in the order they first appear in the log,
+    /// each with your rays.
+    pixels: Vec<((u32, u32), Vec<LoggedRay>)>,
+    /// Every pixel of the log, those kept whole and those only counted.
+    pixel_count: usize,
+    rays_read: usize,
+    tolerance: Tolerance,
+    /// The logged pixel `y` went to last.
+    at: Option<usize>,
+    /// The pixel traced beside your rays of it; `None` when it is not in
+    /// the log.
+    report: Option<PixelReport>,
+}
+
+impl RayLog {
+    /// Reads the log at `path` against `scene` (its size, lights and
+    /// objects); a bad log is the reader's `LOG:line:column: problem`.
+    pub fn read(scene: &Scene, path: &Path) -> Result<RayLog> {
+        let name = path.display().to_string();
+        if path == Path::new("-") {
+            bail!("the debugger reads its keys from stdin: give the ray log as a file, not -");
+        }
+        let file = File::open(path).with_context(|| format!("cannot open the ray log {name}"))?;
+        let reader = RaylogReader::new(name.clone(), BufReader::new(file), scene);
+        let comparison = compare_log(scene, reader, Tolerance::default())?;
+        Ok(RayLog::of(name, comparison))
+    }
+
+    fn of(name: String, comparison: LogComparison) -> RayLog {
+        RayLog {
+            name,
+            pixels: (comparison.pixels.into_iter())
+                .map(|p| (p.pixel, p.yours))
+                .collect(),
+            pixel_count: comparison.pixel_count,
+            rays_read: comparison.rays_read,
+            tolerance: comparison.tolerance,
+            at: None,
+            report: None,
+        }
+    }
+
+    /// The pixel traced beside your rays of it, when it is in the log.
+    pub fn report(&self) -> Option<&PixelReport> {
+        self.report.as_ref()
+    }
+
+    /// Compares `tree`, the pixel as traced now, with your rays of it.
+    pub(super) fn follow(&mut self, tree: &RayTree, scene: &Scene) {
+        let logged = self.pixels.iter().find(|(pixel, _)| *pixel == tree.pixel);
+        self.report = logged.map(|(_, yours)| {
+            let ours = OurRays::of(tree.clone());
+            compare_pixel(scene, yours.clone(), &ours, &self.tolerance)
+        });
+    }
+
+    /// `y` (`delta` 1) or `Y` (-1): the logged pixel after or before the
+    /// cursor's (or the last one gone to), cycling.
+    pub(super) fn step(&mut self, cursor: (u32, u32), delta: i32) -> (u32, u32) {
+        let count = self.pixels.len() as i64;
+        if count == 0 {
+            return cursor;
+        }
+        let here = self.pixels.iter().position(|(pixel, _)| *pixel == cursor);
+        let next = match here.or(self.at) {
+            Some(at) => (at as i64 + delta as i64).rem_euclid(count) as usize,
+            None if delta < 0 => self.pixels.len() - 1,
+            None => 0,
+        };
+        self.at = Some(next);
+        self.pixels[next].0
+    }
+
+    /// The first logged pixel, where the debugger opens.
+    pub(super) fn first_pixel(&mut self) -> Option<(u32, u32)> {
+        let (pixel, _) = self.pixels.first()?;
+        self.at = Some(0);
+        Some(*pixel)
+    }
+
+    /// The status line's words on the pixel shown: which logged pixel it
+    /// is and how it compares.
+    pub(super) fn pixel_words(&self, cursor: (u32, u32)) -> String {
+        let (x, y) = cursor;
+        let Some(at) = self.pixels.iter().position(|(pixel, _)| *pixel == cursor) else {
+            return format!("pixel ({x}, {y}) is not in your log: y goes to a logged pixel");
+        };
+        let shown = self.pixels.len();
+        let of = if self.pixel_count > shown {
+            format!("of the first {shown} ({} in the log)", self.pixel_count)
+        } else {
+            format!("of {shown}")
+        };
+        let how = match self
+            .report
+            .as_ref()
+            .and_then(|r| r.first_divergence.as_ref())
+        {
+            None => "your rays match ours".to_string(),
+            Some(d) => format!("first differs at {} {}, D goes there", d.path, d.field),
+        };
+        format!("logged pixel {} {of}, ({x}, {y}): {how}", at + 1)
+    }
+
+    /// The status line's words at open.
+    pub(super) fn opening_words(&self, cursor: (u32, u32)) -> String {
+        let logged = self.pixels.iter().any(|(pixel, _)| *pixel == cursor);
+        format!(
+            "{} ({}, {}): {}{}",
+            self.name,
+            count(self.pixel_count as u64, "pixel", "pixels"),
+            count(self.rays_read as u64, "ray", "rays"),
+            self.pixel_words(cursor),
+            if logged { "; y: next" } else { "" }
+        )
+    }
+}
