@@ -1,6 +1,7 @@
-//! Reading a million-line ray log (issue 21: "a log of a million lines
-//! compares in bounded memory (at most 64 MiB beyond the scene's) and in
-//! under 2 s on 2 cores"). Run with `cargo bench --bench raylog`.
+//! Reading and comparing a million-line ray log (issue 21: "a log of a
+//! million lines compares in bounded memory (at most 64 MiB beyond the
+//! scene's) and in under 2 s on 2 cores"). Run with `cargo bench --bench
+//! raylog`.
 //!
 //! Writes raystep's own log of scenes/spd/balls.nff at 512x512 (`raylog`
 //! of each pixel's recorded tree, pixels in image order) until it holds a
@@ -9,6 +10,9 @@
 //! seconds, so criterion's ten samples and warm-up would hold the shared
 //! machine for a minute); then this binary runs itself once more to read the
 //! log in a fresh process and prints its peak memory beyond the scene's.
+//! Then the same for `compare_log`, what `raystep compare --rays` runs: the
+//! reading thread and the counting thread, every pixel recorded again and
+//! checked ray by ray.
 
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Write};
@@ -16,6 +20,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
+use raystep::divergence::{Tolerance, compare_log};
 use raystep::raylog::{RaylogReader, raylog};
 use raystep::record::record_pixel;
 use raystep::scene::{Scene, load};
@@ -23,8 +28,10 @@ use raystep::scene::{Scene, load};
 const LINES: usize = 1_000_000;
 const SIZE: u32 = 512;
 const RUNS: usize = 5;
-/// Set in the child run: the log it reads once to measure memory.
+/// Set in the child run: the log it reads once to measure memory, and
+/// whether it compares it too.
 const MEMORY_RUN: &str = "RAYSTEP_RAYLOG_BENCH_LOG";
+const MEMORY_RUN_COMPARES: &str = "RAYSTEP_RAYLOG_BENCH_COMPARE";
 
 fn scene() -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/balls.nff");
@@ -61,6 +68,20 @@ fn read(log: &Path, scene: &Scene) -> usize {
     rays
 }
 
+/// Compares `log` with the scene as `compare --rays` does; the number of
+/// pixels, all of which must match (the log is raystep's own).
+fn compare(log: &Path, scene: &Scene) -> usize {
+    let input = BufReader::with_capacity(1 << 16, File::open(log).unwrap());
+    let found = compare_log(
+        scene,
+        RaylogReader::new("LOG", input, scene),
+        Tolerance::default(),
+    )
+    .unwrap();
+    assert_eq!(found.matching, found.pixel_count);
+    found.pixel_count
+}
+
 /// A field of /proc/self/status, in KiB.
 fn status_kib(field: &str) -> u64 {
     let status = std::fs::read_to_string("/proc/self/status").unwrap();
@@ -76,17 +97,55 @@ fn measure_memory(log: &Path) {
     // "5" resets VmHWM to the current resident size (Linux 4.0 on).
     std::fs::write("/proc/self/clear_refs", "5").unwrap();
     let before = status_kib("VmRSS:");
-    let rays = read(log, &scene);
+    let comparing = std::env::var_os(MEMORY_RUN_COMPARES).is_some();
+    let rays = if comparing {
+        compare(log, &scene);
+        log_lines(log)
+    } else {
+        read(log, &scene)
+    };
     let peak = status_kib("VmHWM:");
     let beyond = (peak - before) as f64;
     println!(
-        "{rays} rays read; resident before reading {:.1} MiB, peak {:.1} MiB: \
+        "{rays} rays {}; resident before {:.1} MiB, peak {:.1} MiB: \
          {:.1} MiB beyond the scene's, {:.1} bytes per ray",
+        if comparing { "compared" } else { "read" },
         before as f64 / 1024.0,
         peak as f64 / 1024.0,
         beyond / 1024.0,
         beyond * 1024.0 / rays as f64
     );
+}
+
+fn log_lines(log: &Path) -> usize {
+    std::io::BufRead::lines(BufReader::new(File::open(log).unwrap())).count()
+}
+
+/// The median, least and most of `RUNS` timed runs of `work`, after one
+/// untimed run.
+fn timed(work: impl Fn()) -> (f64, f64, f64) {
+    work();
+    let mut seconds: Vec<f64> = (0..RUNS)
+        .map(|_| {
+            let started = Instant::now();
+            work();
+            started.elapsed().as_secs_f64()
+        })
+        .collect();
+    seconds.sort_by(f64::total_cmp);
+    (seconds[RUNS / 2], seconds[0], seconds[RUNS - 1])
+}
+
+/// The child run's report of its peak memory, reading or comparing.
+fn peak_memory(log: &Path, comparing: bool) -> String {
+    let mut command = Command::new(std::env::current_exe().unwrap());
+    command.env(MEMORY_RUN, log);
+    if comparing {
+        command.env(MEMORY_RUN_COMPARES, "1");
+    }
+    let child = command.output().unwrap();
+    assert!(child.status.success(), "{child:?}");
+    String::from_utf8_lossy(&child.stdout).into_owned()
 }
 
 fn main() {
@@ -103,25 +162,14 @@ fn main() {
     let lines = write_log(&scene, &log);
     let bytes = std::fs::metadata(&log).unwrap().len();
     println!("log: {lines} lines, {:.0} MB", bytes as f64 / 1e6);
-    read(&log, &scene);
-    let mut seconds: Vec<f64> = (0..RUNS)
-        .map(|_| {
-            let started = Instant::now();
-            read(&log, &scene);
-            started.elapsed().as_secs_f64()
-        })
-        .collect();
-    seconds.sort_by(f64::total_cmp);
-    println!(
-        "read whole: median {:.3} s of {RUNS} (min {:.3}, max {:.3})",
-        seconds[RUNS / 2],
-        seconds[0],
-        seconds[RUNS - 1]
-    );
-    let child = Command::new(std::env::current_exe().unwrap())
-        .env(MEMORY_RUN, &log)
-        .output()
-        .unwrap();
-    assert!(child.status.success(), "{child:?}");
-    print!("peak memory: {}", String::from_utf8_lossy(&child.stdout));
+    let (median, least, most) = timed(|| {
+        read(&log, &scene);
+    });
+    println!("read whole: median {median:.3} s of {RUNS} (min {least:.3}, max {most:.3})");
+    print!("peak memory: {}", peak_memory(&log, false));
+    let (median, least, most) = timed(|| {
+        compare(&log, &scene);
+    });
+    println!("compare_log: median {median:.3} s of {RUNS} (min {least:.3}, max {most:.3})");
+    print!("peak memory: {}", peak_memory(&log, true));
 }
