@@ -7,6 +7,7 @@ mod path;
 mod quick_line;
 mod read;
 mod seen;
+mod stand_ins;
 mod write;
 
 pub use logged_ray::{Hit, LoggedRay};
