@@ -291,3 +291,73 @@ fn the_scene_takes_the_images_size_also_after_a_reload() {
         (40, 30)
     );
 }
+
+/// The primary ray's object at a pixel (`None`: the background).
+fn object_at(scene: &Scene, x: u32, y: u32) -> Option<usize> {
+    let tree = record_pixel(scene, &scene.settings, x, y);
+    tree.root().hit.as_ref().map(|h| h.object_index)
+}
+
+/// `image` written as the student's PNG, a file of its own per call.
+fn save_png(image: &RgbImage, prefix: &str) -> tempfile::TempPath {
+    let path = tempfile::Builder::new()
+        .prefix(prefix)
+        .suffix(".png")
+        .tempfile()
+        .unwrap()
+        .into_temp_path();
+    image.save(&path).unwrap();
+    path
+}
+
+#[test]
+fn a_regions_pixel_lies_on_the_object_most_of_it_covers() {
+    // A student image equal to ours but for a 12 x 12 box across an
+    // object's edge: 3 columns left of the edge, 9 right of it. Every box
+    // pixel is 40 steps off; those on the box's lesser object 120. On main
+    // the region's pixel was the largest gap: on the lesser object.
+    let scene = builtin_scene();
+    let (mut image, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
+    let y = scene.height / 2;
+    let x = (4..scene.width - 9)
+        .find(|&x| object_at(&scene, x, y) != object_at(&scene, x - 1, y))
+        .expect("an edge on the middle row");
+    let box_pixels: Vec<(u32, u32)> = (y - 6..y + 6)
+        .flat_map(|py| (x - 3..x + 9).map(move |px| (px, py)))
+        .collect();
+    let mut counts: Vec<(Option<usize>, usize)> = Vec::new();
+    for &(px, py) in &box_pixels {
+        let object = object_at(&scene, px, py);
+        match counts.iter_mut().find(|(o, _)| *o == object) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((object, 1)),
+        }
+    }
+    counts.sort_by_key(|&(_, n)| std::cmp::Reverse(n));
+    assert!(counts.len() > 1 && counts[0].1 > counts[1].1, "{counts:?}");
+    let most = counts[0].0;
+    for &(px, py) in &box_pixels {
+        let off = if object_at(&scene, px, py) == most {
+            40
+        } else {
+            120
+        };
+        let pixel = image.get_pixel_mut(px, py);
+        for channel in &mut pixel.0 {
+            *channel = if *channel < 128 {
+                *channel + off
+            } else {
+                *channel - off
+            };
+        }
+    }
+    let png = save_png(&image, "yours-box-");
+    let mut app = comparing(&png);
+    let regions = &app.comparison().unwrap().findings().regions;
+    assert_eq!(regions.len(), 1);
+    assert_eq!(regions[0].pixels, 144);
+    chars(&mut app, "w");
+    let (cx, cy) = app.pixel().cursor();
+    assert!(box_pixels.contains(&(cx, cy)));
+    assert_eq!(object_at(&scene, cx, cy), most, "({cx}, {cy})");
+}
