@@ -119,20 +119,56 @@ fn a_mistake_turned_on_in_the_menu_records_as_record_pixel_with_it() {
 }
 
 #[test]
-fn the_menu_selection_stops_at_both_ends() {
+fn the_menu_selection_wraps_at_both_ends() {
+    // Without a comparison the rows are the catalogue's, in its order.
     let mut app = app();
-    chars(&mut app, "Mkk");
-    assert_eq!(app.overlay().menu_row(), Some(0));
-    for _ in 0..20 {
-        chars(&mut app, "j");
-    }
-    assert_eq!(app.overlay().menu_row(), Some(13), "pixel-corner, the last");
+    let last = Mistake::ALL.len() - 1;
+    chars(&mut app, "Mk");
+    assert_eq!(app.overlay().menu_row(), Some(last), "up from the first");
+    chars(&mut app, "j");
+    assert_eq!(app.overlay().menu_row(), Some(0), "down from the last");
+    chars(&mut app, "kk");
+    assert_eq!(app.overlay().menu_row(), Some(last - 1));
     chars(&mut app, " ");
     assert!(
         app.session()
             .settings()
             .mistakes
-            .contains(Mistake::PixelCorner)
+            .contains(Mistake::ALL[last - 1])
+    );
+}
+
+#[test]
+fn the_menu_opens_on_the_top_ranked_mistake_the_ranked_first() {
+    // pixel-corner is the catalogue's last row: on main M opened on its
+    // first (shadow-acne) and it took 13 presses of j to reach it.
+    let (png, _) = students_png(Mistake::PixelCorner);
+    let mut app = comparing(&png);
+    let ranked: Vec<Mistake> = (app.comparison().unwrap().findings().mistakes.iter())
+        .map(|r| r.mistake)
+        .collect();
+    assert_eq!(ranked[0], Mistake::PixelCorner, "{ranked:?}");
+    chars(&mut app, "M");
+    assert_eq!(app.overlay().menu_row(), Some(0));
+    // The menu's rows as drawn: the ranked ones first, best first, then
+    // the rest of the catalogue in its order, each mistake once.
+    let screen = screen_text(&mut app, 120, 40);
+    let rows: Vec<Mistake> = (screen.lines())
+        .filter_map(|l| {
+            let name = l.split("] ").nth(1)?.split(' ').next()?;
+            Mistake::ALL.into_iter().find(|m| m.name() == name)
+        })
+        .collect();
+    let rest = Mistake::ALL.into_iter().filter(|m| !ranked.contains(m));
+    let want: Vec<Mistake> = ranked.iter().copied().chain(rest).collect();
+    assert_eq!(rows, want, "{screen}");
+    let first = screen.lines().find(|l| l.contains("[ ] ")).unwrap();
+    assert!(first.contains("#1 explains"), "{screen}");
+    // Space at once turns on the mistake compare named.
+    chars(&mut app, " ");
+    assert_eq!(
+        app.session().settings().mistakes,
+        Mistakes::NONE.with(Mistake::PixelCorner)
     );
 }
 

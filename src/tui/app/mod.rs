@@ -36,6 +36,7 @@ use super::source::SceneSource;
 use super::view::find;
 use super::view::image_grid::{ImageGrid, max_zoom};
 use super::view::layout::{self, Panes, inner};
+use super::view::mistakes_menu;
 use super::view::tree;
 use super::view::your_rays;
 
@@ -126,13 +127,17 @@ impl App {
         sync: bool,
     ) -> App {
         let cursor = (scene.width / 2, scene.height / 2);
+        let ranked = comparison
+            .as_ref()
+            .map_or(&[][..], |c| &c.findings().mistakes[..]);
+        let overlay = Overlays::with_menu(mistakes_menu::order(ranked));
         let session = Session::new(source, scene);
         let pixel = TracedPixel::new(session.scene(), session.settings(), cursor);
         let mut app = App {
             session,
             pixel,
             renders: Renders::new(sync),
-            overlay: Overlays::default(),
+            overlay,
             screen: Screen::default(),
             comparison,
             ray_log: None,

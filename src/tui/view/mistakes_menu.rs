@@ -1,5 +1,6 @@
 //! The `M` menu's text: one line per mistake of the catalogue, `[x]` when
-//! it is on, its summary, and (when comparing) its place in the ranking.
+//! it is on, its summary, and (when comparing) its place in the ranking;
+//! the ranked mistakes come first.
 
 use ratatui::style::{Modifier, Style, Stylize};
 use ratatui::text::{Line, Span};
@@ -38,8 +39,25 @@ pub(crate) fn ranking(ranked: &[Ranked], matches: bool) -> String {
     parts.join(" · ")
 }
 
-/// The menu's lines, the `selected` row highlighted.
-pub(crate) fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Line<'static>> {
+/// The menu's rows: the ranked mistakes, best first, then the rest of the
+/// catalogue in its order, so the mistake `compare` names is a key away.
+pub(crate) fn order(ranked: &[Ranked]) -> Vec<Mistake> {
+    let mut rows: Vec<Mistake> = Vec::with_capacity(Mistake::ALL.len());
+    for mistake in ranked.iter().map(|r| r.mistake).chain(Mistake::ALL) {
+        if !rows.contains(&mistake) {
+            rows.push(mistake);
+        }
+    }
+    rows
+}
+
+/// The menu's lines, one per mistake of `rows`, the `selected` row highlighted.
+pub(crate) fn lines(
+    rows: &[Mistake],
+    on: Mistakes,
+    selected: usize,
+    ranked: &[Ranked],
+) -> Vec<Line<'static>> {
     // The names' column: the longest name and two spaces.
     let width = Mistake::ALL
         .iter()
@@ -47,8 +65,7 @@ pub(crate) fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Lin
         .max()
         .unwrap_or(0)
         + 2;
-    Mistake::ALL
-        .iter()
+    rows.iter()
         .enumerate()
         .map(|(i, &mistake)| {
             let check = if on.contains(mistake) { "[x]" } else { "[ ]" };
@@ -91,7 +108,7 @@ mod tests {
     #[test]
     fn every_mistake_has_a_line_with_its_state_and_summary() {
         let on = Mistakes::NONE.with(Mistake::NoAmbient);
-        let lines = lines(on, 0, &[ranked(Mistake::NoAmbient, 0.996)]);
+        let lines = lines(&Mistake::ALL, on, 0, &[ranked(Mistake::NoAmbient, 0.996)]);
         assert_eq!(lines.len(), 14);
         // Row 9 of the catalogue is no-ambient: on, ranked first, 99.6% ->
         // 100%; the name padded to 22 (no-light-attenuation's 20, and 2).
@@ -102,6 +119,29 @@ mod tests {
         assert!(text(&lines[7]).starts_with(" [ ] no-light-attenuation  lights not"));
         assert!(text(&lines[0]).starts_with(" [ ] shadow-acne "));
         assert!(text(&lines[0]).contains(Mistake::ShadowAcne.summary()));
+    }
+
+    #[test]
+    fn the_ranked_mistakes_come_first_then_the_catalogue() {
+        let both = [
+            ranked(Mistake::PixelCorner, 1.0),
+            ranked(Mistake::NoAmbient, 0.2),
+        ];
+        let rows = order(&both);
+        assert_eq!(rows[..2], [Mistake::PixelCorner, Mistake::NoAmbient]);
+        // The rest in the catalogue's order, each mistake once.
+        let rest: Vec<Mistake> = Mistake::ALL
+            .into_iter()
+            .filter(|m| !matches!(m, Mistake::PixelCorner | Mistake::NoAmbient))
+            .collect();
+        assert_eq!(rows[2..], rest[..]);
+        assert_eq!(order(&[]), Mistake::ALL);
+        let text =
+            |line: &Line| -> String { line.spans.iter().map(|s| s.content.as_ref()).collect() };
+        let lines = lines(&rows, Mistakes::NONE, 0, &both);
+        assert!(text(&lines[0]).contains("pixel-corner"));
+        assert!(text(&lines[0]).ends_with("#1 explains 100% "));
+        assert!(text(&lines[1]).ends_with("#2 explains 20% "));
     }
 
     #[test]
