@@ -347,6 +347,41 @@ fn save_png(image: &RgbImage, prefix: &str) -> tempfile::TempPath {
 }
 
 #[test]
+fn c_and_capital_e_go_straight_to_yours_and_the_error_map() {
+    let (png, yours) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    let error_map = app.comparison().unwrap().findings().error_map.clone();
+    let (x, y) = app.pixel().cursor();
+    // On main: 9 presses of v to yours, 10 to the error map.
+    chars(&mut app, "c");
+    assert_eq!(app.screen().picture(), Picture::Yours);
+    assert_eq!(app.message(), Some("view yours: the image you compare"));
+    assert_eq!(app.shown_pixel(x, y), Some(yours.get_pixel(x, y).0));
+    chars(&mut app, "E");
+    assert_eq!(app.screen().picture(), Picture::ErrorMap);
+    assert_eq!(app.shown_pixel(x, y), Some(error_map.get_pixel(x, y).0));
+    // Again: back to the render, to flip between it and yours.
+    chars(&mut app, "E");
+    assert_eq!(app.screen().picture(), Picture::Render);
+    chars(&mut app, "vc");
+    assert_eq!(
+        app.screen().picture(),
+        Picture::Yours,
+        "from a term view too"
+    );
+    chars(&mut app, "c");
+    assert_eq!(app.screen().picture(), Picture::Render);
+    // Without an image they say how to get one.
+    let mut plain = crate::support::debugger::app();
+    chars(&mut plain, "c");
+    assert_eq!(plain.screen().picture(), Picture::Render);
+    assert_eq!(
+        plain.message(),
+        Some("no image to compare: open with --compare IMAGE.png")
+    );
+}
+
+#[test]
 fn a_regions_pixel_lies_on_the_object_most_of_it_covers() {
     // A student image equal to ours but for a 12 x 12 box across an
     // object's edge: 3 columns left of the edge, 9 right of it. Every box

@@ -63,6 +63,8 @@ pub(crate) use session::Session;
 pub const MAX_DEPTH: u32 = 16;
 /// What `y` and `D` say without a log.
 const NO_LOG: &str = "no ray log: open with --rays LOG.jsonl (docs/RAYLOG.md)";
+/// What `w`, `c` and `E` say without an image to compare.
+const NO_IMAGE: &str = "no image to compare: open with --compare IMAGE.png";
 /// The first status message, for someone who has never seen the debugger.
 pub const WELCOME: &str =
     "arrows pick a pixel, n steps through its trace, Tab changes pane, ? lists every key";
@@ -227,6 +229,12 @@ impl App {
                     self.renders.request_again(scene, settings, true);
                 }
             }
+            Action::TogglePicture(picture) => {
+                self.message = Some(match self.comparison {
+                    Some(_) => self.screen.toggle_picture(picture),
+                    None => NO_IMAGE.into(),
+                });
+            }
             Action::Step(_)
             | Action::RunTo(_)
             | Action::RunToObject
@@ -373,7 +381,7 @@ impl App {
     /// The cursor to the next region's pixel (the largest first, cycling).
     fn next_region(&mut self) {
         let Some(comparison) = &mut self.comparison else {
-            self.message = Some("no image to compare: open with --compare IMAGE.png".into());
+            self.message = Some(NO_IMAGE.into());
             return;
         };
         match comparison.next_region() {
