@@ -382,6 +382,85 @@ fn c_and_capital_e_go_straight_to_yours_and_the_error_map() {
 }
 
 #[test]
+fn in_the_yours_view_the_image_title_shows_your_colour() {
+    let (png, yours) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    let scene = builtin_scene();
+    let (ours, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
+    let (x, y) = app.pixel().cursor();
+    let [a, b, c] = yours.get_pixel(x, y).0;
+    let [r, g, bl] = ours.get_pixel(x, y).0;
+    assert_ne!([a, b, c], [r, g, bl], "no-ambient darkens the centre pixel");
+    let title = |app: &mut App| {
+        screen_text(app, 120, 40)
+            .lines()
+            .nth(1)
+            .unwrap()
+            .to_string()
+    };
+    let on_render = title(&mut app);
+    assert!(
+        on_render.contains(&format!("rgb({r},{g},{bl})")),
+        "{on_render}"
+    );
+    for _ in 0..=Term::ALL.len() {
+        chars(&mut app, "v");
+    }
+    assert_eq!(app.screen().picture(), Picture::Yours);
+    let on_yours = title(&mut app);
+    assert!(
+        on_yours.contains(&format!("yours rgb({a},{b},{c})")),
+        "{on_yours}"
+    );
+    assert!(
+        !on_yours.contains(&format!("rgb({r},{g},{bl})")),
+        "{on_yours}"
+    );
+}
+
+/// The items of the image pane's compare line on its bottom border, the
+/// part left of the legend (which starts with " rays:").
+fn compare_items(screen: &str) -> Option<Vec<String>> {
+    let row = screen.lines().find(|l| l.contains("compare:"))?;
+    let after = row.split("compare: ").nth(1)?;
+    let before_legend = after.split(" rays:").next()?;
+    let body = before_legend.trim_end_matches(['─', '┘', '│', ' ', '▲']);
+    Some(body.split(" · ").map(str::to_string).collect())
+}
+
+#[test]
+fn the_compare_line_keeps_whole_items_beside_a_legend() {
+    // On main the rays view's legend, drawn over the compare line at the
+    // right, cut it mid-word: "compare: no-ambi rays: 3 · scale ...".
+    let (png, _) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    while app.screen().picture() != Picture::Term(Term::Rays) {
+        chars(&mut app, "v");
+    }
+    let names: Vec<&str> = Mistake::ALL.iter().map(|m| m.name()).collect();
+    let whole = |item: &str| {
+        let (name, share) = item.rsplit_once(' ').unwrap_or((item, ""));
+        let percent = share
+            .strip_suffix('%')
+            .is_some_and(|n| n.parse::<u32>().is_ok());
+        (names.contains(&name) && percent)
+            || (name == "+" || item.starts_with('+')) && item.ends_with(" more")
+    };
+    let mut with_a_name = 0;
+    for width in (100..=220).step_by(5) {
+        let screen = screen_text(&mut app, width, 40);
+        let Some(items) = compare_items(&screen) else {
+            continue;
+        };
+        for item in &items {
+            assert!(whole(item), "{item:?} at width {width}:\n{screen}");
+        }
+        with_a_name += items.iter().any(|i| i.starts_with("no-ambient ")) as usize;
+    }
+    assert!(with_a_name > 0, "no width showed the first mistake");
+}
+
+#[test]
 fn a_regions_pixel_lies_on_the_object_most_of_it_covers() {
     // A student image equal to ours but for a 12 x 12 box across an
     // object's edge: 3 columns left of the edge, 9 right of it. Every box

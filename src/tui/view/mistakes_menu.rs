@@ -32,11 +32,40 @@ pub(crate) fn ranking(ranked: &[Ranked], matches: bool) -> String {
             "no classic mistake explains the difference".into()
         };
     }
-    let parts: Vec<String> = ranked
-        .iter()
-        .map(|r| format!("{} {}", r.mistake, percent(r.explains)))
-        .collect();
+    let parts: Vec<String> = ranked.iter().map(item).collect();
     parts.join(" · ")
+}
+
+/// "no-ambient 100%": one ranked mistake and its share.
+fn item(ranked: &Ranked) -> String {
+    format!("{} {}", ranked.mistake, percent(ranked.explains))
+}
+
+/// The image pane's " compare: no-ambient 100% · shadow-acne 17% " in at
+/// most `room` columns: short of room, the last items give way to "+N
+/// more" (the `M` menu lists them all), never half a word; `None` when not
+/// even that fits.
+pub(crate) fn compare_line(ranked: &[Ranked], matches: bool, room: usize) -> Option<String> {
+    let fits = |text: String| (text.chars().count() <= room).then_some(text);
+    let framed = |body: &str| format!(" compare: {body} ");
+    if ranked.is_empty() {
+        return fits(framed(&ranking(ranked, matches))).or_else(|| {
+            let brief = if matches {
+                "matches"
+            } else {
+                "no mistake fits"
+            };
+            fits(framed(brief))
+        });
+    }
+    let items: Vec<String> = ranked.iter().map(item).collect();
+    (0..=items.len()).rev().find_map(|shown| {
+        let mut parts = items[..shown].to_vec();
+        if shown < items.len() {
+            parts.push(format!("+{} more", items.len() - shown));
+        }
+        fits(framed(&parts.join(" · ")))
+    })
 }
 
 /// The menu's rows: the ranked mistakes, best first, then the rest of the
@@ -142,6 +171,40 @@ mod tests {
         assert!(text(&lines[0]).contains("pixel-corner"));
         assert!(text(&lines[0]).ends_with("#1 explains 100% "));
         assert!(text(&lines[1]).ends_with("#2 explains 20% "));
+    }
+
+    #[test]
+    fn the_compare_line_drops_whole_items_to_fit() {
+        let three = [
+            ranked(Mistake::NoAmbient, 1.0),
+            ranked(Mistake::ShadowAcne, 0.171),
+            ranked(Mistake::FlippedY, 0.05),
+        ];
+        // All three: " compare: " 10, "no-ambient 100%" 15, " · " 3,
+        // "shadow-acne 17%" 15, 3, "flipped-y 5%" 12, " " 1: 59 columns.
+        let all = " compare: no-ambient 100% · shadow-acne 17% · flipped-y 5% ";
+        assert_eq!(compare_line(&three, false, 59).as_deref(), Some(all));
+        // One short: the third gives way to "+1 more" (10 + 15 + 3 + 15 +
+        // 3 + 7 + 1 = 54 columns).
+        let two = " compare: no-ambient 100% · shadow-acne 17% · +1 more ";
+        assert_eq!(compare_line(&three, false, 58).as_deref(), Some(two));
+        assert_eq!(compare_line(&three, false, 54).as_deref(), Some(two));
+        // 10 + 15 + 3 + 7 + 1 = 36; then 10 + 7 + 1 = 18.
+        let one = " compare: no-ambient 100% · +2 more ";
+        assert_eq!(compare_line(&three, false, 53).as_deref(), Some(one));
+        assert_eq!(compare_line(&three, false, 36).as_deref(), Some(one));
+        let none = " compare: +3 more ";
+        assert_eq!(compare_line(&three, false, 35).as_deref(), Some(none));
+        assert_eq!(compare_line(&three, false, 18).as_deref(), Some(none));
+        assert_eq!(compare_line(&three, false, 17), None);
+        assert_eq!(
+            compare_line(&[], true, 40).as_deref(),
+            Some(" compare: your image matches ")
+        );
+        assert_eq!(
+            compare_line(&[], false, 30).as_deref(),
+            Some(" compare: no mistake fits ")
+        );
     }
 
     #[test]
