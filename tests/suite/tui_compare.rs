@@ -443,8 +443,7 @@ fn the_compare_line_keeps_whole_items_beside_a_legend() {
         let percent = share
             .strip_suffix('%')
             .is_some_and(|n| n.parse::<u32>().is_ok());
-        (names.contains(&name) && percent)
-            || (name == "+" || item.starts_with('+')) && item.ends_with(" more")
+        (names.contains(&name) && percent) || item.starts_with('+') && item.ends_with(" more")
     };
     let mut with_a_name = 0;
     for width in (100..=220).step_by(5) {
@@ -458,6 +457,39 @@ fn the_compare_line_keeps_whole_items_beside_a_legend() {
         with_a_name += items.iter().any(|i| i.starts_with("no-ambient ")) as usize;
     }
     assert!(with_a_name > 0, "no width showed the first mistake");
+}
+
+#[test]
+fn the_status_line_shows_the_regions_diagnosis() {
+    let (png, _) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    // The diagnosis as `compare --json` gives it, independently of the debugger.
+    let json = serde_json::to_value(app.comparison().unwrap().findings()).unwrap();
+    let diagnosis = json["regions"][0]["diagnosis"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    chars(&mut app, "w");
+    let status = |app: &mut App| {
+        screen_text(app, 220, 40)
+            .lines()
+            .last()
+            .unwrap()
+            .to_string()
+    };
+    let after_w = status(&mut app);
+    assert!(
+        after_w.contains(&diagnosis),
+        "{diagnosis} not in\n{after_w}"
+    );
+    // Stepping through the pixel's trace clears the message; the region's
+    // diagnosis stays while the cursor is in the region.
+    chars(&mut app, "n");
+    let stepping = status(&mut app);
+    assert!(
+        stepping.contains(&format!("region 1: {diagnosis}")),
+        "{stepping}"
+    );
 }
 
 #[test]
