@@ -63,7 +63,8 @@ pub struct RegionReport {
     pub(crate) objects: Vec<ObjectShare>,
     /// How many more objects the region covers.
     pub(crate) more_objects: usize,
-    /// The region's pixel with the largest difference.
+    /// The region's pixel with the largest difference on the object most
+    /// of the region covers.
     pub pixel: [u32; 2],
     pub(crate) yours: [u8; 3],
     pub(crate) reference: [u8; 3],
@@ -122,16 +123,27 @@ fn describe(
     let gap = |&(x, y): &(u32, u32)| {
         metrics::channel_gap(yours.get_pixel(x, y).0, reference.image.get_pixel(x, y).0)
     };
-    // The largest gap; the first in row-major order among equals.
+    let objects = objects(reference, region);
+    // The largest gap on the object most of the region covers (the first in
+    // row-major order among equals): a region mostly on the floor is told
+    // by a floor pixel, not by the one ball pixel at its edge.
+    let most = objects.first().map(|&(object, _)| object);
     let &(x, y) = region
         .pixels
         .iter()
+        .filter(|&&(x, y)| Some(reference.object_at(x, y)) == most)
         .rev()
         .max_by_key(|p| gap(p))
         .expect("a region has pixels");
     let tree = record_pixel(scene, &scene.settings, x, y);
     let (x0, y0, x1, y1) = region.bounds();
-    let objects = objects(scene, reference, region);
+    let objects: Vec<ObjectShare> = objects
+        .into_iter()
+        .map(|(object, pixels)| ObjectShare {
+            object: object.map_or("background".into(), |o| scene.object_name(o).to_string()),
+            pixels,
+        })
+        .collect();
     RegionReport {
         pixels: region.pixels.len(),
         bounds: [x0, y0, x1, y1],
@@ -159,12 +171,12 @@ fn samples(scene: &Scene, yours: &RgbImage, region: &regions::Region) -> Vec<(Ra
         .collect()
 }
 
-/// How many of the region's pixels show each object, most first.
+/// How many of the region's pixels show each object (`None`: the
+/// background), most first; the first met first among equals.
 fn objects(
-    scene: &Scene,
     reference: &reference::Reference,
     region: &regions::Region,
-) -> Vec<ObjectShare> {
+) -> Vec<(Option<usize>, usize)> {
     let mut counts: Vec<(Option<usize>, usize)> = Vec::new();
     for &(x, y) in &region.pixels {
         let object = reference.object_at(x, y);
@@ -175,12 +187,6 @@ fn objects(
     }
     counts.sort_by_key(|&(_, n)| std::cmp::Reverse(n));
     counts
-        .into_iter()
-        .map(|(object, pixels)| ObjectShare {
-            object: object.map_or("background".into(), |o| scene.object_name(o).to_string()),
-            pixels,
-        })
-        .collect()
 }
 
 /// `explain`'s sentence on the primary ray and its three largest terms,

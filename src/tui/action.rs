@@ -41,6 +41,9 @@ pub enum Action {
     Depth(i32),
     /// What the image pane shows next: the render, each term, yours, the error map.
     CyclePicture,
+    /// With a comparison: this picture (yours or the error map), or the
+    /// render again when it is already shown.
+    TogglePicture(Picture),
     /// Open the mistakes menu, or close it when open.
     ToggleMistakeMenu,
     CloseMistakeMenu,

@@ -4,7 +4,7 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
-use super::action::{Action, Breakpoint, Find, Pane, Step};
+use super::action::{Action, Breakpoint, Find, Pane, Picture, Step};
 use crate::scene::Switch;
 
 /// How far Shift (or H J K L) moves the pixel cursor.
@@ -202,6 +202,14 @@ const PIXEL_AND_VIEW: &[Binding] = &[
         inputs: &[(key('v'), act(Action::CyclePicture))],
         what: "cycle the image: render, each term image, yours, error map",
         hint: hint(7, "v", "view"),
+        ..ROW
+    },
+    Binding {
+        inputs: &[
+            (key('c'), act(Action::TogglePicture(Picture::Yours))),
+            (key('E'), act(Action::TogglePicture(Picture::ErrorMap))),
+        ],
+        what: "with --compare: yours / error map at once (again: render)",
         ..ROW
     },
     Binding {

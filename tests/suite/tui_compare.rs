@@ -119,20 +119,56 @@ fn a_mistake_turned_on_in_the_menu_records_as_record_pixel_with_it() {
 }
 
 #[test]
-fn the_menu_selection_stops_at_both_ends() {
+fn the_menu_selection_wraps_at_both_ends() {
+    // Without a comparison the rows are the catalogue's, in its order.
     let mut app = app();
-    chars(&mut app, "Mkk");
-    assert_eq!(app.overlay().menu_row(), Some(0));
-    for _ in 0..20 {
-        chars(&mut app, "j");
-    }
-    assert_eq!(app.overlay().menu_row(), Some(13), "pixel-corner, the last");
+    let last = Mistake::ALL.len() - 1;
+    chars(&mut app, "Mk");
+    assert_eq!(app.overlay().menu_row(), Some(last), "up from the first");
+    chars(&mut app, "j");
+    assert_eq!(app.overlay().menu_row(), Some(0), "down from the last");
+    chars(&mut app, "kk");
+    assert_eq!(app.overlay().menu_row(), Some(last - 1));
     chars(&mut app, " ");
     assert!(
         app.session()
             .settings()
             .mistakes
-            .contains(Mistake::PixelCorner)
+            .contains(Mistake::ALL[last - 1])
+    );
+}
+
+#[test]
+fn the_menu_opens_on_the_top_ranked_mistake_the_ranked_first() {
+    // pixel-corner is the catalogue's last row: on main M opened on its
+    // first (shadow-acne) and it took 13 presses of j to reach it.
+    let (png, _) = students_png(Mistake::PixelCorner);
+    let mut app = comparing(&png);
+    let ranked: Vec<Mistake> = (app.comparison().unwrap().findings().mistakes.iter())
+        .map(|r| r.mistake)
+        .collect();
+    assert_eq!(ranked[0], Mistake::PixelCorner, "{ranked:?}");
+    chars(&mut app, "M");
+    assert_eq!(app.overlay().menu_row(), Some(0));
+    // The menu's rows as drawn: the ranked ones first, best first, then
+    // the rest of the catalogue in its order, each mistake once.
+    let screen = screen_text(&mut app, 120, 40);
+    let rows: Vec<Mistake> = (screen.lines())
+        .filter_map(|l| {
+            let name = l.split("] ").nth(1)?.split(' ').next()?;
+            Mistake::ALL.into_iter().find(|m| m.name() == name)
+        })
+        .collect();
+    let rest = Mistake::ALL.into_iter().filter(|m| !ranked.contains(m));
+    let want: Vec<Mistake> = ranked.iter().copied().chain(rest).collect();
+    assert_eq!(rows, want, "{screen}");
+    let first = screen.lines().find(|l| l.contains("[ ] ")).unwrap();
+    assert!(first.contains("#1 explains"), "{screen}");
+    // Space at once turns on the mistake compare named.
+    chars(&mut app, " ");
+    assert_eq!(
+        app.session().settings().mistakes,
+        Mistakes::NONE.with(Mistake::PixelCorner)
     );
 }
 
@@ -290,4 +326,220 @@ fn the_scene_takes_the_images_size_also_after_a_reload() {
         (app.session().scene().width, app.session().scene().height),
         (40, 30)
     );
+}
+
+/// The primary ray's object at a pixel (`None`: the background).
+fn object_at(scene: &Scene, x: u32, y: u32) -> Option<usize> {
+    let tree = record_pixel(scene, &scene.settings, x, y);
+    tree.root().hit.as_ref().map(|h| h.object_index)
+}
+
+/// `image` written as the student's PNG, a file of its own per call.
+fn save_png(image: &RgbImage, prefix: &str) -> tempfile::TempPath {
+    let path = tempfile::Builder::new()
+        .prefix(prefix)
+        .suffix(".png")
+        .tempfile()
+        .unwrap()
+        .into_temp_path();
+    image.save(&path).unwrap();
+    path
+}
+
+#[test]
+fn c_and_capital_e_go_straight_to_yours_and_the_error_map() {
+    let (png, yours) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    let error_map = app.comparison().unwrap().findings().error_map.clone();
+    let (x, y) = app.pixel().cursor();
+    // On main: 9 presses of v to yours, 10 to the error map.
+    chars(&mut app, "c");
+    assert_eq!(app.screen().picture(), Picture::Yours);
+    assert_eq!(app.message(), Some("view yours: the image you compare"));
+    assert_eq!(app.shown_pixel(x, y), Some(yours.get_pixel(x, y).0));
+    chars(&mut app, "E");
+    assert_eq!(app.screen().picture(), Picture::ErrorMap);
+    assert_eq!(app.shown_pixel(x, y), Some(error_map.get_pixel(x, y).0));
+    // Again: back to the render, to flip between it and yours.
+    chars(&mut app, "E");
+    assert_eq!(app.screen().picture(), Picture::Render);
+    chars(&mut app, "vc");
+    assert_eq!(
+        app.screen().picture(),
+        Picture::Yours,
+        "from a term view too"
+    );
+    chars(&mut app, "c");
+    assert_eq!(app.screen().picture(), Picture::Render);
+    // Without an image they say how to get one.
+    let mut plain = crate::support::debugger::app();
+    chars(&mut plain, "c");
+    assert_eq!(plain.screen().picture(), Picture::Render);
+    assert_eq!(
+        plain.message(),
+        Some("no image to compare: open with --compare IMAGE.png")
+    );
+}
+
+#[test]
+fn in_the_yours_view_the_image_title_shows_your_colour() {
+    let (png, yours) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    let scene = builtin_scene();
+    let (ours, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
+    let (x, y) = app.pixel().cursor();
+    let [a, b, c] = yours.get_pixel(x, y).0;
+    let [r, g, bl] = ours.get_pixel(x, y).0;
+    assert_ne!([a, b, c], [r, g, bl], "no-ambient darkens the centre pixel");
+    let title = |app: &mut App| {
+        screen_text(app, 120, 40)
+            .lines()
+            .nth(1)
+            .unwrap()
+            .to_string()
+    };
+    let on_render = title(&mut app);
+    assert!(
+        on_render.contains(&format!("rgb({r},{g},{bl})")),
+        "{on_render}"
+    );
+    for _ in 0..=Term::ALL.len() {
+        chars(&mut app, "v");
+    }
+    assert_eq!(app.screen().picture(), Picture::Yours);
+    let on_yours = title(&mut app);
+    assert!(
+        on_yours.contains(&format!("yours rgb({a},{b},{c})")),
+        "{on_yours}"
+    );
+    assert!(
+        !on_yours.contains(&format!("rgb({r},{g},{bl})")),
+        "{on_yours}"
+    );
+}
+
+/// The items of the image pane's compare line on its bottom border, the
+/// part left of the legend (which starts with " rays:").
+fn compare_items(screen: &str) -> Option<Vec<String>> {
+    let row = screen.lines().find(|l| l.contains("compare:"))?;
+    let after = row.split("compare: ").nth(1)?;
+    let before_legend = after.split(" rays:").next()?;
+    let body = before_legend.trim_end_matches(['─', '┘', '│', ' ', '▲']);
+    Some(body.split(" · ").map(str::to_string).collect())
+}
+
+#[test]
+fn the_compare_line_keeps_whole_items_beside_a_legend() {
+    // On main the rays view's legend, drawn over the compare line at the
+    // right, cut it mid-word: "compare: no-ambi rays: 3 · scale ...".
+    let (png, _) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    while app.screen().picture() != Picture::Term(Term::Rays) {
+        chars(&mut app, "v");
+    }
+    let names: Vec<&str> = Mistake::ALL.iter().map(|m| m.name()).collect();
+    let whole = |item: &str| {
+        let (name, share) = item.rsplit_once(' ').unwrap_or((item, ""));
+        let percent = share
+            .strip_suffix('%')
+            .is_some_and(|n| n.parse::<u32>().is_ok());
+        (names.contains(&name) && percent) || item.starts_with('+') && item.ends_with(" more")
+    };
+    let mut with_a_name = 0;
+    for width in (100..=220).step_by(5) {
+        let screen = screen_text(&mut app, width, 40);
+        let Some(items) = compare_items(&screen) else {
+            continue;
+        };
+        for item in &items {
+            assert!(whole(item), "{item:?} at width {width}:\n{screen}");
+        }
+        with_a_name += items.iter().any(|i| i.starts_with("no-ambient ")) as usize;
+    }
+    assert!(with_a_name > 0, "no width showed the first mistake");
+}
+
+#[test]
+fn the_status_line_shows_the_regions_diagnosis() {
+    let (png, _) = students_png(Mistake::NoAmbient);
+    let mut app = comparing(&png);
+    // The diagnosis as `compare --json` gives it, independently of the debugger.
+    let json = serde_json::to_value(app.comparison().unwrap().findings()).unwrap();
+    let diagnosis = json["regions"][0]["diagnosis"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    chars(&mut app, "w");
+    let status = |app: &mut App| {
+        screen_text(app, 220, 40)
+            .lines()
+            .last()
+            .unwrap()
+            .to_string()
+    };
+    let after_w = status(&mut app);
+    assert!(
+        after_w.contains(&diagnosis),
+        "{diagnosis} not in\n{after_w}"
+    );
+    // Stepping through the pixel's trace clears the message; the region's
+    // diagnosis stays while the cursor is in the region.
+    chars(&mut app, "n");
+    let stepping = status(&mut app);
+    assert!(
+        stepping.contains(&format!("region 1: {diagnosis}")),
+        "{stepping}"
+    );
+}
+
+#[test]
+fn a_regions_pixel_lies_on_the_object_most_of_it_covers() {
+    // A student image equal to ours but for a 12 x 12 box across an
+    // object's edge: 3 columns left of the edge, 9 right of it. Every box
+    // pixel is 40 steps off; those on the box's lesser object 120. On main
+    // the region's pixel was the largest gap: on the lesser object.
+    let scene = builtin_scene();
+    let (mut image, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
+    let y = scene.height / 2;
+    let x = (4..scene.width - 9)
+        .find(|&x| object_at(&scene, x, y) != object_at(&scene, x - 1, y))
+        .expect("an edge on the middle row");
+    let box_pixels: Vec<(u32, u32)> = (y - 6..y + 6)
+        .flat_map(|py| (x - 3..x + 9).map(move |px| (px, py)))
+        .collect();
+    let mut counts: Vec<(Option<usize>, usize)> = Vec::new();
+    for &(px, py) in &box_pixels {
+        let object = object_at(&scene, px, py);
+        match counts.iter_mut().find(|(o, _)| *o == object) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((object, 1)),
+        }
+    }
+    counts.sort_by_key(|&(_, n)| std::cmp::Reverse(n));
+    assert!(counts.len() > 1 && counts[0].1 > counts[1].1, "{counts:?}");
+    let most = counts[0].0;
+    for &(px, py) in &box_pixels {
+        let off = if object_at(&scene, px, py) == most {
+            40
+        } else {
+            120
+        };
+        let pixel = image.get_pixel_mut(px, py);
+        for channel in &mut pixel.0 {
+            *channel = if *channel < 128 {
+                *channel + off
+            } else {
+                *channel - off
+            };
+        }
+    }
+    let png = save_png(&image, "yours-box-");
+    let mut app = comparing(&png);
+    let regions = &app.comparison().unwrap().findings().regions;
+    assert_eq!(regions.len(), 1);
+    assert_eq!(regions[0].pixels, 144);
+    chars(&mut app, "w");
+    let (cx, cy) = app.pixel().cursor();
+    assert!(box_pixels.contains(&(cx, cy)));
+    assert_eq!(object_at(&scene, cx, cy), most, "({cx}, {cy})");
 }

@@ -50,14 +50,31 @@ impl StudentComparison {
             format!("of {shown}")
         };
         let message = format!(
-            "region {} {of}: {} on {}",
+            "region {} {of}: {} on {} · {}",
             index + 1,
             count(region.pixels as u64, "pixel", "pixels"),
-            objects(region)
+            objects(region),
+            diagnosis(region)
         );
         self.region = Some(index);
         Ok(((x, y), message))
     }
+
+    /// "region 2: yours ≈ reference − ambient (...)": the diagnosis of the
+    /// region `w` went to last, while `cursor` is inside its box, so it
+    /// stays in the status line as the pixel's trace is stepped through.
+    pub(crate) fn region_words(&self, (x, y): (u32, u32)) -> Option<String> {
+        let index = self.region?;
+        let region = self.comparison.regions.get(index)?;
+        let [x0, y0, x1, y1] = region.bounds;
+        let inside = (x0..=x1).contains(&x) && (y0..=y1).contains(&y);
+        inside.then(|| format!("region {}: {}", index + 1, diagnosis(region)))
+    }
+}
+
+/// The region's diagnosis, as `compare` gives it, or that none was given.
+fn diagnosis(region: &RegionReport) -> String {
+    (region.diagnosis.clone()).unwrap_or_else(|| "no diagnosis fits".into())
 }
 
 /// "glass ball", "floor and glass ball", "floor, wall and 2 more".

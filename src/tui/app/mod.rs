@@ -36,6 +36,7 @@ use super::source::SceneSource;
 use super::view::find;
 use super::view::image_grid::{ImageGrid, max_zoom};
 use super::view::layout::{self, Panes, inner};
+use super::view::mistakes_menu;
 use super::view::tree;
 use super::view::your_rays;
 
@@ -62,6 +63,8 @@ pub(crate) use session::Session;
 pub const MAX_DEPTH: u32 = 16;
 /// What `y` and `D` say without a log.
 const NO_LOG: &str = "no ray log: open with --rays LOG.jsonl (docs/RAYLOG.md)";
+/// What `w`, `c` and `E` say without an image to compare.
+const NO_IMAGE: &str = "no image to compare: open with --compare IMAGE.png";
 /// The first status message, for someone who has never seen the debugger.
 pub const WELCOME: &str =
     "arrows pick a pixel, n steps through its trace, Tab changes pane, ? lists every key";
@@ -126,13 +129,17 @@ impl App {
         sync: bool,
     ) -> App {
         let cursor = (scene.width / 2, scene.height / 2);
+        let ranked = comparison
+            .as_ref()
+            .map_or(&[][..], |c| &c.findings().mistakes[..]);
+        let overlay = Overlays::with_menu(mistakes_menu::order(ranked));
         let session = Session::new(source, scene);
         let pixel = TracedPixel::new(session.scene(), session.settings(), cursor);
         let mut app = App {
             session,
             pixel,
             renders: Renders::new(sync),
-            overlay: Overlays::default(),
+            overlay,
             screen: Screen::default(),
             comparison,
             ray_log: None,
@@ -221,6 +228,12 @@ impl App {
                     let (scene, settings) = (self.session.shared_scene(), *self.session.settings());
                     self.renders.request_again(scene, settings, true);
                 }
+            }
+            Action::TogglePicture(picture) => {
+                self.message = Some(match self.comparison {
+                    Some(_) => self.screen.toggle_picture(picture),
+                    None => NO_IMAGE.into(),
+                });
             }
             Action::Step(_)
             | Action::RunTo(_)
@@ -368,7 +381,7 @@ impl App {
     /// The cursor to the next region's pixel (the largest first, cycling).
     fn next_region(&mut self) {
         let Some(comparison) = &mut self.comparison else {
-            self.message = Some("no image to compare: open with --compare IMAGE.png".into());
+            self.message = Some(NO_IMAGE.into());
             return;
         };
         match comparison.next_region() {

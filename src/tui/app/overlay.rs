@@ -20,19 +20,38 @@ pub(crate) enum Overlay {
     Find,
 }
 
-/// The overlay open, if any, and the mistakes menu's selected row, which
-/// stays between openings.
-#[derive(Debug, Default)]
+/// The overlay open, if any, the mistakes menu's rows and its selected
+/// row, which stays between openings.
+#[derive(Debug)]
 pub struct Overlays {
     open: Option<Overlay>,
-    /// An index into `Mistake::ALL`.
+    /// The menu's mistakes in its order: every one of the catalogue once.
+    menu: Vec<Mistake>,
+    /// An index into `menu`.
     menu_row: usize,
+}
+
+impl Default for Overlays {
+    /// The menu in the catalogue's order.
+    fn default() -> Overlays {
+        Overlays::with_menu(Mistake::ALL.to_vec())
+    }
 }
 
 /// What `f` asks for in the status line.
 const FIND_WHAT: &str = "find the next pixel with: b blocked shadow, p partly blocked, t TIR, D depth limit, x object X, n near miss";
 
 impl Overlays {
+    /// Nothing open; the menu lists `menu` (every mistake once, e.g. the
+    /// ranked ones first) and opens on its first row.
+    pub(super) fn with_menu(menu: Vec<Mistake>) -> Overlays {
+        Overlays {
+            open: None,
+            menu,
+            menu_row: 0,
+        }
+    }
+
     /// Opens, closes, scrolls, moves or types into an overlay; the status
     /// line's message, when the action has one. `screen_height` bounds the
     /// help's scroll.
@@ -49,8 +68,9 @@ impl Overlays {
             (Action::ToggleMistakeMenu, _) => self.open = Some(Overlay::MistakesMenu),
             (Action::CloseMistakeMenu, Some(Overlay::MistakesMenu)) => self.open = None,
             (Action::MenuMove(delta), _) => {
-                let last = Mistake::ALL.len() as i64 - 1;
-                self.menu_row = (self.menu_row as i64 + delta as i64).clamp(0, last) as usize;
+                // Wraps: up from the first row is the last.
+                let rows = self.menu.len().max(1) as i64;
+                self.menu_row = (self.menu_row as i64 + delta as i64).rem_euclid(rows) as usize;
             }
             (Action::OpenPrompt, _) => self.open = Some(Overlay::Prompt(String::new())),
             (Action::PromptChar(c), Some(Overlay::Prompt(text))) => text.push(c),
@@ -91,7 +111,12 @@ impl Overlays {
 
     /// The mistakes menu's selected mistake, open or not.
     pub(crate) fn menu_mistake(&self) -> Mistake {
-        Mistake::ALL[self.menu_row]
+        self.menu[self.menu_row]
+    }
+
+    /// The mistakes menu's rows, in order.
+    pub(crate) fn menu_mistakes(&self) -> &[Mistake] {
+        &self.menu
     }
 
     /// The menu's selected row when it is open.

@@ -102,15 +102,18 @@ impl Screen {
             Picture::Yours => Picture::ErrorMap,
             Picture::ErrorMap => Picture::Render,
         };
-        match self.picture {
-            Picture::Render => "view: the render".to_string(),
-            Picture::Term(term) => format!("view {}: {}", term.name(), term.legend()),
-            Picture::Yours => "view yours: the image you compare".to_string(),
-            Picture::ErrorMap => {
-                "view error map: FLIP's error, black where the images agree, bright where they part"
-                    .to_string()
-            }
-        }
+        words(self.picture)
+    }
+
+    /// `c` and `E`: straight to yours or the error map, and back to the
+    /// render from there; the message that names the picture.
+    pub(super) fn toggle_picture(&mut self, picture: Picture) -> String {
+        self.picture = if self.picture == picture {
+            Picture::Render
+        } else {
+            picture
+        };
+        words(self.picture)
     }
 
     /// The plane the diagram is drawn on.
@@ -126,5 +129,18 @@ impl Screen {
     /// The whole diagram again (another pixel).
     pub(super) fn fit_diagram(&mut self) {
         self.diagram = PanZoom::fit();
+    }
+}
+
+/// What the status line says of a picture shown.
+fn words(picture: Picture) -> String {
+    match picture {
+        Picture::Render => "view: the render".to_string(),
+        Picture::Term(term) => format!("view {}: {}", term.name(), term.legend()),
+        Picture::Yours => "view yours: the image you compare".to_string(),
+        Picture::ErrorMap => {
+            "view error map: FLIP's error, black where the images agree, bright where they part"
+                .to_string()
+        }
     }
 }

@@ -128,8 +128,12 @@ pub(super) fn status(app: &App) -> Line<'static> {
                 .on_yellow(),
         );
     }
+    let region = (app.comparison()).and_then(|c| c.region_words(app.pixel().cursor()));
     if let Some(message) = app.message() {
         spans.push(Span::raw(format!(" {message} ")).yellow().bold());
+    } else if let Some(region) = region {
+        // The region `w` went to is still under the cursor: its diagnosis.
+        spans.push(Span::raw(format!(" {region} ")).yellow());
     } else if app.show_timings() {
         let render = app.renders().render_time().map_or(String::new(), |t| {
             format!(", image in {:.0} ms", t.as_secs_f64() * 1e3)

@@ -22,24 +22,33 @@ use crate::tui::{App, Pane, Picture};
 pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let (x, y) = app.pixel().cursor();
     let mut title = vec![Span::raw(format!(" Pixel ({x}, {y}) "))];
-    if let Some(rgb) = app
-        .renders()
-        .image()
-        .filter(|i| x < i.width() && y < i.height())
-        .map(|i| i.get_pixel(x, y).0)
-    {
-        title.push(Span::raw(format!("rgb({},{},{}) ", rgb[0], rgb[1], rgb[2])));
+    // In "yours" the colour is the student's, and says so; else ours.
+    let (whose, rgb) = match app.screen().picture() {
+        Picture::Yours => ("yours ", app.shown_pixel(x, y)),
+        _ => ("", app.our_pixel()),
+    };
+    if let Some(rgb) = rgb {
+        title.push(Span::raw(format!(
+            "{whose}rgb({},{},{}) ",
+            rgb[0], rgb[1], rgb[2]
+        )));
         title.push(rgb_swatch(rgb));
     }
     title.push(Span::raw(format!(" zoom {}x ", app.screen().zoom())));
     let mut block = pane_block(app, Pane::Image, String::new()).title(Line::from(title));
+    // The legend keeps its place at the right; the compare line takes the
+    // room left of it, dropping whole items rather than cutting a word.
+    let mut room = (area.width as usize).saturating_sub(2);
     if let Picture::Term(term) = app.screen().picture() {
-        block = block.title_bottom(term_legend(app, term).right_aligned());
+        let legend = term_legend(app, term);
+        room = room.saturating_sub(legend.width() + 1);
+        block = block.title_bottom(legend.right_aligned());
     }
     if let Some(c) = app.comparison().map(|c| c.findings()) {
         // The ranking stays in sight while comparing, whatever the picture.
-        let ranking = mistakes_menu::ranking(&c.mistakes, c.matches);
-        block = block.title_bottom(Line::from(format!(" compare: {ranking} ")).bold().yellow());
+        if let Some(line) = mistakes_menu::compare_line(&c.mistakes, c.matches, room) {
+            block = block.title_bottom(Line::from(line).bold().yellow());
+        }
     }
     frame.render_widget(block, area);
     let (Some(grid), Some(_)) = (app.image_grid(), app.shown_pixel(0, 0)) else {

@@ -13,7 +13,8 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect, selected: usize) {
     let ranked = app
         .comparison()
         .map_or(&[][..], |c| &c.findings().mistakes[..]);
-    let lines = lines(app.session().settings().mistakes, selected, ranked);
+    let rows = app.overlay().menu_mistakes();
+    let lines = lines(rows, app.session().settings().mistakes, selected, ranked);
     let bottom = " j/k select · Space turns on/off · Esc or M closes ";
     let width = lines
         .iter()

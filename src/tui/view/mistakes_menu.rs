@@ -1,5 +1,6 @@
 //! The `M` menu's text: one line per mistake of the catalogue, `[x]` when
-//! it is on, its summary, and (when comparing) its place in the ranking.
+//! it is on, its summary, and (when comparing) its place in the ranking;
+//! the ranked mistakes come first.
 
 use ratatui::style::{Modifier, Style, Stylize};
 use ratatui::text::{Line, Span};
@@ -31,15 +32,61 @@ pub(crate) fn ranking(ranked: &[Ranked], matches: bool) -> String {
             "no classic mistake explains the difference".into()
         };
     }
-    let parts: Vec<String> = ranked
-        .iter()
-        .map(|r| format!("{} {}", r.mistake, percent(r.explains)))
-        .collect();
+    let parts: Vec<String> = ranked.iter().map(item).collect();
     parts.join(" · ")
 }
 
-/// The menu's lines, the `selected` row highlighted.
-pub(crate) fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Line<'static>> {
+/// "no-ambient 100%": one ranked mistake and its share.
+fn item(ranked: &Ranked) -> String {
+    format!("{} {}", ranked.mistake, percent(ranked.explains))
+}
+
+/// The image pane's " compare: no-ambient 100% · shadow-acne 17% " in at
+/// most `room` columns: short of room, the last items give way to "+N
+/// more" (the `M` menu lists them all), never half a word; `None` when not
+/// even that fits.
+pub(crate) fn compare_line(ranked: &[Ranked], matches: bool, room: usize) -> Option<String> {
+    let fits = |text: String| (text.chars().count() <= room).then_some(text);
+    let framed = |body: &str| format!(" compare: {body} ");
+    if ranked.is_empty() {
+        return fits(framed(&ranking(ranked, matches))).or_else(|| {
+            let brief = if matches {
+                "matches"
+            } else {
+                "no mistake fits"
+            };
+            fits(framed(brief))
+        });
+    }
+    let items: Vec<String> = ranked.iter().map(item).collect();
+    (0..=items.len()).rev().find_map(|shown| {
+        let mut parts = items[..shown].to_vec();
+        if shown < items.len() {
+            parts.push(format!("+{} more", items.len() - shown));
+        }
+        fits(framed(&parts.join(" · ")))
+    })
+}
+
+/// The menu's rows: the ranked mistakes, best first, then the rest of the
+/// catalogue in its order, so the mistake `compare` names is a key away.
+pub(crate) fn order(ranked: &[Ranked]) -> Vec<Mistake> {
+    let mut rows: Vec<Mistake> = Vec::with_capacity(Mistake::ALL.len());
+    for mistake in ranked.iter().map(|r| r.mistake).chain(Mistake::ALL) {
+        if !rows.contains(&mistake) {
+            rows.push(mistake);
+        }
+    }
+    rows
+}
+
+/// The menu's lines, one per mistake of `rows`, the `selected` row highlighted.
+pub(crate) fn lines(
+    rows: &[Mistake],
+    on: Mistakes,
+    selected: usize,
+    ranked: &[Ranked],
+) -> Vec<Line<'static>> {
     // The names' column: the longest name and two spaces.
     let width = Mistake::ALL
         .iter()
@@ -47,8 +94,7 @@ pub(crate) fn lines(on: Mistakes, selected: usize, ranked: &[Ranked]) -> Vec<Lin
         .max()
         .unwrap_or(0)
         + 2;
-    Mistake::ALL
-        .iter()
+    rows.iter()
         .enumerate()
         .map(|(i, &mistake)| {
             let check = if on.contains(mistake) { "[x]" } else { "[ ]" };
@@ -91,7 +137,7 @@ mod tests {
     #[test]
     fn every_mistake_has_a_line_with_its_state_and_summary() {
         let on = Mistakes::NONE.with(Mistake::NoAmbient);
-        let lines = lines(on, 0, &[ranked(Mistake::NoAmbient, 0.996)]);
+        let lines = lines(&Mistake::ALL, on, 0, &[ranked(Mistake::NoAmbient, 0.996)]);
         assert_eq!(lines.len(), 14);
         // Row 9 of the catalogue is no-ambient: on, ranked first, 99.6% ->
         // 100%; the name padded to 22 (no-light-attenuation's 20, and 2).
@@ -102,6 +148,63 @@ mod tests {
         assert!(text(&lines[7]).starts_with(" [ ] no-light-attenuation  lights not"));
         assert!(text(&lines[0]).starts_with(" [ ] shadow-acne "));
         assert!(text(&lines[0]).contains(Mistake::ShadowAcne.summary()));
+    }
+
+    #[test]
+    fn the_ranked_mistakes_come_first_then_the_catalogue() {
+        let both = [
+            ranked(Mistake::PixelCorner, 1.0),
+            ranked(Mistake::NoAmbient, 0.2),
+        ];
+        let rows = order(&both);
+        assert_eq!(rows[..2], [Mistake::PixelCorner, Mistake::NoAmbient]);
+        // The rest in the catalogue's order, each mistake once.
+        let rest: Vec<Mistake> = Mistake::ALL
+            .into_iter()
+            .filter(|m| !matches!(m, Mistake::PixelCorner | Mistake::NoAmbient))
+            .collect();
+        assert_eq!(rows[2..], rest[..]);
+        assert_eq!(order(&[]), Mistake::ALL);
+        let text =
+            |line: &Line| -> String { line.spans.iter().map(|s| s.content.as_ref()).collect() };
+        let lines = lines(&rows, Mistakes::NONE, 0, &both);
+        assert!(text(&lines[0]).contains("pixel-corner"));
+        assert!(text(&lines[0]).ends_with("#1 explains 100% "));
+        assert!(text(&lines[1]).ends_with("#2 explains 20% "));
+    }
+
+    #[test]
+    fn the_compare_line_drops_whole_items_to_fit() {
+        let three = [
+            ranked(Mistake::NoAmbient, 1.0),
+            ranked(Mistake::ShadowAcne, 0.171),
+            ranked(Mistake::FlippedY, 0.05),
+        ];
+        // All three: " compare: " 10, "no-ambient 100%" 15, " · " 3,
+        // "shadow-acne 17%" 15, 3, "flipped-y 5%" 12, " " 1: 59 columns.
+        let all = " compare: no-ambient 100% · shadow-acne 17% · flipped-y 5% ";
+        assert_eq!(compare_line(&three, false, 59).as_deref(), Some(all));
+        // One short: the third gives way to "+1 more" (10 + 15 + 3 + 15 +
+        // 3 + 7 + 1 = 54 columns).
+        let two = " compare: no-ambient 100% · shadow-acne 17% · +1 more ";
+        assert_eq!(compare_line(&three, false, 58).as_deref(), Some(two));
+        assert_eq!(compare_line(&three, false, 54).as_deref(), Some(two));
+        // 10 + 15 + 3 + 7 + 1 = 36; then 10 + 7 + 1 = 18.
+        let one = " compare: no-ambient 100% · +2 more ";
+        assert_eq!(compare_line(&three, false, 53).as_deref(), Some(one));
+        assert_eq!(compare_line(&three, false, 36).as_deref(), Some(one));
+        let none = " compare: +3 more ";
+        assert_eq!(compare_line(&three, false, 35).as_deref(), Some(none));
+        assert_eq!(compare_line(&three, false, 18).as_deref(), Some(none));
+        assert_eq!(compare_line(&three, false, 17), None);
+        assert_eq!(
+            compare_line(&[], true, 40).as_deref(),
+            Some(" compare: your image matches ")
+        );
+        assert_eq!(
+            compare_line(&[], false, 30).as_deref(),
+            Some(" compare: no mistake fits ")
+        );
     }
 
     #[test]
