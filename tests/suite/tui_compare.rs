@@ -123,16 +123,20 @@ fn the_menu_selection_stops_at_both_ends() {
     let mut app = app();
     chars(&mut app, "Mkk");
     assert_eq!(app.overlay().menu_row(), Some(0));
-    for _ in 0..20 {
+    for _ in 0..Mistake::ALL.len() + 5 {
         chars(&mut app, "j");
     }
-    assert_eq!(app.overlay().menu_row(), Some(13), "pixel-corner, the last");
+    assert_eq!(
+        app.overlay().menu_row(),
+        Some(21),
+        "fov-full-angle, the last"
+    );
     chars(&mut app, " ");
     assert!(
         app.session()
             .settings()
             .mistakes
-            .contains(Mistake::PixelCorner)
+            .contains(Mistake::FovFullAngle)
     );
 }
 
