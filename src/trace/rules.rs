@@ -186,6 +186,18 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
         }
     }
 
+    /// Blinn's H = normalize(L + V). L + V = 0 only where a mistake counts
+    /// a light straight behind the point as seen: H is 0 there, not NaN
+    /// (MODEL §4). The model's tracer never meets it and skips the test.
+    #[inline]
+    pub(crate) fn half_vector(&self, l: DVec3, to_viewer: DVec3) -> DVec3 {
+        if MISTAKES {
+            (l + to_viewer).normalize_or_zero()
+        } else {
+            (l + to_viewer).normalize()
+        }
+    }
+
     /// The reflected direction `mirrored` (R = d - 2 (d·N) N), or -R under
     /// `reflection-sign`.
     #[inline]

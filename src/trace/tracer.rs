@@ -230,7 +230,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         }
         let s = term.shadow.map_or(1.0, |shadow| shadow.s);
         term.specular_cosine = match term.specular_model {
-            SpecularModel::Blinn => normal.dot((l + to_viewer).normalize()),
+            SpecularModel::Blinn => normal.dot(self.rules.half_vector(l, to_viewer)),
             SpecularModel::Phong => (2.0 * n_dot_l * normal - l).dot(to_viewer),
         };
         let strength = s * term.f_att;

@@ -460,6 +460,40 @@ fn two_sided_diffuse_lights_a_wall_from_behind() {
 }
 
 #[test]
+fn a_light_straight_behind_the_point_counted_by_a_mistake_gives_n_dot_h_zero() {
+    // The wall z = 0 (k_d = k_s = 0.5) seen from (0, 0, 5), V = (0, 0, 1);
+    // the light at (0, 0, -4), straight behind the point: L = (0, 0, -1),
+    // L + V = 0. two-sided-diffuse counts it (|N·L| = 1), and so does
+    // no-normal-flip on the wall turned round (N_g = (0, 0, -1), N_g·L =
+    // 1): H = normalize(0) would be NaN; it is 0, so N·H = 0 and the
+    // specular term 0, and the JSON recording holds only finite numbers.
+    for (normal, mistake) in [
+        ("[0, 0, 1]", Mistake::TwoSidedDiffuse),
+        ("[0, 0, -1]", Mistake::NoNormalFlip),
+    ] {
+        let s = scene(&format!(
+            "[camera]
+            eye = [0, 0, 5]
+            look_at = [0, 0, 0]
+            [materials.chalk]
+            kd = 0.5
+            ks = 0.5
+            [[light]]
+            position = [0, 0, -4]
+            [[object]]
+            material = \"chalk\"
+            plane = {{ normal = {normal}, point = [0, 0, 0] }}"
+        ));
+        let [_, wrong] = both(&s, mistake, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+        let light = &wrong.root().lights[0];
+        assert!(!light.faces_away, "{mistake}");
+        assert_eq!(light.specular_cosine, 0.0, "{mistake}");
+        assert_eq!(light.specular, DVec3::ZERO, "{mistake}");
+        assert!(close(light.diffuse.x, 0.5), "{mistake}");
+    }
+}
+
+#[test]
 fn clamp_before_adding_clamps_a_reflected_surface_before_it_is_weighed() {
     // A mirror floor y = 0 (k_d 0, k_s 0.5) under a wall z = -2 of k_d 1 lit
     // head-on by a light of 3 at (0, 1, 3); the eye at (0, 1, 1) looks down
