@@ -24,7 +24,11 @@ pub struct Viewport {
     pub(crate) forward: DVec3,
     pub(crate) right: DVec3,
     pub(crate) true_up: DVec3,
+    /// s = tan(fov / 2), or tan(fov) under `fov-full-angle` (MODEL §8).
     pub(crate) half_height: f64,
+    /// The camera's vertical field of view in degrees, whose tangent
+    /// `fov-full-angle` takes.
+    pub(crate) fov: f64,
     pub(crate) width: u32,
     pub(crate) height: u32,
     /// Where in its pixel a primary ray passes: 0.5 (the centre), or 0 (the
@@ -67,6 +71,7 @@ impl Camera {
             right,
             true_up,
             half_height: (self.fov.to_radians() / 2.0).tan(),
+            fov: self.fov,
             width,
             height,
             pixel_offset: 0.5,
@@ -76,11 +81,16 @@ impl Camera {
 }
 
 impl Viewport {
-    /// The viewport with the pixel mistakes of `mistakes` (`pixel-corner`,
-    /// `flipped-y`) in the mapping from image pixels to primary rays; the
-    /// others do not concern it.
+    /// The viewport with the camera mistakes of `mistakes` (`pixel-corner`,
+    /// `flipped-y`, `fov-full-angle`) in the mapping from image pixels to
+    /// primary rays; the others do not concern it.
     pub(crate) fn with_mistakes(self, mistakes: Mistakes) -> Viewport {
         Viewport {
+            half_height: if mistakes.contains(Mistake::FovFullAngle) {
+                self.fov.to_radians().tan()
+            } else {
+                self.half_height
+            },
             pixel_offset: if mistakes.contains(Mistake::PixelCorner) {
                 0.0
             } else {

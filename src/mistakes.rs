@@ -42,11 +42,28 @@ pub enum Mistake {
     FlippedY,
     /// Primary rays through pixel corners (x, y) instead of centres.
     PixelCorner,
+    /// Reflected and transmitted rays accept hits at t > 0, as shadow rays
+    /// do under `ShadowAcne`.
+    NoEpsilon,
+    /// N·L and H with L = P_L - p, not normalised.
+    LightNotNormalised,
+    /// R = 2 (D·N) N - D, the reflected direction negated.
+    ReflectionSign,
+    /// Leaving, Snell's law with the outward N_g, not N facing the ray.
+    RefractionOutwardNormal,
+    /// |N·L|: lights behind the surface light it too.
+    TwoSidedDiffuse,
+    /// The local colour clamped to 1 before k_s I_r and k_t I_t are added.
+    ClampBeforeAdding,
+    /// f_att = min(1, 1 / d²) for every light, whatever the scene says.
+    InverseSquare,
+    /// The viewport's half-height tan(fov), not tan(fov / 2).
+    FovFullAngle,
 }
 
 impl Mistake {
     /// The catalogue, in the order docs/MODEL.md lists it.
-    pub const ALL: [Mistake; 14] = [
+    pub const ALL: [Mistake; 22] = [
         Mistake::ShadowAcne,
         Mistake::NoNormalFlip,
         Mistake::EtaInverted,
@@ -61,6 +78,14 @@ impl Mistake {
         Mistake::Gamma,
         Mistake::FlippedY,
         Mistake::PixelCorner,
+        Mistake::NoEpsilon,
+        Mistake::LightNotNormalised,
+        Mistake::ReflectionSign,
+        Mistake::RefractionOutwardNormal,
+        Mistake::TwoSidedDiffuse,
+        Mistake::ClampBeforeAdding,
+        Mistake::InverseSquare,
+        Mistake::FovFullAngle,
     ];
 
     /// The fixed name, as the command line, JSON and MODEL.md write it.
@@ -80,6 +105,14 @@ impl Mistake {
             Mistake::Gamma => "gamma",
             Mistake::FlippedY => "flipped-y",
             Mistake::PixelCorner => "pixel-corner",
+            Mistake::NoEpsilon => "no-epsilon",
+            Mistake::LightNotNormalised => "light-not-normalised",
+            Mistake::ReflectionSign => "reflection-sign",
+            Mistake::RefractionOutwardNormal => "refraction-outward-normal",
+            Mistake::TwoSidedDiffuse => "two-sided-diffuse",
+            Mistake::ClampBeforeAdding => "clamp-before-adding",
+            Mistake::InverseSquare => "inverse-square",
+            Mistake::FovFullAngle => "fov-full-angle",
         }
     }
 
@@ -100,6 +133,14 @@ impl Mistake {
             Mistake::Gamma => "a gamma of 2.2 applied to the bytes",
             Mistake::FlippedY => "the image is upside down",
             Mistake::PixelCorner => "primary rays through pixel corners, not centres",
+            Mistake::NoEpsilon => "every secondary ray hits its own surface (t > 0)",
+            Mistake::LightNotNormalised => "N·L and H with L = P_L - p, not normalised",
+            Mistake::ReflectionSign => "the reflected ray reversed: 2 (D·N) N - D",
+            Mistake::RefractionOutwardNormal => "refraction leaving glass with the outward normal",
+            Mistake::TwoSidedDiffuse => "|N·L|: lights behind a surface light it too",
+            Mistake::ClampBeforeAdding => "the local colour clamped before reflections are added",
+            Mistake::InverseSquare => "lights fall off as 1/d², whatever the scene says",
+            Mistake::FovFullAngle => "tan(fov), not tan(fov / 2): a wider view",
         }
     }
 
@@ -116,11 +157,18 @@ impl Mistake {
             Mistake::NoAmbient => ActsOn::Ambient,
             Mistake::PhongNotBlinn => ActsOn::Highlights,
             Mistake::DepthOffByOne => ActsOn::SecondaryRays,
+            Mistake::NoEpsilon => ActsOn::ShadowOrSecondaryRays,
+            Mistake::ReflectionSign | Mistake::ClampBeforeAdding => ActsOn::SecondaryRays,
+            Mistake::RefractionOutwardNormal => ActsOn::Refraction,
+            Mistake::LightNotNormalised | Mistake::TwoSidedDiffuse | Mistake::InverseSquare => {
+                ActsOn::Lights
+            }
             Mistake::NoNormalFlip
             | Mistake::ByteWrap
             | Mistake::Gamma
             | Mistake::FlippedY
-            | Mistake::PixelCorner => ActsOn::AnyScene,
+            | Mistake::PixelCorner
+            | Mistake::FovFullAngle => ActsOn::AnyScene,
         }
     }
 
@@ -140,12 +188,20 @@ impl Mistake {
             | Mistake::DepthOffByOne
             | Mistake::NoAmbient
             | Mistake::FlippedY
-            | Mistake::PixelCorner => false,
+            | Mistake::PixelCorner
+            | Mistake::NoEpsilon
+            | Mistake::LightNotNormalised
+            | Mistake::ReflectionSign
+            | Mistake::RefractionOutwardNormal
+            | Mistake::TwoSidedDiffuse
+            | Mistake::ClampBeforeAdding
+            | Mistake::InverseSquare
+            | Mistake::FovFullAngle => false,
         }
     }
 
-    fn bit(self) -> u16 {
-        1 << self as u16
+    fn bit(self) -> u32 {
+        1 << self as u32
     }
 }
 
@@ -166,6 +222,10 @@ pub(crate) enum ActsOn {
     Highlights,
     /// Secondary rays: max_depth above 1, a material with k_s or k_t > 0.
     SecondaryRays,
+    /// A light.
+    Lights,
+    /// Shadow rays (shadows switched on) or secondary rays.
+    ShadowOrSecondaryRays,
     /// Any scene: the bytes, the rows, the primary rays or the normals.
     AnyScene,
 }
@@ -184,7 +244,7 @@ impl Serialize for Mistake {
 
 /// A set of mistakes; empty (the correct model) by default.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Mistakes(u16);
+pub struct Mistakes(u32);
 
 impl Mistakes {
     pub const NONE: Mistakes = Mistakes(0);

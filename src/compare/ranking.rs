@@ -151,6 +151,10 @@ fn may_change(scene: &Scene, settings: &Settings, mistake: Mistake) -> bool {
         }
         ActsOn::Highlights => any(|m| m.ks > 0.0),
         ActsOn::SecondaryRays => settings.max_depth > 1 && any(|m| m.ks > 0.0 || m.kt > 0.0),
+        ActsOn::Lights => !scene.lights.is_empty(),
+        ActsOn::ShadowOrSecondaryRays => {
+            switches.shadows || (settings.max_depth > 1 && any(|m| m.ks > 0.0 || m.kt > 0.0))
+        }
         ActsOn::AnyScene => true,
     }
 }
@@ -302,7 +306,8 @@ mod tests {
         // A matte plane lit by one light, shadows switched off: no shadow
         // ray, no transparency, no highlight, no secondary ray (max_depth
         // 1), no ambient (I_a black), no attenuation. Only the mistakes of
-        // the bytes, rows, primary rays and normals can change it.
+        // the bytes, rows, primary rays and normals, and those of the
+        // light's own terms, can change it.
         let scene = crate::scene::parse(
             std::path::Path::new("matte.toml"),
             "[camera]
@@ -337,7 +342,11 @@ mod tests {
                 Mistake::ByteWrap,
                 Mistake::Gamma,
                 Mistake::FlippedY,
-                Mistake::PixelCorner
+                Mistake::PixelCorner,
+                Mistake::LightNotNormalised,
+                Mistake::TwoSidedDiffuse,
+                Mistake::InverseSquare,
+                Mistake::FovFullAngle,
             ]
         );
         // And each mistake skipped indeed changes nothing.

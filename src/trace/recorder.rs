@@ -54,7 +54,7 @@ pub(crate) struct ShadowOutcome {
 #[derive(Clone, Copy, Debug)]
 pub struct LightTerm {
     pub(crate) light: usize,
-    /// L, unit length.
+    /// L, unit length (P_L - p under `light-not-normalised`).
     pub(crate) to_light: DVec3,
     pub(crate) distance: f64,
     pub(crate) n_dot_l: f64,

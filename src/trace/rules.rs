@@ -8,7 +8,8 @@
 
 use glam::DVec3;
 
-use super::recorder::SurfaceHit;
+use super::recorder::{RayKind, SurfaceHit};
+use crate::math::Color;
 use crate::math::{EPS, Interval};
 use crate::mistakes::Mistake;
 use crate::scene::{Material, Settings, SpecularModel};
@@ -72,11 +73,15 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
         }
     }
 
-    /// (c1, c2, c3) of f_att; (1, 0, 0), so f_att = 1, under `no-light-attenuation`.
+    /// (c1, c2, c3) of f_att; (1, 0, 0), so f_att = 1, under
+    /// `no-light-attenuation`; else (0, 0, 1), f_att = min(1, 1 / d²), under
+    /// `inverse-square`.
     #[inline]
     pub(crate) fn light_attenuation(&self) -> [f64; 3] {
         if self.has(Mistake::NoLightAttenuation) {
             [1.0, 0.0, 0.0]
+        } else if self.has(Mistake::InverseSquare) {
+            [0.0, 0.0, 1.0]
         } else {
             self.settings.light_attenuation
         }
@@ -105,11 +110,23 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
         }
     }
 
+    /// The hits a ray of `kind` accepts: (EPS, inf); a reflected or
+    /// transmitted ray's start at 0 under `no-epsilon`.
+    #[inline]
+    pub(crate) fn hit_range(&self, kind: RayKind) -> Interval {
+        if kind != RayKind::Primary && self.has(Mistake::NoEpsilon) {
+            Interval::new(0.0, f64::INFINITY)
+        } else {
+            Interval::in_front()
+        }
+    }
+
     /// The shadow segment towards a light `distance` away: (EPS, d_L); it
-    /// starts at 0 under `shadow-acne` and has no end under `shadows-past-light`.
+    /// starts at 0 under `shadow-acne` or `no-epsilon` and has no end under
+    /// `shadows-past-light`.
     #[inline]
     pub(crate) fn shadow_segment(&self, distance: f64) -> Interval {
-        let start = if self.has(Mistake::ShadowAcne) {
+        let start = if self.has(Mistake::ShadowAcne) || self.has(Mistake::NoEpsilon) {
             0.0
         } else {
             EPS
@@ -143,5 +160,75 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     #[inline]
     pub(crate) fn tir_adds_kt(&self) -> bool {
         !self.has(Mistake::TirDropped)
+    }
+
+    /// L as a light's terms use it (N·L, H, Phong's R): `to_light`, unit
+    /// length, or `offset` = P_L - p under `light-not-normalised`. The
+    /// shadow ray always goes along the unit L.
+    #[inline]
+    pub(crate) fn lighting_direction(&self, offset: DVec3, to_light: DVec3) -> DVec3 {
+        if self.has(Mistake::LightNotNormalised) {
+            offset
+        } else {
+            to_light
+        }
+    }
+
+    /// N·L as a light's terms and its faces-away test use it: `n_dot_l`, or
+    /// |N·L| under `two-sided-diffuse`, so a light behind the surface lights
+    /// it too.
+    #[inline]
+    pub(crate) fn light_cosine(&self, n_dot_l: f64) -> f64 {
+        if self.has(Mistake::TwoSidedDiffuse) {
+            n_dot_l.abs()
+        } else {
+            n_dot_l
+        }
+    }
+
+    /// Blinn's H = normalize(L + V). L + V = 0 only where a mistake counts
+    /// a light straight behind the point as seen: H is 0 there, not NaN
+    /// (MODEL §4). The model's tracer never meets it and skips the test.
+    #[inline]
+    pub(crate) fn half_vector(&self, l: DVec3, to_viewer: DVec3) -> DVec3 {
+        if MISTAKES {
+            (l + to_viewer).normalize_or_zero()
+        } else {
+            (l + to_viewer).normalize()
+        }
+    }
+
+    /// The reflected direction `mirrored` (R = d - 2 (d·N) N), or -R under
+    /// `reflection-sign`.
+    #[inline]
+    pub(crate) fn reflected(&self, mirrored: DVec3) -> DVec3 {
+        if self.has(Mistake::ReflectionSign) {
+            -mirrored
+        } else {
+            mirrored
+        }
+    }
+
+    /// The normal Snell's law uses, in cos_i and in T: N, facing the ray,
+    /// or N_g under `refraction-outward-normal` (they differ only leaving).
+    #[inline]
+    pub(crate) fn refraction_normal(&self, hit: &SurfaceHit) -> DVec3 {
+        if self.has(Mistake::RefractionOutwardNormal) {
+            hit.geometric_normal
+        } else {
+            hit.normal
+        }
+    }
+
+    /// The local colour (ambient and the lights' terms) as the secondary
+    /// rays' terms are added to it: `local`, or each channel at most 1
+    /// under `clamp-before-adding`.
+    #[inline]
+    pub(crate) fn local_color(&self, local: Color) -> Color {
+        if self.has(Mistake::ClampBeforeAdding) {
+            local.min(Color::ONE)
+        } else {
+            local
+        }
     }
 }

@@ -13,7 +13,7 @@ use super::recorder::{
 };
 use super::rules::Rules;
 use crate::accel::{Candidate, Cost, ShadowCache};
-use crate::math::{Color, EPS, Interval, Ray, attenuation};
+use crate::math::{Color, EPS, Ray, attenuation};
 use crate::scene::{Light, Material, Scene, Settings, SpecularModel};
 
 /// What a ray brings back: its colour and, if it hit, how far it went.
@@ -96,7 +96,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         let mut cost = Cost::default();
         let found = scene
             .accel
-            .closest(&scene.objects, ray, Interval::in_front(), &mut cost);
+            .closest(&scene.objects, ray, self.rules.hit_range(kind), &mut cost);
         let Some(candidate) = found else {
             let background = self.settings.background;
             self.rec.miss(background, cost);
@@ -135,6 +135,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
             self.rec.light(&term);
             color += term.diffuse + term.specular;
         }
+        color = self.rules.local_color(color);
         if depth < self.rules.spawn_below_depth() {
             color = self.secondary_rays(ray, hit, material, (depth, path_weight), color);
         } else if R::RECORDS_DEPTH_LIMIT {
@@ -170,7 +171,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         let refraction = self.rules.transmits(material).then(|| {
             refract(
                 ray.direction,
-                hit,
+                self.rules.refraction_normal(hit),
                 self.rules.eta(hit.entering, material.ior),
             )
         });
@@ -200,10 +201,11 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         let offset = light.position - point;
         let distance = offset.length();
         let to_light = offset / distance;
-        let n_dot_l = normal.dot(to_light);
+        let l = self.rules.lighting_direction(offset, to_light);
+        let n_dot_l = self.rules.light_cosine(normal.dot(l));
         let mut term = LightTerm {
             light: index,
-            to_light,
+            to_light: l,
             distance,
             n_dot_l,
             faces_away: n_dot_l <= 0.0,
@@ -228,8 +230,8 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         }
         let s = term.shadow.map_or(1.0, |shadow| shadow.s);
         term.specular_cosine = match term.specular_model {
-            SpecularModel::Blinn => normal.dot((to_light + to_viewer).normalize()),
-            SpecularModel::Phong => (2.0 * n_dot_l * normal - to_light).dot(to_viewer),
+            SpecularModel::Blinn => normal.dot(self.rules.half_vector(l, to_viewer)),
+            SpecularModel::Phong => (2.0 * n_dot_l * normal - l).dot(to_viewer),
         };
         let strength = s * term.f_att;
         // powf is slow, slower still when it underflows (a shininess of 100000
@@ -315,8 +317,12 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         }
         let mut color = local;
         if reflected_weight > 0.0 {
-            let direction = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
-            let child = (RayKind::Reflected, direction, reflected_weight);
+            let mirrored = ray.direction - 2.0 * ray.direction.dot(hit.normal) * hit.normal;
+            let child = (
+                RayKind::Reflected,
+                self.rules.reflected(mirrored),
+                reflected_weight,
+            );
             color += self.trace_child(hit, child, parent);
         }
         if let Some(direction) = refraction.and_then(|r| r.direction) {
@@ -417,12 +423,13 @@ fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
     }
 }
 
-/// Snell's law with N facing the incoming ray and the ratio `eta` (`Rules::eta`).
-fn refract(direction: DVec3, hit: &SurfaceHit, eta: f64) -> Refraction {
-    let cos_i = -direction.dot(hit.normal);
+/// Snell's law with N facing the incoming ray (`Rules::refraction_normal`)
+/// and the ratio `eta` (`Rules::eta`).
+fn refract(direction: DVec3, normal: DVec3, eta: f64) -> Refraction {
+    let cos_i = -direction.dot(normal);
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
     let tir = k < 0.0;
-    let direction = (!tir).then(|| eta * direction + (eta * cos_i - k.sqrt()) * hit.normal);
+    let direction = (!tir).then(|| eta * direction + (eta * cos_i - k.sqrt()) * normal);
     Refraction {
         cos_i,
         eta,

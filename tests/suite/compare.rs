@@ -276,16 +276,20 @@ fn listed(scene: &str, image: &Path) -> Vec<String> {
 
 #[test]
 fn every_mistake_comes_first_on_a_scene_that_shows_it() {
-    // glass.toml shows eleven of the fourteen; attenuation.toml has a
+    // glass.toml shows eighteen of the twenty-two; attenuation.toml has a
     // light with distance attenuation and objects beyond a light; BRIGHT
-    // has colours above 1. Each image is raystep's own under the mistake:
-    // what a student's tracer with that one mistake would draw.
+    // has colours above 1, BRIGHT_MIRROR a mirror that shows them. Each
+    // image is raystep's own under the mistake: what a student's tracer
+    // with that one mistake would draw.
     let dir = tempfile::tempdir().unwrap();
     let bright = dir.path().join("bright.toml");
     std::fs::write(&bright, BRIGHT).unwrap();
+    let bright_mirror = dir.path().join("bright-mirror.toml");
+    std::fs::write(&bright_mirror, crate::compare_rays_mistakes::BRIGHT_MIRROR).unwrap();
     let scene_of = |mistake: &str| match mistake {
         "shadows-past-light" | "no-light-attenuation" => "scenes/attenuation.toml".to_string(),
         "byte-wrap" => path(&bright).to_string(),
+        "clamp-before-adding" => path(&bright_mirror).to_string(),
         _ => SCENE.to_string(),
     };
     for mistake in raystep::mistakes::Mistake::ALL {

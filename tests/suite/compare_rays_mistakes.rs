@@ -511,8 +511,9 @@ fn a_nan_from_a_negative_cosine_to_a_fractional_power_is_named() {
     assert_eq!(report.later_differences, 2);
 }
 
-/// A mistake of the catalogue, a pixel of a scene of scenes/ at 32x24
-/// where it acts, and the path and field where it first acts.
+/// A mistake of the catalogue, a pixel of a scene of scenes/ (or
+/// `BRIGHT_MIRROR`) at 32x24 where it acts, and the path and field where it
+/// first acts.
 struct Row {
     mistake: Mistake,
     scene: &'static str,
@@ -681,6 +682,91 @@ fn rows() -> Vec<Row> {
             "dir",
             "yours crosses the image at (12, 6) in pixel units; ours at (12.5, 6.5)",
         ),
+        // P's shadow rays leave the ball outwards and rounding keeps them
+        // clear of it, and P/R leaves it outwards and misses; P/T, which
+        // starts on the surface it has just crossed, finds that surface
+        // again at t ≈ 6e-15 once t > 0 is accepted.
+        row(
+            Mistake::NoEpsilon,
+            "glass",
+            (12, 6),
+            "P/T",
+            "t",
+            "a hit must lie at t > EPS = 1e-4",
+        ),
+        // P's first light (N·L = 0.873, unblocked): the shadow ray is cast
+        // along the unit L as before, so N·L = d_L × ours first shows in
+        // P's diffuse[0].
+        row(
+            Mistake::LightNotNormalised,
+            "glass",
+            (12, 6),
+            "P",
+            "diffuse[0]",
+            "d_L = 7.8202: L = P_L − p not normalised",
+        ),
+        // P/R, the first reflected ray, goes the other way.
+        row(
+            Mistake::ReflectionSign,
+            "glass",
+            (12, 6),
+            "P/R",
+            "dir",
+            "yours is −1 × ours",
+        ),
+        // Entering (P) N = N_g: nothing changes. Rays leave the ball at
+        // P/T, P/T/R and P/T/R/R (no TIR at any); in the tracer's order,
+        // reflected subtrees first, the first transmitted ray out of the
+        // glass is P/T/R/R/T.
+        row(
+            Mistake::RefractionOutwardNormal,
+            "glass",
+            (12, 6),
+            "P/T/R/R/T",
+            "dir",
+            "(N_g when leaving), and the same η",
+        ),
+        // Every light faces the hits of P, P/T and P/T/R; at P/T/R/R both
+        // are behind the surface (N·L = −0.805 and −0.699): |N·L| casts
+        // P/T/R/R/S0, which ours does not.
+        row(
+            Mistake::TwoSidedDiffuse,
+            "glass",
+            (12, 6),
+            "P/T/R/R/S0",
+            "ray",
+            "ours never casts this ray",
+        ),
+        // bright-mirror (18, 18): P hits the mirror floor, whose own light
+        // is below 1; P/R hits the white ball where a lamp of 2.5 makes its
+        // local colour 1.44, clamped to 1: P/R's colour.
+        row(
+            Mistake::ClampBeforeAdding,
+            "bright-mirror",
+            (18, 18),
+            "P/R",
+            "color",
+            "yours is 0.6934 × ours",
+        ),
+        // P's first light is d_L = 7.82 away; the scene has no attenuation,
+        // so f_att = 1 / 7.82² in place of 1, first in P's diffuse[0].
+        row(
+            Mistake::InverseSquare,
+            "glass",
+            (12, 6),
+            "P",
+            "diffuse[0]",
+            "1/d_L² (d_L = 7.8202)",
+        ),
+        // s = tan 40° in place of tan 20°: the rays of an 80° field of view.
+        row(
+            Mistake::FovFullAngle,
+            "glass",
+            (12, 6),
+            "P",
+            "dir",
+            "vertical field of view of 80° (ours 40°",
+        ),
     ]
 }
 
@@ -693,7 +779,41 @@ fn log_under(scene: &Scene, mistakes: Mistakes, (x, y): (u32, u32)) -> String {
     raylog(&record_pixel(scene, &settings, x, y))
 }
 
+/// A white ball (k_d 1) above a mirror floor (k_d 0.2, k_s 0.7), lit from
+/// the side by a lamp of 2.5: the ball's lit side is brighter than 1, and
+/// the mirror shows it.
+pub(crate) const BRIGHT_MIRROR: &str = r#"
+    [camera]
+    eye = [0, 1, 5]
+    look_at = [0, -0.5, 0]
+    [image]
+    width = 64
+    height = 48
+    [materials.white]
+    kd = 1
+    [materials.mirror]
+    kd = 0.2
+    ks = 0.7
+    [[light]]
+    position = [4, 0, 4]
+    color = [2.5, 2.5, 2.5]
+    [[object]]
+    name = "ball"
+    material = "white"
+    sphere = { center = [0, 0.3, 0], radius = 1 }
+    [[object]]
+    name = "mirror"
+    material = "mirror"
+    plane = { normal = [0, 1, 0], point = [0, -1, 0] }
+"#;
+
+/// A scene of scenes/ at 32x24, or `BRIGHT_MIRROR` at 32x24 for "bright-mirror".
 fn scene_of(name: &str) -> Scene {
+    if name == "bright-mirror" {
+        return scene(BRIGHT_MIRROR)
+            .with_size(32, 24)
+            .expect("a valid size");
+    }
     let path = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
     scene_at(Path::new(&path), Some((32, 24)))
 }

@@ -292,6 +292,281 @@ fn depth_off_by_one_stops_a_level_early() {
     assert_eq!((right.nodes.len(), wrong.nodes.len()), (3, 2));
 }
 
+#[test]
+fn no_epsilon_lets_a_mirror_reflect_off_itself() {
+    // The floor of `shadow_acne_lets_the_floor_shadow_itself`, a mirror now
+    // (k_s 0.5): the point is (0, 0.099999999999999978, 0), just below the
+    // plane's y = 0.1000000000000000055. N = (0, 1, 0), R = d - 2 (d·N) N
+    // = (0, -1, 0) + 2 (0, 1, 0) = (0, 1, 0): straight up, from below the
+    // plane, which it meets at t = 2.8e-17. Correct: that is below EPS, P/R
+    // misses. no-epsilon: P/R hits the floor itself there; the shadow ray,
+    // as under shadow-acne, is blocked by the floor (S = 0).
+    let s = scene(
+        "[camera]
+        eye = [0, 1, 0]
+        look_at = [0, 0, 0]
+        up = [0, 0, -1]
+        [materials.floor]
+        kd = 1
+        ks = 0.5
+        [[light]]
+        position = [0, 5, 0]
+        [[object]]
+        material = \"floor\"
+        plane = { normal = [0, 1, 0], point = [0, 0.1, 0] }",
+    );
+    let [right, wrong] = both(&s, Mistake::NoEpsilon, DOWN.0, DOWN.1);
+    let reflected = |tree: &RayTree| {
+        let id = tree.root().reflected.expect("a reflected ray");
+        (tree.nodes[id].direction, tree.nodes[id].hit.clone())
+    };
+    let (direction, hit) = reflected(&right);
+    assert_eq!(direction, DVec3::Y);
+    assert!(hit.is_none());
+    let (direction, hit) = reflected(&wrong);
+    assert_eq!(direction, DVec3::Y);
+    let hit = hit.expect("the floor again");
+    assert_eq!(hit.object_index, 0);
+    assert!(hit.t > 0.0 && hit.t < 1e-16, "{}", hit.t);
+    assert_eq!(lit(&right), (Some(1.0), 1.0));
+    assert_eq!(lit(&wrong), (Some(0.0), 0.0));
+}
+
+#[test]
+fn light_not_normalised_scales_n_dot_l_by_the_distance() {
+    // Floor y = 0 seen from straight above, V = (0, 1, 0); k_d = 1, k_s = 1,
+    // n = 1; light at (0, 3, 4): P_L - p = (0, 3, 4), d_L = 5.
+    // Correct: L = (0, 0.6, 0.8), N·L = 0.6, diffuse 0.6; L + V =
+    // (0, 1.6, 0.8), |.| = √3.2, N·H = 1.6 / √3.2 = 0.894427.
+    // light-not-normalised: N·L = 3, diffuse 3; L + V = (0, 4, 4),
+    // N·H = 4 / √32 = √(1/2) = 0.707107. The shadow ray still goes along
+    // the unit (0, 0.6, 0.8).
+    let s = scene(
+        "[camera]
+        eye = [0, 1, 0]
+        look_at = [0, 0, 0]
+        up = [0, 0, -1]
+        [materials.shiny]
+        kd = 1
+        ks = 1
+        n = 1
+        [[light]]
+        position = [0, 3, 4]
+        [[object]]
+        material = \"shiny\"
+        plane = { normal = [0, 1, 0], point = [0, 0, 0] }",
+    );
+    let [right, wrong] = both(&s, Mistake::LightNotNormalised, DOWN.0, DOWN.1);
+    let (r, w) = (&right.root().lights[0], &wrong.root().lights[0]);
+    assert!(close(r.n_dot_l, 0.6) && close(r.diffuse.x, 0.6));
+    assert!(close(r.specular_cosine, 1.6 / 3.2f64.sqrt()));
+    assert!(close(w.n_dot_l, 3.0) && close(w.diffuse.x, 3.0));
+    assert!(close(w.specular_cosine, SQRT_HALF));
+    assert_eq!(w.to_light, DVec3::new(0.0, 3.0, 4.0));
+    let shadow = w.shadow.as_ref().unwrap();
+    assert!((shadow.direction - DVec3::new(0.0, 0.6, 0.8)).length() < 1e-15);
+}
+
+#[test]
+fn reflection_sign_sends_the_reflected_ray_back_through_the_mirror() {
+    // The glass plane y = 0 (k_s 0.2) hit at 45°: d = (a, -a, 0), a = √(1/2),
+    // N = (0, 1, 0). R = d - 2 (d·N) N = (a, -a, 0) + 2a (0, 1, 0) = (a, a, 0).
+    // reflection-sign: 2 (d·N) N - d = (-a, -a, 0), down through the plane.
+    let [right, wrong] = both(
+        &glass_plane(),
+        Mistake::ReflectionSign,
+        [-1.0, 1.0, 0.0],
+        [SQRT_HALF, -SQRT_HALF, 0.0],
+    );
+    let reflected = |tree: &RayTree| tree.nodes[tree.root().reflected.unwrap()].direction;
+    assert!((reflected(&right) - DVec3::new(SQRT_HALF, SQRT_HALF, 0.0)).length() < 1e-15);
+    assert!((reflected(&wrong) - DVec3::new(-SQRT_HALF, -SQRT_HALF, 0.0)).length() < 1e-15);
+}
+
+#[test]
+fn refraction_outward_normal_turns_the_ray_leaving_a_ball_back_in() {
+    // A water ball (ior 4/3, k_t 1) at the origin, the ray down -z at
+    // height 0.8. It enters at p = (0, 0.8, 0.6) (t = 4.4), N = N_g = p:
+    // cos_i = 0.6, eta = 0.75, k = 1 - 0.5625 (0.64) = 0.64,
+    // T = 0.75 d + (0.45 - 0.8) N = (0, -0.28, -0.96), the same both ways.
+    // It leaves at q = (0, 0.352, -0.936) (t = 1.6): N_g = q, N = -q.
+    // Correct: cos_i = -T·N = 0.8, eta = 4/3, k = 1 - (16/9) 0.36 = 0.36,
+    // T' = (4/3) T + ((4/3) 0.8 - 0.6) N = (0, -0.5376, -0.8432).
+    // refraction-outward-normal: cos_i = -T·N_g = -0.8, k = 0.36,
+    // T' = (4/3) T + (-(4/3) 0.8 - 0.6) q = (0, -0.96, 0.28): back inside.
+    let s = scene(
+        "[camera]
+        eye = [0, 0.8, 5]
+        look_at = [0, 0.8, 0]
+        [materials.water]
+        kd = 0
+        kt = 1
+        ior = 1.3333333333333333
+        [[object]]
+        material = \"water\"
+        sphere = { center = [0, 0, 0], radius = 1 }",
+    );
+    let [right, wrong] = both(
+        &s,
+        Mistake::RefractionOutwardNormal,
+        [0.0, 0.8, 5.0],
+        [0.0, 0.0, -1.0],
+    );
+    let leaving = |tree: &RayTree| {
+        let inside = tree.root().transmitted.expect("into the ball");
+        let node = &tree.nodes[inside];
+        (
+            node.refraction.unwrap(),
+            tree.nodes[node.transmitted.unwrap()].direction,
+        )
+    };
+    let (refraction, out) = leaving(&right);
+    assert!((refraction.cos_i - 0.8).abs() < 1e-9);
+    assert!((out - DVec3::new(0.0, -0.5376, -0.8432)).length() < 1e-9);
+    let (refraction, out) = leaving(&wrong);
+    assert!((refraction.cos_i + 0.8).abs() < 1e-9 && (refraction.k - 0.36).abs() < 1e-9);
+    assert!((out - DVec3::new(0.0, -0.96, 0.28)).length() < 1e-9);
+}
+
+#[test]
+fn two_sided_diffuse_lights_a_wall_from_behind() {
+    // The wall z = 0 (k_d 0.5) seen from (0, 0, 5), the light behind it at
+    // (0, 3, -4): L = (0, 0.6, -0.8), N = (0, 0, 1), N·L = -0.8. Correct:
+    // the light faces away, no shadow ray, diffuse 0. two-sided-diffuse:
+    // |N·L| = 0.8, a shadow ray (nothing in the way, S = 1), diffuse 0.4.
+    let s = scene(
+        "[camera]
+        eye = [0, 0, 5]
+        look_at = [0, 0, 0]
+        [materials.chalk]
+        kd = 0.5
+        [[light]]
+        position = [0, 3, -4]
+        [[object]]
+        material = \"chalk\"
+        plane = { normal = [0, 0, 1], point = [0, 0, 0] }",
+    );
+    let [right, wrong] = both(
+        &s,
+        Mistake::TwoSidedDiffuse,
+        [0.0, 0.0, 5.0],
+        [0.0, 0.0, -1.0],
+    );
+    let (r, w) = (&right.root().lights[0], &wrong.root().lights[0]);
+    assert!(r.faces_away && r.shadow.is_none() && r.diffuse.x == 0.0);
+    assert!(close(r.n_dot_l, -0.8));
+    assert!(!w.faces_away && close(w.n_dot_l, 0.8) && close(w.diffuse.x, 0.4));
+    assert_eq!(w.shadow.as_ref().map(|s| s.s), Some(1.0));
+}
+
+#[test]
+fn a_light_straight_behind_the_point_counted_by_a_mistake_gives_n_dot_h_zero() {
+    // The wall z = 0 (k_d = k_s = 0.5) seen from (0, 0, 5), V = (0, 0, 1);
+    // the light at (0, 0, -4), straight behind the point: L = (0, 0, -1),
+    // L + V = 0. two-sided-diffuse counts it (|N·L| = 1), and so does
+    // no-normal-flip on the wall turned round (N_g = (0, 0, -1), N_g·L =
+    // 1): H = normalize(0) would be NaN; it is 0, so N·H = 0 and the
+    // specular term 0, and the JSON recording holds only finite numbers.
+    for (normal, mistake) in [
+        ("[0, 0, 1]", Mistake::TwoSidedDiffuse),
+        ("[0, 0, -1]", Mistake::NoNormalFlip),
+    ] {
+        let s = scene(&format!(
+            "[camera]
+            eye = [0, 0, 5]
+            look_at = [0, 0, 0]
+            [materials.chalk]
+            kd = 0.5
+            ks = 0.5
+            [[light]]
+            position = [0, 0, -4]
+            [[object]]
+            material = \"chalk\"
+            plane = {{ normal = {normal}, point = [0, 0, 0] }}"
+        ));
+        let [_, wrong] = both(&s, mistake, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+        let light = &wrong.root().lights[0];
+        assert!(!light.faces_away, "{mistake}");
+        assert_eq!(light.specular_cosine, 0.0, "{mistake}");
+        assert_eq!(light.specular, DVec3::ZERO, "{mistake}");
+        assert!(close(light.diffuse.x, 0.5), "{mistake}");
+    }
+}
+
+#[test]
+fn clamp_before_adding_clamps_a_reflected_surface_before_it_is_weighed() {
+    // A mirror floor y = 0 (k_d 0, k_s 0.5) under a wall z = -2 of k_d 1 lit
+    // head-on by a light of 3 at (0, 1, 3); the eye at (0, 1, 1) looks down
+    // at 45° to the floor's origin. P/R goes along (0, a, -a), a = √(1/2),
+    // and meets the wall at (0, 2, -2): L = (0, -1, 5) / √26, N·L = 5/√26,
+    // diffuse = 3 × 5/√26 = 2.941742, its local colour. Correct: the floor
+    // gets 0.5 × 2.941742 = 1.470871. clamp-before-adding: the wall's colour
+    // is min(1, 2.941742) = 1, the floor gets 0.5. The floor's own local
+    // colour is 0 (k_d 0, k_s's highlight is not towards the eye: N·H < 1
+    // raised to n = 20 is small but not 0), so its clamp changes nothing.
+    let s = scene(
+        "[camera]
+        eye = [0, 1, 1]
+        look_at = [0, 0, 0]
+        [materials.mirror]
+        kd = 0
+        ks = 0.5
+        n = 1000000
+        [materials.wall]
+        kd = 1
+        [[light]]
+        position = [0, 1, 3]
+        color = [3, 3, 3]
+        [[object]]
+        material = \"mirror\"
+        plane = { normal = [0, 1, 0], point = [0, 0, 0] }
+        [[object]]
+        material = \"wall\"
+        plane = { normal = [0, 0, 1], point = [0, 0, -2] }",
+    );
+    let a = SQRT_HALF;
+    let [right, wrong] = both(
+        &s,
+        Mistake::ClampBeforeAdding,
+        [0.0, 1.0, 1.0],
+        [0.0, -a, -a],
+    );
+    let wall = 3.0 * 5.0 / 26f64.sqrt();
+    let r_wall = &right.nodes[right.root().reflected.unwrap()];
+    assert!(close(r_wall.lights[0].diffuse.x, wall));
+    assert!(close(r_wall.color.x, wall));
+    assert!(close(right.color().x, 0.5 * wall), "{}", right.color().x);
+    let w_wall = &wrong.nodes[wrong.root().reflected.unwrap()];
+    // The terms as computed; the colour clamped.
+    assert!(close(w_wall.lights[0].diffuse.x, wall));
+    assert_eq!(w_wall.color.x, 1.0);
+    assert!(close(wrong.color().x, 0.5), "{}", wrong.color().x);
+}
+
+#[test]
+fn inverse_square_makes_f_att_one_over_d_squared() {
+    // The light 5 above the floor, the scene's attenuation (1, 0, 0): f_att
+    // = 1, diffuse 1. inverse-square: f_att = min(1, 1 / 5²) = 0.04,
+    // diffuse 0.04. With (0, 0, 1) given by the scene it changes nothing.
+    let s = floor("0", "", "");
+    let [right, wrong] = both(&s, Mistake::InverseSquare, DOWN.0, DOWN.1);
+    let (r, w) = (&right.root().lights[0], &wrong.root().lights[0]);
+    assert_eq!((r.f_att, r.diffuse.x), (1.0, 1.0));
+    assert!(close(w.f_att, 0.04) && close(w.diffuse.x, 0.04));
+    let s = floor("0", "light_attenuation = [0, 0, 1]", "");
+    let [right, wrong] = both(&s, Mistake::InverseSquare, DOWN.0, DOWN.1);
+    assert_eq!(right.root().lights[0].f_att, wrong.root().lights[0].f_att);
+    // A light half a unit away: 1 / 0.25 = 4, kept at 1 by the min.
+    let s = floor("4.5", "", "");
+    let [_, wrong] = both(
+        &s,
+        Mistake::InverseSquare,
+        [0.0, 4.9, 0.0],
+        [0.0, -1.0, 0.0],
+    );
+    assert_eq!(wrong.root().lights[0].f_att, 1.0);
+}
+
 /// A white ball filling a 1 x 1 image, no lights, ambient `ambient`: the
 /// pixel's colour is the ambient term itself.
 fn ambient_ball(ambient: &str) -> Scene {
@@ -396,6 +671,28 @@ fn pixel_corner_traces_through_the_top_left_corner() {
     assert_eq!(right, DVec3::new(0.0, 0.0, -1.0));
     let wrong = primary_direction(&s, Mistake::PixelCorner, 0, 0);
     assert!((wrong - DVec3::new(-1.0, 1.0, -1.0) / 3f64.sqrt()).length() < 1e-15);
+}
+
+#[test]
+fn fov_full_angle_takes_the_tangent_of_the_whole_angle() {
+    // 1 x 2, fov 60. Row 0: py = 0.5 s. Correct: s = tan 30° = 1/√3,
+    // direction (0, 0.5/√3, -1) / |.|. fov-full-angle: s = tan 60° = √3,
+    // direction (0, 0.5 √3, -1) / |.| = (0, 0.866025, -1) / √1.75.
+    let s = scene(
+        "[camera]
+        eye = [0, 0, 0]
+        look_at = [0, 0, -1]
+        fov = 60
+        [image]
+        width = 1
+        height = 2",
+    );
+    let right = record_pixel(&s, &s.settings, 0, 0).root().direction;
+    let py = 0.5 / 3f64.sqrt();
+    assert!((right - DVec3::new(0.0, py, -1.0) / (1.0 + py * py).sqrt()).length() < 1e-15);
+    let wrong = primary_direction(&s, Mistake::FovFullAngle, 0, 0);
+    let py = 0.5 * 3f64.sqrt();
+    assert!((wrong - DVec3::new(0.0, py, -1.0) / 1.75f64.sqrt()).length() < 1e-15);
 }
 
 #[test]

@@ -3,8 +3,9 @@
 //! alone (never from raystep's source), prints its rays for a few pixels.
 //! Without a mistake every logged pixel must match raystep's tree: the
 //! strongest check we have that MODEL.md is a complete contract. With each
-//! of its `--mistake`s (student slips outside raystep's catalogue), the
-//! first divergence must be the ray and the number where the slip acts.
+//! of its `--mistake`s (student slips, some of them in raystep's catalogue
+//! since issue 22), the first divergence must be the ray and the number
+//! where the slip acts, and a slip the catalogue holds is named by it.
 
 use std::process::Command;
 
@@ -154,6 +155,38 @@ fn assert_first(scene: &str, pixel: (u32, u32), mistake: &str, expected: [&str; 
     let found = [text("path"), text("field"), text("kind")];
     assert_eq!(found, expected, "{mistake}: {}", text("words"));
     text("words").to_string()
+}
+
+#[test]
+fn the_student_slips_the_catalogue_holds_are_named_at_tree_level() {
+    if !python_available() {
+        return;
+    }
+    // Pixel 72,45 of glass.toml, as below. Each slip is the catalogue's
+    // mistake as MODEL §8 defines it, so raystep's tree under that mistake
+    // is the student's log, ray for ray.
+    let glass = "scenes/glass.toml";
+    let named = |slip: &str| -> Vec<String> {
+        let report = compare(glass, &student_log(glass, (72, 45), (1, 1), &[slip]));
+        report["pixels"][0]["mistakes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m["name"].as_str().unwrap().to_string())
+            .collect()
+    };
+    for (slip, mistake) in [
+        ("reflect-sign", "reflection-sign"),
+        ("outward-normal", "refraction-outward-normal"),
+        ("abs-ndotl", "two-sided-diffuse"),
+        ("no-epsilon", "no-epsilon"),
+    ] {
+        assert_eq!(named(slip), [mistake], "{slip}");
+    }
+    // The student's unnormalised L also sets their shadow ray's direction
+    // (and its t); light-not-normalised keeps the shadow ray on the unit
+    // L, so no catalogue mistake gives this log.
+    assert!(named("unnormalised-l").is_empty());
 }
 
 #[test]

@@ -138,14 +138,14 @@ mod tests {
     fn every_mistake_has_a_line_with_its_state_and_summary() {
         let on = Mistakes::NONE.with(Mistake::NoAmbient);
         let lines = lines(&Mistake::ALL, on, 0, &[ranked(Mistake::NoAmbient, 0.996)]);
-        assert_eq!(lines.len(), 14);
+        assert_eq!(lines.len(), 22);
         // Row 9 of the catalogue is no-ambient: on, ranked first, 99.6% ->
-        // 100%; the name padded to 22 (no-light-attenuation's 20, and 2).
+        // 100%; the name padded to 27 (refraction-outward-normal's 25, and 2).
         assert_eq!(
             text(&lines[9]),
-            " [x] no-ambient            no ambient term  #1 explains 100% "
+            " [x] no-ambient                 no ambient term  #1 explains 100% "
         );
-        assert!(text(&lines[7]).starts_with(" [ ] no-light-attenuation  lights not"));
+        assert!(text(&lines[7]).starts_with(" [ ] no-light-attenuation       lights not"));
         assert!(text(&lines[0]).starts_with(" [ ] shadow-acne "));
         assert!(text(&lines[0]).contains(Mistake::ShadowAcne.summary()));
     }
