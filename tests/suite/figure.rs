@@ -398,3 +398,57 @@ fn planes_are_named() {
         assert!(svg.contains(&format!(">{name}</text>")), "{case:?}: {svg}");
     }
 }
+
+#[test]
+fn diff_against_is_refused_and_set_draws_the_changed_scene() {
+    // Before, `diagram --diff-against` was accepted, ignored, and its help
+    // promised a text no figure has. Now clap refuses it (exit 2), nothing
+    // is written, and diagram's help names neither it nor a text.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("diff.svg");
+    let args = ["diagram", "scenes/glass.toml", "--pixel", "135,58"];
+    let with = |extra: &[&str]| {
+        let mut all = args.to_vec();
+        all.extend_from_slice(extra);
+        all.extend(["-o", out.to_str().unwrap()]);
+        raystep(&all)
+    };
+    let output = with(&["--diff-against", "scenes/prism.toml"]);
+    assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("error: invalid value")
+            && stderr(&output).contains("diagram takes no --diff-against"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(!out.exists(), "nothing written");
+    let help = crate::support::stdout(&raystep(&["diagram", "--help"]));
+    assert!(!help.contains("--diff-against"), "{help}");
+    assert!(!help.contains("the text"), "{help}");
+    assert!(
+        help.contains("the figure is drawn with the changed scene"),
+        "{help}"
+    );
+    // --set is drawn: at max_depth 1 the primary ray alone is cast (no
+    // reflected or transmitted ray), so the figure has its one ray, its
+    // normal, its shadow rays (the recording's, at depth 1), the dotted
+    // lines to lights facing away, and the legend's eight lines.
+    let output = with(&["--set", "settings.max_depth=1"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let mut scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    scene.settings.max_depth = 1;
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    assert_eq!(tree.nodes.len(), 1);
+    let lights = &tree.root().lights;
+    let shadows = lights.iter().filter(|l| l.shadow.is_some()).count();
+    let away = lights.iter().filter(|l| l.faces_away).count();
+    let legend = if away > 0 { 8 } else { 7 };
+    let partial = (lights.iter().filter_map(|l| l.shadow.as_ref())).any(|s| s.s > 0.0 && s.s < 1.0);
+    let legend = legend - usize::from(!partial);
+    assert_eq!(
+        svg.matches("<line ").count(),
+        1 + 1 + shadows + away + legend,
+        "{svg}"
+    );
+}
