@@ -452,3 +452,72 @@ fn diff_against_is_refused_and_set_draws_the_changed_scene() {
         "{svg}"
     );
 }
+
+#[test]
+fn the_title_names_the_scene_pixel_plane_mistakes_and_sets() {
+    // Before, the figure's only title was "Pixel (135, 58), from above
+    // (in the camera's frame)": no scene, and nothing of a --mistake or
+    // --set it was drawn with. Now the SVG's <title> (its first child) and
+    // its heading name them all, for each plane and the crossing figure.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("titled.svg");
+    for (scene, pixel, plane, view) in [
+        (
+            "glass",
+            "135,58",
+            "top",
+            "from above (in the camera's frame)",
+        ),
+        (
+            "glass",
+            "135,58",
+            "side",
+            "from the right (in the camera's frame)",
+        ),
+        (
+            "glass",
+            "135,58",
+            "ray",
+            "primary ray's plane (in the camera's frame)",
+        ),
+        (
+            "polygons",
+            "40,54",
+            "crossing",
+            "the crossing test of star (#2), passed by the primary ray",
+        ),
+    ] {
+        let file = format!("scenes/{scene}.toml");
+        let output = raystep(&[
+            "diagram",
+            &file,
+            "--pixel",
+            pixel,
+            "--plane",
+            plane,
+            "--mistake",
+            "tir-dropped",
+            "--mistake",
+            "no-ambient",
+            "--set",
+            "settings.max_depth=3",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let svg = std::fs::read_to_string(&out).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let first = doc.root_element().first_element_child().unwrap();
+        assert_eq!(first.tag_name().name(), "title", "{plane}");
+        let words = format!(
+            "{scene}.toml, pixel ({}), {view}; drawn with --mistake tir-dropped, \
+             --mistake no-ambient, --set settings.max_depth=3",
+            pixel.replace(',', ", ")
+        );
+        assert_eq!(first.text(), Some(words.as_str()), "{plane}");
+        let heading = (doc.descendants())
+            .find(|n| n.has_tag_name("text"))
+            .and_then(|n| n.text());
+        assert_eq!(heading, Some(words.as_str()), "{plane}");
+    }
+}
