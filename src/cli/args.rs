@@ -106,6 +106,19 @@ pub(crate) struct DiagramArgs {
     /// Not for `crossing`.
     #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = zoom_factor, allow_hyphen_values = true)]
     pub(crate) zoom: f64,
+    /// Which shadow rays are drawn, for a slide about something else:
+    /// every hit's (`all`), only the primary ray's hit's (`primary`), or
+    /// none (`none`, nor the blockers' × and the dotted lines to lights
+    /// facing away).
+    #[arg(long, value_enum, default_value_t = ShadowsArg::All)]
+    pub(crate) shadows: ShadowsArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ShadowsArg {
+    All,
+    Primary,
+    None,
 }
 
 /// `diagram --diff-against`: always refused, saying what to do instead.

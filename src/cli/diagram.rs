@@ -4,15 +4,16 @@
 use std::process::ExitCode;
 
 use anyhow::{Result, bail};
+use clap::ValueEnum;
 
 use super::recorded::record;
-use super::{DiagramArgs, PlaneArg};
+use super::{DiagramArgs, PlaneArg, ShadowsArg};
 use crate::diagram::svg::Caption;
 use crate::output::{self, Target};
 use crate::record::RayTree;
 
 pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
-    use crate::diagram::{Diagram, DiagramPlane, Progress, svg};
+    use crate::diagram::{Diagram, DiagramPlane, Progress, Shadows, svg};
     let target = output::file(&args.output)?;
     output::refuse_clashes(
         &args.pixel.scene,
@@ -23,6 +24,11 @@ pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
             "--zoom magnifies the top, side and ray diagrams; the crossing figure is always fitted to its polygon"
         );
     }
+    if args.plane == PlaneArg::Crossing && args.shadows != ShadowsArg::All {
+        bail!(
+            "--shadows chooses the top, side and ray diagrams' shadow rays; the crossing figure has none"
+        );
+    }
     let recorded = record(&args.pixel)?;
     let plane = match args.plane {
         PlaneArg::Top => DiagramPlane::Top,
@@ -31,8 +37,13 @@ pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
         PlaneArg::Crossing => return crossing_figure(&recorded.tree, &target, &caption(args)),
     };
     let (scene, tree) = (&recorded.scene, &recorded.tree);
+    let shadows = match args.shadows {
+        ShadowsArg::All => Shadows::All,
+        ShadowsArg::Primary => Shadows::Primary,
+        ShadowsArg::None => Shadows::None,
+    };
     let figure = svg::slide(
-        &Diagram::new(scene, tree, plane, Progress::done(tree)),
+        &Diagram::new(scene, tree, plane, Progress::done(tree)).with_shadows(shadows),
         args.zoom,
         &caption(args),
     );
@@ -74,5 +85,12 @@ fn caption(args: &DiagramArgs) -> Caption {
             .map(|m| format!("--mistake {}", m.name())),
     );
     options.extend(pixel.set.iter().map(|s| format!("--set {s}")));
+    if args.shadows != ShadowsArg::All {
+        let value = args
+            .shadows
+            .to_possible_value()
+            .map(|v| v.get_name().to_owned());
+        options.push(format!("--shadows {}", value.unwrap_or_default()));
+    }
     Caption { scene, options }
 }

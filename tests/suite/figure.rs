@@ -521,3 +521,97 @@ fn the_title_names_the_scene_pixel_plane_mistakes_and_sets() {
         assert_eq!(heading, Some(words.as_str()), "{plane}");
     }
 }
+
+#[test]
+fn shadows_primary_or_none_leave_shadow_rays_out() {
+    // glass.toml 135,58 draws 10 shadow rays (2 lights at 5 hits) and 2
+    // dotted lines to lights facing away with --shadows all (as before).
+    // --shadows primary keeps the primary ray's hit's (node 0's) alone;
+    // none keeps none, no blocker's × and no dotted line, and the legend
+    // drops the shadow rays' rows. Each count below is the recording's.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shadows.svg");
+    let draw = |shadows: &str| {
+        let output = raystep(&[
+            "diagram",
+            "scenes/glass.toml",
+            "--pixel",
+            "135,58",
+            "--shadows",
+            shadows,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    let hits = tree.nodes.iter().filter(|n| n.hit.is_some()).count();
+    let lights = |nodes: &[raystep::record::Node]| {
+        let lights: Vec<_> = nodes.iter().flat_map(|n| &n.lights).collect();
+        let shadows: Vec<_> = lights.iter().filter_map(|l| l.shadow.as_ref()).collect();
+        (
+            shadows.len(),
+            lights.iter().filter(|l| l.faces_away).count(),
+            shadows.iter().map(|s| s.blockers.len()).sum::<usize>(),
+            shadows.iter().any(|s| s.s > 0.0 && s.s < 1.0),
+        )
+    };
+    let all = lights(&tree.nodes);
+    assert_eq!((all.0, all.1), (10, 2), "the pixel as described");
+    let primary = lights(&tree.nodes[..1]);
+    assert!(primary.0 < all.0 && primary.0 > 0);
+    let crosses = |svg: &str| svg.matches("l8 8m0 -8l-8 8").count();
+    let dotted = |svg: &str| svg.matches("stroke-dasharray=\"2 4\"").count();
+    // Rays and normals, then shadow rays and dotted lines; the legend's
+    // lines: primary, reflected, transmitted, normal, the shadow rays' lit
+    // and blocked, partly blocked and dotted when drawn.
+    let legend = |(_, away, _, partial): (usize, usize, usize, bool), shadows: bool| {
+        4 + 2 * usize::from(shadows) + usize::from(partial) + usize::from(away > 0)
+    };
+    let whole = tree.nodes.len() + hits;
+    let svg = draw("all");
+    assert_eq!(
+        svg.matches("<line ").count(),
+        whole + all.0 + all.1 + legend(all, true)
+    );
+    assert_eq!((crosses(&svg), dotted(&svg)), (all.2, all.1 + 1));
+    let svg = draw("primary");
+    assert_eq!(
+        svg.matches("<line ").count(),
+        whole + primary.0 + primary.1 + legend(primary, true),
+        "{svg}"
+    );
+    assert_eq!(crosses(&svg), primary.2);
+    assert_eq!(dotted(&svg), primary.1 + usize::from(primary.1 > 0));
+    assert!(svg.contains("drawn with --shadows primary</title>"));
+    let svg = draw("none");
+    assert_eq!(svg.matches("<line ").count(), whole + 4, "{svg}");
+    assert_eq!((crosses(&svg), dotted(&svg)), (0, 0));
+    assert!(!svg.contains("shadow ray"), "{svg}");
+    // The glass block's front face only blocks shadow rays (no ray hits
+    // it): without them it is not drawn or named.
+    let front = (scene.objects.iter())
+        .position(|o| o.name == "glass block front")
+        .unwrap();
+    let hit = |n: &raystep::record::Node| n.hit.as_ref().map(|h| h.object_index);
+    assert!(tree.nodes.iter().all(|n| hit(n) != Some(front)));
+    assert!(draw("all").contains(">glass block front</text>"));
+    assert!(!draw("none").contains("glass block front"));
+    // The crossing figure has no shadow rays: refused, not ignored.
+    let output = raystep(&[
+        "diagram",
+        "scenes/polygons.toml",
+        "--pixel",
+        "40,54",
+        "--plane",
+        "crossing",
+        "--shadows",
+        "none",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("the crossing figure has none"));
+}

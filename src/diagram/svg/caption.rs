@@ -13,12 +13,12 @@ const FIGURE_WIDTH: f64 = 800.0;
 
 /// How a figure was drawn, as `raystep diagram` was told.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Caption {
+pub(crate) struct Caption {
     /// The scene file's name.
-    pub scene: String,
+    pub(crate) scene: String,
     /// Each option that changed the figure, as given: `--mistake NAME`,
     /// `--set KEY=VALUE`, `--size WxH`, `--shadows ...`.
-    pub options: Vec<String>,
+    pub(crate) options: Vec<String>,
 }
 
 impl Caption {

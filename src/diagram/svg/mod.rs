@@ -17,7 +17,7 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
-pub use self::caption::Caption;
+pub(crate) use self::caption::Caption;
 use self::labels::{Box2, Labels, clip};
 use self::plane_map::{PlaneMap, label_anchor, outline_segments, write_outline};
 use super::{Anchor, Diagram, Named, Role, Stroke};
@@ -73,7 +73,7 @@ pub fn figure(diagram: &Diagram, zoom: f64) -> String {
 
 /// The figure of `raystep diagram`: `figure`, its title naming the scene
 /// and the options it was drawn with.
-pub fn slide(diagram: &Diagram, zoom: f64, caption: &Caption) -> String {
+pub(crate) fn slide(diagram: &Diagram, zoom: f64, caption: &Caption) -> String {
     // The projection's origin is the primary ray's first hit (the eye on a miss).
     let map = PlaneMap::fit(&diagram.extent()).zoomed(zoom, DVec2::ZERO);
 
