@@ -615,3 +615,116 @@ fn shadows_primary_or_none_leave_shadow_rays_out() {
     assert_eq!(output.status.code(), Some(1));
     assert!(stderr(&output).contains("the crossing figure has none"));
 }
+
+/// Whether the segment from `a` to `b` meets the box `[x0, y0, x1, y1]`:
+/// the segment's parameter range cut down by each side's slab.
+fn segment_meets_box(a: (f64, f64), b: (f64, f64), r: [f64; 4]) -> bool {
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (start, d, lo, hi) in [(a.0, b.0 - a.0, r[0], r[2]), (a.1, b.1 - a.1, r[1], r[3])] {
+        if d == 0.0 {
+            if start < lo || start > hi {
+                return false;
+            }
+            continue;
+        }
+        let (ta, tb) = ((lo - start) / d, (hi - start) / d);
+        t0 = t0.max(ta.min(tb));
+        t1 = t1.min(ta.max(tb));
+    }
+    t0 <= t1
+}
+
+/// Whether a circle's line passes through the box: part of the box is
+/// nearer the centre than r and part further.
+fn circle_meets_box((cx, cy, radius): (f64, f64, f64), r: [f64; 4]) -> bool {
+    let near = (cx.clamp(r[0], r[2]) - cx).hypot(cy.clamp(r[1], r[3]) - cy);
+    let far = (cx - r[0])
+        .abs()
+        .max((cx - r[2]).abs())
+        .hypot((cy - r[1]).abs().max((cy - r[3]).abs()));
+    near < radius && far > radius
+}
+
+#[test]
+fn labels_keep_off_every_outline() {
+    // Before, labels were kept off outlines only as off rays (crossing
+    // one when no ring near was free of both), and the crossing figure
+    // kept none off the polygon: "2: edge 5→6" sat across edge 5→6. Now
+    // an outline is kept clear first, further out if need be. seven-rays
+    // is drawn from above and in the ray's plane: its rays all lie in
+    // the horizontal plane through the eye and both balls' centres, so
+    // from the side every ray lies on one line.
+    let dir = tempfile::tempdir().unwrap();
+    for case in [
+        ("glass", "135,58", "top", &[][..]),
+        ("glass", "135,58", "side", &[]),
+        ("polygons", "40,54", "top", &[]),
+        ("polygons", "40,54", "crossing", &[]),
+        ("seven-rays", "80,60", "top", &[]),
+        ("seven-rays", "80,60", "ray", &[]),
+    ] {
+        let svg = reviewed(dir.path(), case);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let root = doc.root_element();
+        let number = |n: roxmltree::Node, name| n.attribute(name).unwrap().parse::<f64>().unwrap();
+        let points = |n: roxmltree::Node| -> Vec<(f64, f64)> {
+            (n.attribute("points").unwrap().split(' '))
+                .map(|p| p.split_once(',').unwrap())
+                .map(|(x, y)| (x.parse().unwrap(), y.parse().unwrap()))
+                .collect()
+        };
+        // The outlines: the clipped group's shapes, or the crossing
+        // figure's polygon (closed).
+        let mut segments = Vec::new();
+        let mut circles = Vec::new();
+        for n in root.descendants().filter(|n| n.is_element()) {
+            let outline = n
+                .parent_element()
+                .and_then(|p| p.attribute("clip-path"))
+                .is_some();
+            match n.tag_name().name() {
+                "circle" if outline => {
+                    circles.push((number(n, "cx"), number(n, "cy"), number(n, "r")))
+                }
+                "line" if outline => segments.push((
+                    (number(n, "x1"), number(n, "y1")),
+                    (number(n, "x2"), number(n, "y2")),
+                )),
+                "polyline" if outline => {
+                    let p = points(n);
+                    segments.extend(p.windows(2).map(|w| (w[0], w[1])));
+                }
+                "polygon" => {
+                    let p = points(n);
+                    let closed = p.iter().zip(p.iter().cycle().skip(1));
+                    segments.extend(closed.map(|(a, b)| (*a, *b)));
+                }
+                _ => {}
+            }
+        }
+        assert!(!segments.is_empty() || !circles.is_empty(), "{case:?}");
+        // The labels: every text between the headings (the crossing
+        // figure's three end at 64, the others' one at 24) and the legend.
+        let top = if case.2 == "crossing" { 70.0 } else { 30.0 };
+        let root_size: f64 = root.attribute("font-size").unwrap().parse().unwrap();
+        let labels = (root.descendants())
+            .filter(|n| n.has_tag_name("text"))
+            .filter(|n| (top..556.0).contains(&number(*n, "y")));
+        for label in labels {
+            let b = text_box(label, root_size);
+            let text = label.text().unwrap_or("");
+            for (a, c) in &segments {
+                assert!(
+                    !segment_meets_box(*a, *c, b),
+                    "{case:?}: {text:?} at {b:?} crosses {a:?}-{c:?}"
+                );
+            }
+            for c in &circles {
+                assert!(
+                    !circle_meets_box(*c, b),
+                    "{case:?}: {text:?} at {b:?} crosses circle {c:?}"
+                );
+            }
+        }
+    }
+}

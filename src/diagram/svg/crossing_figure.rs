@@ -106,6 +106,11 @@ pub(crate) fn svg(pixel: (u32, u32), subject: &Subject, caption: &Caption) -> St
     let mut labels = Labels::new(13.0, bounds);
     // The polygon's fill first: the +U half-line must show inside it.
     write_polygon(&mut out, &map, figure, &vertices);
+    // Its edges kept clear: "2: edge 5→6" sat across edge 5→6.
+    let corners: Vec<DVec2> = vertices.iter().map(|p| map.to_figure(*p)).collect();
+    for (i, a) in corners.iter().enumerate() {
+        labels.reserve_outline(*a, corners[(i + 1) % corners.len()]);
+    }
     write_axes(&mut out, &map, u, v, &mut labels);
     let o = map.to_figure(DVec2::ZERO);
     labels.reserve(o, 4.5);

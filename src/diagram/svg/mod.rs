@@ -94,7 +94,7 @@ pub(crate) fn slide(diagram: &Diagram, zoom: f64, caption: &Caption) -> String {
         write_outline(&mut out, &map, shape);
         for (a, b) in outline_segments(shape, &map) {
             if let Some((a, b)) = clip(a, b, FRAME) {
-                labels.reserve_ray(a, b);
+                labels.reserve_outline(a, b);
             }
         }
     }
