@@ -121,10 +121,10 @@ impl Labels {
             |lines: &[(DVec2, DVec2)], b: Box2| (lines.iter()).any(|r| clip(r.0, r.1, b).is_some());
         let fits = |corner: &DVec2, outlines: bool, rays: bool| {
             let b = text_box(*corner, size);
-            contains(self.bounds, b)
-                && !self.boxes.iter().any(|o| overlap(*o, b))
-                && !(outlines && crosses(&self.outlines, b))
-                && !(rays && crosses(&self.rays, b))
+            let blocked = self.boxes.iter().any(|o| overlap(*o, b))
+                || (outlines && crosses(&self.outlines, b))
+                || (rays && crosses(&self.rays, b));
+            contains(self.bounds, b) && !blocked
         };
         let first = |outlines, rays| (candidates.iter().copied()).find(|c| fits(c, outlines, rays));
         let further = || {
