@@ -78,7 +78,18 @@ pub(crate) enum Command {
     Diagram(DiagramArgs),
 }
 
+/// A figure draws one scene: `--diff-against` (another scene's recording,
+/// told as text by `inspect` and `explain`) is refused, not ignored, and
+/// hidden from diagram's help; `--set` draws the changed scene.
 #[derive(Args, Debug)]
+#[command(
+    mut_arg("diff_against", |a| a.hide(true).value_parser(no_diff_against)),
+    mut_arg("set", |a| a.help(
+        "What-if: change a setting or a material's number first, e.g. \
+         `settings.max_depth=2` or `materials.glass.ior=1.0` (repeatable); the \
+         figure is drawn with the changed scene, and its title names each change"
+    )),
+)]
 pub(crate) struct DiagramArgs {
     #[command(flatten)]
     pub(crate) pixel: PixelArgs,
@@ -95,6 +106,28 @@ pub(crate) struct DiagramArgs {
     /// Not for `crossing`.
     #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = zoom_factor, allow_hyphen_values = true)]
     pub(crate) zoom: f64,
+    /// Which shadow rays are drawn, for a slide about something else:
+    /// every hit's (`all`), only the primary ray's hit's (`primary`), or
+    /// none (`none`, nor the blockers' × and the dotted lines to lights
+    /// facing away).
+    #[arg(long, value_enum, default_value_t = ShadowsArg::All)]
+    pub(crate) shadows: ShadowsArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ShadowsArg {
+    All,
+    Primary,
+    None,
+}
+
+/// `diagram --diff-against`: always refused, saying what to do instead.
+fn no_diff_against(_: &str) -> std::result::Result<PathBuf, String> {
+    Err(
+        "a figure draws one scene, so diagram takes no --diff-against: \
+         draw each scene's figure, or see what changed with `raystep explain --diff-against`"
+            .to_owned(),
+    )
 }
 
 /// The largest `--zoom`: far past any slide's need, and small enough that

@@ -4,14 +4,16 @@
 use std::process::ExitCode;
 
 use anyhow::{Result, bail};
+use clap::ValueEnum;
 
 use super::recorded::record;
-use super::{DiagramArgs, PlaneArg};
+use super::{DiagramArgs, PlaneArg, ShadowsArg};
+use crate::diagram::svg::Caption;
 use crate::output::{self, Target};
 use crate::record::RayTree;
 
 pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
-    use crate::diagram::{Diagram, DiagramPlane, Progress, svg};
+    use crate::diagram::{Diagram, DiagramPlane, Progress, Shadows, svg};
     let target = output::file(&args.output)?;
     output::refuse_clashes(
         &args.pixel.scene,
@@ -22,24 +24,35 @@ pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
             "--zoom magnifies the top, side and ray diagrams; the crossing figure is always fitted to its polygon"
         );
     }
+    if args.plane == PlaneArg::Crossing && args.shadows != ShadowsArg::All {
+        bail!(
+            "--shadows chooses the top, side and ray diagrams' shadow rays; the crossing figure has none"
+        );
+    }
     let recorded = record(&args.pixel)?;
     let plane = match args.plane {
         PlaneArg::Top => DiagramPlane::Top,
         PlaneArg::Side => DiagramPlane::Side,
         PlaneArg::Ray => DiagramPlane::Primary,
-        PlaneArg::Crossing => return crossing_figure(&recorded.tree, &target),
+        PlaneArg::Crossing => return crossing_figure(&recorded.tree, &target, &caption(args)),
     };
     let (scene, tree) = (&recorded.scene, &recorded.tree);
-    let figure = svg::figure(
-        &Diagram::new(scene, tree, plane, Progress::done(tree)),
+    let shadows = match args.shadows {
+        ShadowsArg::All => Shadows::All,
+        ShadowsArg::Primary => Shadows::Primary,
+        ShadowsArg::None => Shadows::None,
+    };
+    let figure = svg::slide(
+        &Diagram::new(scene, tree, plane, Progress::done(tree)).with_shadows(shadows),
         args.zoom,
+        &caption(args),
     );
     output::write_text(&target, &figure)?;
     Ok(ExitCode::SUCCESS)
 }
 
 /// `--plane crossing`: the first polygon hit, or else passed by; none is an error.
-fn crossing_figure(tree: &RayTree, target: &Target) -> Result<ExitCode> {
+fn crossing_figure(tree: &RayTree, target: &Target, caption: &Caption) -> Result<ExitCode> {
     use crate::diagram::svg::crossing_figure;
     let Some(subject) = crossing_figure::subject(tree) else {
         anyhow::bail!(
@@ -49,6 +62,35 @@ fn crossing_figure(tree: &RayTree, target: &Target) -> Result<ExitCode> {
             tree.pixel.1
         );
     };
-    output::write_text(target, &crossing_figure::svg(tree.pixel, &subject))?;
+    output::write_text(target, &crossing_figure::svg(tree.pixel, &subject, caption))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The figure's title: the scene file's name and every option that changed
+/// what is drawn, as given (the plane and zoom are named by the figure).
+fn caption(args: &DiagramArgs) -> Caption {
+    let pixel = &args.pixel;
+    let scene = (pixel.scene.file_name()).map_or_else(
+        || pixel.scene.display().to_string(),
+        |name| name.to_string_lossy().into_owned(),
+    );
+    let mut options: Vec<String> = (pixel.size.size.iter())
+        .map(|(w, h)| format!("--size {w}x{h}"))
+        .collect();
+    options.extend(
+        pixel
+            .mistakes
+            .mistakes
+            .iter()
+            .map(|m| format!("--mistake {}", m.name())),
+    );
+    options.extend(pixel.set.iter().map(|s| format!("--set {s}")));
+    if args.shadows != ShadowsArg::All {
+        let value = args
+            .shadows
+            .to_possible_value()
+            .map(|v| v.get_name().to_owned());
+        options.push(format!("--shadows {}", value.unwrap_or_default()));
+    }
+    Caption { scene, options }
 }

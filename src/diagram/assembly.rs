@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3};
 use super::outline::{Outline, outline};
 use super::projection::{DiagramPlane, Projection};
 use super::rays::{BlockerMark, Progress, Segment, Stroke, ray_segments};
-use crate::record::{EventKind, NearMiss, Node, RayTree};
+use crate::record::{EventKind, NearMiss, Node, NodeId, RayTree};
 use crate::scene::Scene;
 use crate::shapes::Shape;
 
@@ -37,6 +37,21 @@ pub struct Diagram {
     /// The objects met, then those passed by, then (in small scenes) the
     /// rest for context, each in object order.
     pub(crate) objects: Vec<ObjectOutline>,
+    /// Which shadow rays are drawn.
+    pub(crate) shadows: Shadows,
+}
+
+/// Which shadow rays a diagram draws (`diagram --shadows`): a slide about
+/// the reflections need not be crowded by every hit's shadow rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum Shadows {
+    /// Every hit's shadow rays and lights facing away.
+    #[default]
+    All,
+    /// Only those of the primary ray's hit.
+    Primary,
+    /// None: no shadow ray, blocker or line to a light facing away.
+    None,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -80,6 +95,8 @@ pub struct PassedMark {
 pub struct FacesAway {
     pub(crate) hit: DVec2,
     pub(crate) light: DVec2,
+    /// The node whose hit it is.
+    pub(crate) node: NodeId,
 }
 
 /// Why an object is in the diagram.
@@ -176,8 +193,9 @@ impl Diagram {
             passed: Vec::new(),
             faces_away: Vec::new(),
             objects: Vec::new(),
+            shadows: Shadows::All,
         };
-        for node in &tree.nodes {
+        for (id, node) in tree.nodes.iter().enumerate() {
             for near in &node.near_misses {
                 let shape = scene.objects.get(near.object_index).map(|o| &o.shape);
                 if let Some(at) = passed_point(node, near, shape) {
@@ -198,6 +216,7 @@ impl Diagram {
                     diagram.faces_away.push(FacesAway {
                         hit: p(hit.point),
                         light: p(l.position),
+                        node: id,
                     });
                 }
             }
@@ -230,6 +249,33 @@ impl Diagram {
             })
             .collect();
         diagram
+    }
+
+    /// The diagram with only `shadows`' shadow rays, their blockers and
+    /// lines to lights facing away; an object only a left-out shadow ray
+    /// met is no longer met (passed by, or context).
+    pub(crate) fn with_shadows(mut self, shadows: Shadows) -> Diagram {
+        let kept = |node: NodeId| match shadows {
+            Shadows::All => true,
+            Shadows::Primary => node == 0,
+            Shadows::None => false,
+        };
+        self.shadows = shadows;
+        (self.segments).retain(|s| s.shadow_of.is_none_or(kept));
+        self.blockers.retain(|b| kept(b.shadow_of));
+        self.faces_away.retain(|f| kept(f.node));
+        let passed: Vec<usize> = self.passed.iter().map(|m| m.object).collect();
+        for object in self.objects.iter_mut().filter(|o| o.role == Role::Met) {
+            let blocks = self.blockers.iter().any(|b| b.object == object.object);
+            if object.hits.is_empty() && !blocks {
+                object.role = if passed.contains(&object.object) {
+                    Role::PassedBy
+                } else {
+                    Role::Context
+                };
+            }
+        }
+        self
     }
 
     /// The points a view must hold to show the whole diagram: every ray's
@@ -297,7 +343,10 @@ impl Diagram {
     pub(crate) fn legend(&self) -> Vec<LegendRow> {
         use LegendRow::*;
         let partial = (self.segments.iter()).any(|s| s.stroke == Stroke::ShadowPartial);
-        let mut rows = vec![Primary, Reflected, Transmitted, ShadowLit, ShadowBlocked];
+        let mut rows = vec![Primary, Reflected, Transmitted];
+        if self.shadows != Shadows::None {
+            rows.extend([ShadowLit, ShadowBlocked]);
+        }
         rows.extend(partial.then_some(ShadowPartial));
         rows.extend([Normal, Hit]);
         rows.extend((!self.passed.is_empty()).then_some(PassedBy));
@@ -382,7 +431,8 @@ mod tests {
             d.faces_away,
             [FacesAway {
                 hit: DVec2::ZERO,
-                light: DVec2::new(0.0, 11.0)
+                light: DVec2::new(0.0, 11.0),
+                node: 0,
             }]
         );
         let roles: Vec<_> = d.objects.iter().map(|o| (o.object, o.role)).collect();

@@ -15,6 +15,7 @@ mod rays;
 pub mod svg;
 
 pub use assembly::Diagram;
+pub(crate) use assembly::Shadows;
 pub(crate) use assembly::{Anchor, LegendRow, Named, ObjectOutline, Role};
 pub(crate) use outline::Outline;
 pub(crate) use projection::{DiagramPlane, magnified_centre};

@@ -28,6 +28,9 @@ pub(crate) struct Segment {
     pub(crate) from: DVec2,
     pub(crate) to: DVec2,
     pub(crate) stroke: Stroke,
+    /// For a shadow ray, the node from whose hit it is cast (to leave
+    /// shadow rays out of a slide); none for a ray or a normal.
+    pub(crate) shadow_of: Option<NodeId>,
 }
 
 /// How far a step-through has come, for the strokes: rays cast by the
@@ -75,6 +78,9 @@ pub(crate) fn shadow_stroke(s: f64) -> Stroke {
 pub(crate) struct BlockerMark {
     pub(crate) at: DVec2,
     pub(crate) stroke: Stroke,
+    /// The node whose shadow ray it blocks, and the blocking object.
+    pub(crate) shadow_of: NodeId,
+    pub(crate) object: usize,
 }
 
 /// The rays of a pixel as projected segments, plus blocker points.
@@ -119,6 +125,7 @@ pub(crate) fn ray_segments(
             from: projection.project(node.origin),
             to: projection.project(end),
             stroke,
+            shadow_of: None,
         });
         let Some(hit) = &node.hit else { continue };
         let normal_end = hit.point + hit.normal * miss_length * 0.08;
@@ -126,6 +133,7 @@ pub(crate) fn ray_segments(
             from: projection.project(hit.point),
             to: projection.project(normal_end),
             stroke: Stroke::Normal,
+            shadow_of: None,
         });
         for light in &node.lights {
             let Some(shadow) = &light.shadow else {
@@ -153,6 +161,7 @@ pub(crate) fn ray_segments(
                 from: projection.project(hit.point),
                 to: projection.project(target),
                 stroke,
+                shadow_of: Some(id),
             });
             // A blocker of a ray S = 1 lets all through (Kt = 1): its × as
             // a partly blocked one's.
@@ -163,6 +172,8 @@ pub(crate) fn ray_segments(
             blockers.extend(shadow.blockers.iter().map(|b| BlockerMark {
                 at: projection.project(shadow.origin + shadow.direction * b.t),
                 stroke: kind,
+                shadow_of: id,
+                object: b.object_index,
             }));
         }
     }

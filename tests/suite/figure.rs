@@ -398,3 +398,333 @@ fn planes_are_named() {
         assert!(svg.contains(&format!(">{name}</text>")), "{case:?}: {svg}");
     }
 }
+
+#[test]
+fn diff_against_is_refused_and_set_draws_the_changed_scene() {
+    // Before, `diagram --diff-against` was accepted, ignored, and its help
+    // promised a text no figure has. Now clap refuses it (exit 2), nothing
+    // is written, and diagram's help names neither it nor a text.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("diff.svg");
+    let args = ["diagram", "scenes/glass.toml", "--pixel", "135,58"];
+    let with = |extra: &[&str]| {
+        let mut all = args.to_vec();
+        all.extend_from_slice(extra);
+        all.extend(["-o", out.to_str().unwrap()]);
+        raystep(&all)
+    };
+    let output = with(&["--diff-against", "scenes/prism.toml"]);
+    assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("error: invalid value")
+            && stderr(&output).contains("diagram takes no --diff-against"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(!out.exists(), "nothing written");
+    let help = crate::support::stdout(&raystep(&["diagram", "--help"]));
+    assert!(!help.contains("--diff-against"), "{help}");
+    assert!(!help.contains("the text"), "{help}");
+    assert!(
+        help.contains("the figure is drawn with the changed scene"),
+        "{help}"
+    );
+    // --set is drawn: at max_depth 1 the primary ray alone is cast (no
+    // reflected or transmitted ray), so the figure has its one ray, its
+    // normal, its shadow rays (the recording's, at depth 1), the dotted
+    // lines to lights facing away, and the legend's eight lines.
+    let output = with(&["--set", "settings.max_depth=1"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let mut scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    scene.settings.max_depth = 1;
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    assert_eq!(tree.nodes.len(), 1);
+    let lights = &tree.root().lights;
+    let shadows = lights.iter().filter(|l| l.shadow.is_some()).count();
+    let away = lights.iter().filter(|l| l.faces_away).count();
+    let legend = if away > 0 { 8 } else { 7 };
+    let partial = (lights.iter().filter_map(|l| l.shadow.as_ref())).any(|s| s.s > 0.0 && s.s < 1.0);
+    let legend = legend - usize::from(!partial);
+    assert_eq!(
+        svg.matches("<line ").count(),
+        1 + 1 + shadows + away + legend,
+        "{svg}"
+    );
+}
+
+#[test]
+fn the_title_names_the_scene_pixel_plane_mistakes_and_sets() {
+    // Before, the figure's only title was "Pixel (135, 58), from above
+    // (in the camera's frame)": no scene, and nothing of a --mistake or
+    // --set it was drawn with. Now the SVG's <title> (its first child) and
+    // its heading name them all, for each plane and the crossing figure.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("titled.svg");
+    for (scene, pixel, plane, view) in [
+        (
+            "glass",
+            "135,58",
+            "top",
+            "from above (in the camera's frame)",
+        ),
+        (
+            "glass",
+            "135,58",
+            "side",
+            "from the right (in the camera's frame)",
+        ),
+        (
+            "glass",
+            "135,58",
+            "ray",
+            "primary ray's plane (in the camera's frame)",
+        ),
+        (
+            "polygons",
+            "40,54",
+            "crossing",
+            "the crossing test of star (#2), passed by the primary ray",
+        ),
+    ] {
+        let file = format!("scenes/{scene}.toml");
+        let output = raystep(&[
+            "diagram",
+            &file,
+            "--pixel",
+            pixel,
+            "--plane",
+            plane,
+            "--mistake",
+            "tir-dropped",
+            "--mistake",
+            "no-ambient",
+            "--set",
+            "settings.max_depth=3",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let svg = std::fs::read_to_string(&out).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let first = doc.root_element().first_element_child().unwrap();
+        assert_eq!(first.tag_name().name(), "title", "{plane}");
+        let words = format!(
+            "{scene}.toml, pixel ({}), {view}; drawn with --mistake tir-dropped, \
+             --mistake no-ambient, --set settings.max_depth=3",
+            pixel.replace(',', ", ")
+        );
+        assert_eq!(first.text(), Some(words.as_str()), "{plane}");
+        let heading = (doc.descendants())
+            .find(|n| n.has_tag_name("text"))
+            .and_then(|n| n.text());
+        assert_eq!(heading, Some(words.as_str()), "{plane}");
+    }
+}
+
+#[test]
+fn shadows_primary_or_none_leave_shadow_rays_out() {
+    // glass.toml 135,58 draws 10 shadow rays (2 lights at 5 hits) and 2
+    // dotted lines to lights facing away with --shadows all (as before).
+    // --shadows primary keeps the primary ray's hit's (node 0's) alone;
+    // none keeps none, no blocker's × and no dotted line, and the legend
+    // drops the shadow rays' rows. Each count below is the recording's.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shadows.svg");
+    let draw = |shadows: &str| {
+        let output = raystep(&[
+            "diagram",
+            "scenes/glass.toml",
+            "--pixel",
+            "135,58",
+            "--shadows",
+            shadows,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    let hits = tree.nodes.iter().filter(|n| n.hit.is_some()).count();
+    let lights = |nodes: &[raystep::record::Node]| {
+        let lights: Vec<_> = nodes.iter().flat_map(|n| &n.lights).collect();
+        let shadows: Vec<_> = lights.iter().filter_map(|l| l.shadow.as_ref()).collect();
+        (
+            shadows.len(),
+            lights.iter().filter(|l| l.faces_away).count(),
+            shadows.iter().map(|s| s.blockers.len()).sum::<usize>(),
+            shadows.iter().any(|s| s.s > 0.0 && s.s < 1.0),
+        )
+    };
+    let all = lights(&tree.nodes);
+    assert_eq!((all.0, all.1), (10, 2), "the pixel as described");
+    let primary = lights(&tree.nodes[..1]);
+    assert!(primary.0 < all.0 && primary.0 > 0);
+    let crosses = |svg: &str| svg.matches("l8 8m0 -8l-8 8").count();
+    let dotted = |svg: &str| svg.matches("stroke-dasharray=\"2 4\"").count();
+    // Rays and normals, then shadow rays and dotted lines; the legend's
+    // lines: primary, reflected, transmitted, normal, the shadow rays' lit
+    // and blocked, partly blocked and dotted when drawn.
+    let legend = |(_, away, _, partial): (usize, usize, usize, bool), shadows: bool| {
+        4 + 2 * usize::from(shadows) + usize::from(partial) + usize::from(away > 0)
+    };
+    let whole = tree.nodes.len() + hits;
+    let svg = draw("all");
+    assert_eq!(
+        svg.matches("<line ").count(),
+        whole + all.0 + all.1 + legend(all, true)
+    );
+    assert_eq!((crosses(&svg), dotted(&svg)), (all.2, all.1 + 1));
+    let svg = draw("primary");
+    assert_eq!(
+        svg.matches("<line ").count(),
+        whole + primary.0 + primary.1 + legend(primary, true),
+        "{svg}"
+    );
+    assert_eq!(crosses(&svg), primary.2);
+    assert_eq!(dotted(&svg), primary.1 + usize::from(primary.1 > 0));
+    assert!(svg.contains("drawn with --shadows primary</title>"));
+    let svg = draw("none");
+    assert_eq!(svg.matches("<line ").count(), whole + 4, "{svg}");
+    assert_eq!((crosses(&svg), dotted(&svg)), (0, 0));
+    assert!(!svg.contains("shadow ray"), "{svg}");
+    // The glass block's front face only blocks shadow rays (no ray hits
+    // it): without them it is not drawn or named.
+    let front = (scene.objects.iter())
+        .position(|o| o.name == "glass block front")
+        .unwrap();
+    let hit = |n: &raystep::record::Node| n.hit.as_ref().map(|h| h.object_index);
+    assert!(tree.nodes.iter().all(|n| hit(n) != Some(front)));
+    assert!(draw("all").contains(">glass block front</text>"));
+    assert!(!draw("none").contains("glass block front"));
+    // The crossing figure has no shadow rays: refused, not ignored.
+    let output = raystep(&[
+        "diagram",
+        "scenes/polygons.toml",
+        "--pixel",
+        "40,54",
+        "--plane",
+        "crossing",
+        "--shadows",
+        "none",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("the crossing figure has none"));
+}
+
+/// Whether the segment from `a` to `b` meets the box `[x0, y0, x1, y1]`:
+/// the segment's parameter range cut down by each side's slab.
+fn segment_meets_box(a: (f64, f64), b: (f64, f64), r: [f64; 4]) -> bool {
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (start, d, lo, hi) in [(a.0, b.0 - a.0, r[0], r[2]), (a.1, b.1 - a.1, r[1], r[3])] {
+        if d == 0.0 {
+            if start < lo || start > hi {
+                return false;
+            }
+            continue;
+        }
+        let (ta, tb) = ((lo - start) / d, (hi - start) / d);
+        t0 = t0.max(ta.min(tb));
+        t1 = t1.min(ta.max(tb));
+    }
+    t0 <= t1
+}
+
+/// Whether a circle's line passes through the box: part of the box is
+/// nearer the centre than r and part further.
+fn circle_meets_box((cx, cy, radius): (f64, f64, f64), r: [f64; 4]) -> bool {
+    let near = (cx.clamp(r[0], r[2]) - cx).hypot(cy.clamp(r[1], r[3]) - cy);
+    let far = (cx - r[0])
+        .abs()
+        .max((cx - r[2]).abs())
+        .hypot((cy - r[1]).abs().max((cy - r[3]).abs()));
+    near < radius && far > radius
+}
+
+#[test]
+fn labels_keep_off_every_outline() {
+    // Before, labels were kept off outlines only as off rays (crossing
+    // one when no ring near was free of both), and the crossing figure
+    // kept none off the polygon: "2: edge 5→6" sat across edge 5→6. Now
+    // an outline is kept clear first, further out if need be. seven-rays
+    // is drawn from above and in the ray's plane: its rays all lie in
+    // the horizontal plane through the eye and both balls' centres, so
+    // from the side every ray lies on one line.
+    let dir = tempfile::tempdir().unwrap();
+    for case in [
+        ("glass", "135,58", "top", &[][..]),
+        ("glass", "135,58", "side", &[]),
+        ("polygons", "40,54", "top", &[]),
+        ("polygons", "40,54", "crossing", &[]),
+        ("seven-rays", "80,60", "top", &[]),
+        ("seven-rays", "80,60", "ray", &[]),
+    ] {
+        let svg = reviewed(dir.path(), case);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let root = doc.root_element();
+        let number = |n: roxmltree::Node, name| n.attribute(name).unwrap().parse::<f64>().unwrap();
+        let points = |n: roxmltree::Node| -> Vec<(f64, f64)> {
+            (n.attribute("points").unwrap().split(' '))
+                .map(|p| p.split_once(',').unwrap())
+                .map(|(x, y)| (x.parse().unwrap(), y.parse().unwrap()))
+                .collect()
+        };
+        // The outlines: the clipped group's shapes, or the crossing
+        // figure's polygon (closed).
+        let mut segments = Vec::new();
+        let mut circles = Vec::new();
+        for n in root.descendants().filter(|n| n.is_element()) {
+            let outline = n
+                .parent_element()
+                .and_then(|p| p.attribute("clip-path"))
+                .is_some();
+            match n.tag_name().name() {
+                "circle" if outline => {
+                    circles.push((number(n, "cx"), number(n, "cy"), number(n, "r")))
+                }
+                "line" if outline => segments.push((
+                    (number(n, "x1"), number(n, "y1")),
+                    (number(n, "x2"), number(n, "y2")),
+                )),
+                "polyline" if outline => {
+                    let p = points(n);
+                    segments.extend(p.windows(2).map(|w| (w[0], w[1])));
+                }
+                "polygon" => {
+                    let p = points(n);
+                    let closed = p.iter().zip(p.iter().cycle().skip(1));
+                    segments.extend(closed.map(|(a, b)| (*a, *b)));
+                }
+                _ => {}
+            }
+        }
+        assert!(!segments.is_empty() || !circles.is_empty(), "{case:?}");
+        // The labels: every text between the headings (the crossing
+        // figure's three end at 64, the others' one at 24) and the legend.
+        let top = if case.2 == "crossing" { 70.0 } else { 30.0 };
+        let root_size: f64 = root.attribute("font-size").unwrap().parse().unwrap();
+        let labels = (root.descendants())
+            .filter(|n| n.has_tag_name("text"))
+            .filter(|n| (top..556.0).contains(&number(*n, "y")));
+        for label in labels {
+            let b = text_box(label, root_size);
+            let text = label.text().unwrap_or("");
+            for (a, c) in &segments {
+                assert!(
+                    !segment_meets_box(*a, *c, b),
+                    "{case:?}: {text:?} at {b:?} crosses {a:?}-{c:?}"
+                );
+            }
+            for c in &circles {
+                assert!(
+                    !circle_meets_box(*c, b),
+                    "{case:?}: {text:?} at {b:?} crosses circle {c:?}"
+                );
+            }
+        }
+    }
+}

@@ -8,7 +8,8 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
-use super::labels::{Labels, escape};
+use super::Caption;
+use super::labels::Labels;
 use crate::record::{NodeId, RayTree, count};
 use crate::shapes::CrossingFigure;
 
@@ -63,7 +64,7 @@ pub(crate) fn subject(tree: &RayTree) -> Option<Subject<'_>> {
 }
 
 /// The figure of `subject`'s crossing test, for pixel `pixel`.
-pub(crate) fn svg(pixel: (u32, u32), subject: &Subject) -> String {
+pub(crate) fn svg(pixel: (u32, u32), subject: &Subject, caption: &Caption) -> String {
     let figure = subject.figure;
     let vertices: Vec<DVec2> = figure.vertices.iter().map(|v| DVec2::from(*v)).collect();
     let map = UvMap::fit(&vertices);
@@ -71,21 +72,21 @@ pub(crate) fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     let mut out = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{HEIGHT}\" \
          viewBox=\"0 0 {WIDTH} {HEIGHT}\" font-family=\"Helvetica, Arial, sans-serif\" \
-         font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+         font-size=\"13\">\n"
     );
     let met = if subject.hit { "hit by" } else { "passed by" };
     let ray = match subject.node {
         0 => "the primary ray".to_string(),
         n => format!("ray #{n}"),
     };
-    let _ = writeln!(
-        out,
-        "<text x=\"{MARGIN}\" y=\"26\" font-size=\"15\">Pixel ({}, {}): the crossing test of {} (#{}), {met} {ray}</text>",
-        pixel.0,
-        pixel.1,
-        escape(subject.object),
-        subject.object_index
+    let view = format!(
+        "the crossing test of {} (#{}), {met} {ray}",
+        subject.object, subject.object_index
     );
+    let (title, heading) = caption.elements(pixel, &view, (MARGIN, 26.0));
+    out.push_str(&title);
+    out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+    out.push_str(&heading);
     // Passed by, the ray meets the polygon's plane but not the polygon.
     let point = if subject.hit {
         "hit point"
@@ -105,6 +106,11 @@ pub(crate) fn svg(pixel: (u32, u32), subject: &Subject) -> String {
     let mut labels = Labels::new(13.0, bounds);
     // The polygon's fill first: the +U half-line must show inside it.
     write_polygon(&mut out, &map, figure, &vertices);
+    // Its edges kept clear: "2: edge 5→6" sat across edge 5→6.
+    let corners: Vec<DVec2> = vertices.iter().map(|p| map.to_figure(*p)).collect();
+    for (i, a) in corners.iter().enumerate() {
+        labels.reserve_outline(*a, corners[(i + 1) % corners.len()]);
+    }
     write_axes(&mut out, &map, u, v, &mut labels);
     let o = map.to_figure(DVec2::ZERO);
     labels.reserve(o, 4.5);

@@ -18,6 +18,9 @@ pub(crate) struct Labels {
     bounds: Box2,
     boxes: Vec<Box2>,
     rays: Vec<(DVec2, DVec2)>,
+    /// Objects' outlines: a label across one reads as naming the wrong
+    /// object, so they are kept clear before rays are.
+    outlines: Vec<(DVec2, DVec2)>,
 }
 
 impl Labels {
@@ -27,6 +30,7 @@ impl Labels {
             bounds,
             boxes: Vec::new(),
             rays: Vec::new(),
+            outlines: Vec::new(),
         }
     }
 
@@ -55,12 +59,19 @@ impl Labels {
         self.rays.push((a, b));
     }
 
+    /// Keeps labels off a piece of an object's outline from `a` to `b`;
+    /// a label goes further out (up to twice as far as for a ray) before
+    /// it crosses one.
+    pub(crate) fn reserve_outline(&mut self, a: DVec2, b: DVec2) {
+        self.outlines.push((a, b));
+    }
+
     /// Writes `text` near `at`: right, left, above or below it, or further
     /// out, at the first place whose box meets nothing placed. `attrs` are
     /// the text element's other attributes (`fill="..."`).
     pub fn place(&mut self, out: &mut String, at: DVec2, text: &str, attrs: &str) {
         let size = self.size(text);
-        let corner = self.free(&self.rings(at, size).collect::<Vec<_>>(), size);
+        let corner = self.free(at, &self.rings(at, size, 8).collect::<Vec<_>>(), size);
         self.write(out, corner, size, text, attrs);
     }
 
@@ -70,9 +81,9 @@ impl Labels {
         let size = self.size(text);
         let centred = at + DVec2::new(-size.x / 2.0, size.y / 2.0 - 2.0);
         let candidates: Vec<DVec2> = std::iter::once(centred)
-            .chain(self.rings(at, size))
+            .chain(self.rings(at, size, 8))
             .collect();
-        let corner = self.free(&candidates, size);
+        let corner = self.free(at, &candidates, size);
         self.write(out, corner, size, text, attrs);
     }
 
@@ -81,9 +92,10 @@ impl Labels {
         DVec2::new(width, self.font_size)
     }
 
-    /// Baseline starts around `at`, ring after ring.
-    fn rings(&self, at: DVec2, size: DVec2) -> impl Iterator<Item = DVec2> {
-        (1..=8).flat_map(move |ring| {
+    /// Baseline starts around `at`, ring after ring, `count` rings 10
+    /// units apart.
+    fn rings(&self, at: DVec2, size: DVec2, count: usize) -> impl Iterator<Item = DVec2> {
+        (1..=count).flat_map(move |ring| {
             let d = 10.0 * ring as f64;
             [
                 DVec2::new(d, 4.0),
@@ -100,28 +112,41 @@ impl Labels {
     }
 
     /// The first candidate whose box is inside the figure and free of
-    /// marks, labels and rays; else the first free of marks and labels;
-    /// crowded everywhere near, the first free place row by row.
-    fn free(&self, candidates: &[DVec2], size: DVec2) -> DVec2 {
-        let fits = |corner: &DVec2, rays: bool| {
+    /// marks, labels, outlines and rays; else the first free of outlines
+    /// (crossing a ray); else, in rings as far again out about `at`, the
+    /// first free of outlines; else the first free of marks and
+    /// labels; crowded everywhere near, the first free place row by row.
+    fn free(&self, at: DVec2, candidates: &[DVec2], size: DVec2) -> DVec2 {
+        let crosses =
+            |lines: &[(DVec2, DVec2)], b: Box2| (lines.iter()).any(|r| clip(r.0, r.1, b).is_some());
+        let fits = |corner: &DVec2, outlines: bool, rays: bool| {
             let b = text_box(*corner, size);
-            contains(self.bounds, b)
-                && !self.boxes.iter().any(|o| overlap(*o, b))
-                && !(rays && self.rays.iter().any(|r| clip(r.0, r.1, b).is_some()))
+            let blocked = self.boxes.iter().any(|o| overlap(*o, b))
+                || (outlines && crosses(&self.outlines, b))
+                || (rays && crosses(&self.rays, b));
+            contains(self.bounds, b) && !blocked
         };
-        let first = |rays| candidates.iter().copied().find(|c| fits(c, rays));
-        first(true).or_else(|| first(false)).unwrap_or_else(|| {
-            let (lo, hi) = self.bounds;
-            let rows = (0..).map(|i| lo.y + size.y + 1.0 + i as f64 * 4.0);
-            let row_starts = rows.take_while(|y| *y + 3.0 <= hi.y).flat_map(|y| {
-                (0..)
-                    .map(move |i| DVec2::new(lo.x + 1.0 + i as f64 * 8.0, y))
-                    .take_while(move |c| c.x + size.x <= hi.x)
-            });
-            let mut scan = row_starts;
-            scan.find(|c| fits(c, false))
-                .unwrap_or(lo + DVec2::new(1.0, size.y + 1.0))
-        })
+        let first = |outlines, rays| (candidates.iter().copied()).find(|c| fits(c, outlines, rays));
+        let further = || {
+            let far: Vec<DVec2> = self.rings(at, size, 16).skip(8 * 8).collect();
+            far.into_iter().find(|c| fits(c, true, false))
+        };
+        (first(true, true))
+            .or_else(|| first(true, false))
+            .or_else(further)
+            .or_else(|| first(false, false))
+            .unwrap_or_else(|| {
+                let (lo, hi) = self.bounds;
+                let rows = (0..).map(|i| lo.y + size.y + 1.0 + i as f64 * 4.0);
+                let row_starts = rows.take_while(|y| *y + 3.0 <= hi.y).flat_map(|y| {
+                    (0..)
+                        .map(move |i| DVec2::new(lo.x + 1.0 + i as f64 * 8.0, y))
+                        .take_while(move |c| c.x + size.x <= hi.x)
+                });
+                let mut scan = row_starts;
+                scan.find(|c| fits(c, false, false))
+                    .unwrap_or(lo + DVec2::new(1.0, size.y + 1.0))
+            })
     }
 
     fn write(&mut self, out: &mut String, corner: DVec2, size: DVec2, text: &str, attrs: &str) {

@@ -7,6 +7,7 @@
 //! lights facing away from a hit dotted), with labels that never overlap,
 //! never sit on a mark and stay inside the figure, and a legend.
 
+mod caption;
 pub(crate) mod crossing_figure;
 mod labels;
 mod legend;
@@ -16,6 +17,7 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
+pub(crate) use self::caption::Caption;
 use self::labels::{Box2, Labels, clip};
 use self::plane_map::{PlaneMap, label_anchor, outline_segments, write_outline};
 use super::{Anchor, Diagram, Named, Role, Stroke};
@@ -64,24 +66,26 @@ fn arrow(stroke: Stroke) -> Option<&'static str> {
 }
 
 /// The whole figure of `diagram`, magnified `zoom` times (at least 1)
-/// about the primary ray's first hit.
+/// about the primary ray's first hit, with no scene named.
 pub fn figure(diagram: &Diagram, zoom: f64) -> String {
+    slide(diagram, zoom, &Caption::default())
+}
+
+/// The figure of `raystep diagram`: `figure`, its title naming the scene
+/// and the options it was drawn with.
+pub(crate) fn slide(diagram: &Diagram, zoom: f64, caption: &Caption) -> String {
     // The projection's origin is the primary ray's first hit (the eye on a miss).
     let map = PlaneMap::fit(&diagram.extent()).zoomed(zoom, DVec2::ZERO);
 
-    let mut out = header();
     let zoomed = if zoom > 1.0 {
         format!(", magnified {zoom}×")
     } else {
         String::new()
     };
-    let _ = writeln!(
-        out,
-        "<text x=\"{MARGIN}\" y=\"24\" font-size=\"15\">Pixel ({}, {}), {} (in the camera's frame){zoomed}</text>",
-        diagram.pixel.0,
-        diagram.pixel.1,
-        diagram.plane.name()
-    );
+    let view = format!("{} (in the camera's frame){zoomed}", diagram.plane.name());
+    let (title, heading) = caption.elements(diagram.pixel, &view, (MARGIN, 24.0));
+    let mut out = header(&title);
+    out.push_str(&heading);
     let mut labels = Labels::new(FONT_SIZE, FRAME);
     out.push_str("<g clip-path=\"url(#frame)\">\n");
     // A slide shows what the rays meet or pass by, not the rest of the scene.
@@ -90,7 +94,7 @@ pub fn figure(diagram: &Diagram, zoom: f64) -> String {
         write_outline(&mut out, &map, shape);
         for (a, b) in outline_segments(shape, &map) {
             if let Some((a, b)) = clip(a, b, FRAME) {
-                labels.reserve_ray(a, b);
+                labels.reserve_outline(a, b);
             }
         }
     }
@@ -133,12 +137,13 @@ pub fn figure(diagram: &Diagram, zoom: f64) -> String {
 }
 
 /// The SVG element, its arrowheads (one per ray colour: a marker cannot
-/// take its line's colour in SVG 1.1) and the frame's clip path.
-fn header() -> String {
+/// take its line's colour in SVG 1.1) and the frame's clip path; `title`
+/// is the `<title>` element, the SVG's first child.
+fn header(title: &str) -> String {
     let mut out = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{HEIGHT}\" \
          viewBox=\"0 0 {WIDTH} {HEIGHT}\" font-family=\"Helvetica, Arial, sans-serif\" \
-         font-size=\"{FONT_SIZE}\">\n<defs>\n"
+         font-size=\"{FONT_SIZE}\">\n{title}<defs>\n"
     );
     for stroke in [
         Stroke::Primary,
