@@ -15,7 +15,7 @@ pub mod student;
 use image::RgbImage;
 use serde::Serialize;
 
-pub(crate) use metrics::{MATCH_SHARE, Metrics, TOLERANCE_STEPS};
+pub(crate) use metrics::{MATCH_GAP, MATCH_SHARE, Metrics, TOLERANCE_STEPS};
 pub(crate) use ranking::Ranked;
 pub use report::text;
 pub use student::StudentImage;
@@ -38,7 +38,8 @@ pub struct Comparison {
     /// What was converted to read the student's image.
     pub(crate) notes: Vec<String>,
     pub(crate) metrics: Metrics,
-    /// At most `MATCH_SHARE` of the pixels past the tolerance.
+    /// At most `MATCH_SHARE` of the pixels past the tolerance, and none
+    /// more than `MATCH_GAP` steps apart.
     pub matches: bool,
     /// How many connected regions of differing pixels there are.
     pub(crate) region_count: usize,

@@ -59,6 +59,43 @@ fn a_correct_image_with_noise_of_another_tracer_still_matches() {
 }
 
 #[test]
+fn a_few_wrapped_bytes_differ_and_byte_wrap_is_named() {
+    // Under byte-wrap, glass.toml's render changes only 6 of its 19,200
+    // pixels (0.03%) and highlights.toml's 15 (0.08%), all where a colour
+    // passes 1 and its byte wraps to near 0: within the 0.1% share a match
+    // allows, but each is off by over 200 steps, past the 32 a match
+    // allows. So they differ, those pixels are listed, and the ranking
+    // (which runs when they differ) names byte-wrap: the student's image is
+    // exactly its render.
+    let dir = tempfile::tempdir().unwrap();
+    for (scene, wrapped) in [("scenes/glass.toml", 6), ("scenes/highlights.toml", 15)] {
+        let image = render(
+            dir.path(),
+            scene,
+            "wrapped.png",
+            &["--mistake", "byte-wrap"],
+        );
+        let output = raystep(&["compare", scene, path(&image), "--format", "json"]);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        let report = json(&output);
+        assert_eq!(report["matches"], false, "{scene}");
+        let metrics = &report["metrics"];
+        assert!(metrics["pixels_over_tolerance"].as_f64().unwrap() <= 0.001);
+        assert_eq!(metrics["far_off_pixels"], wrapped, "{scene}");
+        assert_eq!(metrics["far_off"].as_array().unwrap().len(), wrapped.min(8));
+        assert_eq!(report["mistakes"][0]["name"], "byte-wrap", "{scene}");
+        let text = stdout(&raystep(&["compare", scene, path(&image)]));
+        assert!(
+            text.contains(&format!(
+                "they differ: {} of the pixels differ by more than 3 steps of 255 (a match allows 0.1%), but {wrapped} pixels differ by more than 32 (a match allows none):",
+                if wrapped == 6 { "0.03%" } else { "0.08%" }
+            )),
+            "{text}"
+        );
+    }
+}
+
+#[test]
 fn thresholds_give_exit_three_for_autograders() {
     // The scene with its ambient light off: a real difference (mean_abs
     // about 0.06 on this scene), over a threshold of 0.01, under one of 0.5.
@@ -227,6 +264,8 @@ fn the_json_report_has_the_documented_keys() {
     assert_eq!(
         keys(&report["metrics"]),
         [
+            "far_off",
+            "far_off_pixels",
             "flip_mean",
             "mean_abs",
             "pixels_over_tolerance",
