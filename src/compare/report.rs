@@ -101,7 +101,7 @@ fn write_mistakes(out: &mut String, c: &Comparison) {
             out,
             "  {:<20} {:>6}  ({fits}{with})  {}{at}",
             ranked.mistake.name(),
-            percent(ranked.explains.max(0.0)),
+            percent(ranked.explains),
             ranked.mistake.summary()
         );
     }

@@ -96,6 +96,46 @@ fn a_few_wrapped_bytes_differ_and_byte_wrap_is_named() {
 }
 
 #[test]
+fn shares_are_never_negative_add_to_at_most_all_and_the_text_agrees() {
+    // On main, gamma with opaque-shadows listed opaque-shadows at -14.2%
+    // (alone it takes the image further from yours, which gamma brightens
+    // everywhere) while the text printed 0.0%; no-normal-flip with
+    // opaque-shadows listed 98.6% + 29.1% = 127.7%. Each share is now what
+    // the mistake takes away on top of those above it.
+    let dir = tempfile::tempdir().unwrap();
+    for pair in [
+        ["gamma", "opaque-shadows"],
+        ["no-normal-flip", "opaque-shadows"],
+    ] {
+        let image = render(
+            dir.path(),
+            SCENE,
+            "pair.png",
+            &["--mistake", pair[0], "--mistake", pair[1]],
+        );
+        let output = raystep(&["compare", SCENE, path(&image), "--format", "json"]);
+        let mistakes = json(&output)["mistakes"].as_array().unwrap().clone();
+        assert!(mistakes.len() >= 2, "{pair:?}: {mistakes:?}");
+        let shares: Vec<f64> = mistakes
+            .iter()
+            .map(|m| m["explains"].as_f64().unwrap())
+            .collect();
+        assert!(shares.iter().all(|&s| s >= 0.0), "{pair:?}: {shares:?}");
+        assert!(shares.iter().sum::<f64>() <= 1.0, "{pair:?}: {shares:?}");
+        let text = stdout(&raystep(&["compare", SCENE, path(&image)]));
+        for m in &mistakes {
+            let name = m["name"].as_str().unwrap();
+            let shown = format!("{:.1}%", m["explains"].as_f64().unwrap() * 100.0);
+            let line = text
+                .lines()
+                .find(|l| l.trim_start().starts_with(&format!("{name} ")))
+                .unwrap_or_else(|| panic!("{name} not in {text}"));
+            assert!(line.contains(&format!(" {shown}  (")), "{shown}: {line}");
+        }
+    }
+}
+
+#[test]
 fn thresholds_give_exit_three_for_autograders() {
     // The scene with its ambient light off: a real difference (mean_abs
     // about 0.06 on this scene), over a threshold of 0.01, under one of 0.5.
