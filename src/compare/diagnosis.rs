@@ -4,7 +4,7 @@
 
 use super::metrics::{TOLERANCE_STEPS, channel_gap};
 use crate::math::{Color, to_rgb8};
-use crate::record::RayTree;
+use crate::record::{RayTree, count};
 
 /// What most of a region's sampled pixels look like: the change of the
 /// reference's terms that fits the most of them, when it fits at least half.
@@ -22,8 +22,8 @@ pub(crate) fn diagnose(samples: &[(RayTree, [u8; 3])]) -> Option<String> {
     let (label, fits) = tally.into_iter().max_by_key(|(_, n)| *n)?;
     (2 * fits >= samples.len()).then(|| {
         format!(
-            "yours ≈ {label} (fits {fits} of {} sampled pixels)",
-            samples.len()
+            "yours ≈ {label} (fits {fits} of {})",
+            count(samples.len() as u64, "sampled pixel", "sampled pixels")
         )
     })
 }

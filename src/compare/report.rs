@@ -64,9 +64,8 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
     if !c.regions.is_empty() {
         let _ = writeln!(
             out,
-            "Where ({} region{} of differing pixels; the largest first):",
-            c.region_count,
-            if c.region_count == 1 { "" } else { "s" }
+            "Where ({} of differing pixels; the largest first):",
+            count(c.region_count as u64, "region", "regions")
         );
         for (i, region) in c.regions.iter().enumerate() {
             write_region(&mut out, i + 1, region);

@@ -271,6 +271,30 @@ fn bad_images_are_refused_by_name_with_exit_one() {
 }
 
 #[test]
+fn png_refusals_say_error_once_in_lower_case_on_both_paths() {
+    // A PNG whose header says 0 x 10: the decoder's reason comes once, lower case, after "error: " and the
+    // file's name, from `compare` and from the debugger's `--compare` alike
+    // (main gave "Format error decoding Png: Invalid image dimensions:
+    // Invalid image dimensions").
+    let dir = tempfile::tempdir().unwrap();
+    let zero = dir.path().join("zero.png");
+    std::fs::write(&zero, png_header_only(0, 10)).unwrap();
+    let expected = format!(
+        "error: {} is not a readable PNG: invalid image dimensions\n",
+        path(&zero)
+    );
+    for args in [
+        vec!["compare", SCENE, path(&zero)],
+        vec![SCENE, "--compare", path(&zero)],
+        vec!["debug", SCENE, "--compare", path(&zero)],
+    ] {
+        let output = raystep(&args);
+        assert_eq!(output.status.code(), Some(1), "{args:?}");
+        assert_eq!(stderr(&output), expected, "{args:?}");
+    }
+}
+
+#[test]
 fn the_json_report_has_the_documented_keys() {
     // The keys graders rely on, as README documents them.
     let dir = tempfile::tempdir().unwrap();
