@@ -70,8 +70,8 @@ pub struct RegionReport {
     pub(crate) reference: [u8; 3],
     /// The reference's recording of that pixel in brief, as `explain` says it.
     pub(crate) explain: Vec<String>,
-    /// Which term the difference looks like, when one fits most of the
-    /// region's sampled pixels.
+    /// Which term the difference looks like, when one fits two thirds of
+    /// the region's sampled pixels; "too small to tell" under 10 pixels.
     pub(crate) diagnosis: Option<String>,
 }
 
@@ -142,7 +142,11 @@ fn describe(
         yours: yours.get_pixel(x, y).0,
         reference: reference.image.get_pixel(x, y).0,
         explain: brief(&explain_lines(&tree)),
-        diagnosis: diagnosis::diagnose(&samples(scene, yours, region)),
+        diagnosis: if region.pixels.len() < diagnosis::MIN_PIXELS {
+            Some(diagnosis::too_small(region.pixels.len()))
+        } else {
+            diagnosis::diagnose(&samples(scene, yours, region))
+        },
     }
 }
 

@@ -135,6 +135,70 @@ fn shares_are_never_negative_add_to_at_most_all_and_the_text_agrees() {
     }
 }
 
+/// Each region's size and diagnosis in `compare`'s JSON for `image`.
+fn diagnoses(scene: &str, image: &Path) -> Vec<(u64, Option<String>)> {
+    let output = raystep(&["compare", scene, path(image), "--format", "json"]);
+    json(&output)["regions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            let d = r["diagnosis"].as_str().map(str::to_string);
+            (r["pixels"].as_u64().unwrap(), d)
+        })
+        .collect()
+}
+
+#[test]
+fn no_term_diagnosis_from_a_region_under_ten_pixels() {
+    // shadow-acne on two-lights.toml leaves a region of 4 pixels, on
+    // glass.toml one of 8; main diagnosed each "− diffuse" (4 of 4, 8 of
+    // 8 sampled pixels): too few to tell a term from chance.
+    let dir = tempfile::tempdir().unwrap();
+    for (scene, small) in [("scenes/two-lights.toml", 4), ("scenes/glass.toml", 8)] {
+        let image = render(dir.path(), scene, "acne.png", &["--mistake", "shadow-acne"]);
+        let found = diagnoses(scene, &image);
+        let region = found
+            .iter()
+            .find(|(n, _)| *n == small)
+            .expect("the small region");
+        assert_eq!(
+            region.1.as_deref(),
+            Some(format!("too small to tell: {small} pixels (a term diagnosis needs 10)").as_str()),
+            "{scene}"
+        );
+        for (pixels, diagnosis) in &found {
+            if *pixels < 10 {
+                assert!(diagnosis.as_deref().unwrap().starts_with("too small"));
+            }
+        }
+    }
+}
+
+#[test]
+fn a_half_pixel_shift_is_not_called_a_missing_term() {
+    // pixel-corner (rays through pixel corners: the image shifted half a
+    // pixel) on attenuation.toml: main said "yours ≈ reference − diffuse
+    // (fits 15 of 24 sampled pixels)" for its largest region; 15 of 24 is
+    // under the two thirds a term now needs, so no term is named.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "scenes/attenuation.toml";
+    let image = render(
+        dir.path(),
+        scene,
+        "corner.png",
+        &["--mistake", "pixel-corner"],
+    );
+    for (pixels, diagnosis) in diagnoses(scene, &image) {
+        assert!(
+            diagnosis
+                .as_deref()
+                .is_none_or(|d| !d.starts_with("yours ≈")),
+            "{pixels} pixels: {diagnosis:?}"
+        );
+    }
+}
+
 #[test]
 fn thresholds_give_exit_three_for_autograders() {
     // The scene with its ambient light off: a real difference (mean_abs
