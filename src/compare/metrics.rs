@@ -14,6 +14,14 @@ pub(crate) const TOLERANCE_STEPS: u8 = 3;
 /// tolerance: an independent correct tracer differs on a few pixels where a
 /// ray grazes an edge or a shadow boundary, which must still match.
 pub(crate) const MATCH_SHARE: f64 = 0.001;
+/// And no pixel of a match has a channel more than this many steps apart:
+/// an eighth of the range, more than rounding or float precision moves a
+/// correct tracer's pixel, less than a classic mistake moves the pixels it
+/// touches (a wrapped byte by about 255). So six wrapped bytes, well under
+/// `MATCH_SHARE`, still make the images differ.
+pub(crate) const MATCH_GAP: u8 = 32;
+/// At most this many pixels past `MATCH_GAP` are listed.
+const FAR_OFF_LISTED: usize = 8;
 
 #[derive(Clone, Debug, Serialize)]
 pub(crate) struct Metrics {
@@ -25,12 +33,16 @@ pub(crate) struct Metrics {
     pub(crate) pixels_over_tolerance: f64,
     /// `TOLERANCE_STEPS` / 255.
     pub(crate) tolerance: f64,
-    pub(crate) worst: Option<Worst>,
+    pub(crate) worst: Option<PixelPair>,
+    /// How many pixels have a channel more than `MATCH_GAP` steps apart.
+    pub(crate) far_off_pixels: usize,
+    /// The first of them in row-major order, at most `FAR_OFF_LISTED`.
+    pub(crate) far_off: Vec<PixelPair>,
 }
 
-/// The pixel with the largest difference in one channel.
+/// A pixel and its two values: the worst one, or one far off.
 #[derive(Clone, Debug, Serialize)]
-pub(crate) struct Worst {
+pub(crate) struct PixelPair {
     pub(crate) pixel: [u32; 2],
     pub(crate) yours: [u8; 3],
     pub(crate) reference: [u8; 3],
@@ -38,6 +50,11 @@ pub(crate) struct Worst {
 
 impl Metrics {
     pub(crate) fn matches(&self) -> bool {
+        self.few_over_tolerance() && self.far_off_pixels == 0
+    }
+
+    /// Whether the share rule alone would call it a match.
+    pub(crate) fn few_over_tolerance(&self) -> bool {
         self.pixels_over_tolerance <= MATCH_SHARE
     }
 }
@@ -63,11 +80,24 @@ pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbIm
     let mut sum = 0u64;
     let mut over = 0u64;
     let mut worst: Option<(u8, u32, u32)> = None;
+    let mut far_off_pixels = 0;
+    let mut far_off = Vec::new();
+    let pair = |x, y| PixelPair {
+        pixel: [x, y],
+        yours: yours.get_pixel(x, y).0,
+        reference: reference.get_pixel(x, y).0,
+    };
     for (x, y, p) in yours.enumerate_pixels() {
         let (a, b) = (p.0, reference.get_pixel(x, y).0);
         sum += (0..3).map(|c| a[c].abs_diff(b[c]) as u64).sum::<u64>();
         let gap = channel_gap(a, b);
         over += u64::from(gap > TOLERANCE_STEPS);
+        if gap > MATCH_GAP {
+            far_off_pixels += 1;
+            if far_off.len() < FAR_OFF_LISTED {
+                far_off.push(pair(x, y));
+            }
+        }
         if gap > 0 && worst.is_none_or(|(g, _, _)| gap > g) {
             worst = Some((gap, x, y));
         }
@@ -78,11 +108,9 @@ pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbIm
         flip_mean,
         pixels_over_tolerance: over as f64 / pixels,
         tolerance: TOLERANCE_STEPS as f64 / 255.0,
-        worst: worst.map(|(_, x, y)| Worst {
-            pixel: [x, y],
-            yours: yours.get_pixel(x, y).0,
-            reference: reference.get_pixel(x, y).0,
-        }),
+        worst: worst.map(|(_, x, y)| pair(x, y)),
+        far_off_pixels,
+        far_off,
     };
     (metrics, error_map)
 }
@@ -121,6 +149,32 @@ mod tests {
         assert_eq!(worst.yours, [100, 100, 140]);
         assert!(!metrics.matches());
         assert_eq!(map.dimensions(), (4, 1));
+        // 40 > 32: the one pixel far off.
+        assert_eq!(metrics.far_off_pixels, 1);
+        assert_eq!(metrics.far_off[0].pixel, [3, 0]);
+    }
+
+    #[test]
+    fn a_few_pixels_far_off_make_the_images_differ() {
+        // 100 x 100 = 10,000 pixels; a match allows 0.1% = 10 past the
+        // tolerance. Five pixels off by 255 in one channel (a wrapped byte)
+        // are 0.05%, within that share, but each is past the 32 steps.
+        let reference = RgbImage::from_pixel(100, 100, image::Rgb([255, 200, 100]));
+        let mut yours = reference.clone();
+        for x in 0..5 {
+            yours.put_pixel(x * 10, 7, image::Rgb([0, 200, 100]));
+        }
+        let (metrics, _) = measure(&yours, &reference);
+        assert_eq!(metrics.pixels_over_tolerance, 0.0005);
+        assert!(metrics.few_over_tolerance());
+        assert_eq!(metrics.far_off_pixels, 5);
+        assert!(!metrics.matches());
+        // Off by exactly 32 is still a match; by 33 it is not.
+        let mut near = reference.clone();
+        near.put_pixel(0, 0, image::Rgb([223, 200, 100]));
+        assert!(measure(&near, &reference).0.matches());
+        near.put_pixel(0, 0, image::Rgb([222, 200, 100]));
+        assert!(!measure(&near, &reference).0.matches());
     }
 
     #[test]

@@ -15,18 +15,24 @@ pub mod student;
 use image::RgbImage;
 use serde::Serialize;
 
-pub(crate) use metrics::{MATCH_SHARE, Metrics, TOLERANCE_STEPS};
+pub(crate) use metrics::{MATCH_GAP, MATCH_SHARE, Metrics, TOLERANCE_STEPS};
 pub(crate) use ranking::Ranked;
 pub use report::text;
 pub use student::StudentImage;
 
+use crate::mistakes::{Mistake, Mistakes};
 use crate::record::{RayTree, Said, Told, explain_lines, record_pixel};
+use crate::render::render;
 use crate::scene::Scene;
+use crate::trace::NoRecorder;
 
 /// The regions a report describes; the rest are only counted.
 const REGIONS_SHOWN: usize = 5;
 /// The objects named for a region; the rest are counted.
 const OBJECTS_SHOWN: usize = 3;
+/// A region is named after a ranked mistake whose render explains at least
+/// this share of its difference.
+const NAMED_SHARE: f64 = 0.95;
 /// How many of a region's pixels the term diagnosis looks at.
 const DIAGNOSIS_SAMPLES: usize = 24;
 
@@ -38,7 +44,8 @@ pub struct Comparison {
     /// What was converted to read the student's image.
     pub(crate) notes: Vec<String>,
     pub(crate) metrics: Metrics,
-    /// At most `MATCH_SHARE` of the pixels past the tolerance.
+    /// At most `MATCH_SHARE` of the pixels past the tolerance, and none
+    /// more than `MATCH_GAP` steps apart.
     pub matches: bool,
     /// How many connected regions of differing pixels there are.
     pub(crate) region_count: usize,
@@ -70,8 +77,8 @@ pub struct RegionReport {
     pub(crate) reference: [u8; 3],
     /// The reference's recording of that pixel in brief, as `explain` says it.
     pub(crate) explain: Vec<String>,
-    /// Which term the difference looks like, when one fits most of the
-    /// region's sampled pixels.
+    /// Which term the difference looks like, when one fits two thirds of
+    /// the region's sampled pixels; "too small to tell" under 10 pixels.
     pub(crate) diagnosis: Option<String>,
 }
 
@@ -91,16 +98,25 @@ pub fn compare(scene: &Scene, student: StudentImage) -> Comparison {
     let (metrics, error_map) = metrics::measure(&yours, &reference.image);
     let matches = metrics.matches();
     let found = regions::regions(&metrics::over_tolerance(&yours, &reference.image));
-    let regions = found
-        .iter()
-        .take(REGIONS_SHOWN)
-        .map(|region| describe(scene, &reference, &yours, region))
-        .collect();
     let mistakes = if matches {
         Vec::new()
     } else {
         ranking::rank(scene, &settings, &yours, &reference.image)
     };
+    // Each ranked mistake's own render, to name a region it explains.
+    let renders: Vec<(Mistake, RgbImage)> = mistakes
+        .iter()
+        .map(|r| {
+            let mut mistaken = settings;
+            mistaken.mistakes = Mistakes::NONE.with(r.mistake);
+            (r.mistake, render::<NoRecorder>(scene, &mistaken, &|| {}).0)
+        })
+        .collect();
+    let regions = found
+        .iter()
+        .take(REGIONS_SHOWN)
+        .map(|region| describe(scene, &reference, &yours, region, &renders))
+        .collect();
     Comparison {
         width: yours.width(),
         height: yours.height(),
@@ -119,6 +135,7 @@ fn describe(
     reference: &reference::Reference,
     yours: &RgbImage,
     region: &regions::Region,
+    renders: &[(Mistake, RgbImage)],
 ) -> RegionReport {
     let gap = |&(x, y): &(u32, u32)| {
         metrics::channel_gap(yours.get_pixel(x, y).0, reference.image.get_pixel(x, y).0)
@@ -153,8 +170,44 @@ fn describe(
         yours: yours.get_pixel(x, y).0,
         reference: reference.image.get_pixel(x, y).0,
         explain: brief(&explain_lines(&tree)),
-        diagnosis: diagnosis::diagnose(&samples(scene, yours, region)),
+        diagnosis: if let Some(mistake) = explaining(yours, &reference.image, region, renders) {
+            Some(format!(
+                "{} (its render explains at least {}% of the difference here)",
+                mistake.name(),
+                (NAMED_SHARE * 100.0) as u32
+            ))
+        } else if region.pixels.len() < diagnosis::MIN_PIXELS {
+            Some(diagnosis::too_small(region.pixels.len()))
+        } else {
+            diagnosis::diagnose(&samples(scene, yours, region))
+        },
     }
+}
+
+/// The ranked mistake whose render explains at least `NAMED_SHARE` of the
+/// region's difference: 1 − Σ|yours − mistaken| / Σ|yours − reference|
+/// over the region's pixels and channels.
+fn explaining(
+    yours: &RgbImage,
+    reference: &RgbImage,
+    region: &regions::Region,
+    renders: &[(Mistake, RgbImage)],
+) -> Option<Mistake> {
+    let apart = |other: &RgbImage| -> u64 {
+        region
+            .pixels
+            .iter()
+            .map(|&(x, y)| {
+                let (a, b) = (yours.get_pixel(x, y).0, other.get_pixel(x, y).0);
+                (0..3).map(|c| a[c].abs_diff(b[c]) as u64).sum::<u64>()
+            })
+            .sum()
+    };
+    let whole = apart(reference);
+    renders
+        .iter()
+        .find(|(_, image)| whole > 0 && 1.0 - apart(image) as f64 / whole as f64 >= NAMED_SHARE)
+        .map(|(mistake, _)| *mistake)
 }
 
 /// Pixels spread evenly over a region (all of a small one), each recorded.

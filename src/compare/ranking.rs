@@ -37,9 +37,12 @@ const MAX_LISTED: usize = 3;
 pub struct Ranked {
     #[serde(rename = "name")]
     pub mistake: Mistake,
-    /// 1 - D(yours, variant) / D(yours, reference), D the block difference
-    /// over the whole image: 1 when the mistaken render is the student's
-    /// image, 0 or less when it is no closer than the correct one.
+    /// The share of the whole difference, D(yours, reference), that this
+    /// mistake takes away on top of those listed above it: (D before − D
+    /// after) / D(yours, reference), D the block difference over the whole
+    /// image, "before" the closest the mistakes above came. Never negative,
+    /// and the shares add up to at most 1: their sum is how much of the
+    /// difference the listed mistakes explain together.
     pub(crate) explains: f64,
     /// The same over the blocks the mistake changes, starting from the
     /// render with the mistakes listed above it: 1 when there it gives the
@@ -98,6 +101,8 @@ pub(crate) fn rank(
     let mut ranked: Vec<Ranked> = Vec::new();
     let mut chosen = Mistakes::NONE;
     let mut base = reference_blocks.clone();
+    let whole = gap(&yours_blocks, &reference_blocks, None);
+    let mut closest = whole;
     while ranked.len() < MAX_LISTED {
         // How each remaining mistake fits on top of the chosen ones.
         let fits: Vec<(f64, Vec<[u32; 3]>)> = candidates
@@ -122,13 +127,15 @@ pub(crate) fn rank(
         let Some(best) = best else { break };
         let (fit, blocks) = fits.into_iter().nth(best).expect("in range");
         let c = candidates.remove(best);
+        let after = gap(&yours_blocks, &blocks, None);
         ranked.push(Ranked {
             mistake: c.mistake,
-            explains: c.explains,
+            explains: share_taken(whole, closest, after),
             fits: fit,
             pixel: c.pixel,
         });
         chosen = chosen.with(c.mistake);
+        closest = closest.min(after);
         base = blocks;
     }
     ranked
@@ -214,6 +221,16 @@ fn explains(
     1.0 - gap(yours, variant, only) as f64 / apart as f64
 }
 
+/// The share of `whole` a mistake takes away when it brings the closest
+/// difference so far, `before`, to `after`: 0 when it brings nothing closer,
+/// so the shares of the listed mistakes add up to 1 − (the closest) / `whole`.
+fn share_taken(whole: u64, before: u64, after: u64) -> f64 {
+    if whole == 0 {
+        return 0.0;
+    }
+    before.saturating_sub(after) as f64 / whole as f64
+}
+
 /// Each block's channel sums, row-major by block.
 fn block_sums(image: &RgbImage) -> Vec<[u32; 3]> {
     let (width, height) = image.dimensions();
@@ -284,6 +301,18 @@ mod tests {
         assert_eq!(explains(&yours, &base, &variant, Some(&[true, false])), 1.0);
         // Where yours and base agree, nothing is there to explain: 0.
         assert_eq!(explains(&base, &base, &variant, Some(&[true, false])), 0.0);
+    }
+
+    #[test]
+    fn shares_are_what_each_mistake_takes_away_and_never_negative() {
+        // Yours is 1000 apart from the reference. The first mistake brings
+        // it to 300: 700 / 1000 = 0.7. The second, on top, to 100: 200 /
+        // 1000 = 0.2. A third that makes it 400 (further than 100) takes
+        // nothing: 0, not -0.3. Together 0.9 = 1 - 100 / 1000.
+        assert_eq!(share_taken(1000, 1000, 300), 0.7);
+        assert_eq!(share_taken(1000, 300, 100), 0.2);
+        assert_eq!(share_taken(1000, 100, 400), 0.0);
+        assert_eq!(share_taken(0, 0, 0), 0.0);
     }
 
     #[test]

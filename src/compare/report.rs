@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use super::{Comparison, MATCH_SHARE, RegionReport};
+use super::{Comparison, MATCH_GAP, MATCH_SHARE, RegionReport};
 use crate::record::count;
 
 pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
@@ -22,13 +22,32 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
     } else {
         "they differ"
     };
-    let _ = writeln!(
-        out,
-        "{verdict}: {} of the pixels differ by more than {} steps of 255 (a match allows {}).",
+    let share = format!(
+        "{verdict}: {} of the pixels differ by more than {} steps of 255 (a match allows {})",
         percent(m.pixels_over_tolerance),
         super::TOLERANCE_STEPS,
         percent(MATCH_SHARE)
     );
+    if c.matches || !m.few_over_tolerance() {
+        let _ = writeln!(out, "{share}.");
+    } else {
+        // The share alone would match: the few pixels far off decide.
+        let _ = writeln!(
+            out,
+            "{share}, but {} by more than {MATCH_GAP} (a match allows none):",
+            count(m.far_off_pixels as u64, "pixel differs", "pixels differ")
+        );
+        for p in &m.far_off {
+            let _ = writeln!(
+                out,
+                "  pixel {},{}: yours {:?}, reference {:?}",
+                p.pixel[0], p.pixel[1], p.yours, p.reference
+            );
+        }
+        if m.far_off_pixels > m.far_off.len() {
+            let _ = writeln!(out, "  and {} more", m.far_off_pixels - m.far_off.len());
+        }
+    }
     let _ = writeln!(
         out,
         "  mean absolute error {:.4}, FLIP {:.4}",
@@ -45,9 +64,8 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
     if !c.regions.is_empty() {
         let _ = writeln!(
             out,
-            "Where ({} region{} of differing pixels; the largest first):",
-            c.region_count,
-            if c.region_count == 1 { "" } else { "s" }
+            "Where ({} of differing pixels; the largest first):",
+            count(c.region_count as u64, "region", "regions")
         );
         for (i, region) in c.regions.iter().enumerate() {
             write_region(&mut out, i + 1, region);
@@ -82,7 +100,7 @@ fn write_mistakes(out: &mut String, c: &Comparison) {
             out,
             "  {:<20} {:>6}  ({fits}{with})  {}{at}",
             ranked.mistake.name(),
-            percent(ranked.explains.max(0.0)),
+            percent(ranked.explains),
             ranked.mistake.summary()
         );
     }

@@ -6,9 +6,10 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, Read, Seek};
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use image::{ColorType, DynamicImage, ImageDecoder, ImageFormat, ImageReader, RgbImage};
 
+use crate::record::count;
 use crate::scene::check_image_size;
 
 /// The eight bytes every PNG file starts with.
@@ -44,17 +45,38 @@ pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage>
         .with_context(|| format!("cannot read {name}"))?;
     let decoder = ImageReader::with_format(reader, ImageFormat::Png)
         .into_decoder()
-        .with_context(|| format!("{name} is not a readable PNG"))?;
+        .map_err(|e| anyhow!("{name} is not a readable PNG: {}", decoder_said(&e)))?;
     let (width, height) = decoder.dimensions();
     check_image_size(width, height).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
     let color = decoder.color_type();
     let image = DynamicImage::from_decoder(decoder)
-        .with_context(|| format!("{name} is a damaged or truncated PNG"))?;
+        .map_err(|e| anyhow!("{name} is a damaged or truncated PNG: {}", decoder_said(&e)))?;
     let notes = conversion_notes(color, &image);
     Ok(StudentImage {
         image: image.into_rgb8(),
         notes,
     })
+}
+
+/// The decoder's own reason in the house style of messages: its innermost
+/// cause only ("Format error decoding Png: X" repeats X as its source), the
+/// first letter lower case unless it starts an acronym ("IDAT", "CRC"), no
+/// full stop.
+fn decoder_said(error: &image::ImageError) -> String {
+    let mut cause: &dyn std::error::Error = error;
+    while let Some(inner) = cause.source() {
+        cause = inner;
+    }
+    let said = cause.to_string();
+    let said = said.trim_end().trim_end_matches('.');
+    let mut chars = said.chars();
+    match (chars.next(), chars.next()) {
+        (Some(first), Some(second)) if !second.is_uppercase() => first
+            .to_lowercase()
+            .chain(said[first.len_utf8()..].chars())
+            .collect(),
+        _ => said.to_string(),
+    }
 }
 
 /// What turning an image of `color` into 8-bit RGB changes.
@@ -71,7 +93,10 @@ fn conversion_notes(color: ColorType, image: &DynamicImage) -> Vec<String> {
         notes.push(if see_through == 0 {
             "an alpha channel, opaque everywhere: ignored".to_string()
         } else {
-            format!("an alpha channel: ignored ({see_through} pixels are not opaque)")
+            format!(
+                "an alpha channel: ignored ({} not opaque)",
+                count(see_through as u64, "pixel is", "pixels are")
+            )
         });
     }
     notes
@@ -86,6 +111,38 @@ mod tests {
         let path = dir.join(name);
         image.save(&path).unwrap();
         path
+    }
+
+    /// A PNG chunk's CRC-32 over its type and data (polynomial 0xEDB88320).
+    fn crc(kind: &[u8], data: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &byte in kind.iter().chain(data) {
+            crc ^= byte as u32;
+            for _ in 0..8 {
+                crc = if crc & 1 == 1 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        !crc
+    }
+
+    #[test]
+    fn the_decoders_reason_is_said_once_in_lower_case() {
+        // "IEND" with no data has the CRC every PNG ends with.
+        assert_eq!(crc(b"IEND", &[]), 0xAE42_6082);
+        let error = image::ImageError::Decoding(image::error::DecodingError::new(
+            ImageFormat::Png.into(),
+            "Chunk length wrong.",
+        ));
+        assert_eq!(decoder_said(&error), "chunk length wrong");
+        let error = image::ImageError::Decoding(image::error::DecodingError::new(
+            ImageFormat::Png.into(),
+            "IDAT or fDAT chunk is missing.",
+        ));
+        assert_eq!(decoder_said(&error), "IDAT or fDAT chunk is missing");
     }
 
     #[test]
@@ -106,7 +163,7 @@ mod tests {
             loaded.notes,
             [
                 "16 bits per channel: rounded to 8 bits",
-                "an alpha channel: ignored (1 pixels are not opaque)"
+                "an alpha channel: ignored (1 pixel is not opaque)"
             ]
         );
         let grey = ImageBuffer::from_pixel(1, 1, LumaA([100u8, 255]));
@@ -135,6 +192,25 @@ mod tests {
         std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
         let error = format!("{:#}", load(&cut).err().unwrap());
         assert!(error.contains("cut.png"), "{error}");
+
+        // A header with bit depth 7, which PNG does not have: the
+        // decoder's reason once, in lower case, without its "Format error
+        // decoding Png:" prefix or a full stop.
+        let mut seven = PNG_SIGNATURE.to_vec();
+        let header = [0, 0, 0, 2, 0, 0, 0, 2, 7, 2, 0, 0, 0];
+        seven.extend([0, 0, 0, 13]);
+        seven.extend(b"IHDR");
+        seven.extend(header);
+        seven.extend(crc(b"IHDR", &header).to_be_bytes());
+        let file = dir.path().join("seven.png");
+        std::fs::write(&file, seven).unwrap();
+        assert_eq!(
+            format!("{:#}", load(&file).err().unwrap()),
+            format!(
+                "{} is not a readable PNG: invalid bit depth 7",
+                file.display()
+            )
+        );
 
         let missing = format!("{:#}", load(&dir.path().join("none.png")).err().unwrap());
         assert!(
