@@ -121,9 +121,15 @@ pub(crate) fn rank(
                 )
             })
             .collect();
+        // On a tie the first in the catalogue's order wins: two mistakes
+        // that render the same image here (shadow-acne and no-epsilon where
+        // no secondary ray meets its own surface) are named by the narrower,
+        // listed first in MODEL §8.
         let best = (0..candidates.len())
             .filter(|&i| fits[i].0 >= MIN_FIT)
-            .max_by(|&a, &b| candidates[a].explains.total_cmp(&candidates[b].explains));
+            .max_by(|&a, &b| {
+                (candidates[a].explains.total_cmp(&candidates[b].explains)).then(b.cmp(&a))
+            });
         let Some(best) = best else { break };
         let (fit, blocks) = fits.into_iter().nth(best).expect("in range");
         let c = candidates.remove(best);
