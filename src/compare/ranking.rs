@@ -51,6 +51,10 @@ pub struct Ranked {
     /// A pixel where the mistake shows: the student's pixel differs from the
     /// reference there and the mistaken render comes closest to it.
     pub(crate) pixel: Option<[u32; 2]>,
+    /// For `gamma`, the exponent that fits the student's bytes best (2.2,
+    /// 2.0, ...), to one decimal; absent for every other mistake.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) exponent: Option<f64>,
 }
 
 /// The mistakes that explain the difference between `yours` and
@@ -139,12 +143,36 @@ pub(crate) fn rank(
             explains: share_taken(whole, closest, after),
             fits: fit,
             pixel: c.pixel,
+            exponent: (c.mistake == Mistake::Gamma)
+                .then(|| gamma_exponent(yours, reference))
+                .flatten(),
         });
         chosen = chosen.with(c.mistake);
         closest = closest.min(after);
         base = blocks;
     }
     ranked
+}
+
+/// The gamma exponent γ that turns the reference's bytes into the
+/// student's, yours = 255 (ref / 255)^(1/γ): the median over every channel
+/// of every pixel where both are away from black and white (where the
+/// curve is flat and rounding rules), to one decimal. None when no channel
+/// tells.
+fn gamma_exponent(yours: &RgbImage, reference: &RgbImage) -> Option<f64> {
+    let mut found: Vec<f64> = yours
+        .pixels()
+        .zip(reference.pixels())
+        .flat_map(|(y, r)| y.0.into_iter().zip(r.0))
+        .filter(|&(y, r)| (16..=239).contains(&r) && (16..=250).contains(&y) && y > r)
+        .map(|(y, r)| (f64::from(r) / 255.0).ln() / (f64::from(y) / 255.0).ln())
+        .collect();
+    if found.is_empty() {
+        return None;
+    }
+    let middle = found.len() / 2;
+    let (_, median, _) = found.select_nth_unstable_by(middle, f64::total_cmp);
+    Some((*median * 10.0).round() / 10.0)
 }
 
 /// Whether `mistake` can change this scene's image at all: false when the
@@ -334,6 +362,24 @@ mod tests {
         variant.put_pixel(1, 0, image::Rgb([200; 3]));
         variant.put_pixel(2, 0, image::Rgb([50; 3]));
         assert_eq!(showing_pixel(&yours, &reference, &variant), Some([1, 0]));
+    }
+
+    #[test]
+    fn the_gamma_exponent_is_read_back_from_the_bytes() {
+        // Bytes 16 to 239 under γ = 2.0: 255 (r/255)^(1/2), rounded; e.g.
+        // r = 64 gives 255 × 0.50099 = 127.75, byte 128, and
+        // ln(64/255) / ln(128/255) = 2.0055. The median rounds to 2.0.
+        let reference = RgbImage::from_fn(224, 1, |x, _| image::Rgb([16 + x as u8; 3]));
+        let curve = |g: f64| {
+            RgbImage::from_fn(224, 1, |x, _| {
+                let c = f64::from(16 + x as u8) / 255.0;
+                image::Rgb([(255.0 * c.powf(1.0 / g) + 0.5).floor() as u8; 3])
+            })
+        };
+        assert_eq!(gamma_exponent(&curve(2.0), &reference), Some(2.0));
+        assert_eq!(gamma_exponent(&curve(2.2), &reference), Some(2.2));
+        assert_eq!(gamma_exponent(&curve(1.8), &reference), Some(1.8));
+        assert_eq!(gamma_exponent(&reference, &reference), None);
     }
 
     #[test]

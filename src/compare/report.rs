@@ -101,7 +101,10 @@ fn write_mistakes(out: &mut String, c: &Comparison) {
             "  {:<20} {:>6}  ({fits}{with})  {}{at}",
             ranked.mistake.name(),
             percent(ranked.explains),
-            ranked.mistake.summary()
+            match ranked.exponent {
+                Some(exponent) => format!("a gamma of {exponent:.1} applied to the bytes"),
+                None => ranked.mistake.summary().to_string(),
+            }
         );
     }
 }

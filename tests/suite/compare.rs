@@ -633,3 +633,34 @@ fn the_json_shape_is_pinned() {
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     json_snapshot!("json_shape", shape(&json(&output)));
 }
+
+#[test]
+fn gamma_says_the_exponent_that_fits_best() {
+    // raystep's render with every byte b turned into 255 (b/255)^(1/2),
+    // a student's gamma of 2.0: compare names gamma and reads 2.0 back from
+    // the bytes (on main it always said 2.2); raystep's own gamma render
+    // reads 2.2.
+    let dir = tempfile::tempdir().unwrap();
+    let ours = render(dir.path(), SCENE, "ours.png", &[]);
+    let mut image = image::open(&ours).unwrap().into_rgb8();
+    for pixel in image.pixels_mut() {
+        for c in &mut pixel.0 {
+            *c = (255.0 * (f64::from(*c) / 255.0).powf(1.0 / 2.0) + 0.5).floor() as u8;
+        }
+    }
+    let two = dir.path().join("two.png");
+    image.save(&two).unwrap();
+    let twenty_two = render(dir.path(), SCENE, "g22.png", &["--mistake", "gamma"]);
+    for (file, exponent) in [(&two, 2.0), (&twenty_two, 2.2)] {
+        let output = raystep(&["compare", SCENE, path(file)]);
+        let text = stdout(&output);
+        assert!(
+            text.contains("gamma  ") && text.contains(&format!("a gamma of {exponent:.1} applied")),
+            "{text}"
+        );
+        let output = raystep(&["compare", SCENE, path(file), "--format", "json"]);
+        let first = &json(&output)["mistakes"][0];
+        assert_eq!(first["name"], "gamma");
+        assert_eq!(first["exponent"], exponent);
+    }
+}

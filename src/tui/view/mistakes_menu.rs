@@ -131,6 +131,7 @@ mod tests {
             explains,
             fits: 1.0,
             pixel: None,
+            exponent: None,
         }
     }
 
