@@ -25,7 +25,7 @@ done
 # raylog_reader: raystep's own logs of a few pixels of the target's scene
 # (8x6, three lights, a ball and a floor), as inspect --format raylog writes them.
 mkdir -p corpus/raylog_reader
-sed -n '/^const SCENE: &str = r#"$/,/^"#;$/p' fuzz_targets/raylog_reader.rs | sed '1d;$d' > corpus/raylog-scene.toml
+sed -n '/^const SCENE: &str = r#"$/,/^"#;$/p' fuzz_targets/raylog_scene.rs | sed '1d;$d' > corpus/raylog-scene.toml
 for pixel in 4,3 4,5 0,0; do
     cargo run --quiet --release --manifest-path ../Cargo.toml -- \
         inspect corpus/raylog-scene.toml --pixel "$pixel" --format raylog \

@@ -4,44 +4,12 @@
 //! reader with an error that names the log, a line within the input and
 //! a column, never a panic.
 
-use std::path::Path;
-use std::sync::OnceLock;
+#[path = "raylog_scene.rs"]
+mod raylog_scene;
 
 use libfuzzer_sys::fuzz_target;
 use raystep::raylog::RaylogReader;
-use raystep::scene::Scene;
-
-const SCENE: &str = r#"
-[camera]
-eye = [0, 0, 5]
-look_at = [0, 0, 0]
-[image]
-width = 8
-height = 6
-[materials.glass]
-ks = 0.3
-kt = 0.5
-ior = 1.5
-[[light]]
-position = [0, 4, 4]
-[[light]]
-position = [4, 4, 4]
-[[light]]
-position = [-4, 4, 4]
-[[object]]
-name = "ball"
-material = "glass"
-sphere = { center = [0, 0, 0], radius = 1 }
-[[object]]
-name = "floor"
-material = "glass"
-plane = { normal = [0, 1, 0], point = [0, -1, 0] }
-"#;
-
-fn scene() -> &'static Scene {
-    static SCENE_ONCE: OnceLock<Scene> = OnceLock::new();
-    SCENE_ONCE.get_or_init(|| raystep::scene::parse(Path::new("fuzz.toml"), SCENE).unwrap())
-}
+use raylog_scene::scene;
 
 fuzz_target!(|data: &[u8]| {
     let lines = data.split(|&b| b == b'\n').count();
