@@ -184,16 +184,8 @@ pub struct BlockerRecord {
 impl BlockerRecord {
     /// Which of the working's two roots is nearer to `t`, if it has two.
     pub(crate) fn root_of(working: &Working, t: f64) -> Option<&'static str> {
-        let (t0, t1) = match working {
-            Working::Sphere(w) => (w.t0?, w.t1?),
-            Working::Cone(w) => (w.t0?, w.t1?),
-            _ => return None,
-        };
-        Some(if (t - t0).abs() <= (t - t1).abs() {
-            "t0"
-        } else {
-            "t1"
-        })
+        let (nearer, _) = working.nearer_root(t)?;
+        Some(["t0", "t1"][nearer])
     }
 }
 

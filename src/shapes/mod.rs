@@ -51,6 +51,21 @@ pub enum Working {
     Cone(ConeWorking),
 }
 
+impl Working {
+    /// A quadratic's two roots (sphere, cylinder, cone) and which of them,
+    /// 0 or 1, is nearer `t` (0 on a tie); none for a plane or polygon, or
+    /// without real roots.
+    pub(crate) fn nearer_root(&self, t: f64) -> Option<(usize, [f64; 2])> {
+        let roots = match self {
+            Working::Sphere(w) => [w.t0?, w.t1?],
+            Working::Cone(w) => [w.t0?, w.t1?],
+            _ => return None,
+        };
+        let nearer = usize::from((t - roots[0]).abs() > (t - roots[1]).abs());
+        Some((nearer, roots))
+    }
+}
+
 /// Up to two ray distances where a segment crosses a surface, in increasing order.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Roots {

@@ -17,7 +17,6 @@ use super::ours::OurRays;
 use crate::raylog::{Hit, Step};
 use crate::record::num;
 use crate::scene::Scene;
-use crate::shapes::Working;
 
 /// The kinds of difference `compare --rays` recognises; their JSON names
 /// are a contract (docs/RAYLOG.md).
@@ -193,7 +192,8 @@ fn number(ours: &OurRays, ray: usize, field: Field, yours: f64, theirs: f64) -> 
         if let Some(other) = node
             .hit
             .as_ref()
-            .and_then(|h| other_root(&h.working, theirs))
+            .and_then(|h| h.working.nearer_root(theirs))
+            .map(|(nearer, roots)| roots[1 - nearer])
             && close_numbers(yours, other)
         {
             return (
@@ -251,20 +251,6 @@ fn number(ours: &OurRays, ray: usize, field: Field, yours: f64, theirs: f64) -> 
         Kind::Other
     };
     (kind, String::new())
-}
-
-/// A sphere's or cone's other root than `t`, if it has two.
-fn other_root(working: &Working, t: f64) -> Option<f64> {
-    let (t0, t1) = match working {
-        Working::Sphere(w) => (w.t0?, w.t1?),
-        Working::Cone(w) => (w.t0?, w.t1?),
-        _ => return None,
-    };
-    Some(if (t - t0).abs() <= (t - t1).abs() {
-        t1
-    } else {
-        t0
-    })
 }
 
 fn vector(
