@@ -15,6 +15,9 @@ use std::time::{Duration, Instant};
 
 /// Generous: the machine running the tests may be busy building.
 const PATIENCE: Duration = Duration::from_secs(30);
+/// The pty's size.
+const ROWS: u16 = 40;
+const COLUMNS: u16 = 120;
 
 /// Each private mode the debugger sets, as (set, reset) sequences: the
 /// alternate screen, mouse reporting (crossterm's four modes) and the cursor,
@@ -57,7 +60,7 @@ impl Session {
     }
 
     fn start_as(start: Start, args: &[&str]) -> Session {
-        let (master, tty) = open_pty(120, 40);
+        let (master, tty) = open_pty(COLUMNS, ROWS);
         let stdio = || Stdio::from(tty.try_clone().unwrap());
         let mut command = Command::new(env!("CARGO_BIN_EXE_raystep"));
         command
@@ -103,6 +106,25 @@ impl Session {
 
     fn text(&self) -> String {
         String::from_utf8_lossy(&self.output.lock().unwrap()).into_owned()
+    }
+
+    /// The screen as a terminal shows it after everything written so far:
+    /// ratatui sends only the cells that changed, so a title redrawn in
+    /// part is whole only here, not in the byte stream.
+    fn screen(&self) -> String {
+        let size = |n| std::num::NonZeroU16::new(n).expect("a pty has rows and columns");
+        let mut terminal = vt100::Parser::new(size(ROWS), size(COLUMNS), 0);
+        terminal.process(&self.output.lock().unwrap());
+        terminal.screen().contents()
+    }
+
+    /// Polls until the screen shows `what`; panics after `PATIENCE`.
+    fn wait_for_screen(&self, what: &str) {
+        let deadline = Instant::now() + PATIENCE;
+        while !self.screen().contains(what) {
+            assert!(Instant::now() < deadline, "no {what} on {}", self.screen());
+            std::thread::sleep(Duration::from_millis(10));
+        }
     }
 
     /// Polls until `done` holds for what was written; panics after `PATIENCE`.
@@ -322,8 +344,8 @@ fn quit_restores_the_terminal_too() {
 }
 
 /// The image pane's title once `l` moved the cursor to pixel (81, 60) of
-/// the built-in scene; ratatui redraws only the changed characters of it.
-const PIXEL_81_60: &str = "rgb(102,113,144)";
+/// the built-in scene.
+const PIXEL_81_60: &str = "Pixel (81, 60) rgb(102,113,144)";
 
 /// Every mode the debugger sets, set again in `text`, and a whole screen
 /// drawn after a clear: the image pane's title (which a redraw of changes
@@ -349,7 +371,7 @@ fn stop_gives_the_terminal_back_until_continued(stop: impl Fn(&mut Session), sig
     // The built-in scene opens on pixel (80, 60): `l` moves it to (81, 60),
     // whose colour the title then shows (as seen on screen).
     session.keyboard.write_all(b"l").unwrap();
-    session.wait_for("pixel moved", |text| text.contains(PIXEL_81_60));
+    session.wait_for_screen(PIXEL_81_60);
     assert_eq!(
         session.cooked_and_echo(),
         (false, false),
