@@ -165,10 +165,10 @@ impl Labels {
     /// mark, no outline, and (if `rays`) no ray.
     fn fits(&self, b: Box2, rays: bool) -> bool {
         let crosses = |(a, c): (DVec2, DVec2)| clip(a, c, b).is_some();
-        contains(self.bounds, b)
-            && !self.boxes.iter().any(|o| overlap(*o, b))
-            && !self.outlines.iter().any(|p| crosses((p.a, p.b)))
-            && !(rays && self.rays.iter().copied().any(crosses))
+        let blocked = self.boxes.iter().any(|o| overlap(*o, b))
+            || self.outlines.iter().any(|p| crosses((p.a, p.b)))
+            || (rays && self.rays.iter().copied().any(crosses));
+        contains(self.bounds, b) && !blocked
     }
 
     /// The first of `candidates` that `fits`.
