@@ -31,6 +31,13 @@ const BLOCK: u32 = 16;
 pub(crate) const MIN_FIT: f64 = 0.5;
 /// At most this many mistakes are listed.
 const MAX_LISTED: usize = 3;
+/// A mistake that takes away less than this share of the whole difference
+/// on top of those listed above it is not listed: its change is below
+/// what the blocks tell apart, and there any mistake that touches the few
+/// blocks left fits by chance (a student's NaN image, white where lit, is
+/// light-not-normalised at 99.9%; two-sided-diffuse then "fit" 61% and
+/// took 0.06%).
+const MIN_SHARE: f64 = 0.001;
 
 /// A mistake, how much of the difference it explains and how well it fits.
 #[derive(Clone, Debug, Serialize)]
@@ -59,7 +66,8 @@ pub struct Ranked {
 
 /// The mistakes that explain the difference between `yours` and
 /// `reference`, most first. Each next one is, among the mistakes that fit
-/// at least `MIN_FIT` on top of those above it, the one that explains most.
+/// at least `MIN_FIT` on top of those above it, the one that explains most;
+/// one that takes away less than `MIN_SHARE` on top of them is passed over.
 pub(crate) fn rank(
     scene: &Scene,
     settings: &Settings,
@@ -138,9 +146,13 @@ pub(crate) fn rank(
         let (fit, blocks) = fits.into_iter().nth(best).expect("in range");
         let c = candidates.remove(best);
         let after = gap(&yours_blocks, &blocks, None);
+        let share = share_taken(whole, closest, after);
+        if share < MIN_SHARE {
+            continue;
+        }
         ranked.push(Ranked {
             mistake: c.mistake,
-            explains: share_taken(whole, closest, after),
+            explains: share,
             fits: fit,
             pixel: c.pixel,
             exponent: (c.mistake == Mistake::Gamma)

@@ -294,6 +294,35 @@ impl Diagram {
         points
     }
 
+    /// Whether the rays (primary, reflected, transmitted) all lie on one
+    /// line in this plane, at least two of them: they lie in one plane
+    /// seen edge-on (seven-rays' centre pixel from the side, where every
+    /// ray lies in the horizontal plane through the eye), so the figure
+    /// cannot show them apart. Within a thousandth of the figure's extent.
+    pub(crate) fn rays_edge_on(&self) -> bool {
+        let rays: Vec<&Segment> = (self.segments.iter())
+            .filter(|s| {
+                matches!(
+                    s.stroke,
+                    Stroke::Primary | Stroke::Reflected | Stroke::Transmitted
+                )
+            })
+            .collect();
+        let Some(primary) = rays.first() else {
+            return false;
+        };
+        let along = (primary.to - primary.from).normalize_or_zero();
+        let points = self.extent();
+        let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+        let tolerance = 1e-3 * (hi - lo).length();
+        let off_line = |p: DVec2| (p - primary.from).perp_dot(along).abs();
+        rays.len() > 1
+            && along != DVec2::ZERO
+            && (rays.iter()).all(|s| off_line(s.from) <= tolerance && off_line(s.to) <= tolerance)
+    }
+
     /// Whether a ray met `object` (hit it or was blocked by it).
     pub(crate) fn met(&self, object: usize) -> bool {
         (self.objects.iter()).any(|o| o.object == object && o.role == Role::Met)

@@ -2,12 +2,16 @@
 """A student's Whitted ray tracer, written from docs/MODEL.md and docs/RAYLOG.md.
 
 It traces one pixel (or a rectangle of pixels) of a raystep TOML scene and
-prints every ray it casts as a ray log, for `raystep compare SCENE --rays LOG`:
+prints every ray it casts as a ray log, for `raystep compare SCENE --rays LOG`,
+or renders the whole image to a PNG, for `raystep compare SCENE IMAGE.png`:
 
     python3 tests/student/whitted.py scenes/glass.toml 72 45 > mine.jsonl
     python3 tests/student/whitted.py scenes/glass.toml 70 40 --size 4x3
+    python3 tests/student/whitted.py scenes/glass.toml -o mine.png --size 80x60
 
---size WxH traces the W x H pixels whose top-left one is X, Y.
+With X, Y, --size WxH traces the W x H pixels whose top-left one is X, Y.
+With -o, --size WxH is the image's size (the scene's own without it; the
+field of view stays, as with `raystep render --size`).
 --mistake NAME switches on one of the slips students make (see MISTAKES);
 each is a one-line change at the place marked `if "NAME" in mistakes`.
 Python 3.11, standard library only.
@@ -15,7 +19,9 @@ Python 3.11, standard library only.
 import argparse
 import json
 import math
+import struct
 import tomllib
+import zlib
 
 EPS = 1e-4
 MISTAKES = {
@@ -29,6 +35,12 @@ MISTAKES = {
     "past-max-depth": "one level deeper than max_depth",
     "nan": "V = normalize(p - p), a zero vector: NaN",
     "no-epsilon": "t > 0 instead of t > EPS",
+    "pixel-corner": "the primary ray through (x, y), not (x + 0.5, y + 0.5)",
+    "no-ambient": "the ambient term forgotten",
+    "any-hit-shadows": "a shadow ray that hits anything gives S = 0",
+    "no-clamp": "byte = int(255 c + 0.5) & 0xff, not clamped first",
+    "gamma": "bytes gamma-corrected: 255 c^(1/2.2)",
+    "rows-bottom-up": "the PNG's rows written bottom row first",
 }
 mistakes = set()
 
@@ -220,6 +232,8 @@ def shadow(scene, p, L, d_l):
         for t in hits(s, p, L):
             if eps < t < d_l:
                 s_factor *= s["material"]["kt"]
+                if "any-hit-shadows" in mistakes:
+                    s_factor = 0.0
     return s_factor
 
 
@@ -228,11 +242,12 @@ def attenuation(c, dist):
 
 
 class Pixel:
-    def __init__(self, scene, x, y):
-        self.scene, self.x, self.y, self.rays = scene, x, y, 0
+    def __init__(self, scene, x, y, logging=True):
+        self.scene, self.x, self.y, self.rays, self.logging = scene, x, y, 0, logging
 
     def log(self, path, **fields):
-        log_ray(self.x, self.y, path, **fields)
+        if self.logging:
+            log_ray(self.x, self.y, path, **fields)
 
     def trace(self, o, d, depth, weight, path):
         scene = self.scene
@@ -251,6 +266,8 @@ class Pixel:
         if "nan" in mistakes:
             v = normalize(sub(p, p))  # meant o - p: a zero vector, normalised to NaN
         ambient = mul(vmul(scene["ambient"], m["color"]), m["ka"])
+        if "no-ambient" in mistakes:
+            ambient = (0.0, 0.0, 0.0)
         color = ambient
         diffuse, specular = [], []
         for li, (pos, intensity) in enumerate(scene["lights"]):
@@ -318,24 +335,70 @@ def primary_ray(scene, x, y):
     u = cross(r, f)
     fov = scene["fov"] if "fov-radians" in mistakes else math.radians(scene["fov"])
     s = math.tan(fov / 2)
-    px = (2 * (x + 0.5) / w - 1) * s * (w / h)
-    py = (1 - 2 * (y + 0.5) / h) * s
+    cx, cy = (x, y) if "pixel-corner" in mistakes else (x + 0.5, y + 0.5)
+    px = (2 * cx / w - 1) * s * (w / h)
+    py = (1 - 2 * cy / h) * s
     if "fov-horizontal" in mistakes:
         px, py = px * h / w, py * h / w
     return normalize(add(f, add(mul(r, px), mul(u, py))))
 
 
+# --- the image ------------------------------------------------------------------
+def to_byte(c):
+    if "gamma" in mistakes:
+        c = max(c, 0.0) ** (1 / 2.2)
+    if "no-clamp" in mistakes:
+        return int(255 * c + 0.5) & 0xFF
+    return int(255 * max(0.0, min(1.0, c)) + 0.5)  # a NaN passes min() as 1.0
+
+
+def render(scene):
+    """The image's rows of RGB bytes, top row first."""
+    rows = []
+    for y in range(scene["height"]):
+        row = bytearray()
+        for x in range(scene["width"]):
+            color, _ = Pixel(scene, x, y, logging=False).trace(scene["eye"], primary_ray(scene, x, y), 1, 1.0, "P")
+            row.extend(to_byte(c) for c in color)
+        rows.append(bytes(row))
+    if "rows-bottom-up" in mistakes:
+        rows.reverse()
+    return rows
+
+
+def write_png(path, width, height, rows):
+    """An 8-bit RGB PNG: the signature, then the IHDR, IDAT and IEND chunks."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)  # depth 8, colour type 2: RGB
+    pixels = b"".join(b"\x00" + row for row in rows)  # each row starts with its filter: 0, none
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n")
+        f.write(chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(pixels)) + chunk(b"IEND", b""))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene")
-    ap.add_argument("x", type=int)
-    ap.add_argument("y", type=int)
-    ap.add_argument("--size", default="1x1", help="WxH pixels from X, Y")
+    ap.add_argument("x", type=int, nargs="?")
+    ap.add_argument("y", type=int, nargs="?")
+    ap.add_argument("-o", dest="png", help="render the whole image to this PNG")
+    ap.add_argument("--size", help="WxH pixels from X, Y (default 1x1); with -o, the image's size")
     ap.add_argument("--mistake", action="append", default=[], choices=sorted(MISTAKES))
     args = ap.parse_args()
     mistakes.update(args.mistake)
     scene = load(args.scene)
-    w, h = (int(v) for v in args.size.split("x"))
+    if args.png:
+        if args.x is not None:
+            ap.error("-o renders the whole image: give no X, Y")
+        if args.size:
+            scene["width"], scene["height"] = (int(v) for v in args.size.split("x"))
+        write_png(args.png, scene["width"], scene["height"], render(scene))
+        return
+    if args.y is None:
+        ap.error("give a pixel X Y, or -o IMAGE.png")
+    w, h = (int(v) for v in (args.size or "1x1").split("x"))
     for y in range(args.y, args.y + h):
         for x in range(args.x, args.x + w):
             Pixel(scene, x, y).trace(scene["eye"], primary_ray(scene, x, y), 1, 1.0, "P")

@@ -6,6 +6,8 @@
 //! of its `--mistake`s (student slips, some of them in raystep's catalogue
 //! since issue 22), the first divergence must be the ray and the number
 //! where the slip acts, and a slip the catalogue holds is named by it.
+//! The tracer also renders whole images (`-o IMAGE.png`), for
+//! `raystep compare SCENE IMAGE.png` tried the same way.
 
 use std::process::Command;
 
@@ -50,6 +52,34 @@ fn student_log(scene: &str, (x, y): (u32, u32), size: (u32, u32), mistakes: &[&s
         String::from_utf8_lossy(&output.stderr)
     );
     String::from_utf8(output.stdout).unwrap()
+}
+
+/// The student's render of `scene` with `mistakes` switched on, at `size`
+/// (the scene's own when `None`), as `compare --format json` reports it.
+fn compare_image(scene: &str, size: Option<&str>, mistakes: &[&str]) -> Value {
+    let dir = tempfile::tempdir().unwrap();
+    let image = dir.path().join("student.png");
+    let mut args = vec![TRACER, scene, "-o", image.to_str().unwrap()];
+    if let Some(size) = size {
+        args.extend(["--size", size]);
+    }
+    for mistake in mistakes {
+        args.extend(["--mistake", mistake]);
+    }
+    let output = Command::new("python3")
+        .args(&args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("python3 runs");
+    assert!(
+        output.status.success(),
+        "whitted.py {args:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let image = image.to_str().unwrap();
+    let output = raystep(&["compare", scene, image, "--format", "json"]);
+    assert!(output.status.success(), "compare {scene}: {output:?}");
+    serde_json::from_str(&stdout(&output)).unwrap()
 }
 
 /// `raystep compare SCENE --rays LOG --format json` on `log`.
@@ -320,5 +350,44 @@ fn where_model_md_was_silent_it_now_says_what_raystep_does() {
             size.0 * size.1,
             "{name}: {report:#}"
         );
+    }
+}
+
+#[test]
+fn the_student_s_images_match_and_their_slips_are_named_first() {
+    if !python_available() {
+        return;
+    }
+    // Without a slip the student's PNG is raystep's render byte for byte,
+    // at the scene's own size (highlights.toml: 160 x 120) and at another
+    // (--size keeps the field of view, as raystep's does).
+    for (scene, size, width, height) in [
+        ("scenes/highlights.toml", None, 160, 120),
+        ("scenes/seven-rays.toml", Some("48x36"), 48, 36),
+    ] {
+        let report = compare_image(scene, size, &[]);
+        assert_eq!([&report["width"], &report["height"]], [width, height]);
+        assert_eq!(report["matches"], true, "{scene}");
+        assert_eq!(report["metrics"]["mean_abs"], 0.0, "{scene}");
+    }
+    // Each slip the catalogue holds, written the student's way, is the
+    // catalogue's mistake named first (and alone): the sign of R, |N·L|,
+    // any crossing blocking the light, the PNG's rows written bottom up.
+    for (scene, slip, mistake) in [
+        ("scenes/seven-rays.toml", "reflect-sign", "reflection-sign"),
+        ("scenes/seven-rays.toml", "abs-ndotl", "two-sided-diffuse"),
+        (
+            "scenes/two-lights.toml",
+            "any-hit-shadows",
+            "opaque-shadows",
+        ),
+        ("scenes/two-lights.toml", "rows-bottom-up", "flipped-y"),
+    ] {
+        let report = compare_image(scene, Some("48x36"), &[slip]);
+        assert_eq!(report["matches"], false, "{slip}");
+        let named: Vec<&str> = (report["mistakes"].as_array().unwrap().iter())
+            .map(|m| m["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(named, [mistake], "{slip} on {scene}");
     }
 }

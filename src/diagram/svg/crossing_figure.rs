@@ -109,7 +109,7 @@ pub(crate) fn svg(pixel: (u32, u32), subject: &Subject, caption: &Caption) -> St
     // Its edges kept clear: "2: edge 5→6" sat across edge 5→6.
     let corners: Vec<DVec2> = vertices.iter().map(|p| map.to_figure(*p)).collect();
     for (i, a) in corners.iter().enumerate() {
-        labels.reserve_outline(*a, corners[(i + 1) % corners.len()]);
+        labels.reserve_outline(*a, corners[(i + 1) % corners.len()], subject.object_index);
     }
     write_axes(&mut out, &map, u, v, &mut labels);
     let o = map.to_figure(DVec2::ZERO);

@@ -1,8 +1,9 @@
 //! Where a figure's text goes: each label at the first place near its
 //! anchor whose box lies inside the figure and meets no label, mark or ray
 //! already placed, so no two ever overlap on a slide and none is cut at
-//! the edge. Boxes are estimated from the character count, as an SVG has
-//! no text metrics before it is drawn.
+//! the edge; an object's name, where there is room, where no other
+//! object's outline is nearer than its own. Boxes are estimated from the
+//! character count, as an SVG has no text metrics before it is drawn.
 
 use std::fmt::Write;
 
@@ -18,9 +19,19 @@ pub(crate) struct Labels {
     bounds: Box2,
     boxes: Vec<Box2>,
     rays: Vec<(DVec2, DVec2)>,
-    /// Objects' outlines: a label across one reads as naming the wrong
-    /// object, so they are kept clear before rays are.
-    outlines: Vec<(DVec2, DVec2)>,
+    /// Objects' outlines, each piece with its object: a label across one
+    /// reads as naming the wrong object, so they are kept clear before
+    /// rays are.
+    outlines: Vec<OutlinePiece>,
+}
+
+/// A straight piece of an object's outline in the figure.
+#[derive(Clone, Copy)]
+struct OutlinePiece {
+    a: DVec2,
+    b: DVec2,
+    /// The object it outlines (the scene's index).
+    object: usize,
 }
 
 impl Labels {
@@ -59,11 +70,11 @@ impl Labels {
         self.rays.push((a, b));
     }
 
-    /// Keeps labels off a piece of an object's outline from `a` to `b`;
+    /// Keeps labels off a piece of `object`'s outline from `a` to `b`;
     /// a label goes further out (up to twice as far as for a ray) before
     /// it crosses one.
-    pub(crate) fn reserve_outline(&mut self, a: DVec2, b: DVec2) {
-        self.outlines.push((a, b));
+    pub(crate) fn reserve_outline(&mut self, a: DVec2, b: DVec2, object: usize) {
+        self.outlines.push(OutlinePiece { a, b, object });
     }
 
     /// Writes `text` near `at`: right, left, above or below it, or further
@@ -71,7 +82,30 @@ impl Labels {
     /// the text element's other attributes (`fill="..."`).
     pub fn place(&mut self, out: &mut String, at: DVec2, text: &str, attrs: &str) {
         let size = self.size(text);
-        let corner = self.free(at, &self.rings(at, size, 8).collect::<Vec<_>>(), size);
+        let candidates: Vec<DVec2> = self.rings(at, size, 8).collect();
+        let corner = self.free(at, &candidates, size);
+        self.write(out, corner, size, text, attrs);
+    }
+
+    /// As `place`, for `object`'s name: first at a place no other
+    /// object's outline is nearer than its own, so that the name is read
+    /// as its own object's (seven-rays from the side: "green ball" sat
+    /// just above the glass ball, far from its own); else as `place`.
+    pub(crate) fn place_name(
+        &mut self,
+        out: &mut String,
+        at: DVec2,
+        object: usize,
+        text: &str,
+        attrs: &str,
+    ) {
+        let size = self.size(text);
+        let candidates: Vec<DVec2> = self.rings(at, size, 8).collect();
+        let own = |corner: &DVec2| self.nearest_is_own(text_box(*corner, size), object);
+        let beside: Vec<DVec2> = candidates.iter().copied().filter(own).collect();
+        let corner = (self.clear(&beside, size, true))
+            .or_else(|| self.clear(&beside, size, false))
+            .unwrap_or_else(|| self.free(at, &candidates, size));
         self.write(out, corner, size, text, attrs);
     }
 
@@ -111,20 +145,49 @@ impl Labels {
         })
     }
 
+    /// Whether no other object's outline comes nearer the box `b` than
+    /// `object`'s own (within a unit: faces seen edge-on share their
+    /// lines), and `object` has one drawn.
+    fn nearest_is_own(&self, b: Box2, object: usize) -> bool {
+        let (mut own, mut other) = (f64::INFINITY, f64::INFINITY);
+        for piece in &self.outlines {
+            let d = segment_box_distance(piece.a, piece.b, b);
+            if piece.object == object {
+                own = own.min(d);
+            } else {
+                other = other.min(d);
+            }
+        }
+        own.is_finite() && own <= other + 1.0
+    }
+
+    /// Whether the box `b` is inside the figure and meets no label or
+    /// mark, no outline, and (if `rays`) no ray.
+    fn fits(&self, b: Box2, rays: bool) -> bool {
+        let crosses = |(a, c): (DVec2, DVec2)| clip(a, c, b).is_some();
+        let blocked = self.boxes.iter().any(|o| overlap(*o, b))
+            || self.outlines.iter().any(|p| crosses((p.a, p.b)))
+            || (rays && self.rays.iter().copied().any(crosses));
+        contains(self.bounds, b) && !blocked
+    }
+
+    /// The first of `candidates` that `fits`.
+    fn clear(&self, candidates: &[DVec2], size: DVec2, rays: bool) -> Option<DVec2> {
+        (candidates.iter().copied()).find(|c| self.fits(text_box(*c, size), rays))
+    }
+
     /// The first candidate whose box is inside the figure and free of
     /// marks, labels, outlines and rays; else the first free of outlines
     /// (crossing a ray); else, in rings as far again out about `at`, the
     /// first free of outlines; else the first free of marks and
     /// labels; crowded everywhere near, the first free place row by row.
     fn free(&self, at: DVec2, candidates: &[DVec2], size: DVec2) -> DVec2 {
-        let crosses =
-            |lines: &[(DVec2, DVec2)], b: Box2| (lines.iter()).any(|r| clip(r.0, r.1, b).is_some());
         let fits = |corner: &DVec2, outlines: bool, rays: bool| {
             let b = text_box(*corner, size);
-            let blocked = self.boxes.iter().any(|o| overlap(*o, b))
-                || (outlines && crosses(&self.outlines, b))
-                || (rays && crosses(&self.rays, b));
-            contains(self.bounds, b) && !blocked
+            if outlines {
+                return self.fits(b, rays);
+            }
+            contains(self.bounds, b) && !self.boxes.iter().any(|o| overlap(*o, b))
         };
         let first = |outlines, rays| (candidates.iter().copied()).find(|c| fits(c, outlines, rays));
         let further = || {
@@ -172,6 +235,29 @@ fn text_box(corner: DVec2, size: DVec2) -> Box2 {
 
 fn overlap(a: Box2, b: Box2) -> bool {
     a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
+}
+
+/// How far the segment from `a` to `b` comes to the box `r`: 0 when it
+/// meets it; else the nearest of its ends to the box, or of the box's
+/// corners to it (two convex shapes apart are nearest at a corner of one).
+fn segment_box_distance(a: DVec2, b: DVec2, r: Box2) -> f64 {
+    if clip(a, b, r).is_some() {
+        return 0.0;
+    }
+    let to_box = |p: DVec2| (p.clamp(r.0, r.1) - p).length();
+    let to_segment = |p: DVec2| {
+        let d = b - a;
+        let t = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+        if d == DVec2::ZERO {
+            (p - a).length()
+        } else {
+            (a + d * t - p).length()
+        }
+    };
+    let corners = [r.0, DVec2::new(r.1.x, r.0.y), r.1, DVec2::new(r.0.x, r.1.y)];
+    (corners.into_iter().map(to_segment))
+        .chain([to_box(a), to_box(b)])
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// `inner` lies wholly inside `outer`.
@@ -324,6 +410,34 @@ mod tests {
         let mut out = String::new();
         labels.place(&mut out, at, "ab", "");
         assert_eq!(out, "<text x=\"74.4\" y=\"104.0\">ab</text>\n");
+    }
+
+    #[test]
+    fn a_name_goes_where_its_own_outline_is_nearest() {
+        // Object 0's outline runs down x = 100, object 1's down x = 130,
+        // both y 50..150. "ab" (15.6 x 13) named at (100, 100): the first
+        // place, right (box x 110..125.6, y 91..107), crosses nothing but
+        // is 4.4 from object 1's line and 10 from its own. `place` takes
+        // it; `place_name` takes the next, left (x 74.4..90): 10 from its
+        // own, 40 from the other.
+        let outlined = || {
+            let mut labels = Labels::new(13.0, WIDE);
+            for (x, object) in [(100.0, 0), (130.0, 1)] {
+                labels.reserve_outline(DVec2::new(x, 50.0), DVec2::new(x, 150.0), object);
+            }
+            labels
+        };
+        let at = DVec2::new(100.0, 100.0);
+        let mut out = String::new();
+        outlined().place(&mut out, at, "ab", "");
+        assert_eq!(out, "<text x=\"110.0\" y=\"104.0\">ab</text>\n");
+        let mut out = String::new();
+        outlined().place_name(&mut out, at, 0, "ab", "");
+        assert_eq!(out, "<text x=\"74.4\" y=\"104.0\">ab</text>\n");
+        // Object 1's name from (130, 100): right of its line is free.
+        let mut out = String::new();
+        outlined().place_name(&mut out, DVec2::new(130.0, 100.0), 1, "ab", "");
+        assert_eq!(out, "<text x=\"140.0\" y=\"104.0\">ab</text>\n");
     }
 
     #[test]

@@ -20,7 +20,7 @@ use glam::DVec2;
 pub(crate) use self::caption::Caption;
 use self::labels::{Box2, Labels, clip};
 use self::plane_map::{PlaneMap, label_anchor, outline_segments, write_outline};
-use super::{Anchor, Diagram, Named, Role, Stroke};
+use super::{Anchor, Diagram, DiagramPlane, Named, Role, Stroke};
 use crate::record::light_label;
 
 /// The figure's size in SVG units (pixels), and its margin.
@@ -30,6 +30,8 @@ const MARGIN: f64 = 40.0;
 /// The legend's band at the bottom: two rows.
 const LEGEND: f64 = 44.0;
 const FONT_SIZE: f64 = 13.0;
+/// A note under the heading (rays seen edge-on).
+const NOTE_SIZE: f64 = 11.0;
 /// Where the scene is drawn: below the title, above the legend. Rays,
 /// outlines and marks are cut at its edge, and labels stay inside it.
 const FRAME: Box2 = (
@@ -87,14 +89,17 @@ pub(crate) fn slide(diagram: &Diagram, zoom: f64, caption: &Caption) -> String {
     let mut out = header(&title);
     out.push_str(&heading);
     let mut labels = Labels::new(FONT_SIZE, FRAME);
+    if diagram.rays_edge_on() {
+        write_edge_on_note(&mut out, &mut labels, diagram.plane);
+    }
     out.push_str("<g clip-path=\"url(#frame)\">\n");
     // A slide shows what the rays meet or pass by, not the rest of the scene.
     let drawn = (diagram.objects.iter()).filter(|o| o.role != Role::Context);
-    for shape in drawn.flat_map(|o| &o.shapes) {
+    for (object, shape) in drawn.flat_map(|o| o.shapes.iter().map(|s| (o.object, s))) {
         write_outline(&mut out, &map, shape);
         for (a, b) in outline_segments(shape, &map) {
             if let Some((a, b)) = clip(a, b, FRAME) {
-                labels.reserve_outline(a, b);
+                labels.reserve_outline(a, b, object);
             }
         }
     }
@@ -134,6 +139,29 @@ pub(crate) fn slide(diagram: &Diagram, zoom: f64, caption: &Caption) -> String {
     legend::write(&mut out, &diagram.legend());
     out.push_str("</svg>\n");
     out
+}
+
+/// Says why every ray is drawn on one line, and which plane shows them
+/// apart: a figure that looks like one ray is not taken for the tree.
+fn write_edge_on_note(out: &mut String, labels: &mut Labels, plane: DiagramPlane) {
+    let other = match plane {
+        DiagramPlane::Primary => "--plane top",
+        _ => "--plane ray",
+    };
+    let note = format!(
+        "every ray lies in one plane seen edge-on here, one line: {other} shows them apart"
+    );
+    let corner = DVec2::new(MARGIN, 48.0);
+    labels.set_font_size(NOTE_SIZE);
+    labels.reserve_text(corner, &note);
+    labels.set_font_size(FONT_SIZE);
+    let _ = writeln!(
+        out,
+        "<text x=\"{}\" y=\"{}\" font-size=\"{NOTE_SIZE}\" fill=\"#555555\">{}</text>",
+        corner.x,
+        corner.y,
+        labels::escape(&note)
+    );
 }
 
 /// The SVG element, its arrowheads (one per ray colour: a marker cannot
@@ -268,6 +296,10 @@ fn write_labels(out: &mut String, labels: &mut Labels, map: &PlaneMap, diagram: 
             Named::Object(_) => (label.text, "#444444"),
             Named::PassedBy(_) => (label.text, PASSED),
         };
-        labels.place(out, at, &text, &format!("fill=\"{fill}\""));
+        let attrs = format!("fill=\"{fill}\"");
+        match label.named {
+            Named::Object(object) => labels.place_name(out, at, object, &text, &attrs),
+            _ => labels.place(out, at, &text, &attrs),
+        }
     }
 }
