@@ -19,7 +19,7 @@ use serde::Serialize;
 pub(crate) use metrics::{MATCH_GAP, MATCH_SHARE, Metrics, TOLERANCE_STEPS};
 pub(crate) use ranking::Ranked;
 pub use report::text;
-pub use scene_renders::SceneRenders;
+pub(crate) use scene_renders::SceneRenders;
 pub use student::StudentImage;
 
 use crate::mistakes::{Mistake, Mistakes};
@@ -98,13 +98,13 @@ pub fn compare(scene: &Scene, student: StudentImage) -> Comparison {
 /// Renders, in parallel, what every comparison with this scene that differs
 /// renders first: before comparing many images in parallel, so that they do
 /// not all render the same at once.
-pub fn prepare(shared: &SceneRenders) {
+pub(crate) fn prepare(shared: &SceneRenders) {
     ranking::prepare(shared);
 }
 
 /// `compare`, with the scene's renders taken from `shared` (made once for
 /// every image compared with the scene). The image has the scene's size.
-pub fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comparison {
+pub(crate) fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comparison {
     let yours = student.image;
     let scene = shared.scene();
     let reference = shared.reference();

@@ -17,7 +17,7 @@ use crate::scene::Scene;
 use crate::trace::NoRecorder;
 
 /// One scene's renders, at the scene's size and with its settings.
-pub struct SceneRenders<'a> {
+pub(crate) struct SceneRenders<'a> {
     scene: &'a Scene,
     reference: Reference,
     /// Each set of mistakes rendered so far.
@@ -26,7 +26,7 @@ pub struct SceneRenders<'a> {
 
 impl<'a> SceneRenders<'a> {
     /// Renders the reference now; the mistaken renders as they are asked for.
-    pub fn new(scene: &'a Scene) -> Self {
+    pub(crate) fn new(scene: &'a Scene) -> Self {
         SceneRenders {
             scene,
             reference: reference::render(scene, &scene.settings),

@@ -31,7 +31,7 @@ use crate::scene::{self, Scene, SceneError, check_image_size};
 pub(crate) const DEFAULT_MAX_FLIP: f64 = 0.2;
 
 /// An assignment, its scenes loaded.
-pub struct Assignment {
+pub(crate) struct Assignment {
     pub(crate) title: String,
     pub(crate) scenes: Vec<AssignedScene>,
 }
@@ -72,7 +72,7 @@ struct SceneDef {
 }
 
 /// Reads the assignment at `path` and loads its scenes.
-pub fn load(path: &Path) -> Result<Assignment, SceneError> {
+pub(crate) fn load(path: &Path) -> Result<Assignment, SceneError> {
     let bytes = std::fs::read(path)
         .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
     let text = String::from_utf8(bytes).map_err(|e| {

@@ -9,7 +9,7 @@
 //! autograder files (`gradescope`, `prairielearn`) and the HTML report.
 //! REPORT/ is written as a whole or not at all (`report_dir`).
 
-pub mod assignment;
+pub(crate) mod assignment;
 mod csv_table;
 mod gradescope;
 pub mod model;
@@ -28,7 +28,7 @@ use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use rayon::prelude::*;
 
-pub use assignment::Assignment;
+pub(crate) use assignment::Assignment;
 pub(crate) use csv_table::csv;
 pub(crate) use csv_table::number as points_text;
 pub(crate) use gradescope::results as gradescope_results;
@@ -101,11 +101,14 @@ pub(crate) fn student_folders(submissions: &Path) -> Result<Vec<Student>> {
         .collect())
 }
 
+/// Files of REPORT/: each one's path in it (with `/`) and its bytes.
+pub(crate) type Files = Vec<(String, Vec<u8>)>;
+
 /// What grading found: the grades, and the PNGs they name.
 pub(crate) struct Graded {
     pub(crate) grades: ClassGrades,
     /// Each image the grades name: its path in REPORT/ and its PNG bytes.
-    pub(crate) images: Vec<(String, Vec<u8>)>,
+    pub(crate) images: Files,
 }
 
 impl Graded {
@@ -118,7 +121,7 @@ impl Graded {
     }
 
     /// Every file of REPORT/: the table, the JSON and the images.
-    pub(crate) fn report_files(&self) -> Result<Vec<(String, Vec<u8>)>> {
+    pub(crate) fn report_files(&self) -> Result<Files> {
         let mut files = vec![
             ("grades.csv".to_string(), csv(&self.grades).into_bytes()),
             (
@@ -166,7 +169,7 @@ pub(crate) fn grade(
             reference_image: format!("reference/{slug}.png"),
         })
         .collect();
-    let mut images: Vec<(String, Vec<u8>)> = sheets
+    let mut images: Files = sheets
         .iter()
         .zip(&shared)
         .map(|(sheet, renders)| {
@@ -177,7 +180,7 @@ pub(crate) fn grade(
         })
         .collect();
     let student_slugs = slug::slugs(students.iter().map(|s| s.name.as_str()), "student");
-    let graded: Vec<(StudentGrades, Vec<(String, Vec<u8>)>)> = students
+    let graded: Vec<(StudentGrades, Files)> = students
         .par_iter()
         .zip(&student_slugs)
         .map(|(student, slug)| {
@@ -216,7 +219,7 @@ struct Work<'a> {
 
 impl Work<'_> {
     /// One student's grades, and the PNGs they name.
-    fn student(&self, student: &Student, slug: &str) -> (StudentGrades, Vec<(String, Vec<u8>)>) {
+    fn student(&self, student: &Student, slug: &str) -> (StudentGrades, Files) {
         // Every file must lie in the folder as it really is.
         let folder = fs::canonicalize(&student.folder)
             .map_err(|e| format!("cannot read the student's folder: {e}"));
