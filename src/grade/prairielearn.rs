@@ -112,3 +112,105 @@ fn data_url(png: &[u8]) -> String {
         base64::engine::general_purpose::STANDARD.encode(png)
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grade::model::{ClassGrades, SceneGrade, SceneSheet};
+
+    /// A class of one student and `scenes` scenes, each image `image_bytes`
+    /// long (not a real PNG: only its size matters here).
+    fn graded(scenes: usize, image_bytes: usize) -> Graded {
+        let mut images = Vec::new();
+        let mut sheets = Vec::new();
+        let mut grades = Vec::new();
+        for i in 0..scenes {
+            let (reference, yours, map) = (
+                format!("reference/{i}.png"),
+                format!("images/a/{i}.yours.png"),
+                format!("images/a/{i}.flip.png"),
+            );
+            for path in [&reference, &yours, &map] {
+                images.push((path.clone(), vec![7u8; image_bytes]));
+            }
+            sheets.push(SceneSheet {
+                file: format!("{i}.toml"),
+                submit: format!("{i}.png"),
+                points: 10.0,
+                width: 160,
+                height: 120,
+                partial: false,
+                max_flip: None,
+                reference_image: reference,
+            });
+            grades.push(SceneGrade {
+                points: 10.0,
+                max_points: 10.0,
+                refused: None,
+                matches: true,
+                flip_mean: Some(0.0),
+                mistakes: Vec::new(),
+                compare: None,
+                report_text: Some("they match.\n".into()),
+                yours_image: Some(yours),
+                error_map_image: Some(map),
+            });
+        }
+        let student = StudentGrades {
+            student: "a".into(),
+            slug: "a".into(),
+            scenes: grades,
+            total: 10.0 * scenes as f64,
+        };
+        Graded {
+            grades: ClassGrades {
+                title: "T".into(),
+                scenes: sheets,
+                students: vec![student],
+                max_total: 10.0 * scenes as f64,
+            },
+            images,
+        }
+    }
+
+    fn images_per_test(text: &str) -> Vec<usize> {
+        let value: Value = serde_json::from_str(text).unwrap();
+        value["tests"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| t["images"].as_array().unwrap().len())
+            .collect()
+    }
+
+    #[test]
+    fn images_are_dropped_to_stay_under_a_megabyte_and_the_message_says_so() {
+        // A 100 KB image is 136 KB in base64 (4 characters per 3 bytes):
+        // two scenes' three images each are 820 KB, under the limit.
+        let small = graded(2, 100_000);
+        let text = results(&small, &small.grades.students[0]);
+        assert_eq!(images_per_test(&text), [3, 3]);
+        assert!(
+            text.len() < MAX_BYTES && text.len() > 800_000,
+            "{}",
+            text.len()
+        );
+        assert!(!text.contains("left out"));
+        // 200 KB images: all six are 1.6 MB; the two students' own, 546 KB.
+        let large = graded(2, 200_000);
+        let text = results(&large, &large.grades.students[0]);
+        assert_eq!(images_per_test(&text), [1, 1]);
+        assert!(text.len() < MAX_BYTES, "{}", text.len());
+        assert!(
+            text.contains("error maps are left out to keep this file under PrairieLearn's 1 MB")
+        );
+        // 400 KB: even the students' own are 1.07 MB: none.
+        let huge = graded(2, 400_000);
+        let text = results(&huge, &huge.grades.students[0]);
+        assert_eq!(images_per_test(&text), [0, 0]);
+        assert!(text.contains("The images are left out"));
+        let value: Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(value["score"], 1.0);
+        assert_eq!(value["gradable"], true);
+    }
+}
