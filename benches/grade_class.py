@@ -3,7 +3,7 @@
 
     python3 benches/grade_class.py [--students 100] [--runs 5] [--jobs N] [--keep DIR]
 
-Makes a class of made-up students for scenes/assignment.toml (five scenes
+Makes a class of made-up students for scenes/assignments/a5.toml (five scenes
 at 160 x 120): raystep renders each scene once correctly and once under
 each of a dozen classic mistakes and a few pairs of them (`raystep render
 --mistake ...`), and each student's folder gets copies of those images, a
@@ -24,7 +24,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ASSIGNMENT = os.path.join(ROOT, "scenes", "assignment.toml")
+ASSIGNMENT = os.path.join(ROOT, "scenes", "assignments", "a5.toml")
 SCENES = ["shadows", "highlights", "mirrors", "glass", "attenuation"]
 # What a handed-in image was rendered with: nothing (correct), one mistake
 # or two. Correct images come up twice as often as in the list.

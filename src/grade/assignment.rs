@@ -270,4 +270,42 @@ mod tests {
         let message = error("title = \"empty\"\n");
         assert!(message.contains("at least one [[scene]]"), "{message}");
     }
+
+    #[test]
+    fn the_example_and_readmes_assignment_load() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let example = load(&root.join("scenes/assignments/a5.toml")).unwrap();
+        assert_eq!(example.title, "A5: Whitted ray tracing");
+        let submits: Vec<&str> = example.scenes.iter().map(|s| s.submit.as_str()).collect();
+        assert_eq!(
+            submits,
+            [
+                "shadows.png",
+                "highlights.png",
+                "mirrors.png",
+                "glass.png",
+                "attenuation.png"
+            ]
+        );
+        for scene in &example.scenes {
+            assert_eq!((scene.scene.width, scene.scene.height), (160, 120));
+        }
+        // 10 + 10 + 10 + 20 + 10; glass and attenuation with partial credit.
+        assert_eq!(example.scenes.iter().map(|s| s.points).sum::<f64>(), 60.0);
+        let partial: Vec<Option<f64>> = example.scenes.iter().map(|s| s.max_flip).collect();
+        assert_eq!(
+            partial,
+            [None, None, None, Some(0.2), Some(DEFAULT_MAX_FLIP)]
+        );
+        // README's block, its scene found beside the example scenes.
+        let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+        let start = readme
+            .find("```toml\ntitle = ")
+            .expect("README's assignment")
+            + 8;
+        let end = start + readme[start..].find("```").unwrap();
+        let block = parse_here(&readme[start..end]).unwrap();
+        assert_eq!(block.scenes.len(), 1);
+        assert_eq!(block.scenes[0].max_flip, Some(0.2));
+    }
 }

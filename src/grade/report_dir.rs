@@ -53,6 +53,16 @@ impl ReportDir {
                 return Err(fail(format!("it lies inside {what} {}", input.display())));
             }
         }
+        // Where the report will be built must be writable now, not only
+        // once the class is graded.
+        let existing = real
+            .ancestors()
+            .skip(1)
+            .find(|d| fs::symlink_metadata(d).is_ok())
+            .unwrap_or(Path::new("/"));
+        let probe = new_folder_in(existing, BUILDING_PREFIX)
+            .map_err(|e| fail(format!("{} is not writable ({e})", existing.display())))?;
+        let _ = fs::remove_dir(probe);
         let report = ReportDir {
             shown: dir.to_owned(),
             real,

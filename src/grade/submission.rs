@@ -13,7 +13,8 @@ use crate::compare::StudentImage;
 use crate::compare::student;
 
 /// A file larger than this many bytes per pixel (plus `SLACK_BYTES`) is
-/// refused before it is read: an uncompressed PNG of 16-bit RGBA takes 8.
+/// refused before its pixels are read: an uncompressed PNG of 16-bit RGBA
+/// takes 8.
 const MAX_BYTES_PER_PIXEL: u64 = 8;
 const SLACK_BYTES: u64 = 1 << 20;
 
@@ -54,15 +55,11 @@ pub(crate) fn read(
             "{submit} is a device, pipe or socket, not a PNG file"
         ));
     }
-    let limit = MAX_BYTES_PER_PIXEL * u64::from(width) * u64::from(height) + SLACK_BYTES;
-    if meta.len() > limit {
-        return Err(format!(
-            "{submit} is too large: {} bytes, more than a PNG of {width}x{height} takes \
-             (at most {limit})",
-            meta.len()
-        ));
-    }
     let file = open_regular(&real).map_err(|e| format!("cannot read {submit}: {e}"))?;
+    let length = file
+        .metadata()
+        .map_err(|e| format!("cannot read {submit}: {e}"))?
+        .len();
     let mut reader = BufReader::new(file);
     // The size in the header first: a wrong size is told as such, before
     // the pixels are decoded.
@@ -72,6 +69,15 @@ pub(crate) fn read(
     {
         return Err(format!(
             "rendered at {w}x{h}, the assignment asks for {width}x{height}"
+        ));
+    }
+    // Then the file's length, before the pixels are decoded: what could
+    // follow a right header is bounded by what such a PNG can take.
+    let limit = MAX_BYTES_PER_PIXEL * u64::from(width) * u64::from(height) + SLACK_BYTES;
+    if length > limit {
+        return Err(format!(
+            "{submit} is too large: {length} bytes, more than a PNG of {width}x{height} takes \
+             (at most {limit})"
         ));
     }
     reader

@@ -789,3 +789,31 @@ fn the_report_never_replaces_an_input_or_a_folder_that_is_not_a_report() {
     );
     assert!(image::open(ada.join("shadows.png")).is_ok());
 }
+
+#[test]
+fn a_large_image_of_the_wrong_size_is_told_its_size_not_its_length() {
+    // 1024 x 768 of noise: a PNG of about 2.4 MB, past the 80 x 60 × 8
+    // bytes and a megabyte that an 80 x 60 PNG can take; its header is
+    // read first, and says the size.
+    let class = Class::new();
+    let folder = class.student(b"big");
+    let mut state = 1u32;
+    let noise = image::RgbImage::from_fn(1024, 768, |_, _| {
+        state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        image::Rgb([(state >> 24) as u8, (state >> 16) as u8, (state >> 8) as u8])
+    });
+    noise.save(folder.join("shadows.png")).unwrap();
+    assert!(fs::metadata(folder.join("shadows.png")).unwrap().len() > 80 * 60 * 8 + (1 << 20));
+    let output = raystep(&[
+        "grade",
+        path(&class.at("a5.toml")),
+        "--submission",
+        path(&folder),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert!(
+        stdout(&output).contains("not graded: rendered at 1024x768, the assignment asks for 80x60"),
+        "{}",
+        stdout(&output)
+    );
+}
