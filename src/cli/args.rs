@@ -108,8 +108,9 @@ pub(crate) struct GradeArgs {
     /// With --submission: write PrairieLearn's results.json here.
     #[arg(long, value_name = "RESULTS.json", requires = "submission")]
     pub(crate) prairielearn: Option<PathBuf>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
+    /// Worker threads (default: all cores); the grades are the same
+    /// whatever it says.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub(crate) jobs: Option<u16>,
 }
 
