@@ -9,6 +9,7 @@ pub mod cli;
 pub mod compare;
 pub mod diagram;
 pub mod divergence;
+pub mod grade;
 pub mod math;
 pub mod mistakes;
 pub(crate) mod object;
