@@ -13,7 +13,7 @@ use crate::grade::model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
 
 pub(super) fn table(class: &ClassGrades) -> String {
     let mut html = String::from(
-        "<div class=\"sheet\"><table class=\"grades\"><thead><tr><th scope=\"col\" class=\"student\">Student</th>",
+        "<table class=\"grades\"><thead><tr><th scope=\"col\" class=\"student\">Student</th>",
     );
     let _ = write!(
         html,
@@ -27,7 +27,7 @@ pub(super) fn table(class: &ClassGrades) -> String {
     for student in &class.students {
         html.push_str(&row(class, student));
     }
-    html.push_str("</tbody></table></div>");
+    html.push_str("</tbody></table>");
     html
 }
 
@@ -38,7 +38,7 @@ fn scene_heading(class: &ClassGrades, index: usize, scene: &SceneSheet) -> Strin
         .filter(|s| s.scenes.get(index).is_some_and(|g| g.matches))
         .count();
     format!(
-        "<th scope=\"col\" class=\"scene\">{}<span class=\"sub\">{} · {} points · {matched} of {} match</span><span class=\"sub\">yours · reference · error map</span></th>",
+        "<th scope=\"col\" class=\"scene\">{}<span class=\"sub\">{} · {} points</span><span class=\"sub\">{matched} of {} match</span><span class=\"sub\">yours · reference · error map</span></th>",
         escape(&scene.file),
         escape(&scene.submit),
         points(scene.points),
@@ -172,7 +172,7 @@ mod tests {
         ]);
         let table = table(&class);
         assert!(
-            table.contains("scene0.png · 10 points · 2 of 3 match"),
+            table.contains("scene0.png · 10 points</span><span class=\"sub\">2 of 3 match<"),
             "{table}"
         );
         assert!(

@@ -41,8 +41,7 @@ color:#fff;white-space:nowrap}\
 .tag.match{background:var(--match)}.tag.mistake{background:var(--mistake)}\
 .tag.unexplained{background:var(--unexplained)}.tag.refused{background:var(--refused)}\
 .pts{font-variant-numeric:tabular-nums;white-space:nowrap}\
-.sheet{overflow:auto;max-height:calc(100vh - 16px);border:1px solid var(--line)}\
-table.grades{border-collapse:separate;border-spacing:0}\
+table.grades{border-collapse:separate;border-spacing:0;border-left:1px solid var(--line);border-top:1px solid var(--line)}\
 .grades th,.grades td{border-bottom:1px solid var(--line);border-right:1px solid var(--line);\
 padding:5px 7px;vertical-align:top;text-align:left;background:#fff}\
 .grades tbody tr:nth-child(even)>*{background:var(--stripe)}\
@@ -70,11 +69,11 @@ section.scene{border-top:1px solid var(--line);margin-top:14px}\
 .images{display:flex;flex-wrap:wrap;gap:12px}\
 .images figure{margin:0}.images img.px,.images .noimg{max-width:100%;height:auto}\
 figcaption{font-size:12px;color:var(--muted)}\
+.named{margin:8px 0}.named .tag{margin-right:4px}\
 .rule{margin:2px 0;font-size:13px;color:var(--muted)}\
 pre.report{white-space:pre-wrap;overflow-wrap:anywhere;background:#f6f8fa;border:1px solid var(--line);\
 padding:8px 10px;max-width:120ch;font:12px/1.35 ui-monospace,\"DejaVu Sans Mono\",Menlo,Consolas,monospace}\
 @media print{body{padding:0;font-size:11px}\
-.sheet{overflow:visible;max-height:none;border:0}\
 .grades thead th,.grades th.student{position:static}\
 .grades tr,section.scene,figure.card,pre.report{break-inside:avoid}\
 a{color:inherit;text-decoration:none}nav.back{display:none}}";

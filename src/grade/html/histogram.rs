@@ -70,9 +70,9 @@ pub(super) fn bars(class: &ClassGrades, scene: usize) -> Vec<Bar> {
 }
 
 /// Row height, bar thickness and the longest bar, in SVG units (pixels).
-const ROW: u32 = 22;
+const ROW: u32 = 20;
 const THICK: u32 = 14;
-const LONGEST: u32 = 220;
+const LONGEST: u32 = 160;
 /// Labels are monospaced at 12 px, about 7.3 px a character, so their
 /// column can be as wide as the longest needs; longer labels are cut.
 const CHAR: f64 = 7.3;
@@ -187,7 +187,7 @@ mod tests {
     #[test]
     fn the_svg_draws_each_bar_to_scale_with_its_count() {
         // Four students, three refused and one matching: the refused bar is
-        // 220 × 3/4 = 165 long, the match bar 55, each with its count.
+        // 160 × 3/4 = 120 long, the match bar 40, each with its count.
         let class = class(&[
             ("a", vec![refused("missing")]),
             ("b", vec![refused("missing")]),
@@ -201,7 +201,7 @@ mod tests {
             .filter(|n| n.has_tag_name("rect"))
             .map(|n| n.attribute("width").unwrap())
             .collect();
-        assert_eq!(rects, ["55", "165"]);
+        assert_eq!(rects, ["40", "120"]);
         let texts: Vec<&str> = doc
             .descendants()
             .filter(|n| n.is_text())

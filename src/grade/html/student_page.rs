@@ -82,11 +82,15 @@ fn section(index: usize, scene: &SceneSheet, grade: &SceneGrade) -> String {
     }
     html.push_str("</div>");
     if !grade.mistakes.is_empty() {
-        html.push_str("<p>Mistakes named, best first:</p><ol class=\"mistakes\">");
+        html.push_str("<p class=\"named\">Mistakes <code>compare</code> named, best first: ");
         for mistake in &grade.mistakes {
-            let _ = write!(html, "<li>{}</li>", escape(mistake));
+            let _ = write!(
+                html,
+                "<span class=\"tag mistake\">{}</span>",
+                escape(mistake)
+            );
         }
-        html.push_str("</ol>");
+        html.push_str("</p>");
     }
     if let Some(report) = &grade.report_text {
         let _ = write!(html, "<pre class=\"report\">{}</pre>", escape_block(report));
@@ -136,7 +140,7 @@ mod tests {
             "{page}"
         );
         assert!(
-            page.contains("<ol class=\"mistakes\"><li>opaque-shadows</li><li>no-ambient</li></ol>")
+            page.contains("best first: <span class=\"tag mistake\">opaque-shadows</span><span class=\"tag mistake\">no-ambient</span></p>")
         );
         // The report keeps its lines; images come from one folder up.
         assert!(page.contains(
