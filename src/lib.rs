@@ -9,10 +9,7 @@ pub mod cli;
 pub mod compare;
 pub mod diagram;
 pub mod divergence;
-// Until the grade command (branch i23-grade) calls the report, only unit
-// tests do.
-#[allow(dead_code)]
-pub(crate) mod grade;
+pub mod grade;
 pub mod math;
 pub mod mistakes;
 pub(crate) mod object;

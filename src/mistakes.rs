@@ -243,7 +243,7 @@ impl Serialize for Mistake {
 }
 
 /// A set of mistakes; empty (the correct model) by default.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Mistakes(u32);
 
 impl Mistakes {

@@ -76,6 +76,41 @@ pub(crate) enum Command {
     Compare(CompareArgs),
     /// Draw one pixel's rays as an SVG figure for a slide.
     Diagram(DiagramArgs),
+    /// Grade a class's renders against an assignment's scenes (one folder
+    /// per student) into a report folder; or one student's folder, for an
+    /// autograder's container, with Gradescope's or PrairieLearn's results.
+    Grade(GradeArgs),
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct GradeArgs {
+    /// The assignment file (TOML): its scenes, the file each student hands
+    /// in for each, and the points (README, "Grading a class").
+    pub(crate) assignment: PathBuf,
+    /// The students' folders, one per student (SUBMISSIONS/<student>/glass.png).
+    #[arg(
+        value_name = "SUBMISSIONS",
+        required_unless_present = "submission",
+        conflicts_with = "submission",
+        requires = "output"
+    )]
+    pub(crate) submissions: Option<PathBuf>,
+    /// The report folder: new, or a previous report, replaced whole.
+    #[arg(short, long, value_name = "REPORT")]
+    pub(crate) output: Option<PathBuf>,
+    /// Grade one student's folder alone (an autograder's container): a
+    /// summary on stdout, and the results files asked for.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) submission: Option<PathBuf>,
+    /// With --submission: write Gradescope's results.json here.
+    #[arg(long, value_name = "RESULTS.json", requires = "submission")]
+    pub(crate) gradescope: Option<PathBuf>,
+    /// With --submission: write PrairieLearn's results.json here.
+    #[arg(long, value_name = "RESULTS.json", requires = "submission")]
+    pub(crate) prairielearn: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub(crate) jobs: Option<u16>,
 }
 
 /// A figure draws one scene: `--diff-against` (another scene's recording,

@@ -1,6 +1,6 @@
 //! The command line: clap's definitions in `args.rs`, and one file per
 //! command's body (`render.rs`, `inspect.rs`, `explain.rs`, `compare.rs`,
-//! `diagram.rs`; the debugger is `crate::tui::run`). The three commands on
+//! `diagram.rs`, `grade.rs`; the debugger is `crate::tui::run`). The three commands on
 //! one pixel share `recorded.rs`: the scene loaded, `--set` applied and
 //! the pixel recorded.
 
@@ -15,6 +15,7 @@ mod args;
 mod compare;
 mod diagram;
 mod explain;
+mod grade;
 mod inspect;
 mod recorded;
 mod render;
@@ -37,6 +38,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Explain(args)) => explain::run(&args),
         Some(Command::Compare(args)) => compare::run(&args),
         Some(Command::Diagram(args)) => diagram::run(&args),
+        Some(Command::Grade(args)) => grade::run(&args),
         Some(Command::Debug(args)) => debug(&args),
         None => debug(&cli.debug),
     }

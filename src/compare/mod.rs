@@ -10,6 +10,7 @@ mod ranking;
 mod reference;
 pub(crate) mod regions;
 mod report;
+mod scene_renders;
 pub mod student;
 
 use image::RgbImage;
@@ -18,13 +19,12 @@ use serde::Serialize;
 pub(crate) use metrics::{MATCH_GAP, MATCH_SHARE, Metrics, TOLERANCE_STEPS};
 pub(crate) use ranking::Ranked;
 pub use report::text;
+pub(crate) use scene_renders::SceneRenders;
 pub use student::StudentImage;
 
 use crate::mistakes::{Mistake, Mistakes};
 use crate::record::{RayTree, Said, Told, explain_lines, record_pixel};
-use crate::render::render;
 use crate::scene::Scene;
-use crate::trace::NoRecorder;
 
 /// The regions a report describes; the rest are only counted.
 const REGIONS_SHOWN: usize = 5;
@@ -92,30 +92,43 @@ pub(crate) struct ObjectShare {
 /// Compares the student's image with `scene` rendered at the image's size
 /// with the scene's own settings.
 pub fn compare(scene: &Scene, student: StudentImage) -> Comparison {
+    compare_with(&SceneRenders::new(scene), student)
+}
+
+/// Renders, in parallel, what every comparison with this scene that differs
+/// renders first: before comparing many images in parallel, so that they do
+/// not all render the same at once.
+pub(crate) fn prepare(shared: &SceneRenders) {
+    ranking::prepare(shared);
+}
+
+/// `compare`, with the scene's renders taken from `shared` (made once for
+/// every image compared with the scene). The image has the scene's size.
+pub(crate) fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comparison {
     let yours = student.image;
-    let settings = scene.settings;
-    let reference = reference::render(scene, &settings);
+    let scene = shared.scene();
+    let reference = shared.reference();
+    debug_assert_eq!(yours.dimensions(), reference.image.dimensions());
     let (metrics, error_map) = metrics::measure(&yours, &reference.image);
     let matches = metrics.matches();
     let found = regions::regions(&metrics::over_tolerance(&yours, &reference.image));
     let mistakes = if matches {
         Vec::new()
     } else {
-        ranking::rank(scene, &settings, &yours, &reference.image)
+        ranking::rank(shared, &yours)
     };
     // Each ranked mistake's own render, to name a region it explains.
     let renders: Vec<(Mistake, RgbImage)> = mistakes
         .iter()
         .map(|r| {
-            let mut mistaken = settings;
-            mistaken.mistakes = Mistakes::NONE.with(r.mistake);
-            (r.mistake, render::<NoRecorder>(scene, &mistaken, &|| {}).0)
+            let image = shared.mistaken(Mistakes::NONE.with(r.mistake));
+            (r.mistake, RgbImage::clone(&image))
         })
         .collect();
     let regions = found
         .iter()
         .take(REGIONS_SHOWN)
-        .map(|region| describe(scene, &reference, &yours, region, &renders))
+        .map(|region| describe(scene, reference, &yours, region, &renders))
         .collect();
     Comparison {
         width: yours.width(),
@@ -292,5 +305,34 @@ mod tests {
                 format!("{:<28} (0.500, 0.500, 0.500)  100.0%", "diffuse from light 0"),
             ]
         );
+    }
+
+    #[test]
+    fn images_compared_with_shared_renders_are_told_as_alone_and_render_nothing_twice() {
+        // The mirror ball of `test_scenes` (11 x 11, with ambient, a
+        // highlight and a reflected ray), as a student would render it
+        // without the ambient term: it differs, so the ranking renders
+        // each single mistake and the combinations it tries.
+        let (scene, _) = crate::test_scenes::ball();
+        let mut settings = scene.settings;
+        settings.mistakes = Mistakes::NONE.with(Mistake::NoAmbient);
+        let image = crate::render::render::<crate::trace::NoRecorder>(&scene, &settings, &|| {}).0;
+        let student = || StudentImage {
+            image: image.clone(),
+            notes: Vec::new(),
+        };
+        let json = |c: &Comparison| serde_json::to_string(c).unwrap();
+        let alone = compare(&scene, student());
+        assert_eq!(alone.mistakes[0].mistake, Mistake::NoAmbient);
+        let shared = SceneRenders::new(&scene);
+        let first = compare_with(&shared, student());
+        let rendered = shared.rendered();
+        assert!(rendered > 1, "{rendered} renders");
+        let second = compare_with(&shared, student());
+        // The second image asks for the same renders: none is made again.
+        assert_eq!(shared.rendered(), rendered);
+        assert_eq!(json(&first), json(&alone));
+        assert_eq!(json(&second), json(&alone));
+        assert_eq!(first.error_map, alone.error_map);
     }
 }

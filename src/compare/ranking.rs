@@ -17,11 +17,10 @@ use image::RgbImage;
 use serde::Serialize;
 
 use super::metrics::{TOLERANCE_STEPS, channel_gap};
+use super::scene_renders::SceneRenders;
 use crate::math::Color;
 use crate::mistakes::{ActsOn, Mistake, Mistakes};
-use crate::render::render;
 use crate::scene::{Material, Scene, Settings};
-use crate::trace::NoRecorder;
 
 /// The side of the blocks compared.
 const BLOCK: u32 = 16;
@@ -57,36 +56,25 @@ pub struct Ranked {
     pub(crate) exponent: Option<f64>,
 }
 
-/// The mistakes that explain the difference between `yours` and
-/// `reference`, most first. Each next one is, among the mistakes that fit
-/// at least `MIN_FIT` on top of those above it, the one that explains most.
-pub(crate) fn rank(
-    scene: &Scene,
-    settings: &Settings,
-    yours: &RgbImage,
-    reference: &RgbImage,
-) -> Vec<Ranked> {
+/// The mistakes that explain the difference between `yours` and the
+/// scene's reference, most first. Each next one is, among the mistakes that
+/// fit at least `MIN_FIT` on top of those above it, the one that explains
+/// most. Every render comes from `shared`.
+pub(crate) fn rank(shared: &SceneRenders, yours: &RgbImage) -> Vec<Ranked> {
+    let reference = &shared.reference().image;
     let yours_blocks = block_sums(yours);
     let reference_blocks = block_sums(reference);
     if yours_blocks == reference_blocks && yours == reference {
         return Vec::new();
     }
-    let render_with = |mistakes: Mistakes| {
-        let mut mistaken = *settings;
-        mistaken.mistakes = mistakes;
-        block_sums(&render::<NoRecorder>(scene, &mistaken, &|| {}).0)
-    };
+    let render_with = |mistakes: Mistakes| block_sums(&shared.mistaken(mistakes));
     // Each mistake alone, with the blocks it changes; one that changes
     // nothing in this scene drops out. (Dropping those that fit poorly
     // alone would save renders but lose a small mistake hidden under a
     // large one, as phong-not-blinn's highlights under opaque shadows.)
-    let mut candidates: Vec<Candidate> = Mistake::ALL
-        .into_iter()
-        .filter(|&mistake| may_change(scene, settings, mistake))
+    let mut candidates: Vec<Candidate> = candidates(shared.scene())
         .filter_map(|mistake| {
-            let mut mistaken = *settings;
-            mistaken.mistakes = Mistakes::NONE.with(mistake);
-            let image = render::<NoRecorder>(scene, &mistaken, &|| {}).0;
+            let image = shared.mistaken(Mistakes::NONE.with(mistake));
             let blocks = block_sums(&image);
             let changed: Vec<bool> = blocks
                 .iter()
@@ -173,6 +161,24 @@ fn gamma_exponent(yours: &RgbImage, reference: &RgbImage) -> Option<f64> {
     let middle = found.len() / 2;
     let (_, median, _) = found.select_nth_unstable_by(middle, f64::total_cmp);
     Some((*median * 10.0).round() / 10.0)
+}
+
+/// The mistakes the ranking tries alone first: those that may change the
+/// scene's image.
+fn candidates(scene: &Scene) -> impl Iterator<Item = Mistake> + '_ {
+    Mistake::ALL
+        .into_iter()
+        .filter(|&mistake| may_change(scene, &scene.settings, mistake))
+}
+
+/// Renders, in parallel, each mistake the ranking tries alone: what every
+/// ranking of this scene renders first.
+pub(crate) fn prepare(shared: &SceneRenders) {
+    use rayon::prelude::*;
+    let tried: Vec<Mistake> = candidates(shared.scene()).collect();
+    tried.into_par_iter().for_each(|mistake| {
+        shared.mistaken(Mistakes::NONE.with(mistake));
+    });
 }
 
 /// Whether `mistake` can change this scene's image at all: false when the
@@ -300,6 +306,8 @@ fn showing_pixel(yours: &RgbImage, reference: &RgbImage, variant: &RgbImage) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::render;
+    use crate::trace::NoRecorder;
 
     #[test]
     fn block_sums_make_speckles_of_equal_density_agree() {

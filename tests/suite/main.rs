@@ -22,6 +22,7 @@ mod explain_story;
 mod figure;
 mod five_questions;
 mod fuzz_regressions;
+mod grade;
 mod layout;
 mod mistakes;
 mod nff_import;

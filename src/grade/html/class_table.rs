@@ -7,9 +7,9 @@ use std::fmt::Write;
 
 use super::escape::{escape, url};
 use super::images::{image, thumbnail_size};
-use super::score_text::{flip, points};
 use super::{scene_anchor, student_page_path};
 use crate::grade::model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
+use crate::grade::points_text as points;
 
 pub(super) fn table(class: &ClassGrades) -> String {
     let mut html = String::from(
@@ -91,7 +91,7 @@ fn cell(scene: &SceneSheet, grade: &SceneGrade, link: &str) -> String {
     if let Some(reason) = &grade.refused {
         let _ = write!(html, "<div class=\"reason\">{}</div>", escape(reason));
     } else if let Some(mean) = grade.flip_mean {
-        let _ = write!(html, "<div class=\"flip\">FLIP {}</div>", flip(mean));
+        let _ = write!(html, "<div class=\"flip\">FLIP {mean:.4}</div>");
     }
     html.push_str("</td>");
     html

@@ -11,7 +11,6 @@ mod histogram;
 mod images;
 #[cfg(test)]
 mod sample_class;
-mod score_text;
 mod student_page;
 mod summary;
 

@@ -8,8 +8,8 @@ use super::class_table::verdict;
 use super::escape::{escape, escape_block};
 use super::images::{image, readable_size};
 use super::scene_anchor;
-use super::score_text::{flip, points};
 use crate::grade::model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
+use crate::grade::points_text as points;
 
 /// The page's body; images and links reach REPORT/ through `../`.
 pub(super) fn body(class: &ClassGrades, student: &StudentGrades) -> String {
@@ -104,9 +104,7 @@ fn scoring(scene: &SceneSheet, grade: &SceneGrade) -> String {
     let max = points(grade.max_points);
     match (scene.partial, scene.max_flip, grade.flip_mean) {
         (true, Some(max_flip), Some(mean)) if grade.refused.is_none() && !grade.matches => format!(
-            "Partial credit: {max} × max(0, 1 − FLIP {} / {}) = {}.",
-            flip(mean),
-            max_flip,
+            "Partial credit: {max} × max(0, 1 − FLIP {mean:.4} / {max_flip}) = {}.",
             points(grade.points)
         ),
         (true, Some(max_flip), _) => format!(
@@ -168,7 +166,7 @@ mod tests {
         };
         assert_eq!(
             scoring(&sheet, &grade),
-            "Partial credit: 10 × max(0, 1 − FLIP 0.157 / 0.2) = 2.15."
+            "Partial credit: 10 × max(0, 1 − FLIP 0.1570 / 0.2) = 2.15."
         );
     }
 }

@@ -2,8 +2,8 @@
 //! mean and median total, how many matched every scene, how many
 //! submissions were refused.
 
-use super::score_text::points;
 use crate::grade::model::ClassGrades;
+use crate::grade::points_text as points;
 
 pub(super) fn summary(class: &ClassGrades) -> String {
     let students = class.students.len();

@@ -1,0 +1,198 @@
+//! `raystep grade`: a class's folders into REPORT/, or one submission for
+//! an autograder's container, with its summary on stdout and the results
+//! files Gradescope and PrairieLearn read. Everything that can be refused
+//! (the assignment, its scenes, the folders, where the outputs go) is
+//! refused before grading starts, so nothing is written then.
+
+use std::fmt::Write as _;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+
+use super::{GradeArgs, emit};
+use crate::grade::{self, Assignment, Graded, ReportDir, Student};
+use crate::output::{self, Target};
+use crate::render::with_threads;
+
+pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
+    let assignment = grade::assignment::load(&args.assignment)?;
+    let class = match (&args.submissions, &args.submission) {
+        (Some(folder), _) => grade::student_folders(folder)?,
+        (None, Some(folder)) => vec![Student::alone(folder)?],
+        (None, None) => unreachable!("clap requires SUBMISSIONS or --submission"),
+    };
+    let folders = args.submissions.as_ref().or(args.submission.as_ref());
+    let report = args
+        .output
+        .as_deref()
+        .map(|dir| ReportDir::check(dir, &inputs(args, &assignment, folders)))
+        .transpose()?;
+    let results = ResultsFiles::check(args, &assignment, &class)?;
+    let progress = progress_bar(class.len() * assignment.scenes.len());
+    let tick = || progress.inc(1);
+    let graded = with_threads(args.jobs.map(usize::from), || {
+        grade::grade(&assignment, &class, &tick)
+    })?;
+    progress.finish_and_clear();
+    if let Some(report) = &report {
+        report.write(&graded.report_files()?)?;
+    }
+    results.write(&graded)?;
+    let summary = match (&args.submission, &args.output) {
+        (Some(_), _) => one_summary(&graded),
+        (None, Some(dir)) => class_summary(&graded, dir),
+        (None, None) => String::new(),
+    };
+    emit(&summary)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// What REPORT/ may neither be, hold nor lie in.
+fn inputs<'a>(
+    args: &'a GradeArgs,
+    assignment: &'a Assignment,
+    folders: Option<&'a PathBuf>,
+) -> Vec<(&'a Path, String)> {
+    let mut inputs = vec![(args.assignment.as_path(), "the assignment".to_string())];
+    inputs.extend(
+        assignment
+            .scenes
+            .iter()
+            .map(|s| (s.path.as_path(), "the scene file".to_string())),
+    );
+    inputs.extend(folders.map(|f| (f.as_path(), "the submissions folder".to_string())));
+    inputs
+}
+
+/// The autograders' results files of `--submission`, checked before grading.
+struct ResultsFiles {
+    gradescope: Option<Target>,
+    prairielearn: Option<Target>,
+}
+
+impl ResultsFiles {
+    fn check(args: &GradeArgs, assignment: &Assignment, class: &[Student]) -> Result<Self> {
+        let target = |path: &Option<PathBuf>| -> Result<Option<Target>> {
+            let Some(path) = path else { return Ok(None) };
+            // An autograder's results folder may not exist yet (PrairieLearn
+            // leaves /grade/results to the grader).
+            if let Some(folder) = path.parent().filter(|p| !p.as_os_str().is_empty())
+                && !folder.exists()
+            {
+                std::fs::create_dir_all(folder)
+                    .with_context(|| format!("cannot create {}", folder.display()))?;
+            }
+            output::file(path).map(Some)
+        };
+        let files = ResultsFiles {
+            gradescope: target(&args.gradescope)?,
+            prairielearn: target(&args.prairielearn)?,
+        };
+        let named: Vec<(&Target, String)> = [
+            (&files.gradescope, "--gradescope"),
+            (&files.prairielearn, "--prairielearn"),
+        ]
+        .into_iter()
+        .filter_map(|(t, what)| t.as_ref().map(|t| (t, format!("the results of {what}"))))
+        .collect();
+        output::refuse_clashes(&args.assignment, &named)?;
+        for (target, _) in &named {
+            for scene in &assignment.scenes {
+                output::refuse_input(target, &scene.path, "the scene file")?;
+                for student in class {
+                    let handed_in = student.folder.join(&scene.submit);
+                    output::refuse_input(target, &handed_in, "the submission")?;
+                }
+            }
+        }
+        Ok(files)
+    }
+
+    fn write(&self, graded: &Graded) -> Result<()> {
+        let Some(student) = graded.grades.students.first() else {
+            return Ok(());
+        };
+        if let Some(target) = &self.gradescope {
+            let value = grade::gradescope_results(&graded.grades, student);
+            output::write_text(target, &(serde_json::to_string_pretty(&value)? + "\n"))?;
+        }
+        if let Some(target) = &self.prairielearn {
+            output::write_text(target, &grade::prairielearn_results(graded, student))?;
+        }
+        Ok(())
+    }
+}
+
+/// One submission, scene by scene.
+fn one_summary(graded: &Graded) -> String {
+    let grades = &graded.grades;
+    let mut out = String::new();
+    for student in &grades.students {
+        let _ = writeln!(
+            out,
+            "{}: {} of {} points",
+            grades.title,
+            grade::points_text(student.total),
+            grade::points_text(grades.max_total)
+        );
+        let width = grades
+            .scenes
+            .iter()
+            .map(|s| s.submit.chars().count())
+            .max()
+            .unwrap_or(0);
+        for (sheet, scene) in grades.scenes.iter().zip(&student.scenes) {
+            let verdict = match (&scene.refused, scene.matches, scene.flip_mean) {
+                (Some(reason), _, _) => format!("not graded: {reason}"),
+                (None, true, Some(flip)) => format!("matches (FLIP {flip:.4})"),
+                (None, false, flip) => {
+                    let likely = scene
+                        .mistakes
+                        .first()
+                        .map_or(String::new(), |m| format!(", likely {m}"));
+                    format!("differs{likely} (FLIP {:.4})", flip.unwrap_or(0.0))
+                }
+                (None, true, None) => "matches".to_string(),
+            };
+            let _ = writeln!(
+                out,
+                "  {:<width$}  {:>6} of {:<6}  {verdict}",
+                sheet.submit,
+                grade::points_text(scene.points),
+                grade::points_text(scene.max_points),
+            );
+        }
+    }
+    out
+}
+
+/// The class in one line, and where the report is.
+fn class_summary(graded: &Graded, dir: &Path) -> String {
+    let grades = &graded.grades;
+    let count = grades.students.len();
+    let mean = grades.students.iter().map(|s| s.total).sum::<f64>() / count.max(1) as f64;
+    format!(
+        "graded {} on {}: mean {} of {} points; the report is in {}\n",
+        crate::record::count(count as u64, "student", "students"),
+        crate::record::count(grades.scenes.len() as u64, "scene", "scenes"),
+        grade::points_text((mean * 100.0).round() / 100.0),
+        grade::points_text(grades.max_total),
+        dir.display()
+    )
+}
+
+/// A progress bar on stderr when it is a terminal; hidden otherwise.
+fn progress_bar(submissions: usize) -> indicatif::ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(submissions as u64);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{spinner} grading {bar:40} {pos}/{len} images {elapsed}",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
