@@ -89,8 +89,14 @@ fn cell(scene: &SceneSheet, grade: &SceneGrade, link: &str) -> String {
         verdict(grade),
     );
     if let Some(reason) = &grade.refused {
-        let _ = write!(html, "<div class=\"reason\">{}</div>", escape(reason));
-    } else if let Some(mean) = grade.flip_mean {
+        // Cut to three lines on screen; the title and the student's page
+        // hold it whole.
+        let reason = escape(reason);
+        let _ = write!(
+            html,
+            "<div class=\"reason\" title=\"{reason}\">{reason}</div>"
+        );
+    } else if let Some(mean) = grade.flip_mean.filter(|_| !grade.matches) {
         let _ = write!(html, "<div class=\"flip\">FLIP {mean:.4}</div>");
     }
     html.push_str("</td>");
@@ -141,7 +147,7 @@ mod tests {
             "{cell}"
         );
         assert!(
-            cell.contains("<div class=\"reason\">rendered at 320x240, the assignment asks for 160x120 &lt;sic&gt;</div>"),
+            cell.contains("assignment asks for 160x120 &lt;sic&gt;\">rendered at 320x240, the assignment asks for 160x120 &lt;sic&gt;</div>"),
             "{cell}"
         );
         // No image of yours nor an error map: two grey boxes, the reference alone.

@@ -54,8 +54,9 @@ overflow:hidden;overflow-wrap:anywhere}\
 .thumbs{display:flex;gap:3px;text-decoration:none}\
 .result{margin-top:3px;white-space:nowrap}\
 .flip{font-size:12px;color:var(--muted)}\
-.reason{font-size:12px;color:var(--refused);max-width:204px;overflow-wrap:anywhere}\
-p.reason{font-size:14px;max-width:none}\
+.reason{font-size:12px;color:var(--refused);max-width:204px;overflow-wrap:anywhere;\
+display:-webkit-box;-webkit-box-orient:vertical;-webkit-line-clamp:3;overflow:hidden}\
+p.reason{display:block;font-size:14px;max-width:none;overflow:visible}\
 .cards{display:flex;flex-wrap:wrap;gap:10px 14px}\
 figure.card{margin:0;padding:6px 10px;border:1px solid var(--line);border-radius:4px}\
 figure.card figcaption{font-weight:600;font-size:13px;color:var(--ink);overflow-wrap:anywhere}\
@@ -76,4 +77,5 @@ padding:8px 10px;max-width:120ch;font:12px/1.35 ui-monospace,\"DejaVu Sans Mono\
 @media print{body{padding:0;font-size:11px}\
 .grades thead th,.grades th.student{position:static}\
 .grades tr,section.scene,figure.card,pre.report{break-inside:avoid}\
-a{color:inherit;text-decoration:none}nav.back{display:none}}";
+a{color:inherit;text-decoration:none}nav.back{display:none}\
+.reason{display:block;overflow:visible}}";
