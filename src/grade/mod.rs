@@ -70,7 +70,8 @@ impl Student {
     }
 }
 
-/// The student folders in `submissions`, sorted by their names' bytes.
+/// The student folders in `submissions`, sorted by their names' bytes
+/// (as `StudentGrades::student` holds them).
 /// Files beside them (a platform's metadata file) and hidden entries are
 /// not students; a folder that holds none is refused.
 pub(crate) fn student_folders(submissions: &Path) -> Result<Vec<Student>> {
@@ -93,14 +94,20 @@ pub(crate) fn student_folders(submissions: &Path) -> Result<Vec<Student>> {
              the files the assignment names ({shown}/<student>/<file>.png)"
         );
     }
-    found.sort_by(|a, b| a.0.as_encoded_bytes().cmp(b.0.as_encoded_bytes()));
-    Ok(found
+    let mut students: Vec<(Student, OsString)> = found
         .into_iter()
-        .map(|(name, folder)| Student {
-            name: name.to_string_lossy().into_owned(),
-            folder,
+        .map(|(raw, folder)| {
+            let name = raw.to_string_lossy().into_owned();
+            (Student { name, folder }, raw)
         })
-        .collect())
+        .collect();
+    // By the name as written in the grades; two names that read the same
+    // there (different bytes that are not UTF-8) by their own bytes.
+    students.sort_by(|(a, a_raw), (b, b_raw)| {
+        (a.name.as_bytes(), a_raw.as_encoded_bytes())
+            .cmp(&(b.name.as_bytes(), b_raw.as_encoded_bytes()))
+    });
+    Ok(students.into_iter().map(|(student, _)| student).collect())
 }
 
 /// Files of REPORT/: each one's path in it (with `/`) and its bytes.
