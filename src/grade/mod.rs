@@ -6,12 +6,14 @@
 //!
 //! Everything found goes into one value, `model::ClassGrades`, that every
 //! output is written from: grades.csv (`csv_table`), grades.json, the
-//! autograder files (`gradescope`, `prairielearn`) and the HTML report.
+//! autograder files (`gradescope`, `prairielearn`) and the HTML report
+//! (`html`).
 //! REPORT/ is written as a whole or not at all (`report_dir`).
 
 pub(crate) mod assignment;
 mod csv_table;
 mod gradescope;
+pub(crate) mod html;
 pub mod model;
 mod prairielearn;
 mod report_dir;
@@ -137,8 +139,11 @@ impl Graded {
             ),
         ];
         files.extend(self.images.iter().cloned());
-        // index.html and students/<slug>.html: `grade::html::pages(&self.grades)`
-        // (branch i23-report) goes here, each page one more (path, bytes).
+        files.extend(
+            html::pages(&self.grades)
+                .into_iter()
+                .map(|(path, page)| (path, page.into_bytes())),
+        );
         Ok(files)
     }
 }

@@ -23,6 +23,7 @@ mod figure;
 mod five_questions;
 mod fuzz_regressions;
 mod grade;
+mod grade_report;
 mod layout;
 mod mistakes;
 mod nff_import;

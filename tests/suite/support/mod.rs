@@ -1,8 +1,10 @@
 //! Helpers shared by the test files of the tracer and the command line: a
 //! scene from TOML text, the recorded tree of one primary ray cast by hand,
 //! the `raystep` binary run with arguments, and the one way to pin a
-//! snapshot. The debugger's helpers are in `debugger.rs`.
+//! snapshot. The debugger's helpers are in `debugger.rs`, headless
+//! Chromium for the class report in `chromium.rs`.
 
+pub mod chromium;
 pub mod debugger;
 
 /// Pins `value` (anything `Display`) as `snapshots/<file>__<name>.snap`,

@@ -1,0 +1,76 @@
+//! The class in one line at the top of index.html: how many students, the
+//! mean and median total, how many matched every scene, how many
+//! submissions were refused.
+
+use crate::grade::model::ClassGrades;
+use crate::grade::points_text as points;
+
+pub(super) fn summary(class: &ClassGrades) -> String {
+    let students = class.students.len();
+    if students == 0 {
+        return "<p class=\"summary\">No student folders were found.</p>".into();
+    }
+    let mut totals: Vec<f64> = class.students.iter().map(|s| s.total).collect();
+    totals.sort_by(f64::total_cmp);
+    let mean = totals.iter().sum::<f64>() / students as f64;
+    let median = if students % 2 == 1 {
+        totals[students / 2]
+    } else {
+        (totals[students / 2 - 1] + totals[students / 2]) / 2.0
+    };
+    let all_matched = class
+        .students
+        .iter()
+        .filter(|s| !s.scenes.is_empty() && s.scenes.iter().all(|g| g.matches))
+        .count();
+    let refused: usize = class
+        .students
+        .iter()
+        .map(|s| s.scenes.iter().filter(|g| g.refused.is_some()).count())
+        .sum();
+    let plural =
+        |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    format!(
+        "<p class=\"summary\"><b>{}</b> · total out of {}: mean <b>{}</b>, median <b>{}</b> · <b>{all_matched}</b> matched every scene · {} refused</p>",
+        plural(students, "student", "students"),
+        points(class.max_total),
+        points(mean),
+        points(median),
+        plural(refused, "submission", "submissions"),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grade::html::sample_class::{class, compared, matched, refused};
+
+    #[test]
+    fn mean_median_and_counts_by_hand() {
+        // Totals 20, 10, 0, 10: mean 40 / 4 = 10, median of 0 10 10 20 is
+        // (10 + 10) / 2 = 10. Only ada matched both scenes; one refusal.
+        let class = class(&[
+            ("ada", vec![matched(), matched()]),
+            ("bob", vec![matched(), compared(&["no-ambient"])]),
+            ("cy", vec![refused("missing"), compared(&[])]),
+            ("dee", vec![compared(&[]), matched()]),
+        ]);
+        assert_eq!(
+            summary(&class),
+            "<p class=\"summary\"><b>4 students</b> · total out of 20: mean <b>10</b>, median <b>10</b> · <b>1</b> matched every scene · 1 submission refused</p>"
+        );
+        // Three students, totals 0, 10, 10: the median is the middle one, 10;
+        // the mean 20 / 3 = 6.67.
+        let three = crate::grade::html::sample_class::class(&[
+            ("a", vec![compared(&[])]),
+            ("b", vec![matched()]),
+            ("c", vec![matched()]),
+        ]);
+        assert!(summary(&three).contains("mean <b>6.67</b>, median <b>10</b>"));
+    }
+
+    #[test]
+    fn an_empty_class_says_so() {
+        assert!(summary(&class(&[])).contains("No student folders"));
+    }
+}

@@ -1,0 +1,131 @@
+//! Headless Chromium for the report's tests: the DOM of a page after the
+//! browser has parsed it (`--dump-dom`), or a screenshot. Debian's
+//! `chromium`; `.ci/run` installs it when it is missing. Without it a test
+//! is skipped with a note, unless CI is set: there it must run.
+
+use std::fs::File;
+use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Longer than a page of the report takes on a loaded 2-core machine
+/// (a few seconds), short enough that a hung browser fails the test.
+const TIMEOUT: Duration = Duration::from_secs(90);
+
+pub struct Chromium {
+    program: PathBuf,
+}
+
+/// The browser, or `None` after printing why `test` is skipped. With CI
+/// set (and not `false` or `0`), a missing browser fails the test instead.
+pub fn chromium_or_skip(test: &str) -> Option<Chromium> {
+    let found = ["chromium", "chromium-browser"]
+        .iter()
+        .find_map(|name| on_path(name));
+    if let Some(program) = found {
+        return Some(Chromium { program });
+    }
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
+    assert!(
+        !ci,
+        "{test}: chromium is not installed, and CI is set (.ci/run installs it)"
+    );
+    eprintln!("note: {test} skipped: chromium is not installed (apt-get install chromium)");
+    None
+}
+
+fn on_path(name: &str) -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .map(|dir| dir.join(name))
+        .find(|file| file.is_file())
+}
+
+impl Chromium {
+    /// `page`'s DOM, serialised, after the browser loaded it from `file://`.
+    pub fn dump_dom(&self, page: &Path) -> String {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("dom.html");
+        self.run(
+            &["--dump-dom".to_string(), file_url(page)],
+            &out,
+            dir.path(),
+        );
+        std::fs::read_to_string(out).unwrap()
+    }
+
+    /// A `width` x `height` screenshot of `page`, written to `png`.
+    pub fn screenshot(&self, page: &Path, png: &Path, (width, height): (u32, u32)) {
+        let dir = tempfile::tempdir().unwrap();
+        let args = [
+            format!("--screenshot={}", png.display()),
+            format!("--window-size={width},{height}"),
+            "--hide-scrollbars".to_string(),
+            file_url(page),
+        ];
+        self.run(&args, &dir.path().join("stdout"), dir.path());
+        assert!(png.is_file(), "no screenshot of {}", page.display());
+    }
+
+    /// Runs the browser with `args` after the flags that keep it from the
+    /// network and from any profile, its stdout into `out`; it is killed,
+    /// with every process it started, after `TIMEOUT`.
+    fn run(&self, args: &[String], out: &Path, scratch: &Path) {
+        let profile = scratch.join("profile");
+        let errors = scratch.join("stderr");
+        let mut child = Command::new(&self.program)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--disable-sync",
+                "--no-first-run",
+            ])
+            .arg(format!("--user-data-dir={}", profile.display()))
+            .args(args)
+            .stdin(Stdio::null())
+            .stdout(File::create(out).unwrap())
+            .stderr(File::create(&errors).unwrap())
+            // Its own process group, so that a timeout ends the renderer and
+            // the zygote with it.
+            .process_group(0)
+            .spawn()
+            .expect("chromium starts");
+        let start = Instant::now();
+        let status = loop {
+            if let Some(status) = child.try_wait().unwrap() {
+                break status;
+            }
+            if start.elapsed() > TIMEOUT {
+                // SAFETY: kill(2) on the group this test started, by its id.
+                unsafe { libc::kill(-(child.id() as i32), libc::SIGKILL) };
+                let _ = child.wait();
+                panic!("chromium took more than {TIMEOUT:?} on {args:?}");
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        };
+        assert!(
+            status.success(),
+            "chromium failed ({status}) on {args:?}: {}",
+            std::fs::read_to_string(errors).unwrap_or_default()
+        );
+    }
+}
+
+/// `file:///...` for `path`, made absolute, each byte outside the
+/// unreserved set and `/` percent-encoded.
+pub fn file_url(path: &Path) -> String {
+    let absolute = std::path::absolute(path).unwrap();
+    let mut url = String::from("file://");
+    for byte in absolute.as_os_str().as_encoded_bytes() {
+        if byte.is_ascii_alphanumeric() || b"-._~/".contains(byte) {
+            url.push(*byte as char);
+        } else {
+            url.push_str(&format!("%{byte:02X}"));
+        }
+    }
+    url
+}
