@@ -285,6 +285,36 @@ fn a_moved_camera_is_told_as_geometry_not_as_a_term() {
 }
 
 #[test]
+fn a_region_under_ten_pixels_is_too_small_to_tell_in_text_and_json() {
+    // raystep's render of glass.toml with a 2 x 2 square of its sky made
+    // magenta: one region of 4 pixels that no mistake of the catalogue
+    // explains and no change of camera either, so its diagnosis is "too
+    // small to tell", not a term.
+    let dir = tempfile::tempdir().unwrap();
+    let yours = render(dir.path(), SCENE, "yours.png", &[]);
+    let mut image = image::open(&yours).unwrap().into_rgb8();
+    for (x, y) in [(20, 5), (21, 5), (20, 6), (21, 6)] {
+        image.put_pixel(x, y, image::Rgb([255, 0, 255]));
+    }
+    image.save(&yours).unwrap();
+    let expected = "too small to tell: 4 pixels (a term diagnosis needs 10)";
+    let output = raystep(&["compare", SCENE, path(&yours), "--format", "json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = json(&output);
+    assert_eq!(report["mistakes"], serde_json::json!([]));
+    assert_eq!(report["geometry"], serde_json::Value::Null);
+    assert_eq!(report["region_count"], 1);
+    assert_eq!(report["regions"][0]["pixels"], 4);
+    assert_eq!(report["regions"][0]["diagnosis"], expected);
+    let text = stdout(&raystep(&["compare", SCENE, path(&yours)]));
+    assert!(
+        text.contains("  1. 4 pixels in (20, 5)-(21, 6), on background (4)\n"),
+        "{text}"
+    );
+    assert!(text.contains(&format!("\n     {expected}\n")), "{text}");
+}
+
+#[test]
 fn thresholds_give_exit_three_for_autograders() {
     // The scene with its ambient light off: a real difference (mean_abs
     // about 0.06 on this scene), over a threshold of 0.01, under one of 0.5.
