@@ -125,18 +125,16 @@ pub fn compare(scene: &Scene, student: StudentImage) -> Comparison {
             (r.mistake, render::<NoRecorder>(scene, &mistaken, &|| {}).0)
         })
         .collect();
+    let seen = Seen {
+        reference: &reference,
+        yours: &yours,
+        differs: &differs,
+        geometry: geometry.as_ref(),
+    };
     let regions = found
         .iter()
         .take(REGIONS_SHOWN)
-        .map(|region| {
-            let seen = Seen {
-                reference: &reference,
-                yours: &yours,
-                differs: &differs,
-                geometry: geometry.as_ref(),
-            };
-            describe(scene, &seen, region, &renders)
-        })
+        .map(|region| describe(scene, &seen, region, &renders))
         .collect();
     Comparison {
         width: yours.width(),
