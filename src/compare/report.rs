@@ -61,6 +61,14 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
         );
     }
     write_mistakes(&mut out, c);
+    if let Some(g) = &c.geometry {
+        let _ = writeln!(
+            out,
+            "Geometry: {}, which explains {} of the difference where it covers the image: the camera or projection differs.",
+            g.words,
+            percent(g.explains)
+        );
+    }
     if !c.regions.is_empty() {
         let _ = writeln!(
             out,

@@ -99,8 +99,12 @@ fn pixel_text(out: &mut String, pixel: &PixelReport) {
     if pixel.later_differences > 0 {
         let _ = writeln!(
             out,
-            "  {} after it follow from the first.",
-            count(pixel.later_differences as u64, "difference", "differences")
+            "  {} from the first.",
+            count(
+                pixel.later_differences as u64,
+                "difference after it follows",
+                "differences after it follow"
+            )
         );
     }
     unpaired_text(out, "Only in yours", &pixel.only_yours);

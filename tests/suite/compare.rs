@@ -202,6 +202,118 @@ fn a_half_pixel_shift_is_not_called_a_missing_term() {
     }
 }
 
+/// `image`, raystep's render, with each pixel taken from `from(x, y)`.
+fn moved(image: &Path, to: &Path, from: impl Fn(u32, u32, u32, u32) -> (u32, u32)) {
+    let ours = image::open(image).unwrap().into_rgb8();
+    let (w, h) = ours.dimensions();
+    image::RgbImage::from_fn(w, h, |x, y| {
+        let (fx, fy) = from(x, y, w, h);
+        *ours.get_pixel(fx, fy)
+    })
+    .save(to)
+    .unwrap();
+}
+
+#[test]
+fn a_moved_camera_is_told_as_geometry_not_as_a_term() {
+    // Three student images of glass.toml that no catalogue mistake makes:
+    // raystep's render moved one pixel right (the left column repeated),
+    // mirrored left to right, and rendered with a field of view of 50°
+    // where the scene says 40°. A fov of 50 scales the image about its
+    // centre by tan 20° / tan 25° = 0.36397 / 0.46631 = 0.7805 (MODEL §2:
+    // a point lands at tan θ / s). Each is told as its change of camera,
+    // in the JSON's "geometry" and on every region; on main these images
+    // had no "geometry" and their regions a term or nothing.
+    let dir = tempfile::tempdir().unwrap();
+    let ours = render(dir.path(), SCENE, "ours.png", &[]);
+    let shifted = dir.path().join("shifted.png");
+    moved(&ours, &shifted, |x, y, _, _| (x.saturating_sub(1), y));
+    let mirrored = dir.path().join("mirrored.png");
+    moved(&ours, &mirrored, |x, y, w, _| (w - 1 - x, y));
+    let text = std::fs::read_to_string(SCENE).unwrap();
+    assert!(text.contains("\nfov = 40\n"));
+    let wider = dir.path().join("wider.toml");
+    std::fs::write(&wider, text.replace("\nfov = 40\n", "\nfov = 50\n")).unwrap();
+    let fov50 = render(dir.path(), path(&wider), "fov50.png", &[]);
+    let cases = [
+        (
+            &shifted,
+            "shifted 1 pixel right",
+            serde_json::json!({"shift": [1.0, 0.0]}),
+        ),
+        (
+            &mirrored,
+            "mirrored left to right",
+            serde_json::json!({"flip": "horizontal"}),
+        ),
+        (
+            &fov50,
+            "as a vertical field of view of 50° gives (the scene's is 40°)",
+            serde_json::json!({"fov": 50.0}),
+        ),
+    ];
+    for (image, words, expected) in cases {
+        let output = raystep(&["compare", SCENE, path(image), "--format", "json"]);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        let report = json(&output);
+        let geometry = &report["geometry"];
+        for (key, value) in expected.as_object().unwrap() {
+            assert_eq!(&geometry[key], value, "{words}: {geometry}");
+        }
+        assert!(geometry["explains"].as_f64().unwrap() >= 0.8, "{geometry}");
+        if let Some(scale) = geometry["scale"].as_f64() {
+            assert!((scale - 0.7805).abs() < 0.005, "{scale}");
+        }
+        let regions = report["regions"].as_array().unwrap();
+        assert!(!regions.is_empty());
+        for region in regions {
+            let d = region["diagnosis"].as_str().unwrap();
+            assert!(
+                d.starts_with(
+                    "the geometry differs: camera or projection (yours is the reference "
+                ) && d.contains(words),
+                "{words}: {d}"
+            );
+        }
+        let text = stdout(&raystep(&["compare", SCENE, path(image)]));
+        assert!(
+            text.contains("Geometry: yours is the reference ") && text.contains(words),
+            "{text}"
+        );
+        assert!(!text.contains("yours ≈"), "{text}");
+    }
+}
+
+#[test]
+fn a_region_under_ten_pixels_is_too_small_to_tell_in_text_and_json() {
+    // raystep's render of glass.toml with a 2 x 2 square of its sky made
+    // magenta: one region of 4 pixels that no mistake of the catalogue
+    // explains and no change of camera either, so its diagnosis is "too
+    // small to tell", not a term.
+    let dir = tempfile::tempdir().unwrap();
+    let yours = render(dir.path(), SCENE, "yours.png", &[]);
+    let mut image = image::open(&yours).unwrap().into_rgb8();
+    for (x, y) in [(20, 5), (21, 5), (20, 6), (21, 6)] {
+        image.put_pixel(x, y, image::Rgb([255, 0, 255]));
+    }
+    image.save(&yours).unwrap();
+    let expected = "too small to tell: 4 pixels (a term diagnosis needs 10)";
+    let output = raystep(&["compare", SCENE, path(&yours), "--format", "json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let report = json(&output);
+    assert_eq!(report["mistakes"], serde_json::json!([]));
+    assert_eq!(report["geometry"], serde_json::Value::Null);
+    assert_eq!(report["region_count"], 1);
+    assert_eq!(report["regions"][0]["pixels"], 4);
+    assert_eq!(report["regions"][0]["diagnosis"], expected);
+    let text = stdout(&raystep(&["compare", SCENE, path(&yours)]));
+    assert!(
+        text.contains("  1. 4 pixels in (20, 5)-(21, 6), on background (4)\n"),
+        "{text}"
+    );
+    assert!(text.contains(&format!("\n     {expected}\n")), "{text}");
+}
+
 #[test]
 fn thresholds_give_exit_three_for_autograders() {
     // The scene with its ambient light off: a real difference (mean_abs
@@ -382,6 +494,7 @@ fn the_json_report_has_the_documented_keys() {
     assert_eq!(
         keys(&report),
         [
+            "geometry",
             "height",
             "matches",
             "metrics",

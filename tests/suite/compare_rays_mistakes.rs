@@ -511,6 +511,71 @@ fn a_nan_from_a_negative_cosine_to_a_fractional_power_is_named() {
     assert_eq!(report.later_differences, 2);
 }
 
+/// A mirror floor (k_d 1, k_s 0.5, n 1000) lit from straight above by a
+/// lamp of 2, seen from (0, 1, 1) against a grey background of 0.2.
+const BRIGHT_FLOOR: &str = r#"
+    [camera]
+    eye = [0, 1, 1]
+    look_at = [0, 0, 0]
+    [image]
+    width = 1
+    height = 1
+    [settings]
+    background = [0.2, 0.2, 0.2]
+    [materials.mirror]
+    kd = 1
+    ks = 0.5
+    n = 1000
+    [[light]]
+    position = [0, 2, 0]
+    color = [2, 2, 2]
+    [[object]]
+    name = "floor"
+    material = "mirror"
+    plane = { normal = [0, 1, 0], point = [0, 0, 0] }
+"#;
+
+#[test]
+fn a_colour_clamped_before_the_reflection_is_added_is_named_so() {
+    // MODEL §2: the only ray goes along f = (0, −a, −a), a = 1/√2, and
+    // meets the floor at the origin, t = √2, N = (0, 1, 0); no ambient.
+    // §4: P_L − p = (0, 2, 0), d_L = 2, L = (0, 1, 0), N·L = 1, nothing in
+    // the way (S = 1), f_att = 1: diffuse = k_d O_d (N·L) I_p = 2. With
+    // V = (0, a, a), N·H = cos 22.5° = 0.92388 and 0.92388^1000 ≈ 5e-35:
+    // specular ≈ 0. §5: R = d − 2 (d·N) N = (0, a, −a) meets nothing, its
+    // colour the background 0.2, weight k_s = 0.5: it adds 0.1. §6: ours is
+    // 2 + 0.1 = 2.1. The student's clamp-before-adding gives min(1, 2) +
+    // 0.1 = 1.1 (on main: "scaled: yours is 0.5238 × ours", which blames
+    // a factor that is not there).
+    let s = scene(BRIGHT_FLOOR);
+    let log = r#"
+{"pixel": [0, 0], "path": "P", "origin": [0, 1, 1], "dir": [0, -0.7071067811865476, -0.7071067811865476], "hit": 0, "t": 1.4142135623730951, "point": [0, 0, 0], "normal": [0, 1, 0], "ambient": [0, 0, 0], "diffuse": [[2, 2, 2]], "specular": [[0, 0, 0]], "color": [1.1, 1.1, 1.1]}
+{"pixel": [0, 0], "path": "P/S0", "origin": [0, 0, 0], "dir": [0, 1, 0], "S": 1}
+{"pixel": [0, 0], "path": "P/R", "origin": [0, 0, 0], "dir": [0, 0.7071067811865476, -0.7071067811865476], "hit": null, "color": [0.2, 0.2, 0.2], "weight": 0.5}
+"#;
+    let report = compared(&s, log);
+    let d = first(&report, "P", "color", Kind::Clamped);
+    assert_eq!(vector(Some(d.yours)), [1.1; 3]);
+    let ours = vector(d.ours);
+    assert!(ours.iter().all(|c| (c - 2.1).abs() < 1e-9), "{ours:?}");
+    assert!(
+        d.words
+            .contains("yours is min(1, local) + k_s I_r + k_t I_t = (1, 1, 1) + (0.1, 0.1, 0.1)"),
+        "{}",
+        d.words
+    );
+    assert!(
+        d.words.contains(
+            "the local colour, ambient + the lights' terms = (2, 2, 2), was clamped to 1 \
+             before the reflected and transmitted terms were added (clamp-before-adding)"
+        ),
+        "{}",
+        d.words
+    );
+    assert_eq!(d.kind.name(), "clamped");
+    assert!(report.mistakes.contains(&Mistake::ClampBeforeAdding));
+}
+
 /// A mistake of the catalogue, a pixel of a scene of scenes/ (or
 /// `BRIGHT_MIRROR`) at 32x24 where it acts, and the path and field where it
 /// first acts.
@@ -739,14 +804,15 @@ fn rows() -> Vec<Row> {
         ),
         // bright-mirror (18, 18): P hits the mirror floor, whose own light
         // is below 1; P/R hits the white ball where a lamp of 2.5 makes its
-        // local colour 1.44, clamped to 1: P/R's colour.
+        // local colour 1.44, clamped to 1: P/R's colour (on main, "yours is
+        // 0.6934 × ours", 1 / 1.44, as if scaled).
         row(
             Mistake::ClampBeforeAdding,
             "bright-mirror",
             (18, 18),
             "P/R",
             "color",
-            "yours is 0.6934 × ours",
+            "(1.4422, 1.4422, 1.4422), was clamped to 1 before the reflected and transmitted terms were added",
         ),
         // P's first light is d_L = 7.82 away; the scene has no attenuation,
         // so f_att = 1 / 7.82² in place of 1, first in P's diffuse[0].

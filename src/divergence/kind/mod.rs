@@ -1,13 +1,16 @@
 //! What a difference looks like, in words a student recognises: negated,
 //! mirrored, not normalised, scaled by a factor with a name, η and 1/η
-//! swapped, another object, a missing epsilon, a NaN.
+//! swapped, another object, a missing epsilon, a colour clamped too early,
+//! a NaN.
 
 use glam::DVec3;
 use serde::Serialize;
 
+mod colour;
 mod direction;
 mod factors;
 
+use colour::clamped_before_adding;
 use direction::direction_kind;
 use factors::{candidates, scaled_words};
 
@@ -57,6 +60,9 @@ pub enum Kind {
     /// A primary ray through another point of the image than the pixel's
     /// centre.
     OtherPixel,
+    /// A colour whose local part (ambient and the lights' terms) was
+    /// clamped to 1 before the reflected and transmitted terms were added.
+    Clamped,
     Other,
 }
 
@@ -82,6 +88,7 @@ impl Kind {
             Kind::OtherT => "other_t",
             Kind::Zero => "zero",
             Kind::OtherPixel => "other_pixel",
+            Kind::Clamped => "clamped",
             Kind::Other => "other",
         }
     }
@@ -261,6 +268,11 @@ fn vector(
     yours: DVec3,
     theirs: DVec3,
 ) -> (Kind, String) {
+    if field == Field::Color
+        && let Some(found) = clamped_before_adding(ours, ray, yours)
+    {
+        return found;
+    }
     let direction = matches!(field, Field::Dir | Field::Normal);
     if direction && yours.length() > 0.0 && theirs.length() > 0.0 {
         let (unit_yours, unit_ours) = (yours.normalize(), theirs.normalize());
