@@ -23,6 +23,9 @@ use crate::record::num;
 const BLOCK: u32 = 4;
 /// At most about this many blocks are compared, spread over the image.
 const MAX_BLOCKS: u32 = 2400;
+/// A change is judged on at least this many blocks: on a few, some shift
+/// fits by chance (a 7 x 5 image has one block).
+const MIN_BLOCKS: usize = 16;
 /// Shifts are tried in half pixels up to this many pixels each way.
 const MAX_SHIFT: i32 = 2;
 /// Scales are tried on a grid of 2^(k / `SCALE_STEPS`), k up to
@@ -260,14 +263,14 @@ impl Blocks {
 
     /// The share of the difference that the reference, sampled at
     /// `source(x, y)` for each pixel (x, y) of yours, explains over the
-    /// blocks it covers; `None` when those hold too little of the
-    /// difference. `source` is affine, so a block whose four corner pixels
+    /// blocks it covers; `None` when those are too few or hold too little
+    /// of the difference. `source` is affine, so a block whose four corner pixels
     /// land inside the reference lies inside.
     fn explained(&self, whole: f64, source: impl Fn(f64, f64) -> (f64, f64)) -> Option<f64> {
         let (right, bottom) = ((self.width - 1) as f64, (self.height - 1) as f64);
         let inside = |(x, y): (f64, f64)| (0.0..=right).contains(&x) && (0.0..=bottom).contains(&y);
         let last = (BLOCK - 1) as f64;
-        let (mut before, mut after) = (0.0, 0.0);
+        let (mut before, mut after, mut blocks) = (0.0, 0.0, 0);
         for (i, &(x0, y0)) in self.corners.iter().enumerate() {
             let (x0, y0) = (x0 as f64, y0 as f64);
             if ![(0.0, 0.0), (last, 0.0), (0.0, last), (last, last)]
@@ -287,10 +290,12 @@ impl Blocks {
                 }
             }
             let n = (BLOCK * BLOCK) as f32;
+            blocks += 1;
             before += apart(&self.yours[i], &self.ours[i]);
             after += apart(&self.yours[i], &sum.map(|s| s / n));
         }
-        (before > 0.0 && before >= COVERED_SHARE * whole).then(|| 1.0 - after / before)
+        (blocks >= MIN_BLOCKS && before > 0.0 && before >= COVERED_SHARE * whole)
+            .then(|| 1.0 - after / before)
     }
 
     /// The reference at (x, y) in pixel coordinates (pixel centres at
@@ -375,6 +380,10 @@ mod tests {
             image::Rgb(reference.get_pixel(x, y).0.map(|c| c.saturating_sub(20)))
         });
         assert!(estimate(&darker, &reference, 40.0).is_none());
+        // An image of 12 x 8 pixels holds 6 blocks, too few to judge by.
+        let small = RgbImage::from_fn(12, 8, |x, y| pattern(x as f64, y as f64));
+        let flipped = RgbImage::from_fn(12, 8, |x, y| *small.get_pixel(11 - x, 7 - y));
+        assert!(estimate(&flipped, &small, 40.0).is_none());
     }
 
     #[test]
