@@ -139,7 +139,7 @@ pub(crate) fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comp
         })
         .collect();
     let seen = Seen {
-        reference: &reference,
+        reference,
         yours: &yours,
         differs: &differs,
         geometry: geometry.as_ref(),
