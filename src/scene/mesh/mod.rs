@@ -18,11 +18,15 @@ use glam::{DMat3, DVec3};
 
 use super::limits::COORDINATE;
 use super::{Light, Material, Object, SceneError};
-use crate::shapes::{Patch, Polygon, Shape};
+use crate::shapes::{Aabb, Patch, Polygon, Shape};
 
 /// The largest mesh or MTL file read: far above a course mesh (a million
 /// triangles of OBJ take about 100 MB), and a guard against `/dev/zero`.
 pub(crate) const MAX_MESH_BYTES: u64 = 1 << 30;
+
+/// How far off its emitter's faces an MTL emitter's point light sits, as a
+/// share of the emitter's bounding-box diagonal.
+pub(crate) const EMITTER_OFFSET: f64 = 1e-3;
 
 /// Where a mesh goes in the scene: scaled (uniformly, so normals keep their
 /// directions), then rotated about x, then y, then z (degrees), then moved.
@@ -195,8 +199,10 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
         placed.materials.push(material);
     }
     let mut default_material = None;
-    // Each emitter's area-weighted centre, over its triangles.
-    let mut emitter_sums = vec![(DVec3::ZERO, 0.0); loaded.materials.len()];
+    // Each emitter's area-weighted centre over its triangles, its area,
+    // the sum of its faces' (v1 - v0) x (v2 - v0) and its bounding box.
+    let mut emitter_sums =
+        vec![(DVec3::ZERO, 0.0, DVec3::ZERO, Aabb::EMPTY); loaded.materials.len()];
     let mut per_group = vec![0usize; loaded.groups.len()];
     let mut degenerate = 0usize;
     let prefix = request.name.map(|n| format!("{n} ")).unwrap_or_default();
@@ -241,13 +247,14 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
         if let (None, Some(m)) = (request.material, t.material)
             && loaded.materials[m].emission.is_some()
         {
-            let area = (vertices[1] - vertices[0])
-                .cross(vertices[2] - vertices[0])
-                .length()
-                / 2.0;
+            let cross = (vertices[1] - vertices[0]).cross(vertices[2] - vertices[0]);
+            let area = cross.length() / 2.0;
             let centre = (vertices[0] + vertices[1] + vertices[2]) / 3.0;
-            emitter_sums[m].0 += centre * area;
-            emitter_sums[m].1 += area;
+            let sums = &mut emitter_sums[m];
+            sums.0 += centre * area;
+            sums.1 += area;
+            sums.2 += cross;
+            sums.3 = sums.3.union(&Aabb::around(&vertices));
         }
         name.clear();
         let _ = write!(name, "{prefix}{} triangle {index}", loaded.groups[t.group]);
@@ -267,14 +274,17 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
         ));
     }
     for m in emitters {
-        let (sum, area) = emitter_sums[m];
+        let (sum, area, normal, bounds) = emitter_sums[m];
         let read = &loaded.materials[m];
         if area <= 0.0 {
             continue;
         }
+        // The light sits just off the emitter, on the side its faces'
+        // winding faces, so that its own faces never shadow what it lights.
+        let offset = normal.normalize_or_zero() * (EMITTER_OFFSET * bounds.diagonal());
         placed.lights.push(Light {
             name: format!("{prefix}light (Ke of material {})", read.name),
-            position: sum / area,
+            position: sum / area + offset,
             color: read.emission.unwrap_or_default() * mtl::EMITTER_INTENSITY,
         });
     }
