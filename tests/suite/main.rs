@@ -23,6 +23,7 @@ mod figure;
 mod five_questions;
 mod fuzz_regressions;
 mod layout;
+mod meshes;
 mod mistakes;
 mod nff_import;
 mod one_engine;

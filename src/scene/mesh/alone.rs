@@ -10,7 +10,6 @@ use glam::DVec3;
 use super::{Placement, Request, load};
 use crate::camera::Camera;
 use crate::math::Color;
-use crate::scene::toml_format::{DEFAULT_FOV, DEFAULT_SIZE};
 use crate::scene::{Light, Scene, SceneError, Settings};
 use crate::shapes::Aabb;
 
@@ -21,6 +20,9 @@ pub(crate) const DISTANCE: f64 = 3.0;
 /// Where from: the +z side, a little to the right and above (x, y, z before
 /// normalising), so that a box shows three faces and no edge lines up
 /// with the image's centre.
+/// The vertical field of view and image size: TOML's defaults.
+const FOV: f64 = 45.0;
+const SIZE: (u32, u32) = (320, 240);
 pub(crate) const VIEW_FROM: DVec3 = DVec3::new(0.4, 0.3, 1.0);
 
 pub(crate) fn scene(path: &Path) -> Result<Scene, SceneError> {
@@ -50,7 +52,7 @@ pub(crate) fn scene(path: &Path) -> Result<Scene, SceneError> {
         eye,
         look_at: centre,
         up: DVec3::Y,
-        fov: DEFAULT_FOV,
+        fov: FOV,
     };
     // The light: above and to the right of the camera, white, unless the
     // mesh has emitters of its own (an MTL's Ke), which then light it alone.
@@ -68,7 +70,7 @@ pub(crate) fn scene(path: &Path) -> Result<Scene, SceneError> {
     };
     let mut scene = Scene::new(
         camera,
-        DEFAULT_SIZE,
+        SIZE,
         settings,
         placed.materials,
         lights,

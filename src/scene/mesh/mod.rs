@@ -292,4 +292,4 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
 }
 
 #[cfg(test)]
-mod tests;
+mod mesh_tests;
