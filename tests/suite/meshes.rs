@@ -292,3 +292,43 @@ fn mtl_warnings_come_once_per_material() {
     assert!(warnings.contains("their mean 0.4"), "{warnings}");
     assert!(warnings.contains("map_Kd ignored"), "{warnings}");
 }
+
+/// `reflect = false` keeps the highlight and drops the mirror ray: a ball
+/// in front of a red wall, lit from the eye, seen at its centre. With the
+/// mirror, the reflected ray goes straight back to the eye (nothing there:
+/// background black, adds 0), so compare the trees, not the colours.
+#[test]
+fn reflect_false_keeps_the_highlight_and_casts_no_mirror_ray() {
+    let scene_with = |reflect: bool| {
+        crate::support::scene(&format!(
+            r#"
+[camera]
+eye = [0, 0, 5]
+look_at = [0, 0, 0]
+[materials.shiny]
+color = [0.2, 0.2, 0.2]
+ks = 0.5
+reflect = {reflect}
+[[light]]
+position = [0, 0, 5]
+[[object]]
+material = "shiny"
+sphere = {{ center = [0, 0, 0], radius = 1 }}
+"#
+        ))
+    };
+    let rays = |scene: &raystep::scene::Scene| {
+        let tree = crate::support::record(scene, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+        raystep::record::explain(&tree)
+    };
+    let mirror = rays(&scene_with(true));
+    let matte_mirror = rays(&scene_with(false));
+    assert!(mirror.contains("Reflected ray (weight 0.5)"), "{mirror}");
+    assert!(!matte_mirror.contains("Reflected ray"), "{matte_mirror}");
+    // The highlight stays: N·H = 1 at the centre, so specular = k_s = 0.5,
+    // plus diffuse 0.2: the pixel is 0.7 grey either way.
+    assert!(
+        matte_mirror.contains("(0.700, 0.700, 0.700)"),
+        "{matte_mirror}"
+    );
+}
