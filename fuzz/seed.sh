@@ -34,3 +34,9 @@ done
 # raylog_compare: the same logs, compared with the same scene.
 mkdir -p corpus/raylog_compare
 cp corpus/raylog_reader/* corpus/raylog_compare/
+# mesh_loaders: first byte even = OBJ, odd = STL; the Cornell box (comments
+# stripped) and a one-triangle ASCII STL.
+mkdir -p corpus/mesh_loaders
+{ printf '0'; grep -v '^#' ../scenes/cornell/cornell.obj; } > corpus/mesh_loaders/cornell-obj
+printf '1solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' \
+    > corpus/mesh_loaders/triangle-stl

@@ -25,6 +25,9 @@ pub use args::*;
 /// Loads a scene (or the built-in one) and applies `--size`.
 pub(crate) fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
     let scene = scene::builtin::load_file_or_builtin(path)?;
+    for warning in &scene.warnings {
+        eprintln!("warning: {warning}");
+    }
     Ok(match size.size {
         Some((w, h)) => scene.with_size(w, h)?,
         None => scene,

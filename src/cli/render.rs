@@ -95,6 +95,10 @@ pub(super) fn run(args: &RenderArgs) -> Result<ExitCode> {
         json["height"] = scene.height.into();
         json["objects"] = scene.objects.len().into();
         json["lights"] = scene.lights.len().into();
+        if args.stats && !scene.warnings.is_empty() {
+            // What reading the scene's meshes warned about (MODEL §4).
+            json["warnings"] = scene.warnings.clone().into();
+        }
         json["threads"] = threads.unwrap_or_else(rayon::current_num_threads).into();
         json["prepare_seconds"] = prepared.into();
         json["trace_seconds"] = tracing.into();

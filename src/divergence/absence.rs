@@ -39,12 +39,20 @@ pub(crate) fn why_not_ours(scene: &Scene, ours: &OurRays, path: &RayPath) -> Str
             } else {
                 RayKind::Transmitted
             };
-            secondary_not_cast(scene, node, kind, hit.factors.ks, hit.factors.kt)
+            let reflects = scene.material_of(hit.object_index).reflects;
+            secondary_not_cast(scene, node, kind, hit.factors.ks, hit.factors.kt, reflects)
         }
     }
 }
 
-fn secondary_not_cast(scene: &Scene, node: &Node, kind: RayKind, ks: f64, kt: f64) -> String {
+fn secondary_not_cast(
+    scene: &Scene,
+    node: &Node,
+    kind: RayKind,
+    ks: f64,
+    kt: f64,
+    reflects: bool,
+) -> String {
     let max_depth = scene.settings.max_depth;
     if node.at_depth_limit() || node.depth >= max_depth {
         return format!(
@@ -80,6 +88,11 @@ fn secondary_not_cast(scene: &Scene, node: &Node, kind: RayKind, ks: f64, kt: f6
         RayKind::Reflected if ks == 0.0 => {
             "MODEL §5: a reflected ray is spawned when k_s > 0 or on total internal \
              reflection; here k_s = 0 and no TIR"
+                .into()
+        }
+        RayKind::Reflected if !reflects => {
+            "MODEL §5: the material has reflect = false (MTL illum 0 to 2): k_s gives \
+             highlights but no mirror ray"
                 .into()
         }
         _ => "MODEL §5: a switch of the scene keeps it from being cast".into(),

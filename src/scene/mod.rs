@@ -4,6 +4,7 @@
 pub mod builtin;
 mod error;
 pub(crate) mod limits;
+pub mod mesh;
 pub(crate) mod nff;
 pub(crate) mod overrides;
 mod switches;
@@ -107,6 +108,10 @@ pub struct Material {
     pub(crate) ka: f64,
     /// Overrides the scene's specular model for this material (to show both side by side).
     pub specular: Option<SpecularModel>,
+    /// Whether k_s also weights a mirror-reflected ray (MODEL §5); false for
+    /// a material with highlights but no mirror (TOML `reflect = false`,
+    /// MTL `illum` 2).
+    pub(crate) reflects: bool,
 }
 
 impl Material {
@@ -122,6 +127,7 @@ impl Material {
             ior: 1.0,
             ka: 1.0,
             specular: None,
+            reflects: true,
         }
     }
 }
@@ -147,6 +153,8 @@ pub struct Scene {
     pub(crate) accel: Accel,
     /// Each object's material and normal recipe, read without the object.
     tables: ObjectTables,
+    /// What reading the scene's meshes warned about, each once (MODEL §4).
+    pub warnings: Vec<String>,
 }
 
 impl Scene {
@@ -171,6 +179,7 @@ impl Scene {
             objects,
             accel,
             tables,
+            warnings: Vec::new(),
         }
     }
 
@@ -198,8 +207,12 @@ impl Scene {
     }
 }
 
-/// Reads a scene file, choosing the format by extension (`.nff`, else TOML).
+/// Reads a scene file, choosing the format by extension (`.nff`, a mesh
+/// alone for `.obj` and `.stl`, else TOML).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    if mesh::is_mesh_file(path) {
+        return mesh::alone::scene(path);
+    }
     let bytes = std::fs::read(path)
         .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
     let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;

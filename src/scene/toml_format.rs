@@ -196,6 +196,8 @@ struct MaterialDef {
     ior: Option<Number>,
     ka: Option<Number>,
     specular: Option<SpecularModel>,
+    /// False: k_s gives highlights but no mirror-reflected ray (MODEL §5).
+    reflect: Option<bool>,
 }
 
 #[derive(Deserialize)]
@@ -210,13 +212,26 @@ struct LightDef {
 #[serde(deny_unknown_fields)]
 struct ObjectDef {
     name: Option<Spanned<String>>,
-    material: Spanned<String>,
+    /// Required, except for a mesh (whose MTL gives its materials).
+    material: Option<Spanned<String>>,
+    mesh: Option<Spanned<MeshDef>>,
     sphere: Option<Spanned<SphereDef>>,
     plane: Option<Spanned<PlaneDef>>,
     polygon: Option<Spanned<PolygonDef>>,
     patch: Option<Spanned<PatchDef>>,
     cylinder: Option<Spanned<CylinderDef>>,
     cone: Option<Spanned<ConeDef>>,
+}
+
+/// `mesh = { file = "box.obj", scale = 2, rotate = [0, 30, 0], translate = [1, 0, 0] }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeshDef {
+    file: Spanned<String>,
+    scale: Option<Number>,
+    /// Degrees about x, then y, then z.
+    rotate: Option<Vec3>,
+    translate: Option<Vec3>,
 }
 
 #[derive(Deserialize)]
@@ -358,16 +373,17 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     for (name, def) in &file.materials {
         materials.push(material(name, def.get_ref()));
     }
-    let lights = file
+    let mut lights: Vec<Light> = file
         .lights
         .iter()
         .enumerate()
         .map(|(i, def)| light(i, def.get_ref()))
         .collect();
+    let mut meshes = Meshes::default();
     let objects = match object_defs {
         ObjectDefs::Read(defs) => {
             let defs = defs.into_iter().map(|def| Ok((source, def)));
-            objects(defs, &materials)?
+            objects(defs, &mut materials, &mut meshes)?
         }
         ObjectDefs::Sections(ranges) => {
             let defs = ranges.into_iter().map(|range| {
@@ -378,30 +394,57 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
                 })?;
                 Ok((part, def))
             });
-            objects(defs, &materials)?
+            objects(defs, &mut materials, &mut meshes)?
         }
     };
-    Ok(Scene::new(
+    lights.extend(meshes.lights);
+    let mut scene = Scene::new(
         camera,
         (width, height),
         settings,
         materials,
         lights,
         objects,
-    ))
+    );
+    scene.warnings = meshes.warnings;
+    Ok(scene)
+}
+
+/// What the scene's meshes add besides objects and materials.
+#[derive(Default)]
+struct Meshes {
+    lights: Vec<Light>,
+    warnings: Vec<String>,
 }
 
 /// Builds the objects in file order, refusing a name used twice.
 fn objects<'a>(
     defs: impl ExactSizeIterator<Item = Result<(Source<'a>, Spanned<ObjectDef>), SceneError>>,
-    materials: &[Material],
+    materials: &mut Vec<Material>,
+    meshes: &mut Meshes,
 ) -> Result<Vec<Object>, SceneError> {
     let mut objects: Vec<Object> = Vec::with_capacity(defs.len());
     let mut given_names = HashSet::new();
-    for def in defs {
+    for (i, def) in defs.enumerate() {
         let (source, def) = def?;
-        let key = format!("object[{}]", objects.len());
+        let key = format!("object[{i}]");
         bounds::object(&source, &key, def.get_ref())?;
+        if let Some(mesh_def) = &def.get_ref().mesh {
+            let placed = mesh(&source, &def, mesh_def, materials)?;
+            if let Some(name) = &def.get_ref().name
+                && !given_names.insert(name.get_ref().clone())
+            {
+                return Err(source.error(
+                    name.span(),
+                    format!("object name `{}` is used twice", name.get_ref()),
+                ));
+            }
+            objects.extend(placed.objects);
+            materials.extend(placed.materials);
+            meshes.lights.extend(placed.lights);
+            meshes.warnings.extend(placed.warnings);
+            continue;
+        }
         let object = object(&source, objects.len(), &def, materials)?;
         let used = |name: &str| is_default_name(&objects, name);
         if let Some(name) = &def.get_ref().name
@@ -488,6 +531,90 @@ fn max_rays(source: &Source, def: &SettingsDef) -> Result<u32, SceneError> {
     }
 }
 
+/// Reads a mesh object's file (relative to the scene file) and places it.
+fn mesh(
+    source: &Source,
+    def: &Spanned<ObjectDef>,
+    mesh_def: &Spanned<MeshDef>,
+    materials: &[Material],
+) -> Result<super::mesh::Placed, SceneError> {
+    let o = def.get_ref();
+    let m = mesh_def.get_ref();
+    if shape_count(o) {
+        return Err(source.error(
+            def.span(),
+            "an object with a `mesh` has no other shape (sphere, plane, polygon, patch, cylinder, cone)",
+        ));
+    }
+    let material = match &o.material {
+        Some(name) => Some(material_index(source, name, materials)?),
+        None => None,
+    };
+    let file = m.file.get_ref();
+    let dir = source.path.parent().unwrap_or(Path::new(""));
+    let path = dir.join(file);
+    if !super::mesh::is_mesh_file(&path) {
+        return Err(source.error(
+            m.file.span(),
+            format!("mesh file `{file}` must end in .obj or .stl"),
+        ));
+    }
+    let placement = super::mesh::Placement {
+        scale: m.scale.as_ref().map_or(1.0, number),
+        rotate: m.rotate.as_ref().map_or(DVec3::ZERO, vec3),
+        translate: m.translate.as_ref().map_or(DVec3::ZERO, vec3),
+    };
+    let request = super::mesh::Request {
+        path: &path,
+        name: o.name.as_ref().map(|n| n.get_ref().as_str()),
+        placement,
+        material,
+        first_material: materials.len(),
+    };
+    super::mesh::load(&request).map_err(|e| {
+        if e.location.is_some() {
+            e
+        } else {
+            source.error(m.file.span(), e.message)
+        }
+    })
+}
+
+/// Whether an object names any shape besides its mesh.
+fn shape_count(o: &ObjectDef) -> bool {
+    o.sphere.is_some()
+        || o.plane.is_some()
+        || o.polygon.is_some()
+        || o.patch.is_some()
+        || o.cylinder.is_some()
+        || o.cone.is_some()
+}
+
+fn material_index(
+    source: &Source,
+    name: &Spanned<String>,
+    materials: &[Material],
+) -> Result<usize, SceneError> {
+    materials
+        .iter()
+        .position(|m| &m.name == name.get_ref())
+        .ok_or_else(|| {
+            let known: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+            source.error(
+                name.span(),
+                format!(
+                    "unknown material `{}`; the materials defined are: {}",
+                    name.get_ref(),
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                ),
+            )
+        })
+}
+
 fn material(name: &str, m: &MaterialDef) -> Material {
     Material {
         name: name.to_string(),
@@ -499,6 +626,7 @@ fn material(name: &str, m: &MaterialDef) -> Material {
         ior: m.ior.as_ref().map_or(1.0, number),
         ka: m.ka.as_ref().map_or(1.0, number),
         specular: m.specular,
+        reflects: m.reflect.unwrap_or(true),
     }
 }
 
@@ -518,28 +646,14 @@ fn object(
     materials: &[Material],
 ) -> Result<Object, SceneError> {
     let o = def.get_ref();
-    let material = materials
-        .iter()
-        .position(|m| &m.name == o.material.get_ref())
-        .ok_or_else(|| {
-            let known: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
-            source.error(
-                o.material.span(),
-                format!(
-                    "unknown material `{}`; the materials defined are: {}",
-                    o.material.get_ref(),
-                    if known.is_empty() {
-                        "none".to_string()
-                    } else {
-                        known.join(", ")
-                    }
-                ),
-            )
-        })?;
+    let Some(material_name) = &o.material else {
+        return Err(source.error(def.span(), "missing field `material`"));
+    };
+    let material = material_index(source, material_name, materials)?;
     let (shape, span) = shape(o).ok_or_else(|| {
         source.error(
             def.span(),
-            "an object needs exactly one shape: sphere, plane, polygon, patch, cylinder or cone",
+            "an object needs exactly one shape: sphere, plane, polygon, patch, cylinder, cone or mesh",
         )
     })?;
     let shape = shape.map_err(|e| source.error(span, e))?;

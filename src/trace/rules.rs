@@ -45,10 +45,11 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     }
 
     /// The mirror weight of the reflected ray: k_s, or 0 with reflection
-    /// switched off (a TIR's k_t still moves to it).
+    /// switched off or for a material that does not reflect (`reflect =
+    /// false`; a TIR's k_t still moves to it).
     #[inline]
     pub(crate) fn mirror_weight(&self, material: &Material) -> f64 {
-        if self.settings.switches.reflection {
+        if self.settings.switches.reflection && material.reflects {
             material.ks
         } else {
             0.0

@@ -25,6 +25,7 @@ mod fuzz_regressions;
 mod grade;
 mod grade_report;
 mod layout;
+mod meshes;
 mod mistakes;
 mod nff_import;
 mod one_engine;

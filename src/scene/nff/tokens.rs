@@ -309,5 +309,6 @@ fn material(index: usize, color: Color, [kd, ks, shininess, kt]: [f64; 4], ior: 
         ior,
         ka: 1.0,
         specular: None,
+        reflects: true,
     }
 }

@@ -66,6 +66,19 @@ fn material(source: &Source, key: &str, m: &MaterialDef) -> Result<(), SceneErro
 }
 
 pub(super) fn object(source: &Source, key: &str, o: &ObjectDef) -> Result<(), SceneError> {
+    if let Some(m) = &o.mesh {
+        let (key, d) = (format!("{key}.mesh"), m.get_ref());
+        if let Some(scale) = &d.scale {
+            number(source, &format!("{key}.scale"), scale, SIZE)?;
+        }
+        optional_vector(source, &format!("{key}.rotate"), &d.rotate, COORDINATE)?;
+        optional_vector(
+            source,
+            &format!("{key}.translate"),
+            &d.translate,
+            COORDINATE,
+        )?;
+    }
     if let Some(s) = &o.sphere {
         let (key, d) = (format!("{key}.sphere"), s.get_ref());
         vector(source, &format!("{key}.center"), &d.center, COORDINATE)?;

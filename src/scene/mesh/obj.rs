@@ -1,0 +1,219 @@
+//! Wavefront OBJ with `tobj`, after a pass of our own over the lines: tobj's
+//! errors carry no line, so every error a file can have at a line (a number
+//! that is not one, NaN or infinity, a coordinate past the model's bounds, a
+//! face index out of range or zero, a face of fewer than 3 vertices) is found
+//! here first, with its line and column.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+
+use super::mtl;
+use super::{Loaded, Triangle, read_file};
+use crate::scene::SceneError;
+use crate::scene::limits::COORDINATE;
+
+/// Reads `path` and the MTL files its `mtllib` lines name (beside it).
+pub(super) fn load(path: &Path) -> Result<Loaded, SceneError> {
+    let bytes = read_file(path, "mesh file").map_err(SceneError::plain)?;
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let missing = std::cell::RefCell::new(Vec::new());
+    let loader = |mtl: &Path| -> tobj::MTLLoadResult {
+        let full: PathBuf = dir.join(mtl);
+        // Read only as MTL: whatever the path names, its bytes go to the
+        // MTL parser and nowhere else, and nothing is written.
+        match read_file(&full, "MTL file") {
+            Ok(bytes) => tobj::load_mtl_buf(&mut bytes.as_slice()).inspect_err(|e| {
+                missing
+                    .borrow_mut()
+                    .push(format!("{}: {e}", full.display()));
+            }),
+            Err(message) => {
+                missing.borrow_mut().push(message);
+                Err(tobj::LoadError::OpenFileFailed)
+            }
+        }
+    };
+    let mut loaded = parse(path, &bytes, &loader)?;
+    for m in missing.into_inner() {
+        loaded.warnings.push(format!(
+            "{}: {m}: the default material is used",
+            path.display()
+        ));
+    }
+    Ok(loaded)
+}
+
+/// Parses OBJ bytes; `materials` reads an `mtllib`.
+pub(super) fn parse(
+    path: &Path,
+    bytes: &[u8],
+    materials: &dyn Fn(&Path) -> tobj::MTLLoadResult,
+) -> Result<Loaded, SceneError> {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        SceneError::plain(format!(
+            "{}:{line}: invalid UTF-8: OBJ files must be text",
+            path.display()
+        ))
+    })?;
+    check_lines(path, text)?;
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, mtl) = tobj::load_obj_buf(&mut text.as_bytes(), &options, materials)
+        .map_err(|e| SceneError::plain(format!("{}: {e}", path.display())))?;
+    let mut loaded = Loaded::default();
+    if let Ok(list) = mtl {
+        loaded.materials = list.iter().map(mtl::Read::from_tobj).collect();
+    }
+    let stem = path
+        .file_stem()
+        .map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
+    for model in &models {
+        let mesh = &model.mesh;
+        let group = loaded.groups.len();
+        loaded
+            .groups
+            .push(if model.name.is_empty() || model.name == "unnamed_object" {
+                stem.clone()
+            } else {
+                model.name.clone()
+            });
+        let material = mesh.material_id.filter(|&m| m < loaded.materials.len());
+        let point = |i: u32| {
+            let i = i as usize * 3;
+            DVec3::new(
+                mesh.positions[i],
+                mesh.positions[i + 1],
+                mesh.positions[i + 2],
+            )
+        };
+        let normal = |i: u32| {
+            let i = i as usize * 3;
+            DVec3::new(mesh.normals[i], mesh.normals[i + 1], mesh.normals[i + 2])
+        };
+        let has_normals = mesh.normal_indices.len() == mesh.indices.len();
+        for (k, corner) in mesh.indices.chunks_exact(3).enumerate() {
+            let normals = has_normals.then(|| {
+                let n = &mesh.normal_indices[k * 3..k * 3 + 3];
+                [normal(n[0]), normal(n[1]), normal(n[2])]
+            });
+            loaded.triangles.push(Triangle {
+                vertices: [point(corner[0]), point(corner[1]), point(corner[2])],
+                normals,
+                group,
+                material,
+            });
+        }
+    }
+    Ok(loaded)
+}
+
+/// The pass over the lines: counts `v`, `vt` and `vn` as they come and
+/// checks every number and every face index against them.
+fn check_lines(path: &Path, text: &str) -> Result<(), SceneError> {
+    let mut counts = [0usize; 3]; // v, vt, vn
+    let mut start = 0;
+    for line in text.split_inclusive('\n') {
+        let line_start = start;
+        start += line.len();
+        let content = line.split('#').next().unwrap_or("");
+        let mut words = words(content).map(|(r, w)| (r.start + line_start..r.end + line_start, w));
+        let Some((keyword_span, keyword)) = words.next() else {
+            continue;
+        };
+        let error = |span: Range<usize>, message: String| SceneError::at(path, text, span, message);
+        match keyword {
+            "v" | "vn" | "vt" => {
+                let needed = if keyword == "vt" { 1 } else { 3 };
+                let mut numbers = 0;
+                for (span, word) in words.by_ref().take(3) {
+                    let value: f64 = word
+                        .parse()
+                        .map_err(|_| error(span.clone(), format!("`{word}` is not a number")))?;
+                    if !value.is_finite() {
+                        return Err(error(span, format!("numbers must be finite, got {word}")));
+                    }
+                    if keyword == "v" && COORDINATE.check(value).is_err() {
+                        return Err(error(
+                            span,
+                            format!(
+                                "vertex coordinate {word} {}",
+                                COORDINATE.check(value).unwrap_err()
+                            ),
+                        ));
+                    }
+                    numbers += 1;
+                }
+                if numbers < needed {
+                    return Err(error(
+                        keyword_span,
+                        format!("`{keyword}` needs {needed} numbers, got {numbers}"),
+                    ));
+                }
+                let slot = match keyword {
+                    "v" => 0,
+                    "vt" => 1,
+                    _ => 2,
+                };
+                counts[slot] += 1;
+            }
+            "f" => {
+                let mut corners = 0;
+                for (span, word) in words {
+                    corners += 1;
+                    for (slot, part) in word.split('/').enumerate().take(3) {
+                        if part.is_empty() && slot > 0 {
+                            continue;
+                        }
+                        check_index(part, slot, counts[slot])
+                            .map_err(|m| error(span.clone(), m))?;
+                    }
+                }
+                if corners < 3 {
+                    return Err(error(
+                        keyword_span,
+                        format!("a face needs at least 3 vertices, got {corners}"),
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// One index of a face corner: 1..=count, or -count..=-1 counting back.
+fn check_index(part: &str, slot: usize, count: usize) -> Result<(), String> {
+    let what = ["vertex", "texture coordinate", "normal"][slot];
+    let list = ["v", "vt", "vn"][slot];
+    let index: i64 = part
+        .parse()
+        .map_err(|_| format!("face {what} index `{part}` is not a whole number"))?;
+    if index == 0 {
+        return Err(format!("face {what} index 0: OBJ indices start at 1"));
+    }
+    if index.unsigned_abs() > count as u64 {
+        return Err(format!(
+            "face {what} index {index} is out of range: {count} `{list}` line(s) come before this face"
+        ));
+    }
+    Ok(())
+}
+
+/// The whitespace-separated words of a line and their byte ranges.
+fn words(line: &str) -> impl Iterator<Item = (Range<usize>, &str)> {
+    line.split_ascii_whitespace().map(move |w| {
+        let start = w.as_ptr() as usize - line.as_ptr() as usize;
+        (start..start + w.len(), w)
+    })
+}

@@ -1,0 +1,334 @@
+//! Course meshes (issue 24): OBJ + MTL and STL in scenes and alone, the
+//! Cornell box, and every bad mesh refused with its file and line.
+
+use std::path::{Path, PathBuf};
+
+use crate::support::{raystep, scene_at, stderr};
+use raystep::record::{explain, record_pixel};
+use raystep::render::render;
+use raystep::trace::NoRecorder;
+
+fn cornell() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell/cornell.toml")
+}
+
+/// Writes `files` (name, contents) into a fresh folder.
+fn folder(files: &[(&str, &[u8])]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, contents) in files {
+        std::fs::write(dir.path().join(name), contents).unwrap();
+    }
+    dir
+}
+
+/// `raystep render` of `scene` in `dir` at 48x36: the PNG's bytes.
+fn rendered(dir: &Path, scene: &str) -> Vec<u8> {
+    let out = dir.join(format!("{scene}.png"));
+    let path = dir.join(scene);
+    let output = raystep(&[
+        "render",
+        path.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "48x36",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    std::fs::read(out).unwrap()
+}
+
+/// What every scene of the next test shares: camera, light and material.
+const HEAD: &str = r#"
+[camera]
+eye = [0.5, 0.5, 3]
+look_at = [0.5, 0.5, 0]
+[materials.m]
+color = [0.9, 0.4, 0.1]
+ks = 0.3
+[[light]]
+position = [2, 3, 4]
+"#;
+
+/// A unit square in z = 0 split along its diagonal, and a triangle behind
+/// it, written by hand three ways: TOML polygons, OBJ, ASCII STL.
+#[test]
+fn a_hand_written_obj_and_stl_give_the_image_of_the_same_triangles_in_toml() {
+    let toml = format!(
+        "{HEAD}{}",
+        r#"
+[[object]]
+material = "m"
+polygon = { vertices = [[0, 0, 0], [1, 0, 0], [1, 1, 0]] }
+[[object]]
+material = "m"
+polygon = { vertices = [[0, 0, 0], [1, 1, 0], [0, 1, 0]] }
+[[object]]
+material = "m"
+polygon = { vertices = [[-1, -1, -1], [2, -1, -1], [0.5, 2, -1]] }
+"#
+    );
+    let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 -1 -1\nv 2 -1 -1\nv 0.5 2 -1\n\
+               g square\nf 1 2 3 4\ng back\nf 5 6 7\n";
+    let stl = "solid s\n\
+        facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n\
+        facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\n\
+        facet normal 0 0 1\nouter loop\nvertex -1 -1 -1\nvertex 2 -1 -1\nvertex 0.5 2 -1\nendloop\nendfacet\n\
+        endsolid s\n";
+    let with_mesh = |file: &str| {
+        format!("{HEAD}[[object]]\nmaterial = \"m\"\nmesh = {{ file = \"{file}\" }}\n")
+    };
+    let empty = HEAD.to_string();
+    let dir = folder(&[
+        ("t.toml", toml.as_bytes()),
+        ("o.toml", with_mesh("s.obj").as_bytes()),
+        ("s.toml", with_mesh("s.stl").as_bytes()),
+        ("e.toml", empty.as_bytes()),
+        ("s.obj", obj.as_bytes()),
+        ("s.stl", stl.as_bytes()),
+    ]);
+    let reference = rendered(dir.path(), "t.toml");
+    assert_ne!(
+        reference,
+        rendered(dir.path(), "e.toml"),
+        "the triangles show"
+    );
+    assert_eq!(reference, rendered(dir.path(), "o.toml"), "OBJ");
+    assert_eq!(reference, rendered(dir.path(), "s.toml"), "STL");
+}
+
+#[test]
+fn mesh_triangles_are_named_by_mesh_group_index_and_material() {
+    let scene = scene_at(&cornell(), None);
+    let names: Vec<&str> = scene.objects.iter().map(|o| o.name.as_str()).collect();
+    // cornell.obj: 6 quads of the room and light, 5 per block, 2 triangles each.
+    assert_eq!(names.len(), (6 + 5 + 5) * 2 + 2);
+    assert!(names.contains(&"cornell tallBox triangle 7 (material white)"));
+    assert!(names.contains(&"cornell light triangle 1 (material light)"));
+    // The light panel's Ke is the scene's one light.
+    assert_eq!(scene.lights.len(), 1);
+}
+
+/// The Cornell box at 32 x 32, one line of hex colours per row: the red
+/// left wall, the green right wall, the dark box fronts (lit by ambient
+/// only: the light is above them), the balls.
+#[test]
+fn cornell_box_pixels() {
+    let scene = scene_at(&cornell(), Some((32, 32)));
+    let (image, _) = render::<NoRecorder>(&scene, &scene.settings, &|| {});
+    let mut text = String::new();
+    for row in image.rows() {
+        let line: Vec<String> = row
+            .map(|p| format!("{:02x}{:02x}{:02x}", p[0], p[1], p[2]))
+            .collect();
+        text.push_str(&line.join(" "));
+        text.push('\n');
+    }
+    snapshot!("cornell_pixels", text);
+}
+
+/// Two pixels of the 256 x 256 box explained: the back wall in the tall
+/// block's shadow, and the red wall seen in the mirror ball.
+#[test]
+fn cornell_box_shadow_and_mirror_explained() {
+    let scene = scene_at(&cornell(), None);
+    for (x, y, name) in [
+        (63, 172, "cornell_63_172_shadow"),
+        (62, 196, "cornell_62_196_mirror"),
+    ] {
+        let tree = record_pixel(&scene, &scene.settings, x, y);
+        snapshot!(name, explain(&tree));
+    }
+}
+
+/// A bad mesh: exit 1, one `error:` line naming the file (and its line where
+/// the format has lines), no panic, no image written.
+fn refused(files: &[(&str, &[u8])], scene: &str, expected: &str) {
+    let dir = folder(files);
+    let out = dir.path().join("out.png");
+    let output = raystep(&[
+        "render",
+        dir.path().join(scene).to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{err}");
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(err.contains(expected), "expected {expected:?} in {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.exists());
+}
+
+const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+#[test]
+fn bad_obj_faces_and_numbers_are_refused_at_their_line() {
+    let cases: &[(&str, &str)] = &[
+        (
+            "f 1 2 4\n",
+            "m.obj:4:7: face vertex index 4 is out of range: 3 `v`",
+        ),
+        (
+            "f 1 0 2\n",
+            "m.obj:4:5: face vertex index 0: OBJ indices start at 1",
+        ),
+        (
+            "f -4 1 2\n",
+            "m.obj:4:3: face vertex index -4 is out of range",
+        ),
+        (
+            "f 1//2 2//2 3//2\n",
+            "m.obj:4:3: face normal index 2 is out of range: 0 `vn`",
+        ),
+        (
+            "f 1 2\n",
+            "m.obj:4:1: a face needs at least 3 vertices, got 2",
+        ),
+        ("v nan 0 0\n", "m.obj:4:3: numbers must be finite, got nan"),
+        ("v 0 inf 0\n", "m.obj:4:5: numbers must be finite, got inf"),
+        (
+            "v 1e5 0 0\n",
+            "m.obj:4:3: vertex coordinate 1e5 must be between -10000 and 10000",
+        ),
+        ("v 1 x 0\n", "m.obj:4:5: `x` is not a number"),
+    ];
+    for (line, expected) in cases {
+        let obj = format!("{TRIANGLE}{line}");
+        refused(&[("m.obj", obj.as_bytes())], "m.obj", expected);
+    }
+}
+
+#[test]
+fn bad_stl_files_are_refused() {
+    let mut truncated = vec![0u8; 84 + 50];
+    truncated[80] = 2; // two triangles promised, one given
+    refused(
+        &[("t.stl", &truncated)],
+        "t.stl",
+        "t.stl: truncated binary STL: 2 triangles need 184 bytes, the file has 134",
+    );
+    refused(
+        &[("g.stl", b"solid g\nfacet garbage\n")],
+        "g.stl",
+        "g.stl: triangle 0 cannot be read",
+    );
+    let mut nan = vec![0u8; 84 + 50];
+    nan[80] = 1;
+    nan[96..100].copy_from_slice(&f32::NAN.to_le_bytes()); // vertex 0's x
+    refused(
+        &[("n.stl", &nan)],
+        "n.stl",
+        "n.stl: triangle 0: numbers must be finite",
+    );
+}
+
+#[test]
+fn a_missing_mesh_a_scene_named_as_its_own_mesh_and_a_mesh_placed_out_of_bounds_are_refused() {
+    let scene = |mesh: &str| format!("{HEAD}[[object]]\nmesh = {{ {mesh} }}\n");
+    refused(
+        &[("s.toml", scene(r#"file = "gone.obj""#).as_bytes())],
+        "s.toml",
+        "cannot read mesh file",
+    );
+    // A scene that names itself as its mesh: read only as a mesh, and a
+    // .toml is none.
+    refused(
+        &[("s.toml", scene(r#"file = "s.toml""#).as_bytes())],
+        "s.toml",
+        "s.toml:11:17: mesh file `s.toml` must end in .obj or .stl",
+    );
+    refused(
+        &[
+            (
+                "s.toml",
+                scene(r#"file = "m.obj", scale = 5000, translate = [9000, 0, 0]"#).as_bytes(),
+            ),
+            ("m.obj", format!("{TRIANGLE}f 1 2 3\n").as_bytes()),
+        ],
+        "s.toml",
+        "lies outside the scene's bounds once placed",
+    );
+}
+
+#[test]
+fn a_missing_mtl_and_degenerate_triangles_are_warned_about_once_and_listed_in_stats() {
+    // Two faces share the missing material; one face is a line.
+    let obj = "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n\
+               usemtl a\nf 1 2 3\nf 1 3 2\nf 1 2 4\n";
+    let dir = folder(&[("m.obj", obj.as_bytes())]);
+    let out = dir.path().join("m.png");
+    let output = raystep(&[
+        "render",
+        dir.path().join("m.obj").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let err = stderr(&output);
+    assert_eq!(err.matches("warning: ").count(), 2, "{err}");
+    assert!(err.contains("gone.mtl") && err.contains("the default material is used"));
+    assert!(err.contains("1 degenerate triangle(s) skipped"), "{err}");
+    let stats: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(stats["warnings"].as_array().unwrap().len(), 2);
+    assert_eq!(stats["objects"], 2);
+}
+
+#[test]
+fn mtl_warnings_come_once_per_material() {
+    // Three faces of one material with a coloured Ks and a texture.
+    let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n\
+               usemtl shiny\nf 1 2 3\nf 2 4 3\nf 1 3 2\n";
+    let mtl = "newmtl shiny\nKd 1 0 0\nKs 0.2 0.4 0.6\nmap_Kd wood.png\nillum 3\n";
+    let dir = folder(&[("m.obj", obj.as_bytes()), ("m.mtl", mtl.as_bytes())]);
+    let scene = raystep::scene::load(&dir.path().join("m.obj")).unwrap();
+    let warnings = scene.warnings.join("\n");
+    assert_eq!(scene.warnings.len(), 2, "{warnings}");
+    // k_s is the mean of Ks: (0.2 + 0.4 + 0.6) / 3 = 0.4.
+    assert!(
+        warnings.contains("Ks [0.2, 0.4, 0.6] is coloured"),
+        "{warnings}"
+    );
+    assert!(warnings.contains("their mean 0.4"), "{warnings}");
+    assert!(warnings.contains("map_Kd ignored"), "{warnings}");
+}
+
+/// `reflect = false` keeps the highlight and drops the mirror ray: a ball
+/// in front of a red wall, lit from the eye, seen at its centre. With the
+/// mirror, the reflected ray goes straight back to the eye (nothing there:
+/// background black, adds 0), so compare the trees, not the colours.
+#[test]
+fn reflect_false_keeps_the_highlight_and_casts_no_mirror_ray() {
+    let scene_with = |reflect: bool| {
+        crate::support::scene(&format!(
+            r#"
+[camera]
+eye = [0, 0, 5]
+look_at = [0, 0, 0]
+[materials.shiny]
+color = [0.2, 0.2, 0.2]
+ks = 0.5
+reflect = {reflect}
+[[light]]
+position = [0, 0, 5]
+[[object]]
+material = "shiny"
+sphere = {{ center = [0, 0, 0], radius = 1 }}
+"#
+        ))
+    };
+    let rays = |scene: &raystep::scene::Scene| {
+        let tree = crate::support::record(scene, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+        raystep::record::explain(&tree)
+    };
+    let mirror = rays(&scene_with(true));
+    let matte_mirror = rays(&scene_with(false));
+    assert!(mirror.contains("Reflected ray (weight 0.5)"), "{mirror}");
+    assert!(!matte_mirror.contains("Reflected ray"), "{matte_mirror}");
+    // The highlight stays: N·H = 1 at the centre, so specular = k_s = 0.5,
+    // plus diffuse 0.2: the pixel is 0.7 grey either way.
+    assert!(
+        matte_mirror.contains("(0.700, 0.700, 0.700)"),
+        "{matte_mirror}"
+    );
+}
