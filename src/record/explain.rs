@@ -195,6 +195,18 @@ pub(crate) fn explain_lines(tree: &RayTree) -> Vec<Told> {
     for light in &root.lights {
         out.item(Said::Light, light_fate(light));
     }
+    if root
+        .lights
+        .iter()
+        .any(|l| l.light.contains("(Ke of material"))
+    {
+        // An MTL emitter became a point light (MODEL §4): say what is lost.
+        out.item(
+            Said::Light,
+            "a Whitted tracer has no area lights: an MTL emitter (Ke) is one point light just off \
+             its centre, so its shadows have hard edges.",
+        );
+    }
     if root.lights.is_empty() {
         out.item(
             Said::Light,
