@@ -41,8 +41,13 @@ fn student_log(scene: &str, (x, y): (u32, u32), size: (u32, u32), mistakes: &[&s
     for mistake in mistakes {
         args.extend(["--mistake", mistake]);
     }
+    String::from_utf8(run_tracer(&args).stdout).unwrap()
+}
+
+/// Runs the student's tracer with `args`; its output once it succeeded.
+fn run_tracer(args: &[&str]) -> std::process::Output {
     let output = Command::new("python3")
-        .args(&args)
+        .args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .expect("python3 runs");
@@ -51,7 +56,7 @@ fn student_log(scene: &str, (x, y): (u32, u32), size: (u32, u32), mistakes: &[&s
         "whitted.py {args:?}: {}",
         String::from_utf8_lossy(&output.stderr)
     );
-    String::from_utf8(output.stdout).unwrap()
+    output
 }
 
 /// The student's render of `scene` with `mistakes` switched on, at `size`
@@ -66,16 +71,7 @@ fn compare_image(scene: &str, size: Option<&str>, mistakes: &[&str]) -> Value {
     for mistake in mistakes {
         args.extend(["--mistake", mistake]);
     }
-    let output = Command::new("python3")
-        .args(&args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("python3 runs");
-    assert!(
-        output.status.success(),
-        "whitted.py {args:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    run_tracer(&args);
     let image = image.to_str().unwrap();
     let output = raystep(&["compare", scene, image, "--format", "json"]);
     assert!(output.status.success(), "compare {scene}: {output:?}");
