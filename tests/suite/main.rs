@@ -24,6 +24,7 @@ mod five_questions;
 mod fuzz_regressions;
 mod grade;
 mod grade_report;
+mod hostile;
 mod layout;
 mod meshes;
 mod mistakes;

@@ -1,0 +1,1 @@
+//! Names are data: control characters never reach a terminal raw or break SVG, dot or JSON.
