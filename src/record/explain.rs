@@ -171,10 +171,10 @@ pub(crate) fn explain_lines(tree: &RayTree) -> Vec<Told> {
     out.say(
         Said::PrimaryRay,
         format!(
-            "Its primary ray hits {} ({}, material {}) at distance {}, on its {} side.",
+            "Its primary ray hits {} ({}{}) at distance {}, on its {} side.",
             hit.object,
             hit.kind,
-            hit.material,
+            hit.material_note(),
             num(hit.t),
             if hit.entering { "front" } else { "back" }
         ),

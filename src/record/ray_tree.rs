@@ -96,6 +96,21 @@ pub struct HitRecord {
     pub(crate) i_a: Color,
 }
 
+impl HitRecord {
+    /// ", material white" to follow the object's kind, or nothing when the
+    /// name already says it (a mesh triangle's "(material white)").
+    pub(crate) fn material_note(&self) -> String {
+        if self
+            .object
+            .ends_with(&format!("(material {})", self.material))
+        {
+            String::new()
+        } else {
+            format!(", material {}", self.material)
+        }
+    }
+}
+
 /// A material's coefficients as the course notes name them, so that every
 /// term of a hit can be checked by hand from the recording alone.
 #[derive(Clone, Copy, Debug, Serialize)]

@@ -494,11 +494,11 @@ fn hit_lines(node: &Node, hit: &HitRecord) -> Vec<Line> {
         Line::text(
             about,
             format!(
-                "hit {} ({} #{}, material {}) at t = {}, {side}",
+                "hit {} ({} #{}{}) at t = {}, {side}",
                 hit.object,
                 hit.kind,
                 hit.object_index,
-                hit.material,
+                hit.material_note(),
                 num(hit.t)
             ),
         ),
