@@ -58,3 +58,16 @@ fn illum_2_highlights_without_a_mirror() {
     assert_eq!((m.ks, m.reflects), (0.5, false));
     assert!(warnings.is_empty(), "{warnings:?}");
 }
+
+#[test]
+fn a_face_without_vn_stays_flat_in_a_file_that_has_normals() {
+    // tobj gives the second face's corners a made-up normal (the first
+    // `vn`, here +x); that face has none of its own, so it is flat.
+    let loaded = obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 1 0 0\n\
+                      f 1//1 2//1 3//1\nf 1 2 4 3\n")
+    .unwrap();
+    assert_eq!(loaded.triangles.len(), 3);
+    assert!(loaded.triangles[0].normals.is_some());
+    assert!(loaded.triangles[1].normals.is_none());
+    assert!(loaded.triangles[2].normals.is_none());
+}

@@ -67,7 +67,7 @@ pub(super) fn parse(
             path.display()
         ))
     })?;
-    let used_materials = check_lines(path, text)?;
+    let lines = check_lines(path, text)?;
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
@@ -80,7 +80,7 @@ pub(super) fn parse(
     if let Ok(list) = mtl {
         loaded.materials = list.iter().map(mtl::Read::from_tobj).collect();
     }
-    for name in used_materials {
+    for name in lines.used_materials {
         if !loaded.materials.iter().any(|m| m.name == name) {
             loaded.warnings.push(format!(
                 "{}: `usemtl {name}` names no material of the file's MTL: the default material is used",
@@ -91,6 +91,12 @@ pub(super) fn parse(
     let stem = path
         .file_stem()
         .map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
+    // tobj gives every face in file order, a face of n corners as the n - 2
+    // triangles of its fan; when the count agrees, each triangle knows
+    // whether its own face gave every corner a `vn`.
+    let total: usize = models.iter().map(|m| m.mesh.indices.len() / 3).sum();
+    let smooth = (total == lines.smooth.len()).then_some(lines.smooth.as_slice());
+    let mut triangle_in_file = 0;
     for model in &models {
         let mesh = &model.mesh;
         let group = loaded.groups.len();
@@ -116,7 +122,11 @@ pub(super) fn parse(
         };
         let has_normals = mesh.normal_indices.len() == mesh.indices.len();
         for (k, corner) in mesh.indices.chunks_exact(3).enumerate() {
-            let normals = has_normals.then(|| {
+            // tobj makes up a normal for a corner without one (the first
+            // or the last seen): such a face stays flat.
+            let own_normals = smooth.is_none_or(|s| s[triangle_in_file]);
+            triangle_in_file += 1;
+            let normals = (has_normals && own_normals).then(|| {
                 let n = &mesh.normal_indices[k * 3..k * 3 + 3];
                 [normal(n[0]), normal(n[1]), normal(n[2])]
             });
@@ -131,12 +141,22 @@ pub(super) fn parse(
     Ok(loaded)
 }
 
+/// What the pass over the lines learns besides the errors.
+struct Lines {
+    /// The names `usemtl` lines use, each once, so that one naming no
+    /// material is said.
+    used_materials: Vec<String>,
+    /// For each triangle of each face's fan, in file order: whether every
+    /// corner of its face has a `vn`.
+    smooth: Vec<bool>,
+}
+
 /// The pass over the lines: counts `v`, `vt` and `vn` as they come and
-/// checks every number and every face index against them. Gives the names
-/// `usemtl` lines use, each once, so that one naming no material is said.
-fn check_lines(path: &Path, text: &str) -> Result<Vec<String>, SceneError> {
+/// checks every number and every face index against them.
+fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
     let mut counts = [0usize; 3]; // v, vt, vn
     let mut used_materials: Vec<String> = Vec::new();
+    let mut smooth = Vec::new();
     let mut start = 0;
     for line in text.split_inclusive('\n') {
         let line_start = start;
@@ -184,8 +204,11 @@ fn check_lines(path: &Path, text: &str) -> Result<Vec<String>, SceneError> {
             }
             "f" => {
                 let mut corners = 0;
+                let mut with_normal = 0;
                 for (span, word) in words {
                     corners += 1;
+                    with_normal +=
+                        usize::from(word.split('/').nth(2).is_some_and(|n| !n.is_empty()));
                     for (slot, part) in word.split('/').enumerate().take(3) {
                         if part.is_empty() && slot > 0 {
                             continue;
@@ -200,6 +223,8 @@ fn check_lines(path: &Path, text: &str) -> Result<Vec<String>, SceneError> {
                         format!("a face needs at least 3 vertices, got {corners}"),
                     ));
                 }
+                let all_normals = with_normal == corners;
+                smooth.extend(std::iter::repeat_n(all_normals, corners - 2));
             }
             "usemtl" => {
                 // tobj takes the rest of the line as the name.
@@ -211,7 +236,10 @@ fn check_lines(path: &Path, text: &str) -> Result<Vec<String>, SceneError> {
             _ => {}
         }
     }
-    Ok(used_materials)
+    Ok(Lines {
+        used_materials,
+        smooth,
+    })
 }
 
 /// One index of a face corner: 1..=count, or -count..=-1 counting back.
