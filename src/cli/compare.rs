@@ -2,12 +2,11 @@
 //! or JSON, with the error map and the graders' thresholds; with `--rays`,
 //! the student's ray log beside raystep's trees.
 
-use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::ExitCode;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 
 use super::{CompareArgs, CompareFormat, SizeArg, emit, load_scene};
 use crate::compare::Comparison;
@@ -86,7 +85,7 @@ fn read_log(
     let input: Box<dyn BufRead> = if log == Path::new("-") {
         Box::new(BufReader::new(std::io::stdin().lock()))
     } else {
-        let file = File::open(log).with_context(|| format!("cannot open the ray log {name}"))?;
+        let file = crate::input_file::open(log, "the ray log", crate::raylog::LOG_CAP)?;
         Box::new(BufReader::new(file))
     };
     Ok(compare_log(
