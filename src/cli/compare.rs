@@ -40,13 +40,14 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
     )?;
     let diff = args.output.as_deref().map(output::file).transpose()?;
     if let Some(diff) = &diff {
-        output::refuse_clashes(&args.scene, &[(diff, "the error map (-o)".to_owned())])?;
+        let mut inputs = output::Inputs::default().with_scene(&scene);
         if let Some(image) = &args.image {
-            output::refuse_input(diff, image, "your image")?;
+            inputs = inputs.with(image, "your image");
         }
-        if let Some(log) = &args.rays {
-            output::refuse_input(diff, log, "your ray log")?;
+        if let Some(log) = args.rays.as_deref().filter(|l| *l != Path::new("-")) {
+            inputs = inputs.with(log, "your ray log");
         }
+        output::refuse_clashes(&inputs, &[(diff, "the error map (-o)".to_owned())])?;
     }
     // The log is read before the image is compared: a bad log is told at once.
     let rays = args
