@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A million-triangle mesh: OBJ and STL against the same triangles in NFF.
 
-    python3 benches/mesh_memory.py [--side 708] [--binary target/release/raystep]
+    python3 benches/mesh_memory.py [--side 708] [--runs 5] [--binary target/release/raystep]
 
 Writes a height field of side x side quads, two triangles each (708: 1,002,528
 triangles), as an OBJ (`v` lines shared by neighbouring faces, `f` quads that
@@ -9,8 +9,11 @@ the loader splits), a binary STL and an NFF file of `p 3` triangles (the same
 triangles, vertices written out per triangle) into a temporary directory;
 renders each at 512 x 512 under `/usr/bin/time -v` and prints the peak
 resident memory, `--timings`' prepare_seconds (reading the file and building
-the BVH) and trace_seconds. Build with `cargo build --release` first. CI does
-not run this (the files are about 100 MB).
+the BVH), trace_seconds and the process's CPU time (user + system, from
+`time -v`: steadier than wall time on a shared machine). With `--runs N` the
+three scenes run in alternation N times and each figure is a median. Build
+with `cargo build --release` first. CI does not run this (the files are
+about 100 MB).
 """
 
 import argparse
@@ -18,6 +21,7 @@ import json
 import math
 import os
 import re
+import statistics
 import struct
 import subprocess
 import tempfile
@@ -80,21 +84,27 @@ def measure(binary, scene, directory):
     run = subprocess.run(command, capture_output=True, text=True, check=True)
     timings = json.loads(run.stdout)
     rss_kib = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", run.stderr).group(1))
-    return rss_kib / 1024, timings["prepare_seconds"], timings["trace_seconds"]
+    cpu = sum(float(re.search(rf"{kind} time \(seconds\): ([\d.]+)", run.stderr).group(1)) for kind in ("User", "System"))
+    return rss_kib / 1024, timings["prepare_seconds"], timings["trace_seconds"], cpu
 
 
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--side", type=int, default=708)
+    parser.add_argument("--runs", type=int, default=1)
     parser.add_argument("--binary", default=os.path.join(ROOT, "target/release/raystep"))
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as directory:
         count, scenes = write_meshes(directory, args.side)
-        print(f"{count} triangles")
-        print(f"{'scene':16} {'peak MiB':>9} {'load+build s':>13} {'trace s':>8}")
+        print(f"{count} triangles, median of {args.runs} alternating runs")
+        runs = {scene: [] for scene in scenes}
+        for _ in range(args.runs):
+            for scene in scenes:
+                runs[scene].append(measure(args.binary, scene, directory))
+        print(f"{'scene':16} {'peak MiB':>9} {'load+build s':>13} {'trace s':>8} {'CPU s':>7}")
         for scene in scenes:
-            rss, prepare, trace = measure(args.binary, scene, directory)
-            print(f"{os.path.basename(scene):16} {rss:9.0f} {prepare:13.2f} {trace:8.2f}")
+            rss, prepare, trace, cpu = (statistics.median(column) for column in zip(*runs[scene]))
+            print(f"{os.path.basename(scene):16} {rss:9.0f} {prepare:13.2f} {trace:8.2f} {cpu:7.2f}")
 
 
 if __name__ == "__main__":

@@ -428,12 +428,21 @@ fn objects<'a>(
 ) -> Result<Vec<Object>, SceneError> {
     let mut objects: Vec<Object> = Vec::with_capacity(defs.len());
     let mut given_names = HashSet::new();
+    let mut mesh_groups = HashSet::new();
     for (i, def) in defs.enumerate() {
         let (source, def) = def?;
         let key = format!("object[{i}]");
         bounds::object(&source, &key, def.get_ref())?;
         if let Some(mesh_def) = &def.get_ref().mesh {
-            let placed = mesh(&source, &def, mesh_def, materials)?;
+            let mut placed = mesh(&source, &def, mesh_def, materials)?;
+            // An unnamed mesh is named by its file's groups; a second one
+            // with the same groups (the same file placed twice) is told
+            // apart by its place in the list, as an unnamed sphere is.
+            if def.get_ref().name.is_none() && placed.groups.iter().any(|g| mesh_groups.contains(g))
+            {
+                placed.prefix_names(&format!("mesh {i} "));
+            }
+            mesh_groups.extend(placed.groups.iter().cloned());
             if let Some(name) = &def.get_ref().name
                 && !given_names.insert(name.get_ref().clone())
             {

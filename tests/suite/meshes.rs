@@ -332,3 +332,130 @@ sphere = {{ center = [0, 0, 0], radius = 1 }}
         "{matte_mirror}"
     );
 }
+
+/// The same unnamed mesh placed twice: the second copy's triangles are told
+/// apart by the object's place in the list (`mesh 1`), as unnamed spheres
+/// are ("sphere 3"); the first keeps the file's own names.
+#[test]
+fn the_same_mesh_placed_twice_without_a_name_gets_names_of_its_own() {
+    let obj = format!("{TRIANGLE}f 1 2 3\n");
+    let scene = format!(
+        "{HEAD}[[object]]\nmesh = {{ file = \"m.obj\" }}\n\
+         [[object]]\nmesh = {{ file = \"m.obj\", translate = [0, 0, -1] }}\n"
+    );
+    let dir = folder(&[("m.obj", obj.as_bytes()), ("s.toml", scene.as_bytes())]);
+    let scene = raystep::scene::load(&dir.path().join("s.toml")).unwrap();
+    let names: Vec<&str> = scene.objects.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names, ["m triangle 0", "mesh 1 m triangle 0"]);
+}
+
+/// `mtllib` may name any path: whatever it names is read only as MTL, and
+/// a file that is no MTL gives no material, so `usemtl` falls back to the
+/// default with a warning that says so. Nothing is written but the image,
+/// and every file is left as it was.
+#[test]
+fn an_mtllib_pointing_anywhere_is_read_only_as_mtl() {
+    let dir = folder(&[
+        ("scene.toml", b"[camera]\neye = [0, 0, 3]\n"),
+        ("notes.txt", b"newmtl x\nKd 1 0 0\n"),
+    ]);
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    let before = |name: &str| std::fs::read(dir.path().join(name)).unwrap();
+    let (scene_bytes, notes_bytes) = (before("scene.toml"), before("notes.txt"));
+    for (library, expected) in [
+        (
+            "../scene.toml",
+            "`usemtl x` names no material of the file's MTL",
+        ),
+        (
+            "/etc/passwd",
+            "`usemtl x` names no material of the file's MTL",
+        ),
+        (
+            ".",
+            "sub/.: it is a directory, not a regular file: the default material is used",
+        ),
+        (
+            "/dev/zero",
+            "/dev/zero: it is a character device, not a regular file",
+        ),
+    ] {
+        let obj = format!("mtllib {library}\n{TRIANGLE}usemtl x\nf 1 2 3\n");
+        std::fs::write(dir.path().join("sub/m.obj"), &obj).unwrap();
+        let out = dir.path().join("out.png");
+        let output = raystep(&[
+            "render",
+            dir.path().join("sub/m.obj").to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--size",
+            "8x8",
+        ]);
+        let err = stderr(&output);
+        assert!(output.status.success(), "{library}: {err}");
+        assert_eq!(err.matches("warning: ").count(), 1, "{library}: {err}");
+        assert!(err.contains(expected), "{library}: {err}");
+        std::fs::remove_file(&out).unwrap();
+    }
+    // The MTL named in the folder above is read and used: red.
+    let obj = format!("mtllib ../notes.txt\n{TRIANGLE}usemtl x\nf 1 2 3\n");
+    std::fs::write(dir.path().join("sub/m.obj"), &obj).unwrap();
+    let scene = raystep::scene::load(&dir.path().join("sub/m.obj")).unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.objects[0].name, "m triangle 0 (material x)");
+    assert_eq!(before("scene.toml"), scene_bytes);
+    assert_eq!(before("notes.txt"), notes_bytes);
+    let mut left: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["notes.txt", "scene.toml", "sub"]);
+}
+
+/// `compare` takes a mesh as its scene: its own render matches, and a
+/// render without the ambient term (the shadow on the floor goes black) is
+/// named for it.
+#[test]
+fn compare_takes_a_mesh_as_its_scene() {
+    // A floor quad and a small triangle above it, lit from straight above:
+    // the triangle's shadow falls on the floor.
+    let obj = "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n\
+               v -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0 1 0.5\n\
+               g floor\nf 1 4 3 2\ng leaf\nf 5 7 6\n";
+    let dir = folder(&[("m.obj", obj.as_bytes())]);
+    let scene = dir.path().join("m.obj");
+    let image = |name: &str, mistake: Option<&str>| {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--size",
+            "64x48",
+        ];
+        if let Some(m) = mistake {
+            args.extend(["--mistake", m]);
+        }
+        let output = raystep(&args);
+        assert!(output.status.success(), "{}", stderr(&output));
+        out
+    };
+    let compare = |image: &Path| {
+        let output = raystep(&[
+            "compare",
+            scene.to_str().unwrap(),
+            image.to_str().unwrap(),
+            "--format",
+            "json",
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        serde_json::from_slice::<serde_json::Value>(&output.stdout).unwrap()
+    };
+    let same = compare(&image("same.png", None));
+    assert_eq!(same["matches"], true, "{same}");
+    let dark = compare(&image("dark.png", Some("no-ambient")));
+    assert_eq!(dark["matches"], false, "{dark}");
+    assert_eq!(dark["mistakes"][0]["name"], "no-ambient", "{dark}");
+}

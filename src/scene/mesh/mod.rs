@@ -87,6 +87,8 @@ pub(crate) struct Loaded {
 #[derive(Debug, Default)]
 pub(crate) struct Placed {
     pub(crate) objects: Vec<Object>,
+    /// The names its triangles' names start with: one per OBJ group.
+    pub(crate) groups: Vec<String>,
     pub(crate) materials: Vec<Material>,
     pub(crate) lights: Vec<Light>,
     pub(crate) warnings: Vec<String>,
@@ -202,6 +204,11 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
     let mut per_group = vec![0usize; loaded.groups.len()];
     let mut degenerate = 0usize;
     let prefix = request.name.map(|n| format!("{n} ")).unwrap_or_default();
+    placed.groups = loaded
+        .groups
+        .iter()
+        .map(|g| format!("{prefix}{g}"))
+        .collect();
     let mut name = String::new();
     placed.objects.reserve(loaded.triangles.len());
     for t in &loaded.triangles {
@@ -253,7 +260,7 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
             sums.3 = sums.3.union(&Aabb::around(&vertices));
         }
         name.clear();
-        let _ = write!(name, "{prefix}{} triangle {index}", loaded.groups[t.group]);
+        let _ = write!(name, "{} triangle {index}", placed.groups[t.group]);
         if let Some(m) = material_name {
             let _ = write!(name, " (material {m})");
         }
@@ -285,6 +292,22 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
         });
     }
     Ok(placed)
+}
+
+impl Placed {
+    /// Puts `prefix` before every name, so that a second unnamed copy of a
+    /// mesh doesn't repeat the first one's names.
+    pub(crate) fn prefix_names(&mut self, prefix: &str) {
+        for name in self
+            .objects
+            .iter_mut()
+            .map(|o| &mut o.name)
+            .chain(self.lights.iter_mut().map(|l| &mut l.name))
+            .chain(self.groups.iter_mut())
+        {
+            name.insert_str(0, prefix);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -39,7 +39,12 @@ pub(super) fn load(path: &Path) -> Result<Loaded, SceneError> {
     };
     let mut loaded = parse(path, &bytes, &loader)?;
     loaded.libraries = libraries.into_inner();
-    for m in missing.into_inner() {
+    let missing = missing.into_inner();
+    if !missing.is_empty() {
+        // The missing file says it already: every `usemtl` falls back.
+        loaded.warnings.retain(|w| !w.contains("`usemtl "));
+    }
+    for m in missing {
         loaded.warnings.push(format!(
             "{}: {m}: the default material is used",
             path.display()
@@ -65,7 +70,7 @@ pub(super) fn parse(
             path.display()
         ))
     })?;
-    check_lines(path, text)?;
+    let used_materials = check_lines(path, text)?;
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
@@ -77,6 +82,14 @@ pub(super) fn parse(
     let mut loaded = Loaded::default();
     if let Ok(list) = mtl {
         loaded.materials = list.iter().map(mtl::Read::from_tobj).collect();
+    }
+    for name in used_materials {
+        if !loaded.materials.iter().any(|m| m.name == name) {
+            loaded.warnings.push(format!(
+                "{}: `usemtl {name}` names no material of the file's MTL: the default material is used",
+                path.display()
+            ));
+        }
     }
     let stem = path
         .file_stem()
@@ -122,9 +135,11 @@ pub(super) fn parse(
 }
 
 /// The pass over the lines: counts `v`, `vt` and `vn` as they come and
-/// checks every number and every face index against them.
-fn check_lines(path: &Path, text: &str) -> Result<(), SceneError> {
+/// checks every number and every face index against them. Gives the names
+/// `usemtl` lines use, each once, so that one naming no material is said.
+fn check_lines(path: &Path, text: &str) -> Result<Vec<String>, SceneError> {
     let mut counts = [0usize; 3]; // v, vt, vn
+    let mut used_materials: Vec<String> = Vec::new();
     let mut start = 0;
     for line in text.split_inclusive('\n') {
         let line_start = start;
@@ -189,10 +204,17 @@ fn check_lines(path: &Path, text: &str) -> Result<(), SceneError> {
                     ));
                 }
             }
+            "usemtl" => {
+                // tobj takes the rest of the line as the name.
+                let name = content[keyword_span.end - line_start..].trim();
+                if !name.is_empty() && !used_materials.iter().any(|u| u == name) {
+                    used_materials.push(name.to_string());
+                }
+            }
             _ => {}
         }
     }
-    Ok(())
+    Ok(used_materials)
 }
 
 /// One index of a face corner: 1..=count, or -count..=-1 counting back.
