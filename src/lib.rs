@@ -10,6 +10,7 @@ pub mod compare;
 pub mod diagram;
 pub mod divergence;
 pub mod grade;
+pub(crate) mod input_file;
 pub mod math;
 pub mod mistakes;
 pub(crate) mod object;

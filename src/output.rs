@@ -4,8 +4,10 @@
 //! - Every output is resolved and checked before the render starts: an
 //!   existing output must be a regular file (a symbolic link is followed, and
 //!   the file it points to is replaced); directories, devices, pipes and
-//!   sockets are refused, and so is an output that is the scene file or
-//!   another output of the same command, however its path is spelt.
+//!   sockets are refused, and so is an output that is any input of the
+//!   command (the scene file, a mesh or MTL file it reads, the student's
+//!   image, a ray log, the assignment) or another output of the same
+//!   command, however its path is spelt (`Inputs`, `refuse_clashes`).
 //! - All files of one command go to temporary files beside their targets and
 //!   are renamed into place only when all are complete; on failure the
 //!   temporaries are removed and every target is left as it was.
@@ -23,6 +25,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, anyhow, bail};
 use image::RgbImage;
 use tempfile::NamedTempFile;
+
+use crate::scene::Scene;
 
 const TEMP_PREFIX: &str = ".raystep-";
 const TEMP_SUFFIX: &str = ".png.tmp";
@@ -140,16 +144,47 @@ impl Folder {
     }
 }
 
-/// Refuses an output that is the scene file or another output. Each target
-/// comes with what it is, for the message.
-pub(crate) fn refuse_clashes(scene: &Path, targets: &[(&Target, String)]) -> Result<()> {
-    let scene_real = fs::canonicalize(scene).ok();
+/// Every file a command reads, each with what it is for messages: no
+/// output of the command may be one of them, however either path is spelt.
+#[derive(Debug, Default)]
+pub(crate) struct Inputs(Vec<(PathBuf, String)>);
+
+impl Inputs {
+    /// `path`, named `what` ("your image").
+    pub(crate) fn with(mut self, path: &Path, what: &str) -> Inputs {
+        self.0.push((path.to_owned(), what.to_owned()));
+        self
+    }
+
+    /// A scene's file and every file it read: its meshes and MTL files.
+    pub(crate) fn with_scene(mut self, scene: &Scene) -> Inputs {
+        for (i, path) in scene.files.iter().enumerate() {
+            let what = if i == 0 {
+                "the scene file"
+            } else {
+                "a file the scene reads,"
+            };
+            self = self.with(path, what);
+        }
+        self
+    }
+
+    /// Each input, with what it is.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (&Path, &str)> {
+        self.0.iter().map(|(p, w)| (p.as_path(), w.as_str()))
+    }
+}
+
+/// Refuses an output that is one of the command's inputs or another of its
+/// outputs. Each target comes with what it is, for the message.
+pub(crate) fn refuse_clashes(inputs: &Inputs, targets: &[(&Target, String)]) -> Result<()> {
     for (i, (target, what)) in targets.iter().enumerate() {
-        if scene_real.as_ref() == Some(&target.real) || same_file(scene, &target.real) {
+        if let Some((input, input_what)) = inputs.iter().find(|(input, _)| lands_at(input, target))
+        {
             bail!(
-                "cannot write {}: it is the scene file {}",
+                "cannot write {}: it is {input_what} {}",
                 target.shown.display(),
-                scene.display()
+                input.display()
             );
         }
         let same = |(other, _): &&(&Target, String)| {
@@ -165,17 +200,22 @@ pub(crate) fn refuse_clashes(scene: &Path, targets: &[(&Target, String)]) -> Res
     Ok(())
 }
 
-/// Refuses an output that is the input `input`, named `what` in the message.
-pub(crate) fn refuse_input(target: &Target, input: &Path, what: &str) -> Result<()> {
-    let input_real = fs::canonicalize(input).ok();
-    if input_real.as_ref() == Some(&target.real) || same_file(input, &target.real) {
-        bail!(
-            "cannot write {}: it is {what} {}",
-            target.shown.display(),
-            input.display()
-        );
+/// Whether `input` is where `target` lands: the same file (a link, a hard
+/// link) or, for an input that does not exist (an MTL the scene names that
+/// is missing), the same place, which the output would create.
+fn lands_at(input: &Path, target: &Target) -> bool {
+    if same_file(input, &target.real) {
+        return true;
     }
-    Ok(())
+    let real = fs::canonicalize(input).ok().or_else(|| {
+        let name = input.file_name()?;
+        let parent = match input.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        Some(fs::canonicalize(parent).ok()?.join(name))
+    });
+    real.as_ref() == Some(&target.real)
 }
 
 /// Whether two existing paths are the same file (hard links included).

@@ -444,3 +444,36 @@ fn after_sigstop_and_a_shell_cooking_the_terminal_continue_takes_it_again() {
     assert_eq!(session.wait_for_exit().code(), Some(0));
     assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
 }
+
+/// Issue 27: a watched scene replaced by a FIFO was once reloaded on the
+/// thread that answers the keys, which then waited for a writer for ever.
+/// Now the reload runs beside it: the banner says why the FIFO is refused,
+/// and `q` ends the debugger at once.
+#[test]
+fn a_watched_scene_replaced_by_a_fifo_leaves_q_answered() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, include_str!("../scenes/seven-rays.toml")).unwrap();
+    let mut session = Session::start(&[path.to_str().unwrap()]);
+    session.wait_for("first screen", |text| {
+        text.contains("\x1b[?1006h") && text.contains("help")
+    });
+    std::fs::remove_file(&path).unwrap();
+    let name = std::ffi::CString::new(path.to_str().unwrap()).unwrap();
+    // SAFETY: a plain mkfifo(3) of a path we own.
+    assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
+    session.wait_for_screen("FIFO (a named pipe)");
+    let asked = Instant::now();
+    session.keyboard.write_all(b"q").unwrap();
+    let status = loop {
+        if let Some(status) = session.child.try_wait().unwrap() {
+            break status;
+        }
+        assert!(
+            asked.elapsed() < Duration::from_secs(1),
+            "q not answered within a second"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    assert_eq!(status.code(), Some(0), "{status:?}");
+}

@@ -2,12 +2,11 @@
 //! or JSON, with the error map and the graders' thresholds; with `--rays`,
 //! the student's ray log beside raystep's trees.
 
-use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::ExitCode;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 
 use super::{CompareArgs, CompareFormat, SizeArg, emit, load_scene};
 use crate::compare::Comparison;
@@ -41,13 +40,14 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
     )?;
     let diff = args.output.as_deref().map(output::file).transpose()?;
     if let Some(diff) = &diff {
-        output::refuse_clashes(&args.scene, &[(diff, "the error map (-o)".to_owned())])?;
+        let mut inputs = output::Inputs::default().with_scene(&scene);
         if let Some(image) = &args.image {
-            output::refuse_input(diff, image, "your image")?;
+            inputs = inputs.with(image, "your image");
         }
-        if let Some(log) = &args.rays {
-            output::refuse_input(diff, log, "your ray log")?;
+        if let Some(log) = args.rays.as_deref().filter(|l| *l != Path::new("-")) {
+            inputs = inputs.with(log, "your ray log");
         }
+        output::refuse_clashes(&inputs, &[(diff, "the error map (-o)".to_owned())])?;
     }
     // The log is read before the image is compared: a bad log is told at once.
     let rays = args
@@ -86,7 +86,7 @@ fn read_log(
     let input: Box<dyn BufRead> = if log == Path::new("-") {
         Box::new(BufReader::new(std::io::stdin().lock()))
     } else {
-        let file = File::open(log).with_context(|| format!("cannot open the ray log {name}"))?;
+        let file = crate::input_file::open(log, "the ray log", crate::raylog::LOG_CAP)?;
         Box::new(BufReader::new(file))
     };
     Ok(compare_log(

@@ -15,10 +15,6 @@ use crate::record::RayTree;
 pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
     use crate::diagram::{Diagram, DiagramPlane, Progress, Shadows, svg};
     let target = output::file(&args.output)?;
-    output::refuse_clashes(
-        &args.pixel.scene,
-        &[(&target, "the figure (-o)".to_owned())],
-    )?;
     if args.plane == PlaneArg::Crossing && args.zoom != 1.0 {
         bail!(
             "--zoom magnifies the top, side and ray diagrams; the crossing figure is always fitted to its polygon"
@@ -30,6 +26,11 @@ pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
         );
     }
     let recorded = record(&args.pixel)?;
+    // Once the scene is read, so that its meshes and MTL files are known.
+    output::refuse_clashes(
+        &output::Inputs::default().with_scene(&recorded.scene),
+        &[(&target, "the figure (-o)".to_owned())],
+    )?;
     let plane = match args.plane {
         PlaneArg::Top => DiagramPlane::Top,
         PlaneArg::Side => DiagramPlane::Side,

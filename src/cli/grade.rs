@@ -56,12 +56,14 @@ fn inputs<'a>(
     folders: Option<&'a PathBuf>,
 ) -> Vec<(&'a Path, String)> {
     let mut inputs = vec![(args.assignment.as_path(), "the assignment".to_string())];
-    inputs.extend(
-        assignment
-            .scenes
-            .iter()
-            .map(|s| (s.path.as_path(), "the scene file".to_string())),
-    );
+    for scene in &assignment.scenes {
+        inputs.push((scene.path.as_path(), "the scene file".to_string()));
+        // Its meshes and MTL files.
+        inputs.extend(
+            (scene.scene.files.iter().skip(1))
+                .map(|f| (f.as_path(), "a file a scene reads,".to_string())),
+        );
+    }
     inputs.extend(folders.map(|f| (f.as_path(), "the submissions folder".to_string())));
     inputs
 }
@@ -97,16 +99,14 @@ impl ResultsFiles {
         .into_iter()
         .filter_map(|(t, what)| t.as_ref().map(|t| (t, format!("the results of {what}"))))
         .collect();
-        output::refuse_clashes(&args.assignment, &named)?;
-        for (target, _) in &named {
-            for scene in &assignment.scenes {
-                output::refuse_input(target, &scene.path, "the scene file")?;
-                for student in class {
-                    let handed_in = student.folder.join(&scene.submit);
-                    output::refuse_input(target, &handed_in, "the submission")?;
-                }
+        let mut inputs = output::Inputs::default().with(&args.assignment, "the assignment");
+        for scene in &assignment.scenes {
+            inputs = inputs.with_scene(&scene.scene);
+            for student in class {
+                inputs = inputs.with(&student.folder.join(&scene.submit), "the submission");
             }
         }
+        output::refuse_clashes(&inputs, &named)?;
         Ok(files)
     }
 

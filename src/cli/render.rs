@@ -53,7 +53,7 @@ pub(super) fn run(args: &RenderArgs) -> Result<ExitCode> {
     }
     let scene = load_scene(Some(&args.scene), args.size)?;
     let settings = args.mistakes.settings(&scene);
-    let outputs = Outputs::check(args)?;
+    let outputs = Outputs::check(args, &scene)?;
     let prepared = started.elapsed().as_secs_f64();
     let progress = progress_bar(scene.height);
     let tick = || progress.inc(1);
@@ -119,7 +119,7 @@ struct Outputs {
 }
 
 impl Outputs {
-    fn check(args: &RenderArgs) -> Result<Outputs> {
+    fn check(args: &RenderArgs, scene: &Scene) -> Result<Outputs> {
         let image = output::file(&args.output)?;
         let terms = args.terms.as_deref().map(output::folder).transpose()?;
         let term_files = match &terms {
@@ -138,7 +138,7 @@ impl Outputs {
                 )
             }))
             .collect();
-        output::refuse_clashes(&args.scene, &all)?;
+        output::refuse_clashes(&output::Inputs::default().with_scene(scene), &all)?;
         Ok(Outputs {
             image,
             terms,

@@ -2,15 +2,15 @@
 //! on the way (alpha, 16 bits, grey), and refusing what is not a usable PNG
 //! with a message that names the file.
 
-use std::fs::File;
 use std::io::{BufRead, BufReader, Read, Seek};
 use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
 use image::{ColorType, DynamicImage, ImageDecoder, ImageFormat, ImageReader, RgbImage};
 
+use crate::input_file::{self, Cap};
 use crate::record::count;
-use crate::scene::check_image_size;
+use crate::scene::{MAX_IMAGE_PIXELS, check_image_size};
 
 /// The eight bytes every PNG file starts with.
 const PNG_SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n'];
@@ -22,10 +22,20 @@ pub struct StudentImage {
     pub notes: Vec<String>,
 }
 
-/// Reads `path`, which must be a PNG no larger than raystep renders.
+/// The largest student image read: what a PNG of the largest size raystep
+/// renders (8192 x 8192) takes stored uncompressed at 16-bit RGBA, 8 bytes
+/// a pixel, and 1 MiB for its chunks.
+pub(crate) const IMAGE_CAP: Cap = Cap {
+    bytes: 8 * MAX_IMAGE_PIXELS + (1 << 20),
+    of: "a student's PNG",
+};
+
+/// Reads `path`, which must be a PNG no larger than raystep renders: a
+/// regular file (a FIFO or a device is refused, never waited on) within
+/// `IMAGE_CAP`.
 pub fn load(path: &Path) -> Result<StudentImage> {
     let name = path.display().to_string();
-    let file = File::open(path).with_context(|| format!("cannot read {name}"))?;
+    let file = input_file::open(path, "", IMAGE_CAP)?;
     read(BufReader::new(file), &name)
 }
 

@@ -23,12 +23,19 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::input_file::{self, Cap};
 use crate::scene::{self, Scene, SceneError, check_image_size};
 
 /// With `partial` and no `max_flip`: the FLIP mean that scores 0. Every
 /// classic mistake of the catalogue that changes much of the image scores
 /// FLIP means of a few hundredths to a few tenths on the example scenes.
 pub(crate) const DEFAULT_MAX_FLIP: f64 = 0.2;
+
+/// The largest assignment file read: a few lines a scene.
+pub(crate) const ASSIGNMENT_CAP: Cap = Cap {
+    bytes: 16 << 20,
+    of: "an assignment file",
+};
 
 /// An assignment, its scenes loaded.
 pub(crate) struct Assignment {
@@ -73,8 +80,8 @@ struct SceneDef {
 
 /// Reads the assignment at `path` and loads its scenes.
 pub(crate) fn load(path: &Path) -> Result<Assignment, SceneError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
+    let bytes = input_file::read(path, "the assignment", ASSIGNMENT_CAP)
+        .map_err(|e| SceneError::plain(e.to_string()))?;
     let text = String::from_utf8(bytes).map_err(|e| {
         SceneError::plain(format!(
             "{} is not UTF-8 text (byte {} is 0x{:02X}): assignment files must be UTF-8",

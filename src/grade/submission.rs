@@ -3,7 +3,7 @@
 //! reason, never followed out of the folder, never opened when it is not a
 //! regular file (a FIFO would block the whole class).
 
-use std::fs::{self, File};
+use std::fs;
 use std::io::{BufReader, Seek};
 use std::path::Path;
 
@@ -11,6 +11,7 @@ use image::{ImageFormat, ImageReader};
 
 use crate::compare::StudentImage;
 use crate::compare::student;
+use crate::input_file;
 
 /// A file larger than this many bytes per pixel (plus `SLACK_BYTES`) is
 /// refused before its pixels are read: an uncompressed PNG of 16-bit RGBA
@@ -55,7 +56,8 @@ pub(crate) fn read(
             "{submit} is a device, pipe or socket, not a PNG file"
         ));
     }
-    let file = open_regular(&real).map_err(|e| format!("cannot read {submit}: {e}"))?;
+    let file =
+        input_file::open_regular(&real, false).map_err(|e| format!("cannot read {submit}: {e}"))?;
     let length = file
         .metadata()
         .map_err(|e| format!("cannot read {submit}: {e}"))?
@@ -85,22 +87,4 @@ pub(crate) fn read(
         .map_err(|e| format!("cannot read {submit}: {e}"))?;
     // compare's reader says what is wrong with anything else.
     student::read(reader, submit).map_err(|e| format!("{e:#}"))
-}
-
-/// Opens `path` for reading only if it is a regular file: without
-/// blocking (a FIFO put in its place after the check would otherwise wait
-/// for a writer), and checked again once open.
-fn open_regular(path: &Path) -> std::io::Result<File> {
-    let mut options = fs::OpenOptions::new();
-    options.read(true);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        options.custom_flags(libc::O_NONBLOCK | libc::O_NOFOLLOW);
-    }
-    let file = options.open(path)?;
-    if !file.metadata()?.is_file() {
-        return Err(std::io::Error::other("not a regular file"));
-    }
-    Ok(file)
 }

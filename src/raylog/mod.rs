@@ -15,3 +15,11 @@ pub use path::{RayPath, Step};
 pub use read::{MAX_LINE_BYTES, RaylogError, RaylogReader};
 pub(crate) use write::rays_with_nodes;
 pub use write::{raylog, rays_of};
+
+/// The largest ray log file read (standard input, `-`, is a stream and has
+/// none): about three million rays, each read and compared in turn in
+/// bounded memory (a million lines take 344 MB and 1.2 s, BENCHMARKS.md).
+pub(crate) const LOG_CAP: crate::input_file::Cap = crate::input_file::Cap {
+    bytes: 1 << 30,
+    of: "a ray log",
+};

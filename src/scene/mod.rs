@@ -11,7 +11,7 @@ mod switches;
 pub(crate) mod toml_format;
 mod toml_sections;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use serde::Serialize;
@@ -22,6 +22,7 @@ pub(crate) use switches::Switches;
 
 use crate::accel::{Accel, ObjectTables};
 use crate::camera::Camera;
+use crate::input_file::{self, Cap};
 use crate::math::Color;
 use crate::math::exceeds;
 use crate::mistakes::Mistakes;
@@ -32,6 +33,14 @@ pub use crate::object::Object;
 pub(crate) const MAX_IMAGE_SIDE: u32 = 16_384;
 /// The largest number of pixels accepted (a 8192 x 8192 image).
 pub(crate) const MAX_IMAGE_PIXELS: u64 = 8192 * 8192;
+
+/// The largest scene file read (TOML or NFF): a million spheres take 76 MB
+/// of TOML, a million triangles 88 MB of NFF (BENCHMARKS.md), and a device
+/// such as `/dev/zero` is refused before this matters.
+pub(crate) const SCENE_CAP: Cap = Cap {
+    bytes: 256 << 20,
+    of: "a scene file",
+};
 
 /// Below half an 8-bit step, like POV-Ray's adc_bailout (1/255): a ray worth
 /// less than this changes a pixel by at most about half a step per unit of colour.
@@ -155,6 +164,10 @@ pub struct Scene {
     tables: ObjectTables,
     /// What reading the scene's meshes warned about, each once (MODEL §4).
     pub warnings: Vec<String>,
+    /// The files it was read from: the scene file, then every mesh and MTL
+    /// file it names (an MTL even when missing), so that no output of a
+    /// command can replace one of them. None for the built-in scene.
+    pub(crate) files: Vec<PathBuf>,
 }
 
 impl Scene {
@@ -180,6 +193,7 @@ impl Scene {
             accel,
             tables,
             warnings: Vec::new(),
+            files: Vec::new(),
         }
     }
 
@@ -211,12 +225,15 @@ impl Scene {
 /// alone for `.obj` and `.stl`, else TOML).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
     if mesh::is_mesh_file(path) {
+        // Its files are the mesh's: the mesh itself first.
         return mesh::alone::scene(path);
     }
-    let bytes = std::fs::read(path)
-        .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
+    let bytes =
+        input_file::read(path, "", SCENE_CAP).map_err(|e| SceneError::plain(e.to_string()))?;
     let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;
-    parse(path, &text)
+    let mut scene = parse(path, &text)?;
+    scene.files.insert(0, path.to_owned());
+    Ok(scene)
 }
 
 /// Where a file stops being UTF-8 text: the first bad byte's line and column,

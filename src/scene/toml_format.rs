@@ -37,7 +37,7 @@
 use std::collections::{BTreeMap, HashSet};
 use std::fmt;
 use std::ops::Range;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use serde::Deserialize;
@@ -407,6 +407,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
         objects,
     );
     scene.warnings = meshes.warnings;
+    scene.files = meshes.files;
     Ok(scene)
 }
 
@@ -415,6 +416,8 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
 struct Meshes {
     lights: Vec<Light>,
     warnings: Vec<String>,
+    /// The mesh and MTL files read (`Scene::files`).
+    files: Vec<PathBuf>,
 }
 
 /// Builds the objects in file order, refusing a name used twice.
@@ -452,6 +455,7 @@ fn objects<'a>(
             materials.extend(placed.materials);
             meshes.lights.extend(placed.lights);
             meshes.warnings.extend(placed.warnings);
+            meshes.files.extend(placed.files);
             continue;
         }
         let object = object(&source, objects.len(), &def, materials)?;

@@ -7,7 +7,7 @@
 //! it again when continued; the main loop then redraws the whole screen.
 //!
 //! Signals are handled on a thread of their own rather than by the event
-//! loop: the loop may be blocked in a read, a long draw or a reload, and the
+//! loop: the loop may be blocked in a read or a long draw, and the
 //! terminal must come back at once whatever it is doing.
 
 use std::io::{self, Stdout, Write, stdout};

@@ -373,9 +373,12 @@ fn an_mtllib_pointing_anywhere_is_read_only_as_mtl() {
         ),
         (
             ".",
-            "sub/.: not a regular file: the default material is used",
+            "sub/.: it is a directory, not a regular file: the default material is used",
         ),
-        ("/dev/zero", "/dev/zero: not a regular file"),
+        (
+            "/dev/zero",
+            "/dev/zero: it is a character device, not a regular file",
+        ),
     ] {
         let obj = format!("mtllib {library}\n{TRIANGLE}usemtl x\nf 1 2 3\n");
         std::fs::write(dir.path().join("sub/m.obj"), &obj).unwrap();

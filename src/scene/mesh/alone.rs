@@ -77,5 +77,6 @@ pub(crate) fn scene(path: &Path) -> Result<Scene, SceneError> {
         placed.objects,
     );
     scene.warnings = placed.warnings;
+    scene.files = placed.files;
     Ok(scene)
 }

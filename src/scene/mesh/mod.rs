@@ -12,17 +12,21 @@ mod obj;
 mod stl;
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::{DMat3, DVec3};
 
 use super::limits::COORDINATE;
 use super::{Light, Material, Object, SceneError};
+use crate::input_file::{self, Cap};
 use crate::shapes::{Aabb, Patch, Polygon, Shape};
 
 /// The largest mesh or MTL file read: far above a course mesh (a million
-/// triangles of OBJ take about 100 MB), and a guard against `/dev/zero`.
-pub(crate) const MAX_MESH_BYTES: u64 = 1 << 30;
+/// triangles of OBJ take about 60 MB, BENCHMARKS.md).
+pub(crate) const MESH_CAP: Cap = Cap {
+    bytes: 1 << 30,
+    of: "a mesh or MTL file",
+};
 
 /// How far off its emitter's faces an MTL emitter's point light sits, as a
 /// share of the emitter's bounding-box diagonal.
@@ -73,6 +77,8 @@ pub(crate) struct Loaded {
     pub(crate) groups: Vec<String>,
     pub(crate) materials: Vec<mtl::Read>,
     pub(crate) warnings: Vec<String>,
+    /// The MTL files its `mtllib` lines name, read or not.
+    pub(crate) libraries: Vec<PathBuf>,
 }
 
 /// A mesh ready to join a scene: its objects (their material indices already
@@ -86,6 +92,8 @@ pub(crate) struct Placed {
     pub(crate) materials: Vec<Material>,
     pub(crate) lights: Vec<Light>,
     pub(crate) warnings: Vec<String>,
+    /// The mesh file, then the MTL files it names (`Scene::files`).
+    pub(crate) files: Vec<PathBuf>,
 }
 
 /// What the scene asks of one mesh.
@@ -121,24 +129,9 @@ fn kind(path: &Path) -> Option<Kind> {
     }
 }
 
-/// Reads a file whole, refusing anything but a regular file of sane size.
+/// Reads a file whole, refusing anything but a regular file within `MESH_CAP`.
 pub(crate) fn read_file(path: &Path, what: &str) -> Result<Vec<u8>, String> {
-    let meta = std::fs::metadata(path)
-        .map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
-    if !meta.is_file() {
-        return Err(format!(
-            "cannot read {what} {}: not a regular file",
-            path.display()
-        ));
-    }
-    if meta.len() > MAX_MESH_BYTES {
-        return Err(format!(
-            "{what} {} is {} bytes: at most {MAX_MESH_BYTES} are read",
-            path.display(),
-            meta.len()
-        ));
-    }
-    std::fs::read(path).map_err(|e| format!("cannot read {what} {}: {e}", path.display()))
+    input_file::read(path, what, MESH_CAP).map_err(|e| e.to_string())
 }
 
 /// Reads and places one mesh.
@@ -180,8 +173,11 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
     let scale = request.placement.scale;
     let translate = request.placement.translate;
     let to_scene = |p: DVec3| rotation * (p * scale) + translate;
+    let mut files = vec![path.to_owned()];
+    files.extend(loaded.libraries);
     let mut placed = Placed {
         warnings: loaded.warnings,
+        files,
         ..Placed::default()
     };
     // The MTL's materials, then (when some triangle has none) the default.

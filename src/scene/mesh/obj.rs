@@ -19,8 +19,10 @@ pub(super) fn load(path: &Path) -> Result<Loaded, SceneError> {
     let bytes = read_file(path, "mesh file").map_err(SceneError::plain)?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let missing = std::cell::RefCell::new(Vec::new());
+    let libraries = std::cell::RefCell::new(Vec::new());
     let loader = |mtl: &Path| -> tobj::MTLLoadResult {
         let full: PathBuf = dir.join(mtl);
+        libraries.borrow_mut().push(full.clone());
         // Read only as MTL: whatever the path names, its bytes go to the
         // MTL parser and nowhere else, and nothing is written.
         match read_file(&full, "MTL file") {
@@ -36,6 +38,7 @@ pub(super) fn load(path: &Path) -> Result<Loaded, SceneError> {
         }
     };
     let mut loaded = parse(path, &bytes, &loader)?;
+    loaded.libraries = libraries.into_inner();
     let missing = missing.into_inner();
     if !missing.is_empty() {
         // The missing file says it already: every `usemtl` falls back.

@@ -279,6 +279,7 @@ impl App {
             | Action::FitDiagram
             | Action::Resize(..) => self.screen.update(action),
         }
+        self.collect_reload();
         self.collect_renders();
         self.collect_find();
     }
@@ -364,14 +365,24 @@ impl App {
         self.request_render();
     }
 
-    /// Reloads the scene file; a broken file keeps the last good scene.
+    /// Reloads the scene file beside the keys (`Session::start_reload`).
     fn reload(&mut self) {
-        match self.session.reload() {
-            Some(settings) => {
+        self.session.start_reload(self.sync);
+        if !self.sync {
+            self.message = Some(format!("reloading {}…", self.session.source().name()));
+        }
+    }
+
+    /// Takes in the reloaded scene once it has come; a broken file keeps
+    /// the last good scene.
+    fn collect_reload(&mut self) {
+        match self.session.finished_reload() {
+            None => {}
+            Some(Some(settings)) => {
                 self.apply_settings(settings);
                 self.message = Some(format!("reloaded {}", self.session.source().name()));
             }
-            None => {
+            Some(None) => {
                 self.message =
                     Some("the scene file has an error: the last good scene stays".into());
             }

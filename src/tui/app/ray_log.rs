@@ -5,11 +5,10 @@
 //! whether it makes your rays and ours agree. `y` goes from logged pixel
 //! to logged pixel.
 
-use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 
 use crate::divergence::{
     LogComparison, OurRays, PixelReport, Tolerance, compare_log, compare_pixel,
@@ -43,7 +42,7 @@ impl RayLog {
         if path == Path::new("-") {
             bail!("the debugger reads its keys from stdin: give the ray log as a file, not -");
         }
-        let file = File::open(path).with_context(|| format!("cannot open the ray log {name}"))?;
+        let file = crate::input_file::open(path, "the ray log", crate::raylog::LOG_CAP)?;
         let reader = RaylogReader::new(name.clone(), BufReader::new(file), scene);
         let comparison = compare_log(scene, reader, Tolerance::default())?;
         Ok(RayLog::of(name, comparison))

@@ -1,11 +1,17 @@
 //! The scene being debugged: where it comes from, the last good file's
 //! scene, the settings traced (the file's, with the user's toggles), the
-//! file's watcher and why the last reload failed.
+//! file's watcher, a reload under way and why the last one failed.
+//!
+//! A reload reads and parses the file on a thread of its own and sends the
+//! scene back: the keys are answered meanwhile, however slow the file
+//! system (or whatever was put in the file's place), and `q` quits without
+//! waiting for it.
 
 use std::sync::Arc;
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
-use crate::scene::{Scene, Settings, SpecularModel};
+use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::tui::action::Action;
 use crate::tui::source::{FileWatcher, SceneSource, merge_settings};
 
@@ -23,6 +29,8 @@ pub struct Session {
     settings: Settings,
     watcher: Option<FileWatcher>,
     reload_due: Option<Instant>,
+    /// The reload under way: its scene (or error) comes back here.
+    loading: Option<Receiver<Result<Scene, SceneError>>>,
     /// The banner: why the last reload failed.
     error: Option<String>,
 }
@@ -35,6 +43,7 @@ impl Session {
             scene: Arc::new(scene),
             watcher: None,
             reload_due: None,
+            loading: None,
             error: None,
         }
     }
@@ -68,16 +77,51 @@ impl Session {
         false
     }
 
-    /// Whether a reload waits for the file to be quiet.
+    /// Whether a reload waits for the file to be quiet, or is under way.
     pub(crate) fn reload_waits(&self) -> bool {
-        self.reload_due.is_some()
+        self.reload_due.is_some() || self.loading.is_some()
     }
 
-    /// Loads the file again and gives the settings to trace it with
-    /// (`merge_settings`'); `None` for a broken file, whose error the
-    /// banner shows while the last good scene stays.
-    pub(super) fn reload(&mut self) -> Option<Settings> {
-        match self.source.load() {
+    /// Starts loading the file again, beside the caller (with `sync`, on
+    /// the caller's thread: tests). A reload under way is forgotten: the
+    /// newer one tells what the file holds now.
+    pub(super) fn start_reload(&mut self, sync: bool) {
+        self.start_reload_with(SceneSource::load, sync);
+    }
+
+    /// `start_reload`, with `load` reading the file.
+    fn start_reload_with(
+        &mut self,
+        load: impl FnOnce(&SceneSource) -> Result<Scene, SceneError> + Send + 'static,
+        sync: bool,
+    ) {
+        let (send, receive) = channel();
+        let source = self.source.clone();
+        let job = move || {
+            // The app may have quit, or started a newer reload: no one listens.
+            let _ = send.send(load(&source));
+        };
+        if sync {
+            job();
+        } else if let Err(e) = std::thread::Builder::new().name("reload".into()).spawn(job) {
+            self.error = Some(format!("cannot reload: {e}"));
+            return;
+        }
+        self.loading = Some(receive);
+    }
+
+    /// The reload that has ended since the last call, if one has: the
+    /// settings to trace the new scene with (`merge_settings`'), or `None`
+    /// for a broken file, whose error the banner shows while the last good
+    /// scene stays.
+    pub(super) fn finished_reload(&mut self) -> Option<Option<Settings>> {
+        let loaded = match self.loading.as_ref()?.try_recv() {
+            Err(TryRecvError::Empty) => return None,
+            Err(TryRecvError::Disconnected) => Err("the reload ended without a scene".into()),
+            Ok(loaded) => loaded.map_err(|e| e.to_string()),
+        };
+        self.loading = None;
+        Some(match loaded {
             Ok(file_scene) => {
                 let settings =
                     merge_settings(&self.scene.settings, &file_scene.settings, &self.settings);
@@ -86,10 +130,10 @@ impl Session {
                 Some(settings)
             }
             Err(error) => {
-                self.error = Some(error.to_string());
+                self.error = Some(error);
                 None
             }
-        }
+        })
     }
 
     /// For a teaching toggle (`Toggle`, `ToggleSpecular`, `Depth`,
@@ -162,5 +206,67 @@ impl Session {
     /// The banner: why the last reload failed.
     pub fn error(&self) -> Option<&str> {
         self.error.as_deref()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The built-in scene's session.
+    fn session() -> Session {
+        let source = SceneSource {
+            path: None,
+            size: None,
+        };
+        let scene = source.load().unwrap();
+        Session::new(source, scene)
+    }
+
+    #[test]
+    fn a_reload_that_hangs_holds_nothing_up() {
+        let mut session = session();
+        let (release, held) = channel::<()>();
+        let started = Instant::now();
+        // A file system that does not answer until released.
+        session.start_reload_with(
+            move |source| {
+                let _ = held.recv();
+                source.load()
+            },
+            false,
+        );
+        for _ in 0..10 {
+            assert!(session.finished_reload().is_none());
+        }
+        assert!(session.reload_waits(), "the loop keeps polling");
+        assert!(started.elapsed() < Duration::from_millis(100));
+        release.send(()).unwrap();
+        let deadline = Instant::now() + Duration::from_secs(10);
+        let finished = loop {
+            if let Some(finished) = session.finished_reload() {
+                break finished;
+            }
+            assert!(Instant::now() < deadline, "the reload ends once released");
+            std::thread::sleep(Duration::from_millis(5));
+        };
+        assert!(finished.is_some(), "the scene came back");
+        assert!(!session.reload_waits());
+    }
+
+    #[test]
+    fn a_newer_reload_replaces_one_under_way() {
+        let mut session = session();
+        let (_never, held) = channel::<()>();
+        session.start_reload_with(
+            move |source| {
+                let _ = held.recv();
+                source.load()
+            },
+            false,
+        );
+        session.start_reload_with(|_| Err(SceneError::plain("the newer file is broken")), true);
+        assert_eq!(session.finished_reload(), Some(None));
+        assert_eq!(session.error(), Some("the newer file is broken"));
     }
 }
