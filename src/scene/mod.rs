@@ -157,6 +157,35 @@ pub struct Scene {
     pub warnings: Vec<String>,
 }
 
+/// A scene as read from its file, before its acceleration structure is
+/// built: `load` frees the file's text first, so that text and structure
+/// are never in memory together (the text of a big mesh is about 90 bytes a
+/// triangle).
+pub(crate) struct SceneParts {
+    pub(crate) camera: Camera,
+    pub(crate) size: (u32, u32),
+    pub(crate) settings: Settings,
+    pub(crate) materials: Vec<Material>,
+    pub(crate) lights: Vec<Light>,
+    pub(crate) objects: Vec<Object>,
+    pub(crate) warnings: Vec<String>,
+}
+
+impl SceneParts {
+    pub(crate) fn build(self) -> Scene {
+        let mut scene = Scene::new(
+            self.camera,
+            self.size,
+            self.settings,
+            self.materials,
+            self.lights,
+            self.objects,
+        );
+        scene.warnings = self.warnings;
+        scene
+    }
+}
+
 impl Scene {
     /// The scene of a file's parts, with its acceleration structure built.
     pub(crate) fn new(
@@ -203,7 +232,8 @@ impl Scene {
     /// `object`'s geometric normal N_g at `point` (MODEL §3).
     #[inline]
     pub(crate) fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {
-        self.tables.geometric_normal(&self.objects, object, point)
+        self.tables
+            .geometric_normal(&self.objects, &self.accel, object, point)
     }
 }
 
@@ -213,10 +243,13 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     if mesh::is_mesh_file(path) {
         return mesh::alone::scene(path);
     }
-    let bytes = std::fs::read(path)
-        .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
-    let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;
-    parse(path, &text)
+    let parts = {
+        let bytes = std::fs::read(path)
+            .map_err(|e| SceneError::plain(format!("cannot read {}: {e}", path.display())))?;
+        let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;
+        parse_parts(path, &text)?
+    };
+    Ok(parts.build())
 }
 
 /// Where a file stops being UTF-8 text: the first bad byte's line and column,
@@ -246,6 +279,11 @@ fn invalid_utf8(path: &Path, bytes: &[u8]) -> SceneError {
 
 /// Parses scene text; `path` names it in messages and picks the format.
 pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+    parse_parts(path, text).map(SceneParts::build)
+}
+
+/// `parse` without building the acceleration structure.
+fn parse_parts(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
     let is_nff = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("nff"));

@@ -45,7 +45,7 @@ use toml::Spanned;
 
 use super::toml_sections;
 use super::{
-    Light, MAX_RAYS_LIMIT, Material, Object, Scene, SceneError, Settings, SpecularModel,
+    Light, MAX_RAYS_LIMIT, Material, Object, SceneError, SceneParts, Settings, SpecularModel,
     check_camera, check_image_size,
 };
 use crate::camera::Camera;
@@ -351,7 +351,7 @@ fn read_file(source: &Source) -> Result<(FileDef, ObjectDefs), SceneError> {
     Ok((file, ObjectDefs::Read(objects)))
 }
 
-pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+pub(crate) fn parse(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
     let source = Source {
         path,
         text,
@@ -398,16 +398,15 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
         }
     };
     lights.extend(meshes.lights);
-    let mut scene = Scene::new(
+    Ok(SceneParts {
         camera,
-        (width, height),
+        size: (width, height),
         settings,
         materials,
         lights,
         objects,
-    );
-    scene.warnings = meshes.warnings;
-    Ok(scene)
+        warnings: meshes.warnings,
+    })
 }
 
 /// What the scene's meshes add besides objects and materials.

@@ -1,7 +1,8 @@
 use super::*;
+use crate::scene::Scene;
 
 fn parse_str(text: &str) -> Result<Scene, SceneError> {
-    parse(Path::new("t.nff"), text)
+    parse(Path::new("t.nff"), text).map(SceneParts::build)
 }
 
 /// The (line, column) and message of the error `text` gives.
