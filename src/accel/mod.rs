@@ -42,6 +42,7 @@ use std::fmt;
 use std::ops::ControlFlow;
 
 use arrayvec::ArrayVec;
+use glam::DVec3;
 use serde::Serialize;
 
 use crate::math::{Interval, Ray};
@@ -107,6 +108,14 @@ impl Accel {
             shapes,
             positions,
         }
+    }
+
+    /// `objects[object].shape.geometric_normal(point)` from the object's
+    /// leaf record, when that is a triangle's test or a sphere; else `None`.
+    #[inline]
+    pub(crate) fn leaf_normal(&self, object: usize, point: DVec3) -> Option<DVec3> {
+        let position = *self.positions.get(object)?;
+        self.shapes.get(position as usize)?.normal_at(point)
     }
 
     /// The nearest hit in `range`; on equal distances the first object in file order.
