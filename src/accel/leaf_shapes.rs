@@ -199,7 +199,7 @@ mod tests {
         let objects: Vec<Object> = shapes
             .into_iter()
             .map(|shape| Object {
-                name: String::new(),
+                name: "".into(),
                 shape,
                 material: 0,
             })

@@ -491,7 +491,7 @@ mod tests {
 
     fn sphere(center: DVec3, radius: f64) -> Object {
         Object {
-            name: String::new(),
+            name: "".into(),
             shape: Shape::Sphere(Sphere::new(center, radius).unwrap()),
             material: 0,
         }
@@ -603,7 +603,7 @@ mod tests {
             })
             .collect();
         objects.push(Object {
-            name: String::new(),
+            name: "".into(),
             shape: Shape::Plane(Plane::new(DVec3::Y, DVec3::ZERO).unwrap()),
             material: 0,
         });
@@ -666,7 +666,7 @@ mod tests {
         let objects = vec![
             sphere(DVec3::ZERO, 1.0),
             Object {
-                name: String::new(),
+                name: "".into(),
                 shape: Shape::Plane(Plane::new(DVec3::Z, DVec3::ZERO).unwrap()),
                 material: 0,
             },

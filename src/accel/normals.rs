@@ -69,22 +69,18 @@ impl NormalRecipe {
             Shape::Cone(_) => NormalRecipe::FromShape,
         }
     }
+}
 
-    /// `Shape::geometric_normal(point)` of the shape this recipe was made
-    /// of, given the table of flat normals, or `None` when it must be asked
-    /// of the leaf record (`FromLeaf`) or of the shape (`FromShape`).
+impl SmoothTriangle {
+    /// `Patch::normal_at(point)` of the patch this was made of.
     #[inline]
-    pub(crate) fn normal_at(&self, flats: &[DVec3], point: DVec3) -> Option<DVec3> {
-        match self {
-            NormalRecipe::Flat(index) => Some(flats[*index as usize]),
-            NormalRecipe::SmoothTriangle(t) => Some(blended_normal(
-                &t.projected,
-                t.dropped,
-                &t.normals,
-                t.flat,
-                point,
-            )),
-            NormalRecipe::FromLeaf | NormalRecipe::FromShape => None,
-        }
+    pub(crate) fn normal_at(&self, point: DVec3) -> DVec3 {
+        blended_normal(
+            &self.projected,
+            self.dropped,
+            &self.normals,
+            self.flat,
+            point,
+        )
     }
 }

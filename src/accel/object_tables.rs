@@ -51,14 +51,13 @@ impl ObjectTables {
         object: usize,
         point: DVec3,
     ) -> DVec3 {
-        let recipe = &self.normals[object];
-        recipe
-            .normal_at(&self.flats, point)
-            .or_else(|| match recipe {
-                NormalRecipe::FromLeaf => accel.leaf_normal(object, point),
-                _ => None,
-            })
-            .unwrap_or_else(|| objects[object].shape.geometric_normal(point))
+        let from_shape = || objects[object].shape.geometric_normal(point);
+        match &self.normals[object] {
+            NormalRecipe::FromLeaf => accel.leaf_normal(object, point).unwrap_or_else(from_shape),
+            NormalRecipe::Flat(index) => self.flats[*index as usize],
+            NormalRecipe::SmoothTriangle(triangle) => triangle.normal_at(point),
+            NormalRecipe::FromShape => from_shape(),
+        }
     }
 }
 
@@ -92,7 +91,7 @@ mod tests {
         let objects: Vec<Object> = shapes
             .iter()
             .map(|shape| Object {
-                name: String::new(),
+                name: "".into(),
                 shape: shape.clone(),
                 material: 0,
             })

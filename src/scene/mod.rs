@@ -11,6 +11,7 @@ mod switches;
 pub(crate) mod toml_format;
 mod toml_sections;
 
+use std::borrow::Cow;
 use std::path::Path;
 
 use glam::DVec3;
@@ -25,7 +26,7 @@ use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::exceeds;
 use crate::mistakes::Mistakes;
-pub use crate::object::Object;
+pub use crate::object::{Object, ObjectName};
 
 /// The largest image side accepted; beyond it a render would take minutes and
 /// gigabytes, which is never what a teaching scene wants.
@@ -225,8 +226,10 @@ impl Scene {
     }
 
     /// An object's name for messages, "?" for an index the scene lacks.
-    pub(crate) fn object_name(&self, object: usize) -> &str {
-        self.objects.get(object).map_or("?", |o| o.name.as_str())
+    pub(crate) fn object_name(&self, object: usize) -> Cow<'_, str> {
+        self.objects
+            .get(object)
+            .map_or(Cow::Borrowed("?"), |o| o.name.text())
     }
 
     /// `object`'s geometric normal N_g at `point` (MODEL §3).

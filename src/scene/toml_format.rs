@@ -45,8 +45,8 @@ use toml::Spanned;
 
 use super::toml_sections;
 use super::{
-    Light, MAX_RAYS_LIMIT, Material, Object, SceneError, SceneParts, Settings, SpecularModel,
-    check_camera, check_image_size,
+    Light, MAX_RAYS_LIMIT, Material, Object, ObjectName, SceneError, SceneParts, Settings,
+    SpecularModel, check_camera, check_image_size,
 };
 use crate::camera::Camera;
 use crate::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
@@ -447,7 +447,7 @@ fn objects<'a>(
         let object = object(&source, objects.len(), &def, materials)?;
         let used = |name: &str| is_default_name(&objects, name);
         if let Some(name) = &def.get_ref().name
-            && (!given_names.insert(object.name.clone()) || used(&object.name))
+            && (!given_names.insert(object.name.to_string()) || used(&object.name.text()))
         {
             return Err(source.error(
                 name.span(),
@@ -656,9 +656,12 @@ fn object(
         )
     })?;
     let shape = shape.map_err(|e| source.error(span, e))?;
-    let name = o.name.as_ref().map_or_else(
-        || format!("{} {index}", shape.kind()),
-        |n| n.get_ref().clone(),
+    let name = o.name.as_ref().map_or(
+        ObjectName::Numbered {
+            kind: shape.kind(),
+            index,
+        },
+        |n| n.get_ref().as_str().into(),
     );
     Ok(Object {
         name,

@@ -262,7 +262,7 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
             let _ = write!(name, " (material {m})");
         }
         placed.objects.push(Object {
-            name: name.clone(),
+            name: name.as_str().into(),
             shape,
             material,
         });

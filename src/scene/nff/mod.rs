@@ -18,7 +18,8 @@ use glam::DVec3;
 
 use super::limits::{COLOR, COORDINATE, SIZE, check_cone_length};
 use super::{
-    Light, Material, Object, SceneError, SceneParts, Settings, check_camera, check_image_size,
+    Light, Material, Object, ObjectName, SceneError, SceneParts, Settings, check_camera,
+    check_image_size,
 };
 use crate::camera::Camera;
 use crate::math::Color;
@@ -213,7 +214,10 @@ impl Builder {
             }),
         };
         self.objects.push(Object {
-            name: format!("{} {index}", shape.kind()),
+            name: ObjectName::Numbered {
+                kind: shape.kind(),
+                index,
+            },
             shape,
             material,
         });

@@ -104,7 +104,7 @@ pp 3
     let objects: Vec<_> = scene
         .objects
         .iter()
-        .map(|o| (o.name.as_str(), o.material))
+        .map(|o| (o.name.to_string(), o.material))
         .collect();
     assert_eq!(
         objects,
@@ -115,6 +115,7 @@ pp 3
             ("polygon 3", 1),
             ("patch 4", 2)
         ]
+        .map(|(name, material)| (name.to_string(), material))
     );
     // Negative radius: its absolute value.
     let Shape::Sphere(sphere) = &scene.objects[0].shape else {
