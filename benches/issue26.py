@@ -36,7 +36,10 @@ HEADER = ("b 0.078 0.361 0.753\nv\nfrom 1.02285 -3.17715 -2.17451\nat -0.004103 
           "l 2 -18 -5\nf 1 0.2 0.2 1 0 100000 0 0\n")
 
 
-def timings(binary, scene, threads, size=None, out="/dev/null"):
+OUT = os.path.join(tempfile.gettempdir(), f"issue26-{os.getpid()}.png")
+
+
+def timings(binary, scene, threads, size=None, out=OUT):
     command = [binary, "render", scene, "-o", out, "--threads", str(threads), "--timings"]
     if size:
         command += ["--size", size]
