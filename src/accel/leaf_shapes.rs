@@ -5,7 +5,7 @@
 //! numbers, so the answers are the same to the bit. Many-sided polygons are
 //! tested through their object, with their edges sorted into bands.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 use super::edge_bands::EdgeBands;
 use crate::math::{Interval, Ray};
@@ -37,6 +37,18 @@ impl LeafShape {
         }
         EdgeBands::new(polygon.projected())
             .map_or(LeafShape::Other, |bands| LeafShape::Banded(Box::new(bands)))
+    }
+
+    /// `Shape::geometric_normal(point)` of the triangle or sphere whose
+    /// record this is (the same numbers, so the same bits); `None` for the
+    /// others.
+    #[inline]
+    pub(crate) fn normal_at(&self, point: DVec3) -> Option<DVec3> {
+        match self {
+            LeafShape::Triangle(triangle) => Some(triangle.plane.normal),
+            LeafShape::Sphere(sphere) => Some(sphere.normal_at(point)),
+            LeafShape::Banded(_) | LeafShape::Other => None,
+        }
     }
 
     /// `Shape::intersect` of `objects[object]`, whose record this is.
@@ -187,7 +199,7 @@ mod tests {
         let objects: Vec<Object> = shapes
             .into_iter()
             .map(|shape| Object {
-                name: String::new(),
+                name: "".into(),
                 shape,
                 material: 0,
             })

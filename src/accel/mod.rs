@@ -42,6 +42,7 @@ use std::fmt;
 use std::ops::ControlFlow;
 
 use arrayvec::ArrayVec;
+use glam::DVec3;
 use serde::Serialize;
 
 use crate::math::{Interval, Ray};
@@ -107,6 +108,14 @@ impl Accel {
             shapes,
             positions,
         }
+    }
+
+    /// `objects[object].shape.geometric_normal(point)` from the object's
+    /// leaf record, when that is a triangle's test or a sphere; else `None`.
+    #[inline]
+    pub(crate) fn leaf_normal(&self, object: usize, point: DVec3) -> Option<DVec3> {
+        let position = *self.positions.get(object)?;
+        self.shapes.get(position as usize)?.normal_at(point)
     }
 
     /// The nearest hit in `range`; on equal distances the first object in file order.
@@ -482,7 +491,7 @@ mod tests {
 
     fn sphere(center: DVec3, radius: f64) -> Object {
         Object {
-            name: String::new(),
+            name: "".into(),
             shape: Shape::Sphere(Sphere::new(center, radius).unwrap()),
             material: 0,
         }
@@ -594,7 +603,7 @@ mod tests {
             })
             .collect();
         objects.push(Object {
-            name: String::new(),
+            name: "".into(),
             shape: Shape::Plane(Plane::new(DVec3::Y, DVec3::ZERO).unwrap()),
             material: 0,
         });
@@ -657,7 +666,7 @@ mod tests {
         let objects = vec![
             sphere(DVec3::ZERO, 1.0),
             Object {
-                name: String::new(),
+                name: "".into(),
                 shape: Shape::Plane(Plane::new(DVec3::Z, DVec3::ZERO).unwrap()),
                 material: 0,
             },

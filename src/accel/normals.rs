@@ -2,20 +2,26 @@
 //!
 //! The tracer asks for the normal at every hit. The objects themselves are
 //! spread over more memory than a core's cache holds (about 1.4 MB for an
-//! SPD scene: each object is 152 bytes, and a patch's vertices and normals
-//! lie elsewhere on the heap), so reading them missed the cache at most
-//! hits. The recipes of all objects sit side by side, 40 bytes each, and give
-//! the same normal to the bit, computed by the same code.
+//! SPD scene: each object is 144 bytes, and a polygon's vertices lie
+//! elsewhere on the heap), so reading them missed the cache at most hits.
+//! The recipes of all objects sit side by side, 8 bytes each, and give the
+//! same normal to the bit, computed by the same code. A triangle's or a
+//! sphere's recipe is its leaf record in the hierarchy, which its hit has
+//! just read (a recipe of its own was 40 bytes a triangle, a tenth of a
+//! mesh's memory); other flat shapes' normals sit in a table of their own.
 
 use glam::{DVec2, DVec3};
 
-use crate::shapes::{Axis, Shape, Sphere, blended_normal};
+use crate::shapes::{Axis, Shape, blended_normal};
 
 #[derive(Clone, Debug)]
 pub(crate) enum NormalRecipe {
-    /// Planes and polygons: the same normal everywhere.
-    Flat(DVec3),
-    Sphere(Sphere),
+    /// Triangles and spheres: the hierarchy's leaf record of the object
+    /// holds what the normal is computed from (`Accel::leaf_normal`).
+    FromLeaf,
+    /// Planes and other polygons: the same normal everywhere, at this index
+    /// of the table of flat normals.
+    Flat(u32),
     /// A patch of three vertices (the SPD's smooth triangles).
     SmoothTriangle(Box<SmoothTriangle>),
     /// Anything else is computed from the shape itself.
@@ -32,11 +38,20 @@ pub(crate) struct SmoothTriangle {
 }
 
 impl NormalRecipe {
-    pub(crate) fn of(shape: &Shape) -> NormalRecipe {
+    /// The recipe of `shape`; a flat normal goes to the end of `flats`.
+    pub(crate) fn of(shape: &Shape, flats: &mut Vec<DVec3>) -> NormalRecipe {
+        let mut flat = |normal: DVec3| {
+            flats.push(normal);
+            NormalRecipe::Flat(
+                u32::try_from(flats.len() - 1).expect("fewer objects than a u32 counts"),
+            )
+        };
         match shape {
-            Shape::Plane(p) => NormalRecipe::Flat(p.normal),
-            Shape::Polygon(p) => NormalRecipe::Flat(p.plane.normal),
-            Shape::Sphere(s) => NormalRecipe::Sphere(s.clone()),
+            Shape::Plane(p) => flat(p.normal),
+            // The leaf record of a polygon of three vertices is its triangle test.
+            Shape::Polygon(p) if p.projected().len() == 3 => NormalRecipe::FromLeaf,
+            Shape::Polygon(p) => flat(p.plane.normal),
+            Shape::Sphere(_) => NormalRecipe::FromLeaf,
             Shape::Patch(p) => {
                 let (Ok(projected), Ok(normals)) = (
                     <[DVec2; 3]>::try_from(p.polygon.projected()),
@@ -54,91 +69,18 @@ impl NormalRecipe {
             Shape::Cone(_) => NormalRecipe::FromShape,
         }
     }
-
-    /// `Shape::geometric_normal(point)` of the shape this recipe was made
-    /// of, or `None` when it must be asked of the shape (`FromShape`).
-    #[inline]
-    pub(crate) fn normal_at(&self, point: DVec3) -> Option<DVec3> {
-        match self {
-            NormalRecipe::Flat(normal) => Some(*normal),
-            NormalRecipe::Sphere(s) => Some(s.normal_at(point)),
-            NormalRecipe::SmoothTriangle(t) => Some(blended_normal(
-                &t.projected,
-                t.dropped,
-                &t.normals,
-                t.flat,
-                point,
-            )),
-            NormalRecipe::FromShape => None,
-        }
-    }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::shapes::{Cone, Patch, Plane, Polygon};
-
-    #[test]
-    fn each_recipe_gives_its_shapes_normal_to_the_bit() {
-        let triangle = vec![
-            DVec3::new(0.1, -0.2, 0.3),
-            DVec3::new(1.3, 0.2, -0.1),
-            DVec3::new(0.2, 0.9, 0.6),
-        ];
-        let normals = vec![
-            DVec3::new(0.2, 0.1, 1.0),
-            DVec3::new(-0.3, 0.4, 0.8),
-            DVec3::new(0.1, -0.5, 0.9),
-        ];
-        let square = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
-        let shapes = [
-            Shape::Sphere(Sphere::new(DVec3::new(0.2, -0.1, 0.3), 0.7).unwrap()),
-            Shape::Plane(Plane::new(DVec3::new(0.3, 1.0, 0.2), DVec3::ZERO).unwrap()),
-            Shape::Polygon(Polygon::new(triangle.clone()).unwrap()),
-            Shape::Patch(Patch::new(triangle.clone(), normals).unwrap()),
-            Shape::Patch(Patch::new(square.clone(), vec![DVec3::Z; 4]).unwrap()),
-            Shape::Cone(Cone::new(DVec3::ZERO, 0.5, DVec3::Z, 0.2).unwrap()),
-        ];
-        let kinds: Vec<&str> = shapes
-            .iter()
-            .map(|shape| match NormalRecipe::of(shape) {
-                NormalRecipe::Flat(_) => "flat",
-                NormalRecipe::Sphere(_) => "sphere",
-                NormalRecipe::SmoothTriangle(_) => "smooth triangle",
-                NormalRecipe::FromShape => "from shape",
-            })
-            .collect();
-        assert_eq!(
-            kinds,
-            [
-                "sphere",
-                "flat",
-                "flat",
-                "smooth triangle",
-                "from shape",
-                "from shape"
-            ]
-        );
-        // Points on and off the triangle (its vertices, edges, inside and
-        // outside, where the patch takes the nearest fan triangle).
-        let mut compared = 0;
-        for shape in &shapes {
-            let recipe = NormalRecipe::of(shape);
-            for i in 0..=12 {
-                for j in 0..=12 {
-                    let (u, v) = (f64::from(i) / 8.0 - 0.25, f64::from(j) / 8.0 - 0.25);
-                    let point = triangle[0]
-                        + u * (triangle[1] - triangle[0])
-                        + v * (triangle[2] - triangle[0]);
-                    let expected = shape.geometric_normal(point);
-                    let got = recipe.normal_at(point).unwrap_or(expected);
-                    let bits = |n: DVec3| n.to_array().map(f64::to_bits);
-                    assert_eq!(bits(got), bits(expected), "{shape:?} at {point}");
-                    compared += 1;
-                }
-            }
-        }
-        assert_eq!(compared, 6 * 13 * 13);
+impl SmoothTriangle {
+    /// `Patch::normal_at(point)` of the patch this was made of.
+    #[inline]
+    pub(crate) fn normal_at(&self, point: DVec3) -> DVec3 {
+        blended_normal(
+            &self.projected,
+            self.dropped,
+            &self.normals,
+            self.flat,
+            point,
+        )
     }
 }

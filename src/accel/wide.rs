@@ -293,7 +293,7 @@ mod tests {
                     Shape::Polygon(Polygon::new(vec![at, at + a, at + b]).unwrap())
                 };
                 Object {
-                    name: String::new(),
+                    name: "".into(),
                     shape,
                     material: 0,
                 }

@@ -238,7 +238,7 @@ impl Diagram {
                 let o = scene.objects.get(object)?;
                 Some(ObjectOutline {
                     object,
-                    name: o.name.clone(),
+                    name: o.name.to_string(),
                     role,
                     shapes: outline(&o.shape, &projection),
                     hits: (diagram.hits.iter())
@@ -347,7 +347,7 @@ impl Diagram {
             };
             labels.push(Label {
                 named: Named::Object(object.object),
-                text: object.name.clone(),
+                text: object.name.to_string(),
                 anchor: Anchor::Outline {
                     outline,
                     hits: &object.hits,

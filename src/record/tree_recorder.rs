@@ -143,7 +143,7 @@ impl Recorder for TreeRecorder<'_> {
         node.near_misses = near_misses(scene, &ray, hit.t);
         let working = object.shape.working(&ray, Interval::in_front());
         node.hit = Some(HitRecord {
-            object: object.name.clone(),
+            object: object.name.to_string(),
             object_index: hit.object,
             kind: object.shape.kind(),
             material: material.name.clone(),
@@ -217,7 +217,7 @@ impl Recorder for TreeRecorder<'_> {
                             .shape
                             .working(&ray, Interval::in_front());
                         BlockerRecord {
-                            object: scene.objects[b.object].name.clone(),
+                            object: scene.objects[b.object].name.to_string(),
                             object_index: b.object,
                             t: b.t,
                             kt: b.kt,
@@ -345,7 +345,7 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
             continue;
         };
         found.push(NearMiss {
-            object: object.name.clone(),
+            object: object.name.to_string(),
             object_index: index,
             crossing_figure: crossing_figure(&object.shape, ray, &working),
             closest_approach: match &object.shape {

@@ -11,6 +11,7 @@ mod switches;
 pub(crate) mod toml_format;
 mod toml_sections;
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -26,7 +27,7 @@ use crate::input_file::{self, Cap};
 use crate::math::Color;
 use crate::math::exceeds;
 use crate::mistakes::Mistakes;
-pub use crate::object::Object;
+pub use crate::object::{Object, ObjectName};
 
 /// The largest image side accepted; beyond it a render would take minutes and
 /// gigabytes, which is never what a teaching scene wants.
@@ -170,6 +171,38 @@ pub struct Scene {
     pub(crate) files: Vec<PathBuf>,
 }
 
+/// A scene as read from its file, before its acceleration structure is
+/// built: `load` frees the file's text first, so that text and structure
+/// are never in memory together (the text of a big mesh is about 90 bytes a
+/// triangle).
+pub(crate) struct SceneParts {
+    pub(crate) camera: Camera,
+    pub(crate) size: (u32, u32),
+    pub(crate) settings: Settings,
+    pub(crate) materials: Vec<Material>,
+    pub(crate) lights: Vec<Light>,
+    pub(crate) objects: Vec<Object>,
+    pub(crate) warnings: Vec<String>,
+    /// `Scene::files`.
+    pub(crate) files: Vec<PathBuf>,
+}
+
+impl SceneParts {
+    pub(crate) fn build(self) -> Scene {
+        let mut scene = Scene::new(
+            self.camera,
+            self.size,
+            self.settings,
+            self.materials,
+            self.lights,
+            self.objects,
+        );
+        scene.warnings = self.warnings;
+        scene.files = self.files;
+        scene
+    }
+}
+
 impl Scene {
     /// The scene of a file's parts, with its acceleration structure built.
     pub(crate) fn new(
@@ -210,14 +243,17 @@ impl Scene {
     }
 
     /// An object's name for messages, "?" for an index the scene lacks.
-    pub(crate) fn object_name(&self, object: usize) -> &str {
-        self.objects.get(object).map_or("?", |o| o.name.as_str())
+    pub(crate) fn object_name(&self, object: usize) -> Cow<'_, str> {
+        self.objects
+            .get(object)
+            .map_or(Cow::Borrowed("?"), |o| o.name.text())
     }
 
     /// `object`'s geometric normal N_g at `point` (MODEL §3).
     #[inline]
     pub(crate) fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {
-        self.tables.geometric_normal(&self.objects, object, point)
+        self.tables
+            .geometric_normal(&self.objects, &self.accel, object, point)
     }
 }
 
@@ -228,12 +264,14 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         // Its files are the mesh's: the mesh itself first.
         return mesh::alone::scene(path);
     }
-    let bytes =
-        input_file::read(path, "", SCENE_CAP).map_err(|e| SceneError::plain(e.to_string()))?;
-    let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;
-    let mut scene = parse(path, &text)?;
-    scene.files.insert(0, path.to_owned());
-    Ok(scene)
+    let mut parts = {
+        let bytes =
+            input_file::read(path, "", SCENE_CAP).map_err(|e| SceneError::plain(e.to_string()))?;
+        let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;
+        parse_parts(path, &text)?
+    };
+    parts.files.insert(0, path.to_owned());
+    Ok(parts.build())
 }
 
 /// Where a file stops being UTF-8 text: the first bad byte's line and column,
@@ -263,6 +301,11 @@ fn invalid_utf8(path: &Path, bytes: &[u8]) -> SceneError {
 
 /// Parses scene text; `path` names it in messages and picks the format.
 pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+    parse_parts(path, text).map(SceneParts::build)
+}
+
+/// `parse` without building the acceleration structure.
+fn parse_parts(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
     let is_nff = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("nff"));

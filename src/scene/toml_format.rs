@@ -45,8 +45,8 @@ use toml::Spanned;
 
 use super::toml_sections;
 use super::{
-    Light, MAX_RAYS_LIMIT, Material, Object, Scene, SceneError, Settings, SpecularModel,
-    check_camera, check_image_size,
+    Light, MAX_RAYS_LIMIT, Material, Object, ObjectName, SceneError, SceneParts, Settings,
+    SpecularModel, check_camera, check_image_size,
 };
 use crate::camera::Camera;
 use crate::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
@@ -351,7 +351,7 @@ fn read_file(source: &Source) -> Result<(FileDef, ObjectDefs), SceneError> {
     Ok((file, ObjectDefs::Read(objects)))
 }
 
-pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+pub(crate) fn parse(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
     let source = Source {
         path,
         text,
@@ -398,17 +398,16 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
         }
     };
     lights.extend(meshes.lights);
-    let mut scene = Scene::new(
+    Ok(SceneParts {
         camera,
-        (width, height),
+        size: (width, height),
         settings,
         materials,
         lights,
         objects,
-    );
-    scene.warnings = meshes.warnings;
-    scene.files = meshes.files;
-    Ok(scene)
+        warnings: meshes.warnings,
+        files: meshes.files,
+    })
 }
 
 /// What the scene's meshes add besides objects and materials.
@@ -461,7 +460,7 @@ fn objects<'a>(
         let object = object(&source, objects.len(), &def, materials)?;
         let used = |name: &str| is_default_name(&objects, name);
         if let Some(name) = &def.get_ref().name
-            && (!given_names.insert(object.name.clone()) || used(&object.name))
+            && (!given_names.insert(object.name.to_string()) || used(&object.name.text()))
         {
             return Err(source.error(
                 name.span(),
@@ -670,9 +669,12 @@ fn object(
         )
     })?;
     let shape = shape.map_err(|e| source.error(span, e))?;
-    let name = o.name.as_ref().map_or_else(
-        || format!("{} {index}", shape.kind()),
-        |n| n.get_ref().clone(),
+    let name = o.name.as_ref().map_or(
+        ObjectName::Numbered {
+            kind: shape.kind(),
+            index,
+        },
+        |n| n.get_ref().as_str().into(),
     );
     Ok(Object {
         name,

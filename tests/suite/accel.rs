@@ -58,7 +58,7 @@ impl Rng {
 
 fn object(shape: Shape) -> Object {
     Object {
-        name: String::new(),
+        name: "".into(),
         shape,
         material: 0,
     }

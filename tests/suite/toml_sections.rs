@@ -34,7 +34,7 @@ fn sections_read_the_scene_the_whole_file_describes() {
     let whole = parse(Path::new("whole.toml"), &whole).unwrap();
     assert_eq!(cut.objects, whole.objects);
     assert_eq!(cut.lights, whole.lights);
-    let names: Vec<&str> = cut.objects.iter().map(|o| o.name.as_str()).collect();
+    let names: Vec<String> = cut.objects.iter().map(|o| o.name.to_string()).collect();
     assert_eq!(names, ["first", "sphere 1"]);
     assert_eq!(
         cut.objects.iter().map(|o| o.material).collect::<Vec<_>>(),

@@ -265,7 +265,7 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
             let _ = write!(name, " (material {m})");
         }
         placed.objects.push(Object {
-            name: name.clone(),
+            name: name.as_str().into(),
             shape,
             material,
         });
@@ -298,11 +298,13 @@ impl Placed {
     /// Puts `prefix` before every name, so that a second unnamed copy of a
     /// mesh doesn't repeat the first one's names.
     pub(crate) fn prefix_names(&mut self, prefix: &str) {
+        for object in &mut self.objects {
+            object.name = format!("{prefix}{}", object.name).as_str().into();
+        }
         for name in self
-            .objects
+            .lights
             .iter_mut()
-            .map(|o| &mut o.name)
-            .chain(self.lights.iter_mut().map(|l| &mut l.name))
+            .map(|l| &mut l.name)
             .chain(self.groups.iter_mut())
         {
             name.insert_str(0, prefix);

@@ -17,7 +17,10 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::limits::{COLOR, COORDINATE, SIZE, check_cone_length};
-use super::{Light, Material, Object, Scene, SceneError, Settings, check_camera, check_image_size};
+use super::{
+    Light, Material, Object, ObjectName, SceneError, SceneParts, Settings, check_camera,
+    check_image_size,
+};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::shapes::{Cone, GeometryError, Patch, Polygon, Shape, Sphere};
@@ -31,7 +34,7 @@ const RGB: [&str; 3] = ["red", "green", "blue"];
 const MAX_PREALLOCATED_VERTICES: usize = 4096;
 
 /// Parses NFF text; `path` names it in messages.
-pub(crate) fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+pub(crate) fn parse(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
     let mut parser = Parser::new(path, text);
     let mut scene = Builder::default();
     while let Some(keyword) = parser.next() {
@@ -211,14 +214,17 @@ impl Builder {
             }),
         };
         self.objects.push(Object {
-            name: format!("{} {index}", shape.kind()),
+            name: ObjectName::Numbered {
+                kind: shape.kind(),
+                index,
+            },
             shape,
             material,
         });
         Ok(())
     }
 
-    fn finish(self, parser: &Parser) -> Result<Scene, SceneError> {
+    fn finish(self, parser: &Parser) -> Result<SceneParts, SceneError> {
         let Some(view) = self.view else {
             return Err(parser.error(
                 0..0,
@@ -271,13 +277,15 @@ impl Builder {
             min_weight: 0.0,
             ..Settings::default()
         };
-        Ok(Scene::new(
+        Ok(SceneParts {
             camera,
-            (width, height),
+            size: (width, height),
             settings,
-            self.materials,
+            materials: self.materials,
             lights,
-            self.objects,
-        ))
+            objects: self.objects,
+            warnings: Vec::new(),
+            files: Vec::new(),
+        })
     }
 }

@@ -1,7 +1,8 @@
 use super::*;
+use crate::scene::Scene;
 
 fn parse_str(text: &str) -> Result<Scene, SceneError> {
-    parse(Path::new("t.nff"), text)
+    parse(Path::new("t.nff"), text).map(SceneParts::build)
 }
 
 /// The (line, column) and message of the error `text` gives.
@@ -103,7 +104,7 @@ pp 3
     let objects: Vec<_> = scene
         .objects
         .iter()
-        .map(|o| (o.name.as_str(), o.material))
+        .map(|o| (o.name.to_string(), o.material))
         .collect();
     assert_eq!(
         objects,
@@ -114,6 +115,7 @@ pp 3
             ("polygon 3", 1),
             ("patch 4", 2)
         ]
+        .map(|(name, material)| (name.to_string(), material))
     );
     // Negative radius: its absolute value.
     let Shape::Sphere(sphere) = &scene.objects[0].shape else {
