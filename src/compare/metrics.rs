@@ -2,6 +2,7 @@
 //! NVIDIA's FLIP (through the `nv-flip` crate, as wgpu's tests use it), the
 //! share of pixels past a tolerance, and the worst pixel.
 
+use anyhow::{Result, anyhow};
 use image::{GrayImage, RgbImage};
 use serde::Serialize;
 
@@ -22,6 +23,9 @@ pub(crate) const MATCH_SHARE: f64 = 0.001;
 pub(crate) const MATCH_GAP: u8 = 32;
 /// At most this many pixels past `MATCH_GAP` are listed.
 const FAR_OFF_LISTED: usize = 8;
+/// What nv-flip's C++ allocates at most for each pixel compared, rounded
+/// up from heaptrack's peak (BENCHMARKS.md).
+const FLIP_BYTES_PER_PIXEL: u64 = 160;
 
 #[derive(Clone, Debug, Serialize)]
 pub(crate) struct Metrics {
@@ -73,8 +77,9 @@ pub(crate) fn over_tolerance(yours: &RgbImage, reference: &RgbImage) -> GrayImag
 }
 
 /// Measures `yours` against `reference` (same size); also gives FLIP's
-/// error map in its magma colours.
-pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbImage) {
+/// error map in its magma colours. An error when the memory FLIP needs
+/// cannot be had.
+pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> Result<(Metrics, RgbImage)> {
     let (width, height) = yours.dimensions();
     let pixels = (width as u64 * height as u64) as f64;
     let mut sum = 0u64;
@@ -102,7 +107,7 @@ pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbIm
             worst = Some((gap, x, y));
         }
     }
-    let (flip_mean, error_map) = flip(yours, reference);
+    let (flip_mean, error_map) = flip(yours, reference)?;
     let metrics = Metrics {
         mean_abs: sum as f64 / (3.0 * 255.0 * pixels),
         flip_mean,
@@ -112,12 +117,13 @@ pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbIm
         far_off_pixels,
         far_off,
     };
-    (metrics, error_map)
+    Ok((metrics, error_map))
 }
 
 /// FLIP's mean error and its error map in magma colours.
-fn flip(yours: &RgbImage, reference: &RgbImage) -> (f64, RgbImage) {
+fn flip(yours: &RgbImage, reference: &RgbImage) -> Result<(f64, RgbImage)> {
     let (width, height) = yours.dimensions();
+    flip_fits(width, height)?;
     let test = nv_flip::FlipImageRgb8::with_data(width, height, yours.as_raw());
     let refer = nv_flip::FlipImageRgb8::with_data(width, height, reference.as_raw());
     let errors = nv_flip::flip(refer, test, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
@@ -125,7 +131,24 @@ fn flip(yours: &RgbImage, reference: &RgbImage) -> (f64, RgbImage) {
     let colours = errors.apply_color_lut(&nv_flip::magma_lut());
     let map = RgbImage::from_raw(width, height, colours.to_vec())
         .expect("FLIP's map has the images' size");
-    (mean, map)
+    Ok((mean, map))
+}
+
+/// Reserves what FLIP will take and gives it back at once: running out of
+/// memory (under a limit such as `ulimit -v`) is then this error, never an
+/// abort inside C++, which Rust cannot catch.
+fn flip_fits(width: u32, height: u32) -> Result<()> {
+    let bytes = u64::from(width) * u64::from(height) * FLIP_BYTES_PER_PIXEL;
+    let mut probe: Vec<u8> = Vec::new();
+    usize::try_from(bytes)
+        .ok()
+        .and_then(|b| probe.try_reserve_exact(b).ok())
+        .ok_or_else(|| {
+            anyhow!(
+                "not enough memory to compare a {width}x{height} image: FLIP needs about {} MB",
+                bytes.div_ceil(1_000_000)
+            )
+        })
 }
 
 #[cfg(test)]
@@ -140,7 +163,7 @@ mod tests {
         yours.put_pixel(1, 0, image::Rgb([103, 100, 100]));
         yours.put_pixel(2, 0, image::Rgb([100, 96, 100]));
         yours.put_pixel(3, 0, image::Rgb([100, 100, 140]));
-        let (metrics, map) = measure(&yours, &reference);
+        let (metrics, map) = measure(&yours, &reference).unwrap();
         // (3 + 4 + 40) / (4 pixels * 3 channels * 255) = 47 / 3060.
         assert!((metrics.mean_abs - 47.0 / 3060.0).abs() < 1e-12);
         assert_eq!(metrics.pixels_over_tolerance, 0.5);
@@ -164,7 +187,7 @@ mod tests {
         for x in 0..5 {
             yours.put_pixel(x * 10, 7, image::Rgb([0, 200, 100]));
         }
-        let (metrics, _) = measure(&yours, &reference);
+        let (metrics, _) = measure(&yours, &reference).unwrap();
         assert_eq!(metrics.pixels_over_tolerance, 0.0005);
         assert!(metrics.few_over_tolerance());
         assert_eq!(metrics.far_off_pixels, 5);
@@ -172,15 +195,15 @@ mod tests {
         // Off by exactly 32 is still a match; by 33 it is not.
         let mut near = reference.clone();
         near.put_pixel(0, 0, image::Rgb([223, 200, 100]));
-        assert!(measure(&near, &reference).0.matches());
+        assert!(measure(&near, &reference).unwrap().0.matches());
         near.put_pixel(0, 0, image::Rgb([222, 200, 100]));
-        assert!(!measure(&near, &reference).0.matches());
+        assert!(!measure(&near, &reference).unwrap().0.matches());
     }
 
     #[test]
     fn identical_images_have_no_error_at_all() {
         let image = RgbImage::from_fn(16, 16, |x, y| image::Rgb([x as u8 * 16, y as u8 * 16, 9]));
-        let (metrics, _) = measure(&image, &image);
+        let (metrics, _) = measure(&image, &image).unwrap();
         assert_eq!(metrics.mean_abs, 0.0);
         assert_eq!(metrics.flip_mean, 0.0);
         assert!(metrics.worst.is_none());
