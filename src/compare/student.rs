@@ -53,8 +53,8 @@ pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage>
     if signature != PNG_SIGNATURE {
         bail!("{name} is not a PNG image (it does not start with the PNG signature)");
     }
-    let walked =
-        png_chunks::walk(&mut reader, check_size).with_context(|| format!("cannot read {name}"))?;
+    let walked = png_chunks::walk(&mut reader, check_compared_size)
+        .with_context(|| format!("cannot read {name}"))?;
     match walked {
         Ok(()) => {}
         Err(Refusal::Size(why)) => bail!("{name}: {why}"),
@@ -75,7 +75,7 @@ pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage>
         .into_decoder()
         .map_err(|e| anyhow!("{name} is not a readable PNG: {}", decoder_said(&e)))?;
     let (width, height) = decoder.dimensions();
-    check_size(width, height).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+    check_compared_size(width, height).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
     let color = decoder.color_type();
     let image = DynamicImage::from_decoder(decoder)
         .map_err(|e| anyhow!("{name} is a damaged or truncated PNG: {}", decoder_said(&e)))?;
@@ -87,7 +87,7 @@ pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage>
 }
 
 /// Refuses what raystep does not render, then what it does not compare.
-fn check_size(width: u32, height: u32) -> Result<(), String> {
+pub(crate) fn check_compared_size(width: u32, height: u32) -> Result<(), String> {
     check_image_size(width, height)?;
     if u64::from(width) * u64::from(height) > MAX_PIXELS {
         return Err(format!(
