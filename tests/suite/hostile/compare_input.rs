@@ -51,7 +51,7 @@ fn with_chunk(png: &[u8], extra: &[u8]) -> Vec<u8> {
 
 /// An iCCP chunk whose profile is `zeros` zero bytes, compressed.
 fn iccp(zeros: usize) -> Vec<u8> {
-    let mut data = ZlibEncoder::new(b"bomb\0\0".to_vec(), Compression::fast());
+    let mut data = ZlibEncoder::new(b"bomb\0\0".to_vec(), Compression::best());
     let block = vec![0u8; 1 << 20];
     for start in (0..zeros).step_by(block.len()) {
         data.write_all(&block[..block.len().min(zeros - start)])
