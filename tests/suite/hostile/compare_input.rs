@@ -107,18 +107,22 @@ fn an_icc_profile_inflating_to_a_gibibyte_is_refused_by_name_not_by_a_signal() {
 
 #[test]
 fn an_image_too_large_to_compare_is_refused_from_its_header() {
-    // Only a header, of 8192 x 8192 pixels at 16 bits in four channels:
-    // a size raystep renders, and 512 MiB decoded. main took the header,
-    // allocated the 512 MiB and died by SIGABRT under a 400 MB limit.
+    // A header of 8192 x 8192 pixels at 16 bits in four channels (a size
+    // raystep renders, and 512 MiB decoded) and a few bytes of pixels.
+    // main took the header, allocated the 512 MiB and died by SIGABRT
+    // under a 400 MB limit.
     // Now the header is refused before anything is decoded: 8192 x 8192 is
     // past the 2048 x 2048 pixels compared.
     let dir = tempfile::tempdir().unwrap();
     let mut header = 8192u32.to_be_bytes().to_vec();
     header.extend(8192u32.to_be_bytes());
     header.extend([16, 6, 0, 0, 0]);
+    let mut pixels = ZlibEncoder::new(Vec::new(), Compression::best());
+    pixels.write_all(&[0; 100]).unwrap();
     let png = [
         b"\x89PNG\r\n\x1a\n".to_vec(),
         chunk(b"IHDR", &header),
+        chunk(b"IDAT", &pixels.finish().unwrap()),
         chunk(b"IEND", &[]),
     ]
     .concat();
