@@ -216,12 +216,27 @@ pub(crate) struct CompareArgs {
     /// Also write FLIP's error map (magma colours) to this PNG.
     #[arg(short, long, value_name = "DIFF.png")]
     pub(crate) output: Option<PathBuf>,
-    /// Exit with status 3 when FLIP's mean error is above F.
-    #[arg(long, value_name = "F")]
+    /// Exit with status 3 when FLIP's mean error is above F (a number
+    /// from 0 up).
+    #[arg(long, value_name = "F", value_parser = threshold, allow_hyphen_values = true)]
     pub(crate) max_flip: Option<f64>,
-    /// Exit with status 3 when the mean absolute error is above E.
-    #[arg(long, value_name = "E")]
+    /// Exit with status 3 when the mean absolute error is above E (a
+    /// number from 0 up).
+    #[arg(long, value_name = "E", value_parser = threshold, allow_hyphen_values = true)]
     pub(crate) max_mean_abs: Option<f64>,
+}
+
+/// `--max-flip` and `--max-mean-abs`: a finite number of at least 0. Both
+/// errors run from 0 up, so NaN (every comparison with it is false: no
+/// image would ever be over) or a negative number (every image would be,
+/// even an identical one) cannot be what a grader meant.
+fn threshold(text: &str) -> std::result::Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(f) if f.is_finite() && f >= 0.0 => Ok(f),
+        _ => Err(format!(
+            "{text:?} is not a threshold: give a number of at least 0, such as 0.05"
+        )),
+    }
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

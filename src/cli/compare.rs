@@ -55,7 +55,9 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
         .as_deref()
         .map(|log| read_log(&scene, log, args.tolerance.unwrap_or_default()))
         .transpose()?;
-    let comparison = student.map(|student| crate::compare::compare(&scene, student));
+    let comparison = student
+        .map(|student| crate::compare::compare(&scene, student))
+        .transpose()?;
     if let (Some(diff), Some(comparison)) = (diff, &comparison) {
         output::write_all(None, std::iter::once((&diff, comparison.error_map.clone())))?;
     }

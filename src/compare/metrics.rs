@@ -2,6 +2,7 @@
 //! NVIDIA's FLIP (through the `nv-flip` crate, as wgpu's tests use it), the
 //! share of pixels past a tolerance, and the worst pixel.
 
+use anyhow::{Result, anyhow};
 use image::{GrayImage, RgbImage};
 use serde::Serialize;
 
@@ -73,8 +74,9 @@ pub(crate) fn over_tolerance(yours: &RgbImage, reference: &RgbImage) -> GrayImag
 }
 
 /// Measures `yours` against `reference` (same size); also gives FLIP's
-/// error map in its magma colours.
-pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbImage) {
+/// error map in its magma colours. An error when the memory FLIP needs
+/// cannot be had.
+pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> Result<(Metrics, RgbImage)> {
     let (width, height) = yours.dimensions();
     let pixels = (width as u64 * height as u64) as f64;
     let mut sum = 0u64;
@@ -102,7 +104,7 @@ pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbIm
             worst = Some((gap, x, y));
         }
     }
-    let (flip_mean, error_map) = flip(yours, reference);
+    let (flip_mean, error_map) = flip(yours, reference)?;
     let metrics = Metrics {
         mean_abs: sum as f64 / (3.0 * 255.0 * pixels),
         flip_mean,
@@ -112,20 +114,132 @@ pub(crate) fn measure(yours: &RgbImage, reference: &RgbImage) -> (Metrics, RgbIm
         far_off_pixels,
         far_off,
     };
-    (metrics, error_map)
+    Ok((metrics, error_map))
 }
 
-/// FLIP's mean error and its error map in magma colours.
-fn flip(yours: &RgbImage, reference: &RgbImage) -> (f64, RgbImage) {
+/// FLIP runs on tiles of this side, each cut with `FLIP_MARGIN` more of
+/// the image around it: FLIP keeps up to `FLIP_BYTES_PER_PIXEL`, and on
+/// tiles that is a few tens of megabytes whatever the image's size.
+const FLIP_TILE: u32 = 256;
+/// FLIP's filters reach 10 pixels at 67 pixels per degree (the spatial
+/// filter's radius, ⌈3 √(0.04 / 2π²) · 67⌉ = 10; the feature filter's,
+/// ⌈3 · 0.5 · 0.082 · 67⌉ = 9), and at the image's edge they repeat its
+/// last pixel. So a tile's own pixels, with this margin around them where
+/// the image goes on, get from FLIP the very values the whole image gives.
+const FLIP_MARGIN: u32 = 16;
+/// What FLIP allocates at most for each pixel of a tile (with its margin),
+/// counted from its code and rounded up: the two images and four filtered
+/// copies of them in f32 colours (12 bytes each), the feature filters'
+/// copies, the error and its colours.
+const FLIP_BYTES_PER_PIXEL: u64 = 200;
+
+/// FLIP's mean error and its error map in magma colours, run tile by tile
+/// (in parallel) with the same values as on the whole image.
+fn flip(yours: &RgbImage, reference: &RgbImage) -> Result<(f64, RgbImage)> {
+    use rayon::prelude::*;
     let (width, height) = yours.dimensions();
-    let test = nv_flip::FlipImageRgb8::with_data(width, height, yours.as_raw());
-    let refer = nv_flip::FlipImageRgb8::with_data(width, height, reference.as_raw());
-    let errors = nv_flip::flip(refer, test, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
-    let mean = nv_flip::FlipPool::from_image(&errors).mean() as f64;
-    let colours = errors.apply_color_lut(&nv_flip::magma_lut());
-    let map = RgbImage::from_raw(width, height, colours.to_vec())
-        .expect("FLIP's map has the images' size");
-    (mean, map)
+    flip_fits(
+        (FLIP_TILE + 2 * FLIP_MARGIN).min(width),
+        (FLIP_TILE + 2 * FLIP_MARGIN).min(height),
+    )?;
+    let lut = nv_flip::magma_lut();
+    let tiles: Vec<(u32, u32)> = (0..height)
+        .step_by(FLIP_TILE as usize)
+        .flat_map(|y| (0..width).step_by(FLIP_TILE as usize).map(move |x| (x, y)))
+        .collect();
+    let done: Vec<Tile> = tiles
+        .into_par_iter()
+        .map(|(x, y)| flip_tile(yours, reference, x, y, &lut))
+        .collect();
+    let mut errors = vec![0f32; width as usize * height as usize];
+    let mut map = RgbImage::new(width, height);
+    for tile in &done {
+        for (i, (&error, colour)) in tile.errors.iter().zip(tile.colours.chunks(3)).enumerate() {
+            let (x, y) = (
+                tile.x + i as u32 % tile.width,
+                tile.y + i as u32 / tile.width,
+            );
+            errors[(y * width + x) as usize] = error;
+            map.put_pixel(x, y, image::Rgb([colour[0], colour[1], colour[2]]));
+        }
+    }
+    // FLIP's pool adds the errors in f32, row by row: so here, for the
+    // same mean to the last bit.
+    let sum = errors.iter().fold(0f32, |sum, &e| sum + e);
+    Ok(((sum / errors.len() as f32) as f64, map))
+}
+
+/// One tile's own pixels, row by row: FLIP's error and its magma colour.
+struct Tile {
+    x: u32,
+    y: u32,
+    width: u32,
+    errors: Vec<f32>,
+    colours: Vec<u8>,
+}
+
+/// FLIP on the tile at (x, y), cut with its margin.
+fn flip_tile(
+    yours: &RgbImage,
+    reference: &RgbImage,
+    x: u32,
+    y: u32,
+    lut: &nv_flip::FlipImageRgb8,
+) -> Tile {
+    let (width, height) = yours.dimensions();
+    let (x0, y0) = (x.saturating_sub(FLIP_MARGIN), y.saturating_sub(FLIP_MARGIN));
+    let (x1, y1) = (
+        (x + FLIP_TILE + FLIP_MARGIN).min(width),
+        (y + FLIP_TILE + FLIP_MARGIN).min(height),
+    );
+    let (cut_width, cut_height) = (x1 - x0, y1 - y0);
+    let cut = |image: &RgbImage| {
+        let raw = image::imageops::crop_imm(image, x0, y0, cut_width, cut_height)
+            .to_image()
+            .into_raw();
+        nv_flip::FlipImageRgb8::with_data(cut_width, cut_height, &raw)
+    };
+    let errors = nv_flip::flip(
+        cut(reference),
+        cut(yours),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    );
+    let (all_errors, all_colours) = (errors.to_vec(), errors.apply_color_lut(lut).to_vec());
+    let (own_width, own_height) = (FLIP_TILE.min(width - x), FLIP_TILE.min(height - y));
+    let mut tile = Tile {
+        x,
+        y,
+        width: own_width,
+        errors: Vec::with_capacity((own_width * own_height) as usize),
+        colours: Vec::with_capacity((own_width * own_height * 3) as usize),
+    };
+    for row in y..y + own_height {
+        let start = ((row - y0) * cut_width + (x - x0)) as usize;
+        tile.errors
+            .extend_from_slice(&all_errors[start..start + own_width as usize]);
+        tile.colours
+            .extend_from_slice(&all_colours[3 * start..3 * (start + own_width as usize)]);
+    }
+    tile
+}
+
+/// Reserves what FLIP will take for a tile of `width` x `height` and gives
+/// it back at once: running out of memory (under a limit such as `ulimit
+/// -v`) is then this error, never an abort inside C++, which Rust cannot
+/// catch.
+fn flip_fits(width: u32, height: u32) -> Result<()> {
+    let threads = rayon::current_num_threads() as u64;
+    let bytes = u64::from(width) * u64::from(height) * FLIP_BYTES_PER_PIXEL * threads;
+    let mut probe: Vec<u8> = Vec::new();
+    usize::try_from(bytes)
+        .ok()
+        .and_then(|b| probe.try_reserve_exact(b).ok())
+        .ok_or_else(|| {
+            anyhow!(
+                "not enough memory to compare the images: FLIP needs about {} MB",
+                bytes.div_ceil(1_000_000)
+            )
+        })
 }
 
 #[cfg(test)]
@@ -140,7 +254,7 @@ mod tests {
         yours.put_pixel(1, 0, image::Rgb([103, 100, 100]));
         yours.put_pixel(2, 0, image::Rgb([100, 96, 100]));
         yours.put_pixel(3, 0, image::Rgb([100, 100, 140]));
-        let (metrics, map) = measure(&yours, &reference);
+        let (metrics, map) = measure(&yours, &reference).unwrap();
         // (3 + 4 + 40) / (4 pixels * 3 channels * 255) = 47 / 3060.
         assert!((metrics.mean_abs - 47.0 / 3060.0).abs() < 1e-12);
         assert_eq!(metrics.pixels_over_tolerance, 0.5);
@@ -164,7 +278,7 @@ mod tests {
         for x in 0..5 {
             yours.put_pixel(x * 10, 7, image::Rgb([0, 200, 100]));
         }
-        let (metrics, _) = measure(&yours, &reference);
+        let (metrics, _) = measure(&yours, &reference).unwrap();
         assert_eq!(metrics.pixels_over_tolerance, 0.0005);
         assert!(metrics.few_over_tolerance());
         assert_eq!(metrics.far_off_pixels, 5);
@@ -172,15 +286,43 @@ mod tests {
         // Off by exactly 32 is still a match; by 33 it is not.
         let mut near = reference.clone();
         near.put_pixel(0, 0, image::Rgb([223, 200, 100]));
-        assert!(measure(&near, &reference).0.matches());
+        assert!(measure(&near, &reference).unwrap().0.matches());
         near.put_pixel(0, 0, image::Rgb([222, 200, 100]));
-        assert!(!measure(&near, &reference).0.matches());
+        assert!(!measure(&near, &reference).unwrap().0.matches());
+    }
+
+    #[test]
+    fn flip_on_tiles_gives_what_flip_on_the_whole_image_gives() {
+        // 600 x 530: tiles of 256 meet inside the image at x = 256, 512 and
+        // y = 256, 512, and the last ones are cut short. Two images that
+        // differ everywhere by a pattern that varies within a filter's
+        // reach, so a tile without its margin would be told wrong.
+        let (width, height) = (600, 530);
+        let reference = RgbImage::from_fn(width, height, |x, y| {
+            image::Rgb([(x * 7 + y * 3) as u8, (x ^ y) as u8, (x * y / 64) as u8])
+        });
+        let yours = RgbImage::from_fn(width, height, |x, y| {
+            let p = reference.get_pixel(x, y).0;
+            let d = ((x / 3 + y / 5) % 40) as u8;
+            image::Rgb([p[0].wrapping_add(d), p[1], p[2].saturating_sub(d)])
+        });
+        let whole = nv_flip::flip(
+            nv_flip::FlipImageRgb8::with_data(width, height, reference.as_raw()),
+            nv_flip::FlipImageRgb8::with_data(width, height, yours.as_raw()),
+            nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+        );
+        let whole_mean = nv_flip::FlipPool::from_image(&whole).mean() as f64;
+        let whole_map = whole.apply_color_lut(&nv_flip::magma_lut()).to_vec();
+        let (mean, map) = flip(&yours, &reference).unwrap();
+        assert!(mean > 0.01, "{mean}");
+        assert_eq!(mean.to_bits(), whole_mean.to_bits(), "{mean} {whole_mean}");
+        assert!(map.as_raw() == &whole_map, "the maps differ");
     }
 
     #[test]
     fn identical_images_have_no_error_at_all() {
         let image = RgbImage::from_fn(16, 16, |x, y| image::Rgb([x as u8 * 16, y as u8 * 16, 9]));
-        let (metrics, _) = measure(&image, &image);
+        let (metrics, _) = measure(&image, &image).unwrap();
         assert_eq!(metrics.mean_abs, 0.0);
         assert_eq!(metrics.flip_mean, 0.0);
         assert!(metrics.worst.is_none());

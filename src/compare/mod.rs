@@ -7,12 +7,15 @@
 mod diagnosis;
 mod geometry;
 pub(crate) mod metrics;
+mod png_chunks;
 mod ranking;
 mod reference;
 pub(crate) mod regions;
 mod report;
 mod scene_renders;
 pub mod student;
+
+use std::sync::Arc;
 
 use image::{GrayImage, RgbImage};
 use serde::Serialize;
@@ -99,8 +102,8 @@ pub(crate) struct ObjectShare {
 }
 
 /// Compares the student's image with `scene` rendered at the image's size
-/// with the scene's own settings.
-pub fn compare(scene: &Scene, student: StudentImage) -> Comparison {
+/// with the scene's own settings. An error only when memory runs out.
+pub fn compare(scene: &Scene, student: StudentImage) -> anyhow::Result<Comparison> {
     compare_with(&SceneRenders::new(scene), student)
 }
 
@@ -113,12 +116,15 @@ pub(crate) fn prepare(shared: &SceneRenders) {
 
 /// `compare`, with the scene's renders taken from `shared` (made once for
 /// every image compared with the scene). The image has the scene's size.
-pub(crate) fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comparison {
+pub(crate) fn compare_with(
+    shared: &SceneRenders,
+    student: StudentImage,
+) -> anyhow::Result<Comparison> {
     let yours = student.image;
     let scene = shared.scene();
     let reference = shared.reference();
     debug_assert_eq!(yours.dimensions(), reference.image.dimensions());
-    let (metrics, error_map) = metrics::measure(&yours, &reference.image);
+    let (metrics, error_map) = metrics::measure(&yours, &reference.image)?;
     let matches = metrics.matches();
     let differs = metrics::over_tolerance(&yours, &reference.image);
     let found = regions::regions(&differs);
@@ -131,12 +137,9 @@ pub(crate) fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comp
         )
     };
     // Each ranked mistake's own render, to name a region it explains.
-    let renders: Vec<(Mistake, RgbImage)> = mistakes
+    let renders: Vec<(Mistake, Arc<RgbImage>)> = mistakes
         .iter()
-        .map(|r| {
-            let image = shared.mistaken(Mistakes::NONE.with(r.mistake));
-            (r.mistake, RgbImage::clone(&image))
-        })
+        .map(|r| (r.mistake, shared.mistaken(Mistakes::NONE.with(r.mistake))))
         .collect();
     let seen = Seen {
         reference,
@@ -149,7 +152,7 @@ pub(crate) fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comp
         .take(REGIONS_SHOWN)
         .map(|region| describe(scene, &seen, region, &renders))
         .collect();
-    Comparison {
+    Ok(Comparison {
         width: yours.width(),
         height: yours.height(),
         notes: student.notes,
@@ -160,7 +163,7 @@ pub(crate) fn compare_with(shared: &SceneRenders, student: StudentImage) -> Comp
         mistakes,
         geometry,
         error_map,
-    }
+    })
 }
 
 /// What a region is told against: the two images, which pixels differ,
@@ -176,7 +179,7 @@ fn describe(
     scene: &Scene,
     seen: &Seen,
     region: &regions::Region,
-    renders: &[(Mistake, RgbImage)],
+    renders: &[(Mistake, Arc<RgbImage>)],
 ) -> RegionReport {
     let (reference, yours) = (seen.reference, seen.yours);
     let gap = |&(x, y): &(u32, u32)| {
@@ -242,7 +245,7 @@ fn explaining(
     yours: &RgbImage,
     reference: &RgbImage,
     region: &regions::Region,
-    renders: &[(Mistake, RgbImage)],
+    renders: &[(Mistake, Arc<RgbImage>)],
 ) -> Option<Mistake> {
     let apart = |other: &RgbImage| -> u64 {
         region
@@ -387,13 +390,13 @@ mod tests {
             notes: Vec::new(),
         };
         let json = |c: &Comparison| serde_json::to_string(c).unwrap();
-        let alone = compare(&scene, student());
+        let alone = compare(&scene, student()).unwrap();
         assert_eq!(alone.mistakes[0].mistake, Mistake::NoAmbient);
         let shared = SceneRenders::new(&scene);
-        let first = compare_with(&shared, student());
+        let first = compare_with(&shared, student()).unwrap();
         let rendered = shared.rendered();
         assert!(rendered > 1, "{rendered} renders");
-        let second = compare_with(&shared, student());
+        let second = compare_with(&shared, student()).unwrap();
         // The second image asks for the same renders: none is made again.
         assert_eq!(shared.rendered(), rendered);
         assert_eq!(json(&first), json(&alone));

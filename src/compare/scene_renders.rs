@@ -16,6 +16,13 @@ use crate::render::render;
 use crate::scene::Scene;
 use crate::trace::NoRecorder;
 
+/// The most the mistaken renders kept may take, in bytes: 300 renders of a
+/// 320 x 240 scene, 7 of the largest image compared. Past it a render is
+/// made each time it is asked for: memory stays bounded whatever the image's
+/// size, at the price of rendering again (a comparison asks for at most 3
+/// renders twice).
+const MAX_KEPT_BYTES: usize = 96 << 20;
+
 /// One scene's renders, at the scene's size and with its settings.
 pub(crate) struct SceneRenders<'a> {
     scene: &'a Scene,
@@ -43,7 +50,7 @@ impl<'a> SceneRenders<'a> {
     }
 
     /// The scene rendered under `mistakes`, rendered the first time it is
-    /// asked for. The lock is not held while rendering: a render runs on
+    /// asked for, and kept while the renders kept fit in `MAX_KEPT_BYTES`. The lock is not held while rendering: a render runs on
     /// rayon's threads, which meanwhile may take up another comparison that
     /// asks for the same render, and would wait on itself. So two threads
     /// may both render it; the first render stored is kept, and both are
@@ -55,7 +62,12 @@ impl<'a> SceneRenders<'a> {
         let mut settings = self.scene.settings;
         settings.mistakes = mistakes;
         let image = Arc::new(render::<NoRecorder>(self.scene, &settings, &|| {}).0);
-        Arc::clone(self.stored().entry(mistakes).or_insert(image))
+        let mut stored = self.stored();
+        let kept: usize = stored.values().map(|i| i.as_raw().len()).sum();
+        if !stored.contains_key(&mistakes) && kept + image.as_raw().len() > MAX_KEPT_BYTES {
+            return image;
+        }
+        Arc::clone(stored.entry(mistakes).or_insert(image))
     }
 
     /// How many sets of mistakes have been rendered.

@@ -6,11 +6,23 @@ use std::io::{BufRead, BufReader, Read, Seek};
 use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
-use image::{ColorType, DynamicImage, ImageDecoder, ImageFormat, ImageReader, RgbImage};
+use image::{ColorType, DynamicImage, ImageDecoder, ImageFormat, ImageReader, Limits, RgbImage};
 
+use super::png_chunks::{self, MAX_ICC_PROFILE, Refusal};
 use crate::input_file::{self, Cap};
 use crate::record::count;
-use crate::scene::{MAX_IMAGE_PIXELS, check_image_size};
+use crate::scene::check_image_size;
+
+/// The largest image compared, in pixels (2048 x 2048, or 4096 x 1024, ...):
+/// a comparison keeps about 90 bytes per pixel at once (BENCHMARKS.md), so
+/// this fits in well under 1 GB. Renders may be larger; comparisons of them
+/// would take gigabytes and minutes.
+pub(crate) const MAX_PIXELS: u64 = 2048 * 2048;
+
+/// The most the PNG decoder may allocate: the largest image compared at 16
+/// bits in four channels (8 bytes a pixel), and the ancillary chunks (an
+/// ICC profile, text) beside it.
+pub(crate) const MAX_DECODER_BYTES: u64 = MAX_PIXELS * 8 + MAX_ICC_PROFILE;
 
 /// The eight bytes every PNG file starts with.
 const PNG_SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n'];
@@ -22,11 +34,11 @@ pub struct StudentImage {
     pub notes: Vec<String>,
 }
 
-/// The largest student image read: what a PNG of the largest size raystep
-/// renders (8192 x 8192) takes stored uncompressed at 16-bit RGBA, 8 bytes
-/// a pixel, and 1 MiB for its chunks.
+/// The largest student image read: what a PNG of the largest size compared
+/// (`MAX_PIXELS`) takes stored uncompressed at 16-bit RGBA, 8 bytes a pixel,
+/// an ICC profile stored uncompressed, and 1 MiB for other chunks.
 pub(crate) const IMAGE_CAP: Cap = Cap {
-    bytes: 8 * MAX_IMAGE_PIXELS + (1 << 20),
+    bytes: 8 * MAX_PIXELS + MAX_ICC_PROFILE + (1 << 20),
     of: "a student's PNG",
 };
 
@@ -40,7 +52,8 @@ pub fn load(path: &Path) -> Result<StudentImage> {
 }
 
 /// Reads a PNG from `reader`; `name` names it in messages. The signature is
-/// checked first, then the size in the header, then the pixels are decoded.
+/// checked first, then the size in the header and the ICC profile's, then
+/// the pixels are decoded, the decoder's allocations capped.
 pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage> {
     let mut signature = Vec::with_capacity(PNG_SIGNATURE.len());
     (&mut reader)
@@ -50,14 +63,37 @@ pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage>
     if signature != PNG_SIGNATURE {
         bail!("{name} is not a PNG image (it does not start with the PNG signature)");
     }
+    let walked = png_chunks::walk(&mut reader, |width, height| {
+        // An empty size is the decoder's to name ("invalid image
+        // dimensions"), as it always was; only what is too large is
+        // refused before it.
+        if width == 0 || height == 0 {
+            return Ok(());
+        }
+        check_compared_size(width, height)
+    })
+    .with_context(|| format!("cannot read {name}"))?;
+    match walked {
+        Ok(()) => {}
+        Err(Refusal::Size(why)) => bail!("{name}: {why}"),
+        Err(Refusal::IccProfile) => bail!(
+            "{name}: its ICC profile (iCCP chunk) inflates to more than {} MiB: \
+             save the image without a colour profile, or with sRGB's",
+            MAX_ICC_PROFILE >> 20
+        ),
+    }
     reader
         .rewind()
         .with_context(|| format!("cannot read {name}"))?;
-    let decoder = ImageReader::with_format(reader, ImageFormat::Png)
+    let mut limits = Limits::default();
+    limits.max_alloc = Some(MAX_DECODER_BYTES);
+    let mut png = ImageReader::with_format(reader, ImageFormat::Png);
+    png.limits(limits);
+    let decoder = png
         .into_decoder()
         .map_err(|e| anyhow!("{name} is not a readable PNG: {}", decoder_said(&e)))?;
     let (width, height) = decoder.dimensions();
-    check_image_size(width, height).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+    check_compared_size(width, height).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
     let color = decoder.color_type();
     let image = DynamicImage::from_decoder(decoder)
         .map_err(|e| anyhow!("{name} is a damaged or truncated PNG: {}", decoder_said(&e)))?;
@@ -66,6 +102,18 @@ pub fn read(mut reader: impl BufRead + Seek, name: &str) -> Result<StudentImage>
         image: image.into_rgb8(),
         notes,
     })
+}
+
+/// Refuses what raystep does not render, then what it does not compare.
+pub(crate) fn check_compared_size(width: u32, height: u32) -> Result<(), String> {
+    check_image_size(width, height)?;
+    if u64::from(width) * u64::from(height) > MAX_PIXELS {
+        return Err(format!(
+            "image size {width}x{height} is too large to compare: at most {MAX_PIXELS} pixels \
+             (2048 x 2048) are compared"
+        ));
+    }
+    Ok(())
 }
 
 /// The decoder's own reason in the house style of messages: its innermost

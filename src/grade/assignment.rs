@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::compare::student::check_compared_size;
 use crate::input_file::{self, Cap};
 use crate::scene::{self, Scene, SceneError, check_image_size};
 
@@ -173,6 +174,10 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
                     .map_err(|e| error(size.span(), e.message))?
             }
         };
+        // Every student's image is compared at this size: refuse it once
+        // here, not once per student.
+        let size_span = def.size.as_ref().map_or(def.file.span(), |s| s.span());
+        check_compared_size(scene.width, scene.height).map_err(|m| error(size_span, m))?;
         scenes.push(AssignedScene {
             file: def.file.into_inner(),
             path: scene_path,
@@ -263,6 +268,14 @@ mod tests {
         let message = error(&format!("{head}points = 1\nsize = [0, 10]\n"));
         assert!(message.starts_with(&at("5:8")), "{message}");
         assert!(message.contains("image size 0x10 is empty"), "{message}");
+        // A size raystep renders but does not compare (2048 x 2048 pixels
+        // at most): refused once here, not once per student.
+        let message = error(&format!("{head}points = 1\nsize = [4096, 2048]\n"));
+        assert!(message.starts_with(&at("5:8")), "{message}");
+        assert!(
+            message.contains("4096x2048 is too large to compare"),
+            "{message}"
+        );
         let message =
             error("[[scene]]\nfile = \"glass.toml\"\nsubmit = \"../x.png\"\npoints = 1\n");
         assert!(message.starts_with(&at("3:10")), "{message}");

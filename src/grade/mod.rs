@@ -243,11 +243,15 @@ impl Work<'_> {
                 .as_ref()
                 .map_err(Clone::clone)
                 .and_then(|folder| submission::read(folder, &scene.submit, size));
-            let grade = match read {
+            let compared = read.and_then(|image| {
+                let yours_png = png(&image.image);
+                compare::compare_with(&self.shared[i], image)
+                    .map(|comparison| (yours_png, comparison))
+                    .map_err(|e| format!("{e:#}"))
+            });
+            let grade = match compared {
                 Err(reason) => refused(scene.points, reason),
-                Ok(image) => {
-                    let yours_png = png(&image.image);
-                    let comparison = compare::compare_with(&self.shared[i], image);
+                Ok((yours_png, comparison)) => {
                     let base = format!("images/{slug}/{}", self.scene_slugs[i]);
                     let (yours, error_map) =
                         (format!("{base}.yours.png"), format!("{base}.flip.png"));

@@ -727,7 +727,7 @@ fn report(mistakes: &[raystep::mistakes::Mistake]) -> String {
         image,
         notes: Vec::new(),
     };
-    let comparison = raystep::compare::compare(&scene, student);
+    let comparison = raystep::compare::compare(&scene, student).unwrap();
     raystep::compare::text(&comparison, "yours.png", SCENE)
 }
 

@@ -116,7 +116,7 @@ impl App {
         };
         let scene = source.load()?;
         let yours = student.image.clone();
-        let comparison = compare::compare(&scene, student);
+        let comparison = compare::compare(&scene, student)?;
         let comparison = StudentComparison::new(yours, comparison);
         Ok(App::new(source, scene, Some(comparison), sync))
     }
