@@ -254,6 +254,80 @@ mod tests {
         (a - b).length() < 1e-9
     }
 
+    /// The rule as the step-through states it, asked the old way: for
+    /// each ray, whether an event up to the progress casts it, scanning
+    /// the events (quadratic): the reference for the one pass.
+    fn strokes_by_scan(tree: &RayTree, progress: Progress) -> Vec<Stroke> {
+        let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
+            (tree.events.iter())
+                .take(progress.reached.saturating_add(1))
+                .any(|e| test(&e.kind, e.node))
+        };
+        let mut strokes = Vec::new();
+        for (id, node) in tree.nodes.iter().enumerate() {
+            let current = |light| progress.current == Some(CurrentRay { node: id, light });
+            let cast = |k: &EventKind, n| n == id && matches!(k, EventKind::RayCast { .. });
+            strokes.push(match node.kind {
+                _ if current(None) => Stroke::Current,
+                _ if !reached(&cast) => Stroke::Later,
+                crate::trace::RayKind::Primary => Stroke::Primary,
+                crate::trace::RayKind::Reflected => Stroke::Reflected,
+                crate::trace::RayKind::Transmitted => Stroke::Transmitted,
+            });
+            if node.hit.is_none() {
+                continue;
+            }
+            strokes.push(Stroke::Normal);
+            for light in &node.lights {
+                let Some(shadow) = &light.shadow else {
+                    continue;
+                };
+                let index = light.light_index;
+                let cast = |k: &EventKind, n| {
+                    n == id && matches!(k, EventKind::ShadowCast { light: l } if *l == index)
+                };
+                strokes.push(match () {
+                    _ if current(Some(index)) => Stroke::Current,
+                    _ if !reached(&cast) => Stroke::Later,
+                    _ => shadow_stroke(shadow.s),
+                });
+            }
+        }
+        strokes
+    }
+
+    #[test]
+    fn one_pass_strokes_every_ray_as_the_scan_did_at_every_event() {
+        // Mirrors, glass (TIR), shadows and misses: the built-in scene on
+        // a grid of pixels and glass.toml's ball and block, at every
+        // event of each tree and at its end.
+        let builtin = crate::scene::builtin::load_file_or_builtin(None).unwrap();
+        let glass = crate::scene::parse(
+            std::path::Path::new("glass.toml"),
+            include_str!("../../scenes/glass.toml"),
+        )
+        .unwrap();
+        let mut pixels: Vec<(&Scene, u32, u32)> = vec![];
+        for y in (0..builtin.height).step_by(20) {
+            for x in (0..builtin.width).step_by(20) {
+                pixels.push((&builtin, x, y));
+            }
+        }
+        pixels.extend([(&glass, 72, 45), (&glass, 132, 88), (&glass, 135, 58)]);
+        for (scene, x, y) in pixels {
+            let tree = crate::record::record_pixel(scene, &scene.settings, x, y);
+            let top = Projection::new(DiagramPlane::Top, scene, &tree);
+            let at = (0..tree.events.len()).map(|i| progress(&tree, i));
+            for progress in at.chain([Progress::done(&tree)]) {
+                let (segments, _) = ray_segments(&tree, scene, &top, progress);
+                let strokes: Vec<Stroke> = segments.iter().map(|s| s.stroke).collect();
+                assert_eq!(strokes, strokes_by_scan(&tree, progress), "({x}, {y})");
+                let again: Vec<Stroke> = segments.iter().map(|s| s.stroke_at(progress)).collect();
+                assert_eq!(again, strokes);
+            }
+        }
+    }
+
     #[test]
     fn segments_follow_the_step_through() {
         let (scene, tree) = ball();

@@ -409,6 +409,92 @@ mod tests {
         assert_eq!(out, "<text x=\"96.7\" y=\"103.5\" fill=\"grey\">4</text>\n");
     }
 
+    /// Numbers in 0..1 from a fixed seed: the same figure every run.
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = (self.0)
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// The row scan as it was, testing each place against every box.
+    fn scan_everything(labels: &Labels, size: DVec2) -> Option<DVec2> {
+        let (lo, hi) = labels.bounds;
+        let rows = (0..).map(|i| lo.y + size.y + 1.0 + i as f64 * 4.0);
+        let mut places = rows.take_while(|y| *y + 3.0 <= hi.y).flat_map(|y| {
+            (0..)
+                .map(move |i| DVec2::new(lo.x + 1.0 + i as f64 * 8.0, y))
+                .take_while(move |c| c.x + size.x <= hi.x)
+        });
+        places.find(|c| {
+            let b = text_box(*c, size);
+            contains(labels.bounds, b) && !labels.boxes.iter().any(|o| overlap(*o, b))
+        })
+    }
+
+    #[test]
+    fn the_cells_answer_as_testing_everything_placed_would() {
+        // A crowded figure at random: 300 marks, rays and outline pieces
+        // of 10 objects (some past its edges), and labels filling its top
+        // third. For 2,000 places at random, `fits` and `nearest_is_own`
+        // answer as tests of every item do, and the row scan stops where
+        // testing each place against every box did.
+        let mut r = Lcg(27);
+        let mut labels = Labels::new(13.0, WIDE);
+        let point = |r: &mut Lcg| DVec2::new(r.next() * 900.0 - 50.0, r.next() * 700.0 - 50.0);
+        for i in 0..300 {
+            let (a, b) = (point(&mut r), point(&mut r));
+            labels.reserve(a, 2.0 + r.next() * 10.0);
+            labels.reserve_ray(a, a + (b - a) * r.next());
+            let piece = DVec2::new(r.next() * 60.0 - 30.0, r.next() * 60.0 - 30.0);
+            labels.reserve_outline(b, b + piece, i % 10);
+        }
+        for row in 0..40 {
+            let mut x = r.next() * 20.0;
+            while x < 800.0 {
+                let corner = DVec2::new(x, 14.0 + row as f64 * 5.0);
+                let width = 20.0 + r.next() * 100.0;
+                labels.reserve_box(text_box(corner, DVec2::new(width, 13.0)));
+                x += width + r.next() * 30.0;
+            }
+        }
+        for _ in 0..2000 {
+            let size = DVec2::new(10.0 + r.next() * 150.0, 13.0);
+            let b = text_box(point(&mut r), size);
+            let crosses = |(a, c): (DVec2, DVec2)| clip(a, c, b).is_some();
+            for rays in [false, true] {
+                let everything = contains(labels.bounds, b)
+                    && !labels.boxes.iter().any(|o| overlap(*o, b))
+                    && !labels.outlines.iter().any(|p| crosses((p.a, p.b)))
+                    && !(rays && labels.rays.iter().copied().any(crosses));
+                assert_eq!(labels.fits(b, rays), everything, "{b:?}");
+            }
+            // Object 10 has no outline: never its own.
+            let object = (r.next() * 11.0) as usize;
+            let (mut own, mut other) = (f64::INFINITY, f64::INFINITY);
+            for p in &labels.outlines {
+                let d = segment_box_distance(p.a, p.b, b);
+                if p.object == object {
+                    own = own.min(d);
+                } else {
+                    other = other.min(d);
+                }
+            }
+            let nearest = own.is_finite() && own <= other + 1.0;
+            assert_eq!(labels.nearest_is_own(b, object), nearest, "{b:?}");
+        }
+        for width in [8.0, 40.0, 120.0, 400.0] {
+            let size = DVec2::new(width, 13.0);
+            assert_eq!(labels.scan(size), scan_everything(&labels, size));
+        }
+        let scanned = labels.scan(DVec2::new(120.0, 13.0)).unwrap();
+        assert!(scanned.y > 200.0, "past the crowded third: {scanned}");
+    }
+
     #[test]
     fn names_are_escaped() {
         assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
