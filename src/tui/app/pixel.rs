@@ -14,7 +14,7 @@ use crate::tui::action::{Action, Breakpoint};
 use crate::tui::find_job::Found;
 use crate::tui::view::stepper;
 use crate::tui::view::steps;
-use crate::tui::view::tree::{self, RowKind};
+use crate::tui::view::tree::{self, Row, RowKind};
 
 pub struct TracedPixel {
     /// The selected pixel, in the scene image's coordinates.
@@ -39,6 +39,9 @@ pub struct TracedPixel {
     diagrams: [OnceCell<Diagram>; 3],
     /// How many diagrams have been assembled, for the tests.
     assembled: Cell<usize>,
+    /// The tree pane's rows, made once per tree and folding (the layout,
+    /// the pane and the row keys all ask for them every frame).
+    rows: OnceCell<Vec<Row>>,
 }
 
 impl TracedPixel {
@@ -57,6 +60,7 @@ impl TracedPixel {
             pick_time: started.elapsed(),
             diagrams: Default::default(),
             assembled: Cell::new(0),
+            rows: OnceCell::new(),
         }
     }
 
@@ -74,6 +78,7 @@ impl TracedPixel {
                 if !self.collapsed.remove(&node) {
                     self.collapsed.insert(node);
                 }
+                self.rows = OnceCell::new();
             }
             Action::ScrollDetails(delta) => {
                 let from = self.details_scroll.unwrap_or(0) as i32;
@@ -102,6 +107,13 @@ impl TracedPixel {
     /// The rays whose rows the tree pane folds away.
     pub fn collapsed(&self) -> &BTreeSet<NodeId> {
         &self.collapsed
+    }
+
+    /// The tree pane's visible rows (`view::tree::rows`), made once per
+    /// tree and folding.
+    pub fn rows(&self) -> &[Row] {
+        self.rows
+            .get_or_init(|| tree::rows(&self.tree, &self.collapsed))
     }
 
     /// Manual scroll of the details; `None` follows the current event.
@@ -149,6 +161,7 @@ impl TracedPixel {
     fn set_tree(&mut self, tree: RayTree) {
         self.tree = tree;
         self.diagrams = Default::default();
+        self.rows = OnceCell::new();
     }
 
     /// The node the tree and details show: the current event's ray.
@@ -184,6 +197,7 @@ impl TracedPixel {
         self.pick_time = started.elapsed();
         self.current = self.current.min(self.tree.events.len().saturating_sub(1));
         self.collapsed.clear();
+        self.rows = OnceCell::new();
         self.details_scroll = None;
     }
 
@@ -213,13 +227,14 @@ impl TracedPixel {
         self.current = found.event;
         self.what_if = None;
         self.collapsed.clear();
+        self.rows = OnceCell::new();
         self.details_scroll = None;
     }
 
     /// A click on line `line` of the tree pane, `height` lines high.
     pub(super) fn click_tree(&mut self, line: usize, height: usize) {
-        let rows = tree::rows(&self.tree, &self.collapsed);
-        let selected = tree::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
+        let rows = self.rows();
+        let selected = tree::selected_row(&self.tree, rows, self.current).unwrap_or(0);
         let first = tree::scroll_offset(selected, height);
         if let Some(row) = rows.get(first + line) {
             self.select(row.kind);
@@ -243,6 +258,7 @@ impl TracedPixel {
             node = self.tree.nodes[n].parent;
             if let Some(parent) = node {
                 self.collapsed.remove(&parent);
+                self.rows = OnceCell::new();
             }
         }
         self.details_scroll = Some(0);
@@ -307,8 +323,8 @@ impl TracedPixel {
     }
 
     fn select_row(&mut self, delta: i32) {
-        let rows = tree::rows(&self.tree, &self.collapsed);
-        let Some(selected) = tree::selected_row(&self.tree, &rows, self.current) else {
+        let rows = self.rows();
+        let Some(selected) = tree::selected_row(&self.tree, rows, self.current) else {
             return;
         };
         let row = (selected as i64 + delta as i64).clamp(0, rows.len() as i64 - 1) as usize;

@@ -16,7 +16,7 @@ use std::collections::BTreeSet;
 use crate::divergence::RayStatus;
 use crate::record::{NodeId, RayTree};
 use crate::tui::view::tree::{
-    LogLabel, Row, row_line, rows, scroll_offset, selected_row, selected_style,
+    LogLabel, Row, row_line, scroll_offset, selected_row, selected_style,
 };
 use crate::tui::view::your_rays::{RowMarks, legend, mark, only_yours_lines};
 use crate::tui::{App, Pane};
@@ -44,8 +44,8 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
         block = block.title_bottom(legend(area.width as usize));
     }
     let inside = block.inner(area);
-    let rows = rows(tree, pixel.collapsed());
-    let selected = selected_row(tree, &rows, pixel.current());
+    let rows = pixel.rows();
+    let selected = selected_row(tree, rows, pixel.current());
     let first = scroll_offset(selected.unwrap_or(0), inside.height as usize);
     let marks = report.map(|r| RowMarks::new(tree, r));
     let width = inside.width as usize;
