@@ -467,10 +467,11 @@ mod tests {
             let b = text_box(point(&mut r), size);
             let crosses = |(a, c): (DVec2, DVec2)| clip(a, c, b).is_some();
             for rays in [false, true] {
+                let ray_crosses = rays && labels.rays.iter().copied().any(crosses);
                 let everything = contains(labels.bounds, b)
                     && !labels.boxes.iter().any(|o| overlap(*o, b))
                     && !labels.outlines.iter().any(|p| crosses((p.a, p.b)))
-                    && !(rays && labels.rays.iter().copied().any(crosses));
+                    && !ray_crosses;
                 assert_eq!(labels.fits(b, rays), everything, "{b:?}");
             }
             // Object 10 has no outline: never its own.
