@@ -6,9 +6,9 @@ use std::process::ExitCode;
 use anyhow::Result;
 
 use super::recorded::record;
-use super::{InspectArgs, InspectFormat, emit};
+use super::{InspectArgs, InspectFormat, emit, emit_with};
 use crate::raylog::raylog;
-use crate::record::{dot, text};
+use crate::record::{dot, text, write_json};
 
 pub(super) fn run(args: &InspectArgs) -> Result<ExitCode> {
     let recorded = record(&args.pixel)?;
@@ -23,10 +23,8 @@ pub(super) fn run(args: &InspectArgs) -> Result<ExitCode> {
                     tree.pixel
                 )
             })?;
-            emit(&format!(
-                "{}\n",
-                serde_json::to_string_pretty(&tree.to_json())?
-            ))?
+            // Streamed: a tree of 65,536 rays is a gigabyte of JSON.
+            emit_with(|out| write_json(tree, out).map_err(std::io::Error::from))?
         }
         InspectFormat::Dot => emit(&dot(tree))?,
         InspectFormat::Raylog => emit(&raylog(tree))?,

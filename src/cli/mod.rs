@@ -68,3 +68,16 @@ fn emit(text: &str) -> Result<()> {
         _ => Ok(()),
     }
 }
+
+/// As `emit`, for output written piece by piece through a buffer (a
+/// recording's JSON can run to a gigabyte: it is never held whole).
+fn emit_with(write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    match write(&mut out).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(e).context("cannot write to stdout")
+        }
+        _ => Ok(()),
+    }
+}

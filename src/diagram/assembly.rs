@@ -4,6 +4,8 @@
 //! figure (`svg/`) and the debugger's diagram pane only draw a `Diagram`;
 //! neither decides what it holds.
 
+use std::collections::{HashMap, HashSet};
+
 use glam::{DVec2, DVec3};
 
 use super::outline::{Outline, outline};
@@ -67,7 +69,8 @@ pub(crate) struct HitMark {
     pub(crate) at: DVec2,
 }
 
-/// The objects this pixel's rays meet: hit by a ray or blocking a shadow ray.
+/// The objects this pixel's rays meet: hit by a ray or blocking a shadow
+/// ray, sorted.
 fn involved_objects(tree: &RayTree) -> Vec<usize> {
     let mut objects: Vec<usize> = tree
         .events
@@ -225,7 +228,7 @@ impl Diagram {
         let passed = passed_objects(tree, &met);
         let context: Vec<usize> = if scene.objects.len() <= MAX_CONTEXT {
             (0..scene.objects.len())
-                .filter(|o| !met.contains(o) && !passed.contains(o))
+                .filter(|o| met.binary_search(o).is_err() && passed.binary_search(o).is_err())
                 .collect()
         } else {
             Vec::new()
@@ -233,6 +236,11 @@ impl Diagram {
         let roles = (met.iter().map(|&o| (o, Role::Met)))
             .chain(passed.iter().map(|&o| (o, Role::PassedBy)))
             .chain(context.iter().map(|&o| (o, Role::Context)));
+        // Each object's hits in one pass, in the order they were recorded.
+        let mut hits: HashMap<usize, Vec<DVec2>> = HashMap::new();
+        for h in &diagram.hits {
+            hits.entry(h.object).or_default().push(h.at);
+        }
         diagram.objects = roles
             .filter_map(|(object, role)| {
                 let o = scene.objects.get(object)?;
@@ -241,10 +249,7 @@ impl Diagram {
                     name: o.name.to_string(),
                     role,
                     shapes: outline(&o.shape, &projection),
-                    hits: (diagram.hits.iter())
-                        .filter(|h| h.object == object)
-                        .map(|h| h.at)
-                        .collect(),
+                    hits: hits.remove(&object).unwrap_or_default(),
                 })
             })
             .collect();
@@ -264,10 +269,10 @@ impl Diagram {
         (self.segments).retain(|s| s.shadow_of.is_none_or(kept));
         self.blockers.retain(|b| kept(b.shadow_of));
         self.faces_away.retain(|f| kept(f.node));
-        let passed: Vec<usize> = self.passed.iter().map(|m| m.object).collect();
+        let passed: HashSet<usize> = self.passed.iter().map(|m| m.object).collect();
+        let blocking: HashSet<usize> = self.blockers.iter().map(|b| b.object).collect();
         for object in self.objects.iter_mut().filter(|o| o.role == Role::Met) {
-            let blocks = self.blockers.iter().any(|b| b.object == object.object);
-            if object.hits.is_empty() && !blocks {
+            if object.hits.is_empty() && !blocking.contains(&object.object) {
                 object.role = if passed.contains(&object.object) {
                     Role::PassedBy
                 } else {
@@ -323,11 +328,6 @@ impl Diagram {
             && (rays.iter()).all(|s| off_line(s.from) <= tolerance && off_line(s.to) <= tolerance)
     }
 
-    /// Whether a ray met `object` (hit it or was blocked by it).
-    pub(crate) fn met(&self, object: usize) -> bool {
-        (self.objects.iter()).any(|o| o.object == object && o.role == Role::Met)
-    }
-
     /// The names, most important first: the eye, the lights, the objects
     /// met (each at its first outline), the passed-by marks.
     pub(crate) fn labels(&self) -> Vec<Label<'_>> {
@@ -354,10 +354,14 @@ impl Diagram {
                 },
             });
         }
+        let met: HashSet<usize> = (self.objects.iter())
+            .filter(|o| o.role == Role::Met)
+            .map(|o| o.object)
+            .collect();
         labels.extend(self.passed.iter().enumerate().map(|(i, m)| Label {
             named: Named::PassedBy(i),
             // An object named at its outline already: "passed by" alone.
-            text: if self.met(m.object) {
+            text: if met.contains(&m.object) {
                 "passed by".to_string()
             } else {
                 format!("{}: passed by", m.name)
@@ -400,13 +404,14 @@ fn passed_point(node: &Node, near: &NearMiss, shape: Option<&Shape>) -> Option<D
     t.is_finite().then(|| node.origin + node.direction * t)
 }
 
-/// The polygons and spheres a ray passed by that no ray met.
+/// The polygons and spheres a ray passed by that no ray met (`met`
+/// sorted), sorted.
 fn passed_objects(tree: &RayTree, met: &[usize]) -> Vec<usize> {
     let mut passed: Vec<usize> = (tree.nodes.iter())
         .flat_map(|n| n.near_misses.iter())
         .filter(|n| n.crossing_figure.is_some() || n.closest_approach.is_some())
         .map(|n| n.object_index)
-        .filter(|o| !met.contains(o))
+        .filter(|o| met.binary_search(o).is_err())
         .collect();
     passed.sort_unstable();
     passed.dedup();

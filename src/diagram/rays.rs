@@ -1,6 +1,8 @@
 //! A pixel's rays as projected segments, each with its kind (for its
 //! colour) and how far the step-through has come; the blockers' points.
 
+use std::collections::HashMap;
+
 use glam::{DVec2, DVec3};
 
 use super::projection::Projection;
@@ -27,10 +29,44 @@ pub(crate) enum Stroke {
 pub(crate) struct Segment {
     pub(crate) from: DVec2,
     pub(crate) to: DVec2,
+    /// Its stroke at the diagram's own progress (`stroke_at` for another).
     pub(crate) stroke: Stroke,
     /// For a shadow ray, the node from whose hit it is cast (to leave
     /// shadow rays out of a slide); none for a ray or a normal.
     pub(crate) shadow_of: Option<NodeId>,
+    /// What it draws: a normal, or a ray cast by an event.
+    pub(crate) drawn: Drawn,
+}
+
+/// What a segment draws, for its stroke at any point of the step-through.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Drawn {
+    /// A hit's normal: `Stroke::Normal` all along.
+    Normal,
+    /// A node's ray or one of its shadow rays, in `kind`'s colour once the
+    /// event that casts it (`cast_at`; none when no event does) is reached.
+    Ray {
+        ray: CurrentRay,
+        kind: Stroke,
+        cast_at: Option<usize>,
+    },
+}
+
+impl Segment {
+    /// Its stroke with the step-through at `progress`: the current ray's
+    /// `Current`, a ray whose cast is reached its kind's, else `Later`.
+    pub(crate) fn stroke_at(&self, progress: Progress) -> Stroke {
+        match self.drawn {
+            Drawn::Normal => Stroke::Normal,
+            Drawn::Ray { ray, .. } if progress.current == Some(ray) => Stroke::Current,
+            Drawn::Ray {
+                kind,
+                cast_at: Some(at),
+                ..
+            } if at <= progress.reached => kind,
+            Drawn::Ray { .. } => Stroke::Later,
+        }
+    }
 }
 
 /// How far a step-through has come, for the strokes: rays cast by the
@@ -83,58 +119,49 @@ pub(crate) struct BlockerMark {
     pub(crate) object: usize,
 }
 
-/// The rays of a pixel as projected segments, plus blocker points.
+/// The rays of a pixel as projected segments, plus blocker points. Linear
+/// in the events and rays: one pass over the events finds the one that
+/// casts each ray and shadow ray, which reaches it.
 pub(crate) fn ray_segments(
     tree: &RayTree,
     scene: &Scene,
     projection: &Projection,
     progress: Progress,
 ) -> (Vec<Segment>, Vec<BlockerMark>) {
-    let current = progress.current;
-    let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
-        tree.events
-            .iter()
-            .take(progress.reached.saturating_add(1))
-            .any(|e| test(&e.kind, e.node))
-    };
+    let casts = Casts::of(tree);
     let miss_length = miss_length(tree, scene);
     let mut segments = Vec::new();
     let mut blockers = Vec::new();
+    let mut push = |from, to, shadow_of, drawn| {
+        let mut segment = Segment {
+            from: projection.project(from),
+            to: projection.project(to),
+            stroke: Stroke::Normal,
+            shadow_of,
+            drawn,
+        };
+        segment.stroke = segment.stroke_at(progress);
+        segments.push(segment);
+    };
     for (id, node) in tree.nodes.iter().enumerate() {
         let end = node.hit.as_ref().map_or(
             node.origin + node.direction.normalize() * miss_length,
             |h| h.point,
         );
-        let is_current = current
-            == Some(CurrentRay {
-                node: id,
-                light: None,
-            });
-        let stroke = if is_current {
-            Stroke::Current
-        } else if !reached(&|k, n| n == id && matches!(k, EventKind::RayCast { .. })) {
-            Stroke::Later
-        } else {
-            match node.kind {
-                crate::trace::RayKind::Primary => Stroke::Primary,
-                crate::trace::RayKind::Reflected => Stroke::Reflected,
-                crate::trace::RayKind::Transmitted => Stroke::Transmitted,
-            }
+        let kind = match node.kind {
+            crate::trace::RayKind::Primary => Stroke::Primary,
+            crate::trace::RayKind::Reflected => Stroke::Reflected,
+            crate::trace::RayKind::Transmitted => Stroke::Transmitted,
         };
-        segments.push(Segment {
-            from: projection.project(node.origin),
-            to: projection.project(end),
-            stroke,
-            shadow_of: None,
-        });
+        let ray = CurrentRay {
+            node: id,
+            light: None,
+        };
+        let cast_at = casts.ray[id];
+        push(node.origin, end, None, Drawn::Ray { ray, kind, cast_at });
         let Some(hit) = &node.hit else { continue };
         let normal_end = hit.point + hit.normal * miss_length * 0.08;
-        segments.push(Segment {
-            from: projection.project(hit.point),
-            to: projection.project(normal_end),
-            stroke: Stroke::Normal,
-            shadow_of: None,
-        });
+        push(hit.point, normal_end, None, Drawn::Normal);
         for light in &node.lights {
             let Some(shadow) = &light.shadow else {
                 continue;
@@ -143,29 +170,21 @@ pub(crate) fn ray_segments(
                 .lights
                 .get(light.light_index)
                 .map_or(hit.point, |l| l.position);
-            let is_current = current
-                == Some(CurrentRay {
-                    node: id,
-                    light: Some(light.light_index),
-                });
-            let cast = |k: &EventKind, n| {
-                n == id
-                    && matches!(k, EventKind::ShadowCast { light: l } if *l == light.light_index)
+            let ray = CurrentRay {
+                node: id,
+                light: Some(light.light_index),
             };
-            let stroke = match () {
-                _ if is_current => Stroke::Current,
-                _ if !reached(&cast) => Stroke::Later,
-                _ => shadow_stroke(shadow.s),
-            };
-            segments.push(Segment {
-                from: projection.project(hit.point),
-                to: projection.project(target),
-                stroke,
-                shadow_of: Some(id),
-            });
+            let cast_at = casts.shadow.get(&(id, light.light_index)).copied();
+            let kind = shadow_stroke(shadow.s);
+            push(
+                hit.point,
+                target,
+                Some(id),
+                Drawn::Ray { ray, kind, cast_at },
+            );
             // A blocker of a ray S = 1 lets all through (Kt = 1): its × as
             // a partly blocked one's.
-            let kind = match shadow_stroke(shadow.s) {
+            let kind = match kind {
                 Stroke::ShadowBlocked => Stroke::ShadowBlocked,
                 _ => Stroke::ShadowPartial,
             };
@@ -178,6 +197,36 @@ pub(crate) fn ray_segments(
         }
     }
     (segments, blockers)
+}
+
+/// The first event casting each node's ray, and each of its shadow rays
+/// (by node and the light's index in the scene).
+struct Casts {
+    ray: Vec<Option<usize>>,
+    shadow: HashMap<(NodeId, usize), usize>,
+}
+
+impl Casts {
+    fn of(tree: &RayTree) -> Casts {
+        let mut casts = Casts {
+            ray: vec![None; tree.nodes.len()],
+            shadow: HashMap::new(),
+        };
+        for (i, event) in tree.events.iter().enumerate() {
+            match event.kind {
+                EventKind::RayCast { .. } => {
+                    if let Some(first @ None) = casts.ray.get_mut(event.node) {
+                        *first = Some(i);
+                    }
+                }
+                EventKind::ShadowCast { light } => {
+                    casts.shadow.entry((event.node, light)).or_insert(i);
+                }
+                _ => {}
+            }
+        }
+        casts
+    }
 }
 
 /// How far a missed ray is drawn: half the size of the pixel's scene.
@@ -203,6 +252,80 @@ mod tests {
 
     fn close(a: DVec2, b: DVec2) -> bool {
         (a - b).length() < 1e-9
+    }
+
+    /// The rule as the step-through states it, asked the old way: for
+    /// each ray, whether an event up to the progress casts it, scanning
+    /// the events (quadratic): the reference for the one pass.
+    fn strokes_by_scan(tree: &RayTree, progress: Progress) -> Vec<Stroke> {
+        let reached = |test: &dyn Fn(&EventKind, NodeId) -> bool| {
+            (tree.events.iter())
+                .take(progress.reached.saturating_add(1))
+                .any(|e| test(&e.kind, e.node))
+        };
+        let mut strokes = Vec::new();
+        for (id, node) in tree.nodes.iter().enumerate() {
+            let current = |light| progress.current == Some(CurrentRay { node: id, light });
+            let cast = |k: &EventKind, n| n == id && matches!(k, EventKind::RayCast { .. });
+            strokes.push(match node.kind {
+                _ if current(None) => Stroke::Current,
+                _ if !reached(&cast) => Stroke::Later,
+                crate::trace::RayKind::Primary => Stroke::Primary,
+                crate::trace::RayKind::Reflected => Stroke::Reflected,
+                crate::trace::RayKind::Transmitted => Stroke::Transmitted,
+            });
+            if node.hit.is_none() {
+                continue;
+            }
+            strokes.push(Stroke::Normal);
+            for light in &node.lights {
+                let Some(shadow) = &light.shadow else {
+                    continue;
+                };
+                let index = light.light_index;
+                let cast = |k: &EventKind, n| {
+                    n == id && matches!(k, EventKind::ShadowCast { light: l } if *l == index)
+                };
+                strokes.push(match () {
+                    _ if current(Some(index)) => Stroke::Current,
+                    _ if !reached(&cast) => Stroke::Later,
+                    _ => shadow_stroke(shadow.s),
+                });
+            }
+        }
+        strokes
+    }
+
+    #[test]
+    fn one_pass_strokes_every_ray_as_the_scan_did_at_every_event() {
+        // Mirrors, glass (TIR), shadows and misses: the built-in scene on
+        // a grid of pixels and glass.toml's ball and block, at every
+        // event of each tree and at its end.
+        let builtin = crate::scene::builtin::load_file_or_builtin(None).unwrap();
+        let glass = crate::scene::parse(
+            std::path::Path::new("glass.toml"),
+            include_str!("../../scenes/glass.toml"),
+        )
+        .unwrap();
+        let mut pixels: Vec<(&Scene, u32, u32)> = vec![];
+        for y in (0..builtin.height).step_by(20) {
+            for x in (0..builtin.width).step_by(20) {
+                pixels.push((&builtin, x, y));
+            }
+        }
+        pixels.extend([(&glass, 72, 45), (&glass, 132, 88), (&glass, 135, 58)]);
+        for (scene, x, y) in pixels {
+            let tree = crate::record::record_pixel(scene, &scene.settings, x, y);
+            let top = Projection::new(DiagramPlane::Top, scene, &tree);
+            let at = (0..tree.events.len()).map(|i| progress(&tree, i));
+            for progress in at.chain([Progress::done(&tree)]) {
+                let (segments, _) = ray_segments(&tree, scene, &top, progress);
+                let strokes: Vec<Stroke> = segments.iter().map(|s| s.stroke).collect();
+                assert_eq!(strokes, strokes_by_scan(&tree, progress), "({x}, {y})");
+                let again: Vec<Stroke> = segments.iter().map(|s| s.stroke_at(progress)).collect();
+                assert_eq!(again, strokes);
+            }
+        }
     }
 
     #[test]

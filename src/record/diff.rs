@@ -4,6 +4,7 @@
 //! each ray that moved. Rays are matched by their path from the primary ray
 //! ("primary → reflected → transmitted"), as a student would name them.
 
+use std::collections::HashMap;
 use std::fmt::Write;
 
 use super::numbers::color;
@@ -32,20 +33,22 @@ pub(crate) fn diff(before: &RayTree, after: &RayTree) -> String {
     );
     let paths_before = paths(before);
     let paths_after = paths(after);
+    // Matched through a map of the paths (a path names one ray in a
+    // tree): linear, where a search of the list per ray took minutes on
+    // trees of 65,536 rays.
+    let (ids_before, ids_after) = (by_path(&paths_before), by_path(&paths_after));
     let mut lines = Vec::new();
     for (path, id) in &paths_before {
-        match paths_after.iter().find(|(p, _)| p == path) {
+        match ids_after.get(path.as_str()) {
             None => lines.push(format!(
                 "  the {path} ray is gone (it brought {})",
                 color(before.nodes[*id].color)
             )),
-            Some((_, other)) => {
-                node_changes(&mut lines, path, &before.nodes[*id], &after.nodes[*other])
-            }
+            Some(other) => node_changes(&mut lines, path, &before.nodes[*id], &after.nodes[*other]),
         }
     }
     for (path, id) in &paths_after {
-        if !paths_before.iter().any(|(p, _)| p == path) {
+        if !ids_before.contains_key(path.as_str()) {
             lines.push(format!(
                 "  a new {path} ray (it brings {})",
                 color(after.nodes[*id].color)
@@ -76,6 +79,12 @@ fn paths(tree: &RayTree) -> Vec<(String, NodeId)> {
         out.push((path, id));
     }
     out
+}
+
+/// Each ray by its path (a path names one ray: a ray has at most one
+/// reflected and one transmitted child).
+fn by_path(paths: &[(String, NodeId)]) -> HashMap<&str, NodeId> {
+    (paths.iter()).map(|(p, id)| (p.as_str(), *id)).collect()
 }
 
 /// The terms of one ray that moved between `before` and `after`.

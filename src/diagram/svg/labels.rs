@@ -5,25 +5,39 @@
 //! object's outline is nearer than its own. Boxes are estimated from the
 //! character count, as an SVG has no text metrics before it is drawn.
 
+use std::collections::HashMap;
 use std::fmt::Write;
 
 use glam::DVec2;
 
+use super::cell_index::CellIndex;
+
 /// A box as its (top-left, bottom-right) corners.
 pub(crate) type Box2 = (DVec2, DVec2);
 
-/// Placed labels' and marks' boxes, and the rays to keep labels off.
+/// Placed labels' and marks' boxes, and the rays to keep labels off, each
+/// kind listed by the cells of the figure it reaches (a place is tested
+/// against what is near it only).
 pub(crate) struct Labels {
     font_size: f64,
     /// Where labels may go: the figure less its title and legend.
     bounds: Box2,
     boxes: Vec<Box2>,
+    box_cells: CellIndex,
     rays: Vec<(DVec2, DVec2)>,
+    ray_cells: CellIndex,
     /// Objects' outlines, each piece with its object: a label across one
     /// reads as naming the wrong object, so they are kept clear before
     /// rays are.
     outlines: Vec<OutlinePiece>,
+    outline_cells: CellIndex,
+    /// Each object's pieces of `outlines`.
+    outlines_of: HashMap<usize, Vec<usize>>,
 }
+
+/// The side of a cell of the figure's grid, in figure units: about a
+/// label's height, so a place's box covers a handful of cells.
+const CELL: f64 = 16.0;
 
 /// A straight piece of an object's outline in the figure.
 #[derive(Clone, Copy)]
@@ -40,9 +54,19 @@ impl Labels {
             font_size,
             bounds,
             boxes: Vec::new(),
+            box_cells: CellIndex::new(bounds, CELL),
             rays: Vec::new(),
+            ray_cells: CellIndex::new(bounds, CELL),
             outlines: Vec::new(),
+            outline_cells: CellIndex::new(bounds, CELL),
+            outlines_of: HashMap::new(),
         }
+    }
+
+    /// Keeps labels off the box `b` (a mark's, a label's, a text's).
+    fn reserve_box(&mut self, b: Box2) {
+        self.box_cells.insert_box(b, self.boxes.len() as u32);
+        self.boxes.push(b);
     }
 
     /// The size of the labels placed from now on (the text's own
@@ -55,18 +79,19 @@ impl Labels {
     /// `corner` (an axis name).
     pub(crate) fn reserve_text(&mut self, corner: DVec2, text: &str) {
         let size = self.size(text);
-        self.boxes.push(text_box(corner, size));
+        self.reserve_box(text_box(corner, size));
     }
 
     /// Keeps labels off a mark (a dot, a crossing) of this radius.
     pub(crate) fn reserve(&mut self, centre: DVec2, radius: f64) {
         let r = DVec2::splat(radius);
-        self.boxes.push((centre - r, centre + r));
+        self.reserve_box((centre - r, centre + r));
     }
 
     /// Keeps labels off a drawn ray from `a` to `b` where there is room;
     /// unlike a mark, a label may cross a ray when nothing near is free.
     pub(crate) fn reserve_ray(&mut self, a: DVec2, b: DVec2) {
+        self.ray_cells.insert_segment(a, b, self.rays.len() as u32);
         self.rays.push((a, b));
     }
 
@@ -74,6 +99,9 @@ impl Labels {
     /// a label goes further out (up to twice as far as for a ray) before
     /// it crosses one.
     pub(crate) fn reserve_outline(&mut self, a: DVec2, b: DVec2, object: usize) {
+        let piece = self.outlines.len();
+        self.outline_cells.insert_segment(a, b, piece as u32);
+        self.outlines_of.entry(object).or_default().push(piece);
         self.outlines.push(OutlinePiece { a, b, object });
     }
 
@@ -149,26 +177,39 @@ impl Labels {
     /// `object`'s own (within a unit: faces seen edge-on share their
     /// lines), and `object` has one drawn.
     fn nearest_is_own(&self, b: Box2, object: usize) -> bool {
-        let (mut own, mut other) = (f64::INFINITY, f64::INFINITY);
-        for piece in &self.outlines {
-            let d = segment_box_distance(piece.a, piece.b, b);
-            if piece.object == object {
-                own = own.min(d);
-            } else {
-                other = other.min(d);
-            }
+        let distance = |piece: &OutlinePiece| segment_box_distance(piece.a, piece.b, b);
+        let own = (self.outlines_of.get(&object).into_iter().flatten())
+            .map(|&i| distance(&self.outlines[i]))
+            .fold(f64::INFINITY, f64::min);
+        if !own.is_finite() {
+            return false;
         }
-        own.is_finite() && own <= other + 1.0
+        // Another object's piece can only come nearer than `own` with a
+        // point within `own` of the box: look in the cells that far out.
+        let reach = DVec2::splat(own + 1.0);
+        (self.outline_cells.near((b.0 - reach, b.1 + reach)))
+            .map(|i| &self.outlines[i])
+            .filter(|piece| piece.object != object)
+            .all(|piece| own <= distance(piece) + 1.0)
     }
 
     /// Whether the box `b` is inside the figure and meets no label or
     /// mark, no outline, and (if `rays`) no ray.
     fn fits(&self, b: Box2, rays: bool) -> bool {
+        contains(self.bounds, b) && self.meets_no_box(b) && !self.crosses(b, rays)
+    }
+
+    /// Whether the box `b` meets no label or mark.
+    fn meets_no_box(&self, b: Box2) -> bool {
+        !(self.box_cells.near(b)).any(|i| overlap(self.boxes[i], b))
+    }
+
+    /// Whether an outline, or (if `rays`) a ray, crosses the box `b`.
+    fn crosses(&self, b: Box2, rays: bool) -> bool {
         let crosses = |(a, c): (DVec2, DVec2)| clip(a, c, b).is_some();
-        let blocked = self.boxes.iter().any(|o| overlap(*o, b))
-            || self.outlines.iter().any(|p| crosses((p.a, p.b)))
-            || (rays && self.rays.iter().copied().any(crosses));
-        contains(self.bounds, b) && !blocked
+        let outlines = self.outline_cells.near(b).map(|i| &self.outlines[i]);
+        (outlines.map(|p| (p.a, p.b)).any(crosses))
+            || (rays && self.ray_cells.near(b).map(|i| self.rays[i]).any(crosses))
     }
 
     /// The first of `candidates` that `fits`.
@@ -187,7 +228,7 @@ impl Labels {
             if outlines {
                 return self.fits(b, rays);
             }
-            contains(self.bounds, b) && !self.boxes.iter().any(|o| overlap(*o, b))
+            contains(self.bounds, b) && self.meets_no_box(b)
         };
         let first = |outlines, rays| (candidates.iter().copied()).find(|c| fits(c, outlines, rays));
         let further = || {
@@ -199,21 +240,41 @@ impl Labels {
             .or_else(further)
             .or_else(|| first(false, false))
             .unwrap_or_else(|| {
-                let (lo, hi) = self.bounds;
-                let rows = (0..).map(|i| lo.y + size.y + 1.0 + i as f64 * 4.0);
-                let row_starts = rows.take_while(|y| *y + 3.0 <= hi.y).flat_map(|y| {
-                    (0..)
-                        .map(move |i| DVec2::new(lo.x + 1.0 + i as f64 * 8.0, y))
-                        .take_while(move |c| c.x + size.x <= hi.x)
-                });
-                let mut scan = row_starts;
-                scan.find(|c| fits(c, false, false))
-                    .unwrap_or(lo + DVec2::new(1.0, size.y + 1.0))
+                self.scan(size)
+                    .unwrap_or(self.bounds.0 + DVec2::new(1.0, size.y + 1.0))
             })
     }
 
+    /// The first place, row by row (every 4 units down, 8 across), whose
+    /// box is inside the figure and meets no label or mark. A place whose
+    /// box meets one jumps past its right edge: every place between meets
+    /// it too (the boxes only move right), so none is passed that fits.
+    fn scan(&self, size: DVec2) -> Option<DVec2> {
+        let (lo, hi) = self.bounds;
+        let rows = (0..).map(|i| lo.y + size.y + 1.0 + i as f64 * 4.0);
+        for y in rows.take_while(|y| *y + 3.0 <= hi.y) {
+            let at = |i: usize| DVec2::new(lo.x + 1.0 + i as f64 * 8.0, y);
+            let mut i = 0;
+            while at(i).x + size.x <= hi.x {
+                let b = text_box(at(i), size);
+                let met = (self.box_cells.near(b)).find(|&o| overlap(self.boxes[o], b));
+                match met {
+                    None if contains(self.bounds, b) => return Some(at(i)),
+                    None => i += 1,
+                    Some(o) => {
+                        i += 1;
+                        while at(i).x < self.boxes[o].1.x && at(i).x + size.x <= hi.x {
+                            i += 1;
+                        }
+                    }
+                }
+            }
+        }
+        None
+    }
+
     fn write(&mut self, out: &mut String, corner: DVec2, size: DVec2, text: &str, attrs: &str) {
-        self.boxes.push(text_box(corner, size));
+        self.reserve_box(text_box(corner, size));
         let _ = writeln!(
             out,
             "<text x=\"{:.1}\" y=\"{:.1}\"{}{attrs}>{}</text>",
@@ -346,6 +407,93 @@ mod tests {
         let mut out = String::new();
         free.place_centred(&mut out, DVec2::new(100.0, 100.0), "4", "fill=\"grey\"");
         assert_eq!(out, "<text x=\"96.7\" y=\"103.5\" fill=\"grey\">4</text>\n");
+    }
+
+    /// Numbers in 0..1 from a fixed seed: the same figure every run.
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = (self.0)
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// The row scan as it was, testing each place against every box.
+    fn scan_everything(labels: &Labels, size: DVec2) -> Option<DVec2> {
+        let (lo, hi) = labels.bounds;
+        let rows = (0..).map(|i| lo.y + size.y + 1.0 + i as f64 * 4.0);
+        let mut places = rows.take_while(|y| *y + 3.0 <= hi.y).flat_map(|y| {
+            (0..)
+                .map(move |i| DVec2::new(lo.x + 1.0 + i as f64 * 8.0, y))
+                .take_while(move |c| c.x + size.x <= hi.x)
+        });
+        places.find(|c| {
+            let b = text_box(*c, size);
+            contains(labels.bounds, b) && !labels.boxes.iter().any(|o| overlap(*o, b))
+        })
+    }
+
+    #[test]
+    fn the_cells_answer_as_testing_everything_placed_would() {
+        // A crowded figure at random: 300 marks, rays and outline pieces
+        // of 10 objects (some past its edges), and labels filling its top
+        // third. For 2,000 places at random, `fits` and `nearest_is_own`
+        // answer as tests of every item do, and the row scan stops where
+        // testing each place against every box did.
+        let mut r = Lcg(27);
+        let mut labels = Labels::new(13.0, WIDE);
+        let point = |r: &mut Lcg| DVec2::new(r.next() * 900.0 - 50.0, r.next() * 700.0 - 50.0);
+        for i in 0..300 {
+            let (a, b) = (point(&mut r), point(&mut r));
+            labels.reserve(a, 2.0 + r.next() * 10.0);
+            labels.reserve_ray(a, a + (b - a) * r.next());
+            let piece = DVec2::new(r.next() * 60.0 - 30.0, r.next() * 60.0 - 30.0);
+            labels.reserve_outline(b, b + piece, i % 10);
+        }
+        for row in 0..40 {
+            let mut x = r.next() * 20.0;
+            while x < 800.0 {
+                let corner = DVec2::new(x, 14.0 + row as f64 * 5.0);
+                let width = 20.0 + r.next() * 100.0;
+                labels.reserve_box(text_box(corner, DVec2::new(width, 13.0)));
+                x += width + r.next() * 30.0;
+            }
+        }
+        for _ in 0..2000 {
+            let size = DVec2::new(10.0 + r.next() * 150.0, 13.0);
+            let b = text_box(point(&mut r), size);
+            let crosses = |(a, c): (DVec2, DVec2)| clip(a, c, b).is_some();
+            for rays in [false, true] {
+                let ray_crosses = rays && labels.rays.iter().copied().any(crosses);
+                let everything = contains(labels.bounds, b)
+                    && !labels.boxes.iter().any(|o| overlap(*o, b))
+                    && !labels.outlines.iter().any(|p| crosses((p.a, p.b)))
+                    && !ray_crosses;
+                assert_eq!(labels.fits(b, rays), everything, "{b:?}");
+            }
+            // Object 10 has no outline: never its own.
+            let object = (r.next() * 11.0) as usize;
+            let (mut own, mut other) = (f64::INFINITY, f64::INFINITY);
+            for p in &labels.outlines {
+                let d = segment_box_distance(p.a, p.b, b);
+                if p.object == object {
+                    own = own.min(d);
+                } else {
+                    other = other.min(d);
+                }
+            }
+            let nearest = own.is_finite() && own <= other + 1.0;
+            assert_eq!(labels.nearest_is_own(b, object), nearest, "{b:?}");
+        }
+        for width in [8.0, 40.0, 120.0, 400.0] {
+            let size = DVec2::new(width, 13.0);
+            assert_eq!(labels.scan(size), scan_everything(&labels, size));
+        }
+        let scanned = labels.scan(DVec2::new(120.0, 13.0)).unwrap();
+        assert!(scanned.y > 200.0, "past the crowded third: {scanned}");
     }
 
     #[test]

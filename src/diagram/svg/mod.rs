@@ -8,6 +8,7 @@
 //! never sit on a mark and stay inside the figure, and a legend.
 
 mod caption;
+mod cell_index;
 pub(crate) mod crossing_figure;
 mod labels;
 mod legend;

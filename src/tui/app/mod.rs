@@ -37,7 +37,6 @@ use super::view::find;
 use super::view::image_grid::{ImageGrid, max_zoom};
 use super::view::layout::{self, Panes, inner};
 use super::view::mistakes_menu;
-use super::view::tree;
 use super::view::your_rays;
 
 mod comparing;
@@ -550,8 +549,7 @@ impl App {
         let banner = self.session.error().map_or(0, |e| e.lines().count() as u16);
         let only_yours =
             (self.ray_log.as_ref().and_then(RayLog::report)).map_or(0, |r| r.only_yours.len());
-        let rows =
-            (tree::rows(self.pixel.tree(), self.pixel.collapsed()).len() + only_yours) as u16;
+        let rows = (self.pixel.rows().len() + only_yours) as u16;
         layout::panes(self.screen.size(), banner, rows)
     }
 

@@ -3,16 +3,18 @@
 //! the `x` breakpoint stops at, and what the last toggle changed in it.
 //! Stepping and the tree's keys change only this.
 
+use std::cell::{Cell, OnceCell};
 use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
+use crate::diagram::{Diagram, DiagramPlane, Progress};
 use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, Settings};
 use crate::tui::action::{Action, Breakpoint};
 use crate::tui::find_job::Found;
 use crate::tui::view::stepper;
 use crate::tui::view::steps;
-use crate::tui::view::tree::{self, RowKind};
+use crate::tui::view::tree::{self, Row, RowKind};
 
 pub struct TracedPixel {
     /// The selected pixel, in the scene image's coordinates.
@@ -30,6 +32,16 @@ pub struct TracedPixel {
     break_object: Option<usize>,
     /// How long the last pick took.
     pick_time: Duration,
+    /// The tree's diagram on each plane (top, side, the primary ray's),
+    /// assembled once per tree when first drawn, at the end of the
+    /// step-through: the pane strokes it at the current event. A frame
+    /// then costs no assembly (half a second for 65,536 rays).
+    diagrams: [OnceCell<Diagram>; 3],
+    /// How many diagrams have been assembled, for the tests.
+    assembled: Cell<usize>,
+    /// The tree pane's rows, made once per tree and folding (the layout,
+    /// the pane and the row keys all ask for them every frame).
+    rows: OnceCell<Vec<Row>>,
 }
 
 impl TracedPixel {
@@ -46,6 +58,9 @@ impl TracedPixel {
             what_if: None,
             break_object: None,
             pick_time: started.elapsed(),
+            diagrams: Default::default(),
+            assembled: Cell::new(0),
+            rows: OnceCell::new(),
         }
     }
 
@@ -63,6 +78,7 @@ impl TracedPixel {
                 if !self.collapsed.remove(&node) {
                     self.collapsed.insert(node);
                 }
+                self.rows = OnceCell::new();
             }
             Action::ScrollDetails(delta) => {
                 let from = self.details_scroll.unwrap_or(0) as i32;
@@ -93,6 +109,13 @@ impl TracedPixel {
         &self.collapsed
     }
 
+    /// The tree pane's visible rows (`view::tree::rows`), made once per
+    /// tree and folding.
+    pub fn rows(&self) -> &[Row] {
+        self.rows
+            .get_or_init(|| tree::rows(&self.tree, &self.collapsed))
+    }
+
     /// Manual scroll of the details; `None` follows the current event.
     pub(crate) fn details_scroll(&self) -> Option<u16> {
         self.details_scroll
@@ -111,6 +134,34 @@ impl TracedPixel {
     /// How long the last pick took.
     pub fn pick_time(&self) -> Duration {
         self.pick_time
+    }
+
+    /// The tree's diagram on `plane` (recorded in `scene`), with every ray
+    /// reached: assembled the first time it is asked for, then kept until
+    /// the tree changes.
+    pub(crate) fn diagram(&self, scene: &Scene, plane: DiagramPlane) -> &Diagram {
+        let slot = match plane {
+            DiagramPlane::Top => 0,
+            DiagramPlane::Side => 1,
+            DiagramPlane::Primary => 2,
+        };
+        self.diagrams[slot].get_or_init(|| {
+            self.assembled.set(self.assembled.get() + 1);
+            Diagram::new(scene, &self.tree, plane, Progress::done(&self.tree))
+        })
+    }
+
+    /// How many diagrams have been assembled since the app opened: one per
+    /// tree and plane drawn, however many frames show it.
+    pub fn diagrams_assembled(&self) -> usize {
+        self.assembled.get()
+    }
+
+    /// Takes a new recording: its diagrams are assembled when drawn.
+    fn set_tree(&mut self, tree: RayTree) {
+        self.tree = tree;
+        self.diagrams = Default::default();
+        self.rows = OnceCell::new();
     }
 
     /// The node the tree and details show: the current event's ray.
@@ -142,10 +193,11 @@ impl TracedPixel {
             self.cursor.1.min(scene.height - 1),
         );
         let started = Instant::now();
-        self.tree = record_pixel(scene, settings, self.cursor.0, self.cursor.1);
+        self.set_tree(record_pixel(scene, settings, self.cursor.0, self.cursor.1));
         self.pick_time = started.elapsed();
         self.current = self.current.min(self.tree.events.len().saturating_sub(1));
         self.collapsed.clear();
+        self.rows = OnceCell::new();
         self.details_scroll = None;
     }
 
@@ -170,18 +222,19 @@ impl TracedPixel {
     /// A find's pixel, already recorded, at its first matching event.
     pub(super) fn take_found(&mut self, found: Found, pick_time: Duration) {
         self.cursor = found.pixel;
-        self.tree = found.tree;
+        self.set_tree(found.tree);
         self.pick_time = pick_time;
         self.current = found.event;
         self.what_if = None;
         self.collapsed.clear();
+        self.rows = OnceCell::new();
         self.details_scroll = None;
     }
 
     /// A click on line `line` of the tree pane, `height` lines high.
     pub(super) fn click_tree(&mut self, line: usize, height: usize) {
-        let rows = tree::rows(&self.tree, &self.collapsed);
-        let selected = tree::selected_row(&self.tree, &rows, self.current).unwrap_or(0);
+        let rows = self.rows();
+        let selected = tree::selected_row(&self.tree, rows, self.current).unwrap_or(0);
         let first = tree::scroll_offset(selected, height);
         if let Some(row) = rows.get(first + line) {
             self.select(row.kind);
@@ -205,6 +258,7 @@ impl TracedPixel {
             node = self.tree.nodes[n].parent;
             if let Some(parent) = node {
                 self.collapsed.remove(&parent);
+                self.rows = OnceCell::new();
             }
         }
         self.details_scroll = Some(0);
@@ -269,8 +323,8 @@ impl TracedPixel {
     }
 
     fn select_row(&mut self, delta: i32) {
-        let rows = tree::rows(&self.tree, &self.collapsed);
-        let Some(selected) = tree::selected_row(&self.tree, &rows, self.current) else {
+        let rows = self.rows();
+        let Some(selected) = tree::selected_row(&self.tree, rows, self.current) else {
             return;
         };
         let row = (selected as i64 + delta as i64).clamp(0, rows.len() as i64 - 1) as usize;

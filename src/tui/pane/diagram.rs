@@ -14,7 +14,9 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Circle, Context, Line, Points};
 use ratatui::widgets::{Block, Widget};
 
-use crate::diagram::{Anchor, Diagram, LegendRow, Named, ObjectOutline, Outline, Segment, Stroke};
+use crate::diagram::{
+    Anchor, Diagram, LegendRow, Named, ObjectOutline, Outline, Progress, Segment, Stroke,
+};
 use crate::math::to_rgb8;
 use crate::scene::Scene;
 use crate::tui::App;
@@ -146,19 +148,20 @@ fn mark_key(diagram: &Diagram) -> Vec<(&'static str, Color)> {
 /// at its current event, on its plane, panned and zoomed as it says.
 pub(crate) fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
     let (scene, pixel, screen) = (app.session().scene(), app.pixel(), app.screen());
-    let tree = pixel.tree();
-    let diagram = Diagram::new(scene, tree, screen.plane(), progress(tree, pixel.current()));
-    draw(area, buf, block, &diagram, scene, screen.diagram_pan_zoom());
+    let diagram = pixel.diagram(scene, screen.plane());
+    let progress = progress(pixel.tree(), pixel.current());
+    let view = screen.diagram_pan_zoom();
+    draw(area, buf, block, (diagram, progress), scene, view);
 }
 
-/// Paints `diagram` (of a pixel of `scene`) into `area`, the block's border
-/// holding the ray key, its window fitted to the diagram then panned and
-/// zoomed by `view`.
+/// Paints `diagram` (of a pixel of `scene`) into `area`, its rays stroked
+/// with the step-through at `progress`, the block's border holding the ray
+/// key, its window fitted to the diagram then panned and zoomed by `view`.
 fn draw(
     area: Rect,
     buf: &mut ratatui::buffer::Buffer,
     block: Block,
-    diagram: &Diagram,
+    (diagram, progress): (&Diagram, Progress),
     scene: &Scene,
     view: PanZoom,
 ) {
@@ -187,22 +190,23 @@ fn draw(
                 color: MARK_GREY,
             });
         }
-        let draw = |ctx: &mut Context, s: &Segment| {
+        let draw = |ctx: &mut Context, s: &Segment, stroke| {
             ctx.draw(&Line::new(
                 s.from.x,
                 s.from.y,
                 s.to.x,
                 s.to.y,
-                stroke_color(s.stroke),
+                stroke_color(stroke),
             ));
         };
-        (diagram.segments.iter())
-            .filter(|s| s.stroke != Stroke::Current)
-            .for_each(|s| draw(ctx, s));
+        let strokes = || (diagram.segments.iter()).map(|s| (s, s.stroke_at(progress)));
+        (strokes())
+            .filter(|(_, stroke)| *stroke != Stroke::Current)
+            .for_each(|(s, stroke)| draw(ctx, s, stroke));
         ctx.layer();
-        (diagram.segments.iter())
-            .filter(|s| s.stroke == Stroke::Current)
-            .for_each(|s| draw(ctx, s));
+        (strokes())
+            .filter(|(_, stroke)| *stroke == Stroke::Current)
+            .for_each(|(s, stroke)| draw(ctx, s, stroke));
     };
     Canvas::default()
         .block(block)
@@ -334,6 +338,7 @@ fn write_labels(
     let size = (inner.width, inner.height);
     // Where each label is among those shown (a companion's index moves).
     let mut shown_at = vec![None; labels.len()];
+    let mut shown_so_far = 0;
     let shown: Vec<(Wanted, &Label)> = labels
         .iter()
         .enumerate()
@@ -348,7 +353,8 @@ fn write_labels(
             };
             // A companion not shown: `place` leaves the label out with it.
             let with = l.with.map(|c| shown_at[c].unwrap_or(usize::MAX));
-            shown_at[i] = Some(shown_at.iter().flatten().count());
+            shown_at[i] = Some(shown_so_far);
+            shown_so_far += 1;
             Some((
                 Wanted {
                     at,
@@ -398,7 +404,7 @@ mod tests {
             area,
             &mut buf,
             Block::bordered(),
-            &d,
+            (&d, Progress::done(&tree)),
             &scene,
             PanZoom::fit(),
         );

@@ -16,7 +16,7 @@ use std::collections::BTreeSet;
 use crate::divergence::RayStatus;
 use crate::record::{NodeId, RayTree};
 use crate::tui::view::tree::{
-    LogLabel, Row, row_line, rows, scroll_offset, selected_row, selected_style,
+    LogLabel, Row, row_line, scroll_offset, selected_row, selected_style,
 };
 use crate::tui::view::your_rays::{RowMarks, legend, mark, only_yours_lines};
 use crate::tui::{App, Pane};
@@ -44,14 +44,17 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
         block = block.title_bottom(legend(area.width as usize));
     }
     let inside = block.inner(area);
-    let rows = rows(tree, pixel.collapsed());
-    let selected = selected_row(tree, &rows, pixel.current());
+    let rows = pixel.rows();
+    let selected = selected_row(tree, rows, pixel.current());
     let first = scroll_offset(selected.unwrap_or(0), inside.height as usize);
     let marks = report.map(|r| RowMarks::new(tree, r));
     let width = inside.width as usize;
-    let mut lines: Vec<Line> = rows
-        .iter()
-        .enumerate()
+    // Only the lines shown are made (a tree of 65,536 rays has twice as
+    // many rows): the rows from `first`, then the rays only in the log.
+    let height = inside.height as usize;
+    let mut lines: Vec<Line> = (rows.iter().enumerate())
+        .skip(first)
+        .take(height)
         .map(|(i, row)| {
             let line = match &marks {
                 None => row_line(tree, pixel.collapsed(), row, LogLabel::default(), width),
@@ -66,7 +69,11 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
         .collect();
     if let Some(report) = report {
         let (symbol, color) = mark(RayStatus::OnlyYours);
-        for (text, is_first) in only_yours_lines(report) {
+        let room = height - lines.len();
+        let only_yours = (only_yours_lines(report).into_iter())
+            .skip(first.saturating_sub(rows.len()))
+            .take(room);
+        for (text, is_first) in only_yours {
             let text: String = text.chars().take(width.saturating_sub(2)).collect();
             let style = if is_first {
                 Style::new().add_modifier(Modifier::BOLD)
@@ -79,11 +86,6 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
             ]));
         }
     }
-    let lines: Vec<Line> = lines
-        .into_iter()
-        .skip(first)
-        .take(inside.height as usize)
-        .collect();
     frame.render_widget(Paragraph::new(lines).block(block), area);
 }
 
