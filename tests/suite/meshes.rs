@@ -142,6 +142,12 @@ fn cornell_box_shadow_and_mirror_explained() {
     for (x, y, name) in [
         (63, 172, "cornell_63_172_shadow"),
         (62, 196, "cornell_62_196_mirror"),
+        // Both in one tree: the mirror ball, whose reflected ray finds the
+        // red wall in the tall block's shadow. By hand: ambient 0.2 · 1 ·
+        // 0.9 = 0.18; the reflected ray weighs k_s = 0.9; unblocked, the
+        // wall's diffuse would add 0.9 · Kd · N·L = 0.9 · 0.63 · 0.5691 =
+        // 0.323 of red to the pixel.
+        (62, 182, "cornell_62_182_mirror_and_shadow"),
     ] {
         let tree = record_pixel(&scene, &scene.settings, x, y);
         snapshot!(name, explain(&tree));
