@@ -53,3 +53,33 @@ fn light_exactly_at_the_hit_point() {
          [[object]]\nmaterial = \"m\"\nplane = { normal = [0, 1, 0], point = [0, 0, 0] }\n",
     );
 }
+
+/// The mesh loaders' finds (fuzz target `mesh_loaders`), minimized: each is
+/// refused at its line, or loads without the polyline, never a panic (the
+/// first one overflowed inside tobj in a build with overflow checks).
+#[test]
+fn mesh_loader_finds() {
+    use raystep::scene::mesh::load_bytes;
+    let five_points = "v 552.8 0.0   0.0\nv   0.0 0.0   0.0\nv   0.0 0.0 559.2\n\
+                       v 549.6 0.0 559.2\nv 549.6 0.0 559.2\nvt 132.0 0\n";
+    // An `l` line of three points with a texture index far out of range:
+    // tobj read it as a triangle and computed -194 + 1 texture coordinates.
+    // A polyline is no surface: it is left out, and nothing else is there.
+    let polyline = format!("{five_points}l 02/-194 -2/-2 00\n");
+    assert_eq!(
+        load_bytes(Path::new("f.obj"), polyline.as_bytes()).unwrap(),
+        0
+    );
+    // A polyline beside a face: only the face's triangle is read.
+    let beside = format!("{five_points}l 1 2 3 4\nf 1 2 3\n");
+    assert_eq!(
+        load_bytes(Path::new("f.obj"), beside.as_bytes()).unwrap(),
+        1
+    );
+    // U+000B is whitespace to tobj: `f` is its keyword here too, and its
+    // index out of range is found at its line and column.
+    let tab = format!("{five_points}f\u{b}-9 1 2\n");
+    let error = load_bytes(Path::new("f.obj"), tab.as_bytes()).unwrap_err();
+    let at = error.location.as_ref().expect("a line and column");
+    assert_eq!((at.line, at.column), (7, 3), "{error}");
+}

@@ -77,6 +77,15 @@ pub(super) fn parse(
         ignore_points: true,
         ignore_lines: true,
     };
+    // tobj reads an `l` line of three or more points as a face, whatever
+    // `ignore_lines` says: a polyline is no surface, so it never sees one.
+    let without_polylines;
+    let text = if lines.polylines {
+        without_polylines = blank_polylines(text);
+        without_polylines.as_str()
+    } else {
+        text
+    };
     let (models, mtl) = tobj::load_obj_buf(&mut text.as_bytes(), &options, materials)
         .map_err(|e| SceneError::plain(format!("{}: {e}", path.display())))?;
     let mut loaded = Loaded::default();
@@ -152,6 +161,8 @@ struct Lines {
     /// For each triangle of each face's fan, in file order: whether every
     /// corner of its face has a `vn`.
     smooth: Vec<bool>,
+    /// Whether the file has `l` lines (polylines).
+    polylines: bool,
 }
 
 /// The pass over the lines: counts `v`, `vt` and `vn` as they come and
@@ -160,6 +171,7 @@ fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
     let mut counts = [0usize; 3]; // v, vt, vn
     let mut used_materials: Vec<String> = Vec::new();
     let mut smooth = Vec::new();
+    let mut polylines = false;
     let mut start = 0;
     for line in text.split_inclusive('\n') {
         let line_start = start;
@@ -229,6 +241,7 @@ fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
                 let all_normals = with_normal == corners;
                 smooth.extend(std::iter::repeat_n(all_normals, corners - 2));
             }
+            "l" => polylines = true,
             "usemtl" => {
                 // tobj takes the rest of the line as the name.
                 let name = content[keyword_span.end - line_start..].trim();
@@ -242,7 +255,21 @@ fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
     Ok(Lines {
         used_materials,
         smooth,
+        polylines,
     })
+}
+
+/// `text` with each `l` line emptied (its line break kept).
+fn blank_polylines(text: &str) -> String {
+    text.split_inclusive('\n')
+        .map(|line| {
+            if line.split_whitespace().next() == Some("l") {
+                "\n"
+            } else {
+                line
+            }
+        })
+        .collect()
 }
 
 /// One index of a face corner: 1..=count, or -count..=-1 counting back.
@@ -263,9 +290,11 @@ fn check_index(part: &str, slot: usize, count: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// The whitespace-separated words of a line and their byte ranges.
+/// The whitespace-separated words of a line and their byte ranges: split
+/// as tobj splits them (Unicode whitespace, so U+000B too), so that both
+/// read the same keyword.
 fn words(line: &str) -> impl Iterator<Item = (Range<usize>, &str)> {
-    line.split_ascii_whitespace().map(move |w| {
+    line.split_whitespace().map(move |w| {
         let start = w.as_ptr() as usize - line.as_ptr() as usize;
         (start..start + w.len(), w)
     })
