@@ -7,7 +7,9 @@ fn main() -> ExitCode {
     match raystep::cli::run(cli) {
         Ok(code) => code,
         Err(error) => {
-            eprintln!("error: {error:#}");
+            // A name quoted in the message may hold control characters.
+            let message = format!("{error:#}");
+            eprintln!("error: {}", raystep::printable::printable_text(&message));
             ExitCode::FAILURE
         }
     }

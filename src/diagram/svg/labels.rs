@@ -296,8 +296,12 @@ pub(crate) fn clip(a: DVec2, b: DVec2, frame: Box2) -> Option<(DVec2, DVec2)> {
     (t0 <= t1).then(|| (a + d * t0, a + d * t1))
 }
 
+/// `text` for SVG's element text or a quoted attribute: markup characters
+/// as entities, and control characters (which XML 1.0 cannot carry, not
+/// even as `&#1b;`) spelled out as `crate::printable` does.
 pub(crate) fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
+    crate::printable::printable(text)
+        .replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
