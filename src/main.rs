@@ -4,6 +4,9 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     let cli = raystep::cli::Cli::parse();
+    if let Err(usage) = cli.check_combinations() {
+        usage.exit();
+    }
     match raystep::cli::run(cli) {
         Ok(code) => code,
         Err(error) => {

@@ -612,7 +612,8 @@ fn shadows_primary_or_none_leave_shadow_rays_out() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(output.status.code(), Some(1));
+    // A bad flag combination is a usage error (issue 27): status 2.
+    assert_eq!(output.status.code(), Some(2));
     assert!(stderr(&output).contains("the crossing figure has none"));
 }
 

@@ -199,3 +199,164 @@ fn json_keeps_the_exact_names() {
         "{blockers}"
     );
 }
+
+// Issue 27, item 8: the smaller ones.
+
+/// `--set` on `explain` at the hostile scene's ball pixel.
+fn explain_set(scene: &str, pixel: &str, assignment: &str) -> std::process::Output {
+    raystep(&["explain", scene, "--pixel", pixel, "--set", assignment])
+}
+
+#[test]
+fn a_set_error_quotes_a_bounded_excerpt_of_the_value() {
+    // 100,000 characters in: the message is cut, as a scene error's is, to
+    // MAX_MESSAGE_CHARS (400) with an ellipsis; with "error: " and a line
+    // break, well under 1,000 bytes (the ellipsis is 3 bytes of UTF-8).
+    let dir = tempfile::tempdir().unwrap();
+    let scene = hostile_scene(dir.path());
+    let long = "7".repeat(100_000);
+    for value in [format!("x{long}"), format!("[{long}"), format!("{long}]")] {
+        let output = explain_set(&scene, BALL, &format!("settings.ambient={value}"));
+        assert_eq!(output.status.code(), Some(1));
+        let err = stderr(&output);
+        assert!(err.starts_with("error: --set settings.ambient="), "{err}");
+        assert!(err.len() < 1_000, "{} bytes of stderr", err.len());
+        assert!(err.contains('…'), "{err}");
+    }
+}
+
+#[test]
+fn a_set_array_without_its_closing_bracket_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = hostile_scene(dir.path());
+    for (value, says) in [
+        ("[0.1, 0.2, 0.3", "has no closing ]"),
+        ("0.1, 0.2, 0.3]", "has no opening ["),
+    ] {
+        let output = explain_set(&scene, BALL, &format!("settings.ambient={value}"));
+        assert_eq!(output.status.code(), Some(1), "{value}");
+        let err = stderr(&output);
+        assert!(err.contains(says), "{value}: {err}");
+    }
+    // Closed, or no brackets at all, as before.
+    for value in ["[0.1, 0.2, 0.3]", "0.1, 0.2, 0.3", "0.1"] {
+        let output = explain_set(&scene, BALL, &format!("settings.ambient={value}"));
+        assert!(output.status.success(), "{value}: {}", stderr(&output));
+    }
+}
+
+#[test]
+fn set_reaches_a_material_named_with_a_dot_or_an_equals_sign_quoted() {
+    // The hostile scene with its ball's material named "a.b" and the
+    // floor's "x=y". Pixel (20, 12) hits the ball, whose colour is all its
+    // reflection (weight k_s = 0.3): k_s = 0 leaves it black. Pixel
+    // (20, 26) is lit floor: its colour is all diffuse, so halving k_d
+    // (0.8 -> 0.4) halves it, 0.454 -> 0.227.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = hostile_scene(dir.path());
+    let paint = format!("\"paint{TAIL_TOML}\"");
+    let text = std::fs::read_to_string(&scene)
+        .unwrap()
+        .replace(&paint, "\"a.b\"")
+        .replace("materials.floor", "materials.\"x=y\"")
+        .replace("material = \"floor\"", "material = \"x=y\"");
+    std::fs::write(&scene, text).unwrap();
+    for (pixel, assignment, changed) in [
+        (
+            BALL,
+            r#"materials."a.b".ks=0"#,
+            "colour (0.035, 0.035, 0.035) -> (0.000, 0.000, 0.000)",
+        ),
+        (
+            "20,26",
+            "materials.'x=y'.kd=0.4",
+            "colour (0.454, 0.454, 0.454) -> (0.227, 0.227, 0.227)",
+        ),
+        (
+            "20,26",
+            r#"materials."x\u003dy".kd=0.4"#,
+            "colour (0.454, 0.454, 0.454) -> (0.227, 0.227, 0.227)",
+        ),
+    ] {
+        let output = explain_set(&scene, pixel, assignment);
+        assert!(output.status.success(), "{assignment}: {}", stderr(&output));
+        let text = stdout(&output);
+        assert!(text.contains(changed), "{assignment}: {text}");
+    }
+    // A quote left open, or text after the closing quote, is told.
+    for (assignment, says) in [
+        (r#"materials."a.b.ks=0"#, "is not KEY=VALUE"),
+        (r#"materials."a.b"c.ks=0"#, "is not a quoted TOML key"),
+    ] {
+        let output = explain_set(&scene, BALL, assignment);
+        assert_eq!(output.status.code(), Some(1), "{assignment}");
+        assert!(stderr(&output).contains(says), "{}", stderr(&output));
+    }
+}
+
+#[test]
+fn zoom_on_the_crossing_figure_is_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f.svg");
+    let output = raystep(&[
+        "diagram",
+        "scenes/polygons.toml",
+        "--pixel",
+        "40,54",
+        "--plane",
+        "crossing",
+        "--zoom",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
+    assert!(stderr(&output).contains("--zoom magnifies"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn long_names_are_shortened_with_the_whole_name_as_a_tooltip() {
+    // The hostile scene's names made 150-character ones: each label is cut
+    // to 40 characters (39 and "…"), which at the largest label font (13,
+    // 0.6 of it per character: 312 units) fits the 800-unit figure.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = hostile_scene(dir.path());
+    let long = "x".repeat(150);
+    let text = std::fs::read_to_string(&scene)
+        .unwrap()
+        .replace(&format!("ball{TAIL_TOML}\""), &format!("ball {long}\""))
+        .replace(&format!("lamp{TAIL_TOML}\""), &format!("lamp {long}\""))
+        .replace("name = \"floor\"", &format!("name = \"floor {long}\""));
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.path().join("f.svg");
+    run_ok(&[
+        "diagram",
+        &scene,
+        "--pixel",
+        SHADOW,
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    for node in doc.descendants().filter(|n| n.has_tag_name("text")) {
+        let words = node.text().unwrap_or("");
+        let x: f64 = node.attribute("x").unwrap().parse().unwrap();
+        let chars = words.chars().count() as f64;
+        if words.contains("xxx") {
+            assert_eq!(chars, 40.0, "{words}");
+            assert!(words.ends_with('…'), "{words}");
+            assert!(x + chars * 13.0 * 0.6 <= 800.0, "{words} at x = {x}");
+        }
+    }
+    let titles: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("title"))
+        .filter_map(|n| n.text())
+        .collect();
+    for name in ["ball", "floor", "light lamp"] {
+        let whole = format!("{name} {long}");
+        assert!(titles.contains(&whole.as_str()), "no {whole} in {titles:?}");
+    }
+}
