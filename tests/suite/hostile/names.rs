@@ -360,3 +360,25 @@ fn long_names_are_shortened_with_the_whole_name_as_a_tooltip() {
         assert!(titles.contains(&whole.as_str()), "no {whole} in {titles:?}");
     }
 }
+
+#[test]
+fn the_debugger_draws_no_unprintable_character() {
+    // The debugger opens on the centre pixel, (20, 15), which hits the
+    // ball: its panes name the ball, its material and the lamp. ratatui
+    // drops control characters; U+FFFE, not a control, must not reach a
+    // cell either.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = hostile_scene(dir.path());
+    let mut app = raystep::tui::App::open(Some(scene.into()), true).unwrap();
+    let terminal = crate::support::debugger::screen(&mut app, 200, 60);
+    let buffer = terminal.backend().buffer();
+    let mut shown = String::new();
+    for y in 0..buffer.area.height {
+        for x in 0..buffer.area.width {
+            shown.push_str(buffer[(x, y)].symbol());
+        }
+        shown.push('\n');
+    }
+    assert_printable("the debugger's screen", &shown);
+    assert!(shown.contains("ball"), "{shown}");
+}
