@@ -15,6 +15,7 @@ pub mod math;
 pub mod mistakes;
 pub(crate) mod object;
 pub(crate) mod output;
+pub mod printable;
 pub mod raylog;
 pub mod record;
 pub mod render;

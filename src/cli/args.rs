@@ -39,6 +39,30 @@ pub struct Cli {
     pub(crate) debug: DebugArgs,
 }
 
+impl Cli {
+    /// Flag combinations clap cannot refuse itself, as they depend on a
+    /// flag's value (`--plane crossing` with `--zoom 2`): a usage error,
+    /// which exits with status 2 as clap's own do.
+    pub fn check_combinations(&self) -> Result<(), clap::Error> {
+        let Some(Command::Diagram(args)) = &self.command else {
+            return Ok(());
+        };
+        let message = if args.plane == PlaneArg::Crossing && args.zoom != 1.0 {
+            "--zoom magnifies the top, side and ray diagrams; the crossing figure is always fitted to its polygon"
+        } else if args.plane == PlaneArg::Crossing && args.shadows != ShadowsArg::All {
+            "--shadows chooses the top, side and ray diagrams' shadow rays; the crossing figure has none"
+        } else {
+            return Ok(());
+        };
+        let mut cli = <Cli as clap::CommandFactory>::command();
+        cli.build();
+        let diagram = cli
+            .find_subcommand_mut("diagram")
+            .expect("diagram is a subcommand");
+        Err(diagram.error(clap::error::ErrorKind::ArgumentConflict, message))
+    }
+}
+
 /// The debugger's arguments, the same for `raystep [SCENE]` and
 /// `raystep debug [SCENE]`.
 #[derive(Args, Debug)]

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 
 use anyhow::{Result, bail};
 
-use super::{CompareArgs, CompareFormat, SizeArg, emit, load_scene};
+use super::{CompareArgs, CompareFormat, SizeArg, emit, emit_text, load_scene};
 use crate::compare::Comparison;
 use crate::divergence::{LogComparison, compare_log};
 use crate::output;
@@ -63,7 +63,9 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
     }
     let scene_name = args.scene.display().to_string();
     match args.format {
-        CompareFormat::Text => emit(&text(args, &scene_name, comparison.as_ref(), rays.as_ref()))?,
+        CompareFormat::Text => {
+            emit_text(&text(args, &scene_name, comparison.as_ref(), rays.as_ref()))?
+        }
         CompareFormat::Json => emit(&format!("{}\n", json(comparison.as_ref(), rays.as_ref())?))?,
     }
     let over = comparison.as_ref().is_some_and(|c| {

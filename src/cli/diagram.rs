@@ -3,7 +3,7 @@
 
 use std::process::ExitCode;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::ValueEnum;
 
 use super::recorded::record;
@@ -15,16 +15,8 @@ use crate::record::RayTree;
 pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
     use crate::diagram::{Diagram, DiagramPlane, Progress, Shadows, svg};
     let target = output::file(&args.output)?;
-    if args.plane == PlaneArg::Crossing && args.zoom != 1.0 {
-        bail!(
-            "--zoom magnifies the top, side and ray diagrams; the crossing figure is always fitted to its polygon"
-        );
-    }
-    if args.plane == PlaneArg::Crossing && args.shadows != ShadowsArg::All {
-        bail!(
-            "--shadows chooses the top, side and ray diagrams' shadow rays; the crossing figure has none"
-        );
-    }
+    // `--plane crossing` with `--zoom` or `--shadows` is refused as a usage
+    // error before this (`Cli::check_combinations`).
     let recorded = record(&args.pixel)?;
     // Once the scene is read, so that its meshes and MTL files are known.
     output::refuse_clashes(

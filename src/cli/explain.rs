@@ -5,11 +5,11 @@ use std::process::ExitCode;
 use anyhow::Result;
 
 use super::recorded::record;
-use super::{PixelArgs, emit};
+use super::{PixelArgs, emit_text};
 use crate::record::explain;
 
 pub(super) fn run(args: &PixelArgs) -> Result<ExitCode> {
     let recorded = record(args)?;
-    emit(&(explain(&recorded.tree) + &recorded.what_changed()))?;
+    emit_text(&(explain(&recorded.tree) + &recorded.what_changed()))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 
 use super::recorded::record;
-use super::{InspectArgs, InspectFormat, emit, emit_with};
+use super::{InspectArgs, InspectFormat, emit, emit_text, emit_with};
 use crate::raylog::raylog;
 use crate::record::{dot, text, write_json};
 
@@ -14,7 +14,7 @@ pub(super) fn run(args: &InspectArgs) -> Result<ExitCode> {
     let recorded = record(&args.pixel)?;
     let tree = &recorded.tree;
     match args.format {
-        InspectFormat::Text => emit(&(text(tree) + &recorded.what_changed()))?,
+        InspectFormat::Text => emit_text(&(text(tree) + &recorded.what_changed()))?,
         InspectFormat::Json => {
             // serde_json would print a NaN or an infinity as `null`: refuse instead.
             tree.check_finite().map_err(|e| {

@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
+use crate::printable::printable_text;
 use crate::scene::{self, Scene};
 
 mod args;
@@ -26,7 +27,7 @@ pub use args::*;
 pub(crate) fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {
     let scene = scene::builtin::load_file_or_builtin(path)?;
     for warning in &scene.warnings {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", printable_text(warning));
     }
     Ok(match size.size {
         Some((w, h)) => scene.with_size(w, h)?,
@@ -80,4 +81,10 @@ fn emit_with(write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>)
         }
         _ => Ok(()),
     }
+}
+
+/// Writes text meant for a terminal to stdout: no control character from a
+/// name reaches it raw (see `crate::printable`).
+fn emit_text(text: &str) -> Result<()> {
+    emit(&printable_text(text))
 }

@@ -144,8 +144,13 @@ fn text_colour(c: Color) -> &'static str {
     }
 }
 
+/// `text` inside a quoted dot string: control characters (NUL ends
+/// Graphviz's string, others break its layout) spelled out as
+/// `crate::printable` does, then backslashes and quotes escaped.
 fn escape(text: &str) -> String {
-    text.replace('\\', "\\\\").replace('"', "\\\"")
+    crate::printable::printable(text)
+        .replace('\\', "\\\\")
+        .replace('"', "\\\"")
 }
 
 #[cfg(test)]

@@ -128,7 +128,7 @@ fn excerpt(line: &str, start: usize, end: usize) -> (String, usize, usize) {
 /// `text` cut to at most `max` characters, with `…` where it was cut. The cut
 /// is near the end, so that what follows a long quoted value ("…, expected
 /// f64") is kept.
-fn bounded(text: String, max: usize) -> String {
+pub(super) fn bounded(text: String, max: usize) -> String {
     let tail = max / 4;
     let Some((head_end, _)) = text.char_indices().nth(max - tail) else {
         return text;

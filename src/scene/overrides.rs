@@ -5,18 +5,28 @@
 
 use glam::DVec3;
 
+use super::error::{MAX_MESSAGE_CHARS, bounded};
 use super::limits::{self, Bounds};
 use super::toml_format::MAX_DEPTH_LIMIT;
 use super::{MAX_RAYS_LIMIT, Scene, SpecularModel};
 
-/// Applies `KEY=VALUE` to `scene`, or says why it cannot.
+/// Applies `KEY=VALUE` to `scene`, or says why it cannot, in at most
+/// `MAX_MESSAGE_CHARS` characters as a scene error would (a 100 KB value is
+/// not echoed whole).
 pub(crate) fn apply(scene: &mut Scene, assignment: &str) -> Result<(), String> {
-    let (key, value) = assignment
-        .split_once('=')
-        .ok_or_else(|| format!("`{assignment}` is not KEY=VALUE, e.g. settings.max_depth=2"))?;
-    let (key, value) = (key.trim(), value.trim());
-    let parts: Vec<&str> = key.split('.').collect();
+    applied(scene, assignment).map_err(|why| bounded(why, MAX_MESSAGE_CHARS))
+}
+
+fn applied(scene: &mut Scene, assignment: &str) -> Result<(), String> {
+    let not_key_value = || format!("`{assignment}` is not KEY=VALUE, e.g. settings.max_depth=2");
+    let equals = *outside_quotes(assignment, '=', true)
+        .map_err(|_| not_key_value())?
+        .first()
+        .ok_or_else(not_key_value)?;
+    let (key, value) = (assignment[..equals].trim(), assignment[equals + 1..].trim());
     let bad = |why: String| format!("--set {key}={value}: {why}");
+    let parts = key_parts(key).map_err(bad)?;
+    let parts: Vec<&str> = parts.iter().map(String::as_str).collect();
     match parts.as_slice() {
         ["settings", name] => setting(scene, name, value).map_err(bad),
         ["materials", material, name] => {
@@ -32,6 +42,60 @@ pub(crate) fn apply(scene: &mut Scene, assignment: &str) -> Result<(), String> {
         _ => Err(bad(
             "the key must be settings.NAME or materials.MATERIAL.NAME".into(),
         )),
+    }
+}
+
+/// Byte offsets of `sep` in `text` outside TOML's quotes (`"..."` with
+/// backslash escapes, `'...'` literal), only the first if `first`; a quote
+/// left open is an error.
+fn outside_quotes(text: &str, sep: char, first: bool) -> Result<Vec<usize>, String> {
+    let mut found = Vec::new();
+    let (mut quote, mut escaped) = (None, false);
+    for (i, c) in text.char_indices() {
+        match quote {
+            Some('"') if escaped => escaped = false,
+            Some('"') if c == '\\' => escaped = true,
+            Some(q) if c == q => quote = None,
+            Some(_) => {}
+            None if c == '"' || c == '\'' => quote = Some(c),
+            None if c == sep => {
+                found.push(i);
+                if first {
+                    return Ok(found);
+                }
+            }
+            None => {}
+        }
+    }
+    match quote {
+        Some(q) => Err(format!("the quote {q} in `{text}` is not closed")),
+        None => Ok(found),
+    }
+}
+
+/// A key's parts between its dots. A material whose name holds `.` or `=`
+/// is reached as TOML reaches it, quoted: `materials."a.b".kd` (read by the
+/// TOML reader, so `"\u001b"` means ESC as in the scene); else a part is
+/// taken as written, spaces and all (`materials.red paint.kd`).
+fn key_parts(key: &str) -> Result<Vec<String>, String> {
+    let dots = outside_quotes(key, '.', false)?;
+    let starts = std::iter::once(0).chain(dots.iter().map(|d| d + 1));
+    let ends = dots.iter().copied().chain(std::iter::once(key.len()));
+    starts
+        .zip(ends)
+        .map(|(start, end)| key_part(key[start..end].trim()))
+        .collect()
+}
+
+fn key_part(part: &str) -> Result<String, String> {
+    if !part.starts_with(['"', '\'']) {
+        return Ok(part.to_owned());
+    }
+    let not_quoted = || format!("{part} is not a quoted TOML key, e.g. \"a.b\"");
+    let table: toml::Table = toml::from_str(&format!("{part} = 0")).map_err(|_| not_quoted())?;
+    match table.iter().next() {
+        Some((name, toml::Value::Integer(0))) if table.len() == 1 => Ok(name.clone()),
+        _ => Err(not_quoted()),
     }
 }
 
@@ -103,7 +167,12 @@ fn number(value: &str, bounds: Bounds) -> Result<f64, String> {
 
 /// `[r, g, b]`, `r,g,b`, or one number for all three.
 fn vector(value: &str, bounds: Bounds) -> Result<DVec3, String> {
-    let inner = value.trim_start_matches('[').trim_end_matches(']');
+    let inner = match (value.strip_prefix('['), value.ends_with(']')) {
+        (Some(opened), true) => &opened[..opened.len() - 1],
+        (Some(_), false) => return Err(format!("`{value}` has no closing ]")),
+        (None, true) => return Err(format!("`{value}` has no opening [")),
+        (None, false) => value,
+    };
     let parts: Vec<&str> = inner.split(',').map(str::trim).collect();
     let numbers = parts
         .iter()
@@ -147,7 +216,53 @@ mod tests {
             let error = apply(&mut scene, bad).unwrap_err();
             assert!(error.contains(says), "{bad}: {error}");
         }
+        // The brackets come in pairs; a 100,000-character value is echoed
+        // in at most MAX_MESSAGE_CHARS (400) characters.
+        let error = apply(&mut scene, "settings.ambient=[0.1, 0.2").unwrap_err();
+        assert!(error.ends_with("`[0.1, 0.2` has no closing ]"), "{error}");
+        let long = format!("settings.ambient={}", "x".repeat(100_000));
+        let error = apply(&mut scene, &long).unwrap_err();
+        assert!(error.chars().count() <= MAX_MESSAGE_CHARS + 1, "{error}");
+        assert!(error.ends_with("` is not a number"), "{error}");
         let error = apply(&mut scene, &format!("materials.{glass}.ior=20")).unwrap_err();
         assert!(error.contains("must be between 0.1 and 10"), "{error}");
+    }
+
+    #[test]
+    fn a_quoted_key_part_is_read_as_toml_reads_it() {
+        // Dots and equals signs inside quotes do not split; TOML's escapes
+        // hold inside "...", not inside '...'.
+        assert_eq!(
+            key_parts(r#"materials."a.b".kd"#).unwrap(),
+            ["materials", "a.b", "kd"]
+        );
+        assert_eq!(
+            key_parts("materials.'x=y'.kd").unwrap(),
+            ["materials", "x=y", "kd"]
+        );
+        assert_eq!(
+            key_parts(r#"materials."\u001b".kd"#).unwrap(),
+            ["materials", "\u{1b}", "kd"]
+        );
+        assert_eq!(
+            key_parts(r"materials.'\u001b'.kd").unwrap(),
+            ["materials", r"\u001b", "kd"]
+        );
+        // A bare part is taken as written, spaces and all.
+        assert_eq!(
+            key_parts("materials.red paint.kd").unwrap(),
+            ["materials", "red paint", "kd"]
+        );
+        assert!(
+            key_parts(r#"materials."a.kd"#)
+                .unwrap_err()
+                .contains("not closed")
+        );
+        assert!(
+            key_parts(r#"materials."a"b.kd"#)
+                .unwrap_err()
+                .contains("not a quoted")
+        );
+        assert_eq!(outside_quotes(r#""a=b".kd=1=2"#, '=', true).unwrap(), [8]);
     }
 }

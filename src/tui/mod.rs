@@ -109,7 +109,16 @@ where
     if (size.width, size.height) != (known.width, known.height) {
         app.update(Action::Resize(size.width, size.height));
     }
-    terminal.draw(|frame| pane::draw(frame, app))?;
+    terminal.draw(|frame| {
+        pane::draw(frame, app);
+        // Names are data: ratatui drops control characters from text, but
+        // keeps U+FFFE and U+FFFF; a cell holding one shows U+FFFD instead.
+        for cell in &mut frame.buffer_mut().content {
+            if cell.symbol().contains(crate::printable::unprintable) {
+                cell.set_symbol("\u{fffd}");
+            }
+        }
+    })?;
     Ok(())
 }
 

@@ -292,7 +292,8 @@ fn zoom_magnifies_about_the_first_hit_and_cuts_at_the_frame() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(output.status.code(), Some(1));
+    // A bad flag combination is a usage error (issue 27): status 2.
+    assert_eq!(output.status.code(), Some(2));
     assert!(stderr(&output).contains("--zoom magnifies the top, side and ray diagrams"));
     assert!(!out.exists(), "nothing written");
 }
@@ -612,7 +613,8 @@ fn shadows_primary_or_none_leave_shadow_rays_out() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(output.status.code(), Some(1));
+    // A bad flag combination is a usage error (issue 27): status 2.
+    assert_eq!(output.status.code(), Some(2));
     assert!(stderr(&output).contains("the crossing figure has none"));
 }
 

@@ -150,7 +150,7 @@ impl Labels {
     }
 
     fn size(&self, text: &str) -> DVec2 {
-        let width = text.chars().count() as f64 * self.font_size * 0.6;
+        let width = shown(text).chars().count() as f64 * self.font_size * 0.6;
         DVec2::new(width, self.font_size)
     }
 
@@ -275,15 +275,40 @@ impl Labels {
 
     fn write(&mut self, out: &mut String, corner: DVec2, size: DVec2, text: &str, attrs: &str) {
         self.reserve_box(text_box(corner, size));
-        let _ = writeln!(
+        let shown = shown(text);
+        // A shortened label keeps its whole text as the tooltip of a group
+        // around it (a `<title>` inside `<text>` would come before the words).
+        let whole = shown != text;
+        if whole {
+            let _ = write!(out, "<g><title>{}</title>", escape(text));
+        }
+        let _ = write!(
             out,
             "<text x=\"{:.1}\" y=\"{:.1}\"{}{attrs}>{}</text>",
             corner.x,
             corner.y,
             if attrs.is_empty() { "" } else { " " },
-            escape(text)
+            escape(&shown)
         );
+        out.push_str(if whole { "</g>\n" } else { "\n" });
     }
+}
+
+/// The most characters of a label drawn: a 150-character name would cross
+/// the figure and every other label (40 at the largest font, 13, is about
+/// 310 units, well inside the figure's width).
+const MAX_LABEL_CHARS: usize = 40;
+
+/// `text` as a label shows it: control characters spelt out (so it is
+/// measured as drawn), then cut to `MAX_LABEL_CHARS` with `…` at the end.
+fn shown(text: &str) -> String {
+    let spelt = crate::printable::printable(text);
+    if spelt.chars().count() <= MAX_LABEL_CHARS {
+        return spelt.into_owned();
+    }
+    let mut cut: String = spelt.chars().take(MAX_LABEL_CHARS - 1).collect();
+    cut.push('…');
+    cut
 }
 
 /// The box of a text whose baseline starts at `corner` (descenders included).
@@ -357,8 +382,12 @@ pub(crate) fn clip(a: DVec2, b: DVec2, frame: Box2) -> Option<(DVec2, DVec2)> {
     (t0 <= t1).then(|| (a + d * t0, a + d * t1))
 }
 
+/// `text` for SVG's element text or a quoted attribute: markup characters
+/// as entities, and control characters (which XML 1.0 cannot carry, not
+/// even as `&#1b;`) spelled out as `crate::printable` does.
 pub(crate) fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
+    crate::printable::printable(text)
+        .replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
