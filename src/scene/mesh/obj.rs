@@ -222,12 +222,11 @@ fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
                 let mut with_normal = 0;
                 for (span, word) in words {
                     corners += 1;
-                    with_normal +=
-                        usize::from(word.split('/').nth(2).is_some_and(|n| !n.is_empty()));
                     for (slot, part) in word.split('/').enumerate().take(3) {
                         if part.is_empty() && slot > 0 {
                             continue;
                         }
+                        with_normal += usize::from(slot == 2);
                         check_index(part, slot, counts[slot])
                             .map_err(|m| error(span.clone(), m))?;
                     }
