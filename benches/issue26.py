@@ -2,7 +2,7 @@
 """Issue 26's measurements: trace time per SPD scene, old build against new,
 memory per triangle, and two threads against one.
 
-    python3 benches/issue26.py OLD_BINARY [NEW_BINARY] [--runs 9] [--skip-memory] [--skip-threads]
+    python3 benches/issue26.py OLD_BINARY [NEW_BINARY] [--runs 9] [--skip-memory] [--skip-threads] [--skip-trace] [--cloud]
 
 1. For each of the seven SPD scenes at 512 x 512 (as in scenes/spd/):
    `render --threads 1 --timings`, the old and the new binary in
@@ -18,6 +18,9 @@ memory per triangle, and two threads against one.
    runs. The build's prepare_seconds per triangle too.
 3. The new binary at --threads 2 against --threads 1, alternating, medians:
    the speed-up of the trace.
+4. With --cloud: a million spheres (the 100 x 100 x 100 grid of
+   benches/scene_memory.py, as NFF) at 512 x 512, one thread, old and new in
+   alternation: median trace_seconds and their ratio.
 
 Build with `cargo build --release` first. CI does not run this.
 """
@@ -133,6 +136,23 @@ def threads_table(new, runs):
         print(f"| {name} | {ma:.4f} | {mb:.4f} | {ma / mb:.2f} |", flush=True)
 
 
+def cloud_table(old, new, runs):
+    print(f"\na million spheres (100 x 100 x 100 grid), 512 x 512, one thread, median of {runs} alternating runs")
+    print("| old s | new s | old / new |")
+    print("|---:|---:|---:|")
+    with tempfile.TemporaryDirectory() as directory:
+        path = os.path.join(directory, "cloud.nff")
+        with open(path, "w") as f:
+            f.write("v\nfrom 50 50 -200\nat 50 50 0\nup 0 1 0\nangle 40\nhither 1\nresolution 512 512\n")
+            f.write("l 50 300 -300\nf 1 0.5 0.2 0.7 0.3 20 0 1\n")
+            for i in range(1_000_000):
+                f.write(f"s {i % 100} {(i // 100) % 100} {i // 10000} 0.4\n")
+        a, b = alternate(runs, lambda: timings(old, path, 1)["trace_seconds"],
+                         lambda: timings(new, path, 1)["trace_seconds"])
+        ma, mb = statistics.median(a), statistics.median(b)
+        print(f"| {ma:.4f} | {mb:.4f} | {ma / mb:.3f} |", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("old")
@@ -140,12 +160,17 @@ def main():
     parser.add_argument("--runs", type=int, default=9)
     parser.add_argument("--skip-memory", action="store_true")
     parser.add_argument("--skip-threads", action="store_true")
+    parser.add_argument("--skip-trace", action="store_true")
+    parser.add_argument("--cloud", action="store_true")
     args = parser.parse_args()
-    trace_table(args.old, args.new, args.runs)
+    if not args.skip_trace:
+        trace_table(args.old, args.new, args.runs)
     if not args.skip_memory:
         memory_table(args.old, args.new)
     if not args.skip_threads:
         threads_table(args.new, args.runs)
+    if args.cloud:
+        cloud_table(args.old, args.new, args.runs)
 
 
 if __name__ == "__main__":
