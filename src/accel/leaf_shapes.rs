@@ -172,7 +172,9 @@ mod tests {
                 ])
                 .unwrap(),
             ),
-            Shape::Cone(Cone::new(DVec3::ZERO, 0.5, DVec3::new(0.0, 0.0, 1.0), 0.2).unwrap()),
+            Shape::Cone(Box::new(
+                Cone::new(DVec3::ZERO, 0.5, DVec3::new(0.0, 0.0, 1.0), 0.2).unwrap(),
+            )),
             // A concave star of 24 points around (0.2, 0.2) at z = 0.2, radii
             // alternating 0.5 and 0.2: many-sided, so its edges are banded.
             Shape::Polygon(
