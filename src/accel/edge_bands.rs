@@ -30,11 +30,14 @@ pub(super) struct EdgeBands {
     starts: Vec<u32>,
     /// Edge i runs from vertex i - 1 (the last for i = 0) to vertex i.
     edges: Vec<u32>,
+    /// The polygon's vertices projected to (U, V), which the edges join
+    /// (the polygon keeps none; banded polygons are few and large).
+    projected: Box<[DVec2]>,
 }
 
 impl EdgeBands {
     /// `None` for polygons small enough to test whole, or too large to band.
-    pub(crate) fn new(projected: &[DVec2]) -> Option<EdgeBands> {
+    pub(crate) fn new(projected: Vec<DVec2>) -> Option<EdgeBands> {
         let n = projected.len();
         if n < MIN_VERTICES {
             return None;
@@ -81,6 +84,7 @@ impl EdgeBands {
             scale: count as f64 / span,
             starts,
             edges,
+            projected: projected.into_boxed_slice(),
         })
     }
 
@@ -103,9 +107,9 @@ impl EdgeBands {
     }
 
     /// `shapes::count_crossings(projected, p)`, the crossing test's count,
-    /// from the edges near p's V only; `projected` is what the bands were
-    /// made of.
-    pub(crate) fn crossings(&self, projected: &[DVec2], p: DVec2) -> u32 {
+    /// from the edges near p's V only.
+    pub(crate) fn crossings(&self, p: DVec2) -> u32 {
+        let projected = &self.projected;
         let n = projected.len();
         let edge_crosses = |i: usize| {
             let a = projected[(i + n - 1) % n] - p;
@@ -150,14 +154,14 @@ mod tests {
 
     #[test]
     fn small_polygons_have_no_bands() {
-        assert!(EdgeBands::new(&star(MIN_VERTICES - 1)).is_none());
-        assert!(EdgeBands::new(&star(MIN_VERTICES)).is_some());
+        assert!(EdgeBands::new(star(MIN_VERTICES - 1)).is_none());
+        assert!(EdgeBands::new(star(MIN_VERTICES)).is_some());
     }
 
     #[test]
     fn a_band_holds_every_straddling_edge_and_few_others() {
         let points = star(144);
-        let bands = EdgeBands::new(&points).unwrap();
+        let bands = EdgeBands::new(points.clone()).unwrap();
         // Probe every vertex's V (where ties decide), the band bounds, values
         // just beside them and a fine sweep, across and beyond the range.
         let mut probes: Vec<f64> = points.iter().map(|p| p.y).collect();
@@ -184,7 +188,7 @@ mod tests {
 
     #[test]
     fn outside_the_range_no_edge_is_listed() {
-        let bands = EdgeBands::new(&star(32)).unwrap();
+        let bands = EdgeBands::new(star(32)).unwrap();
         // The star's least V is the vertex at angle 270 degrees, the greatest at 90.
         let (low, high) = (bands.bounds[0], *bands.bounds.last().unwrap());
         assert!(bands.edges_near(low).is_empty());
@@ -204,8 +208,8 @@ mod tests {
             })
             .collect();
         let gear = Polygon::new(vertices.clone()).unwrap();
-        let bands = EdgeBands::new(gear.projected()).unwrap();
-        let banded = |point: DVec3| bands.crossings(gear.projected(), Axis::Z.project(point));
+        let bands = EdgeBands::new(gear.projected().collect()).unwrap();
+        let banded = |point: DVec3| bands.crossings(Axis::Z.project(point));
         // The centre: one crossing to its right (the rim at U = 1 or 0.8): inside.
         assert_eq!(banded(DVec3::ZERO), 1);
         // Left of everything on V = 0.1: both sides of the rim, outside.

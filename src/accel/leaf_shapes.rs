@@ -35,7 +35,7 @@ impl LeafShape {
         if let Some(triangle) = TriangleTest::of(polygon) {
             return LeafShape::Triangle(triangle);
         }
-        EdgeBands::new(polygon.projected())
+        EdgeBands::new(polygon.projected().collect())
             .map_or(LeafShape::Other, |bands| LeafShape::Banded(Box::new(bands)))
     }
 
@@ -115,7 +115,9 @@ impl TriangleTest {
         Some(TriangleTest {
             plane: polygon.plane.clone(),
             dropped: polygon.dropped,
-            projected: polygon.projected().try_into().ok()?,
+            projected: <[DVec3; 3]>::try_from(&*polygon.vertices)
+                .ok()?
+                .map(|v| polygon.dropped.project(v)),
         })
     }
 
@@ -124,7 +126,7 @@ impl TriangleTest {
     pub(crate) fn hit_t(&self, ray: &Ray, range: Interval) -> Option<f64> {
         let t = self.plane.solve(ray, range).hit_t()?;
         let p = self.dropped.project(ray.at(t));
-        (count_crossings(&self.projected, p) % 2 == 1).then_some(t)
+        (count_crossings(self.projected.iter().copied(), p) % 2 == 1).then_some(t)
     }
 }
 
@@ -139,7 +141,7 @@ fn banded_hit_t(shape: &Shape, bands: &EdgeBands, ray: &Ray, range: Interval) ->
     };
     let t = polygon.plane.solve(ray, range).hit_t()?;
     let p = polygon.dropped.project(ray.at(t));
-    (bands.crossings(polygon.projected(), p) % 2 == 1).then_some(t)
+    (bands.crossings(p) % 2 == 1).then_some(t)
 }
 
 #[cfg(test)]
@@ -170,7 +172,9 @@ mod tests {
                 ])
                 .unwrap(),
             ),
-            Shape::Cone(Cone::new(DVec3::ZERO, 0.5, DVec3::new(0.0, 0.0, 1.0), 0.2).unwrap()),
+            Shape::Cone(Box::new(
+                Cone::new(DVec3::ZERO, 0.5, DVec3::new(0.0, 0.0, 1.0), 0.2).unwrap(),
+            )),
             // A concave star of 24 points around (0.2, 0.2) at z = 0.2, radii
             // alternating 0.5 and 0.2: many-sided, so its edges are banded.
             Shape::Polygon(

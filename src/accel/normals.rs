@@ -49,16 +49,17 @@ impl NormalRecipe {
         match shape {
             Shape::Plane(p) => flat(p.normal),
             // The leaf record of a polygon of three vertices is its triangle test.
-            Shape::Polygon(p) if p.projected().len() == 3 => NormalRecipe::FromLeaf,
+            Shape::Polygon(p) if p.vertices.len() == 3 => NormalRecipe::FromLeaf,
             Shape::Polygon(p) => flat(p.plane.normal),
             Shape::Sphere(_) => NormalRecipe::FromLeaf,
             Shape::Patch(p) => {
-                let (Ok(projected), Ok(normals)) = (
-                    <[DVec2; 3]>::try_from(p.polygon.projected()),
-                    <[DVec3; 3]>::try_from(p.normals.as_slice()),
+                let (Ok(vertices), Ok(normals)) = (
+                    <[DVec3; 3]>::try_from(&*p.polygon.vertices),
+                    <[DVec3; 3]>::try_from(&*p.normals),
                 ) else {
                     return NormalRecipe::FromShape;
                 };
+                let projected = vertices.map(|v| p.polygon.dropped.project(v));
                 NormalRecipe::SmoothTriangle(Box::new(SmoothTriangle {
                     dropped: p.polygon.dropped,
                     projected,
@@ -76,7 +77,8 @@ impl SmoothTriangle {
     #[inline]
     pub(crate) fn normal_at(&self, point: DVec3) -> DVec3 {
         blended_normal(
-            &self.projected,
+            3,
+            |i| self.projected[i],
             self.dropped,
             &self.normals,
             self.flat,

@@ -86,7 +86,9 @@ mod tests {
             Shape::Polygon(Polygon::new(square.clone()).unwrap()),
             Shape::Patch(Patch::new(triangle.clone(), normals).unwrap()),
             Shape::Patch(Patch::new(square.clone(), vec![DVec3::Z; 4]).unwrap()),
-            Shape::Cone(Cone::new(DVec3::ZERO, 0.5, DVec3::Z, 0.2).unwrap()),
+            Shape::Cone(Box::new(
+                Cone::new(DVec3::ZERO, 0.5, DVec3::Z, 0.2).unwrap(),
+            )),
         ];
         let objects: Vec<Object> = shapes
             .iter()

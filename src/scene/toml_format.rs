@@ -669,13 +669,12 @@ fn object(
         )
     })?;
     let shape = shape.map_err(|e| source.error(span, e))?;
-    let name = o.name.as_ref().map_or(
-        ObjectName::Numbered {
-            kind: shape.kind(),
-            index,
-        },
-        |n| n.get_ref().as_str().into(),
-    );
+    let name = o
+        .name
+        .as_ref()
+        .map_or(ObjectName::numbered(shape.kind(), index), |n| {
+            n.get_ref().as_str().into()
+        });
     Ok(Object {
         name,
         shape,
@@ -724,7 +723,7 @@ fn shape(o: &ObjectDef) -> Option<(Result<Shape, GeometryError>, Range<usize>)> 
                 vec3(&d.apex),
                 number(&d.radius),
             )
-            .map(Shape::Cone),
+            .map(|cone| Shape::Cone(Box::new(cone))),
             s.span(),
         ));
     }
@@ -736,7 +735,7 @@ fn shape(o: &ObjectDef) -> Option<(Result<Shape, GeometryError>, Range<usize>)> 
             vec3(&d.apex),
             number(&d.apex_radius),
         );
-        shapes.push((cone.map(Shape::Cone), s.span()));
+        shapes.push((cone.map(|cone| Shape::Cone(Box::new(cone))), s.span()));
     }
     if shapes.len() == 1 {
         shapes.pop()

@@ -59,7 +59,7 @@ impl Polygon {
     /// Each edge's verdict is `crosses`, the tracer's own test.
     pub(crate) fn crossing_figure(&self, point: DVec3) -> CrossingFigure {
         let p = self.dropped.project(point);
-        let moved: Vec<DVec2> = self.projected().iter().map(|v| *v - p).collect();
+        let moved: Vec<DVec2> = self.projected().map(|v| v - p).collect();
         let n = moved.len();
         let edges = (0..n)
             .map(|i| {

@@ -26,13 +26,16 @@ pub use sphere::{RootChoice, Sphere};
 
 use crate::math::{Interval, Ray};
 
+/// Every object holds one, so its size is paid by every triangle of a mesh:
+/// the largest variant sets it. A cone (96 bytes) is boxed so a polygon or
+/// patch (a boxed slice or two, the plane and the dropped axis) sets it.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     Sphere(Sphere),
     Plane(Plane),
     Polygon(Polygon),
     Patch(Patch),
-    Cone(Cone),
+    Cone(Box<Cone>),
 }
 
 /// Geometry that cannot be intersected: the message says what is wrong.

@@ -12,8 +12,8 @@ use super::polygon::{Axis, Polygon, PolygonWorking};
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
     pub(crate) polygon: Polygon,
-    /// One unit normal per vertex.
-    pub(crate) normals: Vec<DVec3>,
+    /// One unit normal per vertex (boxed, as the polygon's vertices).
+    pub(crate) normals: Box<[DVec3]>,
 }
 
 /// Where in the fan a hit landed and how its normal was blended.
@@ -46,19 +46,27 @@ impl Patch {
         }
         Ok(Self {
             polygon,
-            normals: unit,
+            normals: unit.into_boxed_slice(),
         })
     }
 
     /// The fan triangle holding `point` and the point's barycentric weights in it.
     pub(crate) fn locate(&self, point: DVec3) -> (usize, [f64; 3]) {
-        locate(self.polygon.projected(), self.polygon.dropped, point)
+        let projected = |i: usize| self.polygon.dropped.project(self.polygon.vertices[i]);
+        locate(
+            self.polygon.vertices.len(),
+            projected,
+            self.polygon.dropped,
+            point,
+        )
     }
 
     /// The interpolated unit normal at a point of the patch.
     pub(crate) fn normal_at(&self, point: DVec3) -> DVec3 {
+        let projected = |i: usize| self.polygon.dropped.project(self.polygon.vertices[i]);
         blended_normal(
-            self.polygon.projected(),
+            self.polygon.vertices.len(),
+            projected,
             self.polygon.dropped,
             &self.normals,
             self.polygon.plane.normal,
@@ -68,14 +76,20 @@ impl Patch {
 }
 
 /// The fan triangle holding `point` and the point's barycentric weights in it,
-/// computed in the polygon's projected 2-D plane (`projected`, the vertices
-/// with `dropped` left out). A point on no triangle (it can only be off by
+/// computed in the polygon's projected 2-D plane (`projected(i)`, vertex i
+/// of `n` with `dropped` left out). A point on no triangle (it can only be off by
 /// rounding) takes the triangle it is least outside of.
-fn locate(projected: &[DVec2], dropped: Axis, point: DVec3) -> (usize, [f64; 3]) {
+fn locate(
+    n: usize,
+    projected: impl Fn(usize) -> DVec2,
+    dropped: Axis,
+    point: DVec3,
+) -> (usize, [f64; 3]) {
     let p = dropped.project(point);
     let mut best = (1, [1.0, 0.0, 0.0], f64::NEG_INFINITY);
-    for i in 1..projected.len() - 1 {
-        let (a, b, c) = (projected[0], projected[i], projected[i + 1]);
+    let a = projected(0);
+    for i in 1..n - 1 {
+        let (b, c) = (projected(i), projected(i + 1));
         let area = (b - a).perp_dot(c - a);
         if area == 0.0 {
             continue;
@@ -98,13 +112,14 @@ fn locate(projected: &[DVec2], dropped: Axis, point: DVec3) -> (usize, [f64; 3])
 /// triangle holding it, normalized; `flat` (the polygon's normal) where the
 /// blend vanishes.
 pub(crate) fn blended_normal(
-    projected: &[DVec2],
+    n: usize,
+    projected: impl Fn(usize) -> DVec2,
     dropped: Axis,
     normals: &[DVec3],
     flat: DVec3,
     point: DVec3,
 ) -> DVec3 {
-    let (i, [w0, wi, wj]) = locate(projected, dropped, point);
+    let (i, [w0, wi, wj]) = locate(n, projected, dropped, point);
     let blended = w0 * normals[0] + wi * normals[i] + wj * normals[i + 1];
     let length = blended.length();
     if length > 0.0 { blended / length } else { flat }

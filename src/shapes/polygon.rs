@@ -10,14 +10,16 @@ use super::plane::{Plane, PlaneWorking};
 use super::{Aabb, GeometryError, Roots};
 use crate::math::{Interval, Ray, exceeds};
 
+/// The projected vertices are not kept: a mesh has hundreds of thousands of
+/// polygons, and the accelerator's leaf record already holds a triangle's
+/// (`accel::leaf_shapes`). The lecture's working projects them as it goes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
-    pub(crate) vertices: Vec<DVec3>,
+    /// A boxed slice, not a `Vec`: no capacity word, 8 bytes a polygon.
+    pub(crate) vertices: Box<[DVec3]>,
     /// The polygon's plane; its normal is the normalized (v1 - v0) x (v2 - v0).
     pub(crate) plane: Plane,
     pub(crate) dropped: Axis,
-    /// The vertices projected to (U, V) by dropping `dropped`, computed once.
-    projected: Vec<DVec2>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -100,12 +102,19 @@ pub fn crosses(a: DVec2, b: DVec2) -> bool {
 }
 
 /// How many edges of the projected polygon cross the +U axis from `p`.
+/// `projected` yields the vertices in (U, V), in order (at least one).
 #[inline]
-pub(crate) fn count_crossings(projected: &[DVec2], p: DVec2) -> u32 {
+pub(crate) fn count_crossings(
+    projected: impl DoubleEndedIterator<Item = DVec2> + Clone,
+    p: DVec2,
+) -> u32 {
     let mut crossings = 0;
-    let mut a = projected[projected.len() - 1] - p;
+    let Some(last) = projected.clone().next_back() else {
+        return 0;
+    };
+    let mut a = last - p;
     for vertex in projected {
-        let b = *vertex - p;
+        let b = vertex - p;
         crossings += u32::from(crosses(a, b));
         a = b;
     }
@@ -139,12 +148,10 @@ impl Polygon {
             }
         }
         let dropped = Axis::dominant(plane.normal);
-        let projected: Vec<DVec2> = vertices.iter().map(|v| dropped.project(*v)).collect();
         Ok(Self {
-            vertices,
+            vertices: vertices.into_boxed_slice(),
             plane,
             dropped,
-            projected,
         })
     }
 
@@ -163,7 +170,7 @@ impl Polygon {
     /// is counted once.
     pub(crate) fn crossing_test(&self, point: DVec3) -> CrossingTest {
         let p = self.dropped.project(point);
-        let crossings = count_crossings(&self.projected, p);
+        let crossings = count_crossings(self.projected(), p);
         CrossingTest {
             dropped_axis: self.dropped,
             projected_point: [p.x, p.y],
@@ -172,8 +179,11 @@ impl Polygon {
         }
     }
 
-    pub(crate) fn projected(&self) -> &[DVec2] {
-        &self.projected
+    /// The vertices projected to (U, V) by dropping `dropped`, in order.
+    pub(crate) fn projected(
+        &self,
+    ) -> impl DoubleEndedIterator<Item = DVec2> + ExactSizeIterator + Clone + '_ {
+        self.vertices.iter().map(|v| self.dropped.project(*v))
     }
 
     pub(crate) fn bounds(&self) -> Aabb {

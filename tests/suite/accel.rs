@@ -125,7 +125,9 @@ fn random_scene(rng: &mut Rng, count: usize, frame: Frame) -> Vec<Object> {
                 } else {
                     rng.range(0.0, size)
                 };
-                Shape::Cone(Cone::new(center, size, apex, apex_radius).unwrap())
+                Shape::Cone(Box::new(
+                    Cone::new(center, size, apex, apex_radius).unwrap(),
+                ))
             }
         };
         objects.push(object(shape));

@@ -13,12 +13,14 @@ mod stl;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::{DMat3, DVec3};
 
 use super::limits::COORDINATE;
-use super::{Light, Material, Object, SceneError};
+use super::{Light, Material, Object, ObjectName, SceneError};
 use crate::input_file::{self, Cap};
+use crate::object::MeshNames;
 use crate::shapes::{Aabb, Patch, Polygon, Shape};
 
 /// The largest mesh or MTL file read: far above a course mesh (a million
@@ -209,7 +211,12 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
         .iter()
         .map(|g| format!("{prefix}{g}"))
         .collect();
-    let mut name = String::new();
+    let mut names = MeshNames::new(
+        placed.groups.clone(),
+        loaded.materials.iter().map(|m| m.name.clone()).collect(),
+    );
+    // Triangles whose index does not fit the shared names' u32, named in full.
+    let mut named_in_full = Vec::new();
     placed.objects.reserve(loaded.triangles.len());
     for t in &loaded.triangles {
         let index = per_group[t.group];
@@ -238,7 +245,7 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
         };
         let (material, material_name) = match (request.material, t.material) {
             (Some(m), _) => (m, None),
-            (None, Some(m)) => (material_index[m], Some(loaded.materials[m].name.as_str())),
+            (None, Some(m)) => (material_index[m], Some(m)),
             (None, None) => {
                 let m = *default_material.get_or_insert_with(|| {
                     placed.materials.push(Material::default_white());
@@ -259,16 +266,36 @@ fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
             sums.2 += cross;
             sums.3 = sums.3.union(&Aabb::around(&vertices));
         }
-        name.clear();
-        let _ = write!(name, "{} triangle {index}", placed.groups[t.group]);
-        if let Some(m) = material_name {
-            let _ = write!(name, " (material {m})");
+        if names.push(t.group, index, material_name).is_none() {
+            let mut name = format!("{} triangle {index}", placed.groups[t.group]);
+            if let Some(m) = material_name {
+                let _ = write!(name, " (material {})", loaded.materials[m].name);
+            }
+            named_in_full.push((placed.objects.len(), name));
         }
         placed.objects.push(Object {
-            name: name.as_str().into(),
+            // Set below, once the mesh's names are complete.
+            name: ObjectName::Given(Box::default()),
             shape,
             material,
         });
+    }
+    let names = Arc::new(names);
+    // `push` numbered the others in order from 0: object i is name i less
+    // the objects named in full before it.
+    let mut in_full = named_in_full.into_iter().peekable();
+    let mut index = 0u32;
+    for (i, object) in placed.objects.iter_mut().enumerate() {
+        object.name = match in_full.next_if(|(at, _)| *at == i) {
+            Some((_, name)) => name.as_str().into(),
+            None => {
+                index += 1;
+                ObjectName::MeshTriangle {
+                    names: Arc::clone(&names),
+                    index: index - 1,
+                }
+            }
+        };
     }
     if degenerate > 0 {
         placed.warnings.push(format!(
@@ -298,8 +325,26 @@ impl Placed {
     /// Puts `prefix` before every name, so that a second unnamed copy of a
     /// mesh doesn't repeat the first one's names.
     pub(crate) fn prefix_names(&mut self, prefix: &str) {
+        // A mesh's triangles share one record of names: prefixed once.
+        let mut renamed: Option<(Arc<MeshNames>, Arc<MeshNames>)> = None;
         for object in &mut self.objects {
-            object.name = format!("{prefix}{}", object.name).as_str().into();
+            object.name = match &object.name {
+                ObjectName::MeshTriangle { names, index } => {
+                    let new = match &renamed {
+                        Some((old, new)) if Arc::ptr_eq(old, names) => Arc::clone(new),
+                        _ => {
+                            let new = Arc::new(names.prefixed(prefix));
+                            renamed = Some((Arc::clone(names), Arc::clone(&new)));
+                            new
+                        }
+                    };
+                    ObjectName::MeshTriangle {
+                        names: new,
+                        index: *index,
+                    }
+                }
+                name => format!("{prefix}{name}").as_str().into(),
+            };
         }
         for name in self
             .lights

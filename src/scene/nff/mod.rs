@@ -88,7 +88,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
                 let shape = check_cone_length(base, apex)
                     .map_err(GeometryError)
                     .and_then(|()| Cone::new(base, base_radius, apex, apex_radius))
-                    .map(Shape::Cone);
+                    .map(|cone| Shape::Cone(Box::new(cone)));
                 scene.add(&parser, &keyword, kind, shape)?;
             }
             "p" => {
@@ -214,10 +214,7 @@ impl Builder {
             }),
         };
         self.objects.push(Object {
-            name: ObjectName::Numbered {
-                kind: shape.kind(),
-                index,
-            },
+            name: ObjectName::numbered(shape.kind(), index),
             shape,
             material,
         });

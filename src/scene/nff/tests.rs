@@ -132,12 +132,12 @@ pp 3
     let Shape::Polygon(polygon) = &scene.objects[3].shape else {
         panic!()
     };
-    assert_eq!(polygon.vertices, [DVec3::ZERO, DVec3::X, DVec3::Y]);
+    assert_eq!(*polygon.vertices, [DVec3::ZERO, DVec3::X, DVec3::Y]);
     let Shape::Patch(patch) = &scene.objects[4].shape else {
         panic!()
     };
     // Normals are stored unit length: (0, 0, 2) becomes (0, 0, 1).
-    assert_eq!(patch.normals, [DVec3::Z, DVec3::Z, DVec3::Z]);
+    assert_eq!(*patch.normals, [DVec3::Z, DVec3::Z, DVec3::Z]);
 }
 
 #[test]
