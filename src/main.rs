@@ -1,12 +1,7 @@
 use std::process::ExitCode;
 
-use clap::Parser;
-
 fn main() -> ExitCode {
-    let cli = raystep::cli::Cli::parse();
-    if let Err(usage) = cli.check_combinations() {
-        usage.exit();
-    }
+    let cli = raystep::cli::parse_or_exit();
     match raystep::cli::run(cli) {
         Ok(code) => code,
         Err(error) => {
