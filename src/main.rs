@@ -1,13 +1,8 @@
 use std::process::ExitCode;
 
-use clap::Parser;
-
 fn main() -> ExitCode {
     keep_large_blocks_mapped();
-    let cli = raystep::cli::Cli::parse();
-    if let Err(usage) = cli.check_combinations() {
-        usage.exit();
-    }
+    let cli = raystep::cli::parse_or_exit();
     match raystep::cli::run(cli) {
         Ok(code) => code,
         Err(error) => {

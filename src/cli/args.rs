@@ -43,7 +43,7 @@ impl Cli {
     /// Flag combinations clap cannot refuse itself, as they depend on a
     /// flag's value (`--plane crossing` with `--zoom 2`): a usage error,
     /// which exits with status 2 as clap's own do.
-    pub fn check_combinations(&self) -> Result<(), clap::Error> {
+    pub(crate) fn check_combinations(&self) -> Result<(), clap::Error> {
         let Some(Command::Diagram(args)) = &self.command else {
             return Ok(());
         };

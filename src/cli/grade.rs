@@ -45,7 +45,9 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
         (None, Some(dir)) => class_summary(&graded, dir),
         (None, None) => String::new(),
     };
-    emit(&summary)?;
+    // It names REPORT/ as argv spelt it, and the assignment's titles and
+    // file names: spelt as names are (`crate::printable`).
+    emit(&crate::printable::printable_text(&summary))?;
     Ok(ExitCode::SUCCESS)
 }
 

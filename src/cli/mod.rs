@@ -20,8 +20,10 @@ mod grade;
 mod inspect;
 mod recorded;
 mod render;
+mod usage;
 
 pub use args::*;
+pub use usage::parse_or_exit;
 
 /// Loads a scene (or the built-in one) and applies `--size`.
 pub(crate) fn load_scene(path: Option<&Path>, size: SizeArg) -> Result<Scene> {

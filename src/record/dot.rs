@@ -103,16 +103,14 @@ fn write_light(out: &mut String, id: NodeId, i: usize, light: &LightRecord) {
         None => "shadows off".to_string(),
         Some(s) if s.blockers.is_empty() => "S = 1, nothing in the way".to_string(),
         Some(s) if s.s == 0.0 => {
-            let names: Vec<String> = s.blockers.iter().map(|b| escape(&b.object)).collect();
-            format!("S = 0, blocked by {}", names.join(", "))
+            let names = s.blockers.iter().map(|b| escape(&b.object));
+            format!("S = 0, blocked by {}", first_few(names, s.blockers.len()))
         }
         Some(s) => {
-            let names: Vec<String> = s
-                .blockers
-                .iter()
-                .map(|b| format!("{} (k_t = {})", escape(&b.object), num(b.kt)))
-                .collect();
-            format!("S = {}, partly blocked by {}", num(s.s), names.join(", "))
+            let names =
+                (s.blockers.iter()).map(|b| format!("{} (k_t = {})", escape(&b.object), num(b.kt)));
+            let names = first_few(names, s.blockers.len());
+            format!("S = {}, partly blocked by {names}", num(s.s))
         }
     };
     let _ = writeln!(
@@ -144,11 +142,38 @@ fn text_colour(c: Color) -> &'static str {
     }
 }
 
-/// `text` inside a quoted dot string: control characters (NUL ends
+/// The most characters of a name in a label: a 150-character name would
+/// stretch its box across the whole tree (MODEL §10).
+const MAX_NAME_CHARS: usize = 100;
+
+/// The most blockers a shadow ray's label names; the rest are counted.
+const MAX_BLOCKERS: usize = 10;
+
+/// The first `MAX_BLOCKERS` of `names` (of `count`), then "and N more".
+fn first_few(names: impl Iterator<Item = String>, count: usize) -> String {
+    let mut shown: Vec<String> = names.take(MAX_BLOCKERS).collect();
+    if count > MAX_BLOCKERS {
+        shown.push(format!("and {} more", count - MAX_BLOCKERS));
+    }
+    shown.join(", ")
+}
+
+/// A name inside a quoted dot string: control characters (NUL ends
 /// Graphviz's string, others break its layout) spelled out as
-/// `crate::printable` does, then backslashes and quotes escaped.
+/// `crate::printable` does and the whole cut to `MAX_NAME_CHARS` with `…`,
+/// then `&` written `&amp;` (Graphviz reads `&lt;` in any label as `<`:
+/// a name holding one would show another name), backslashes and quotes
+/// escaped.
 fn escape(text: &str) -> String {
-    crate::printable::printable(text)
+    let spelt = crate::printable::printable(text);
+    let cut = if spelt.chars().count() > MAX_NAME_CHARS {
+        let mut cut: String = spelt.chars().take(MAX_NAME_CHARS - 1).collect();
+        cut.push('…');
+        std::borrow::Cow::Owned(cut)
+    } else {
+        spelt
+    };
+    cut.replace('&', "&amp;")
         .replace('\\', "\\\\")
         .replace('"', "\\\"")
 }
@@ -164,5 +189,37 @@ mod tests {
         assert_eq!(hex(Color::new(1.0, 0.5, 0.0)), "#ff8000");
         assert_eq!(text_colour(Color::new(1.0, 0.5, 0.0)), "black");
         assert_eq!(text_colour(Color::splat(0.1)), "white");
+    }
+
+    #[test]
+    fn names_are_spelt_cut_and_escaped_for_a_dot_string() {
+        // `&` first (so the `&` of `&amp;` is not doubled), then `\` and `"`;
+        // ESC spelt `\u{1b}`, whose backslash is then doubled.
+        assert_eq!(escape("a&lt;\"b\"\\\u{1b}"), r#"a&amp;lt;\"b\"\\\\u{1b}"#);
+        // 150 letters: the first 99 and `…`; 100 stay whole.
+        let long = "x".repeat(150);
+        assert_eq!(escape(&long), format!("{}…", "x".repeat(99)));
+        assert_eq!(escape(&long[..100]), long[..100]);
+        // Cut after spelling: 30 ESCs are 180 characters spelt (`\u{1b}` is
+        // 6), so 16 whole spellings (96) and 3 of the 17th, then `…`.
+        let escs = escape(&"\u{1b}".repeat(30));
+        assert_eq!(escs, format!("{}\\\\u{{…", r"\\u{1b}".repeat(16)));
+    }
+
+    #[test]
+    fn a_shadow_names_ten_blockers_then_counts_the_rest() {
+        let names = |n: usize| (0..n).map(|i| format!("b{i}"));
+        assert_eq!(first_few(names(2), 2), "b0, b1");
+        assert_eq!(
+            first_few(names(10), 10),
+            (0..10)
+                .map(|i| format!("b{i}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        // 13 blockers: b0..b9, then the 3 others counted.
+        let thirteen = first_few(names(13), 13);
+        assert!(thirteen.starts_with("b0, b1, "), "{thirteen}");
+        assert!(thirteen.ends_with("b8, b9, and 3 more"), "{thirteen}");
     }
 }

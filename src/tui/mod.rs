@@ -220,7 +220,12 @@ pub(crate) fn run(opening: Opening) -> Result<ExitCode> {
     }
     if let Some(image) = compare {
         // Seconds on a large scene, before the screen changes: say why.
-        eprintln!("comparing {} with the scene…", image.display());
+        // The path is argv's: spelt as names are (`crate::printable`).
+        let shown = image.display().to_string();
+        eprintln!(
+            "comparing {} with the scene…",
+            crate::printable::printable_text(&shown)
+        );
     }
     let mut app = App::open_with(path.map(Path::to_path_buf), student, false)?.watching();
     if let Some(log) = ray_log {

@@ -3,8 +3,9 @@
 //! the `x` breakpoint stops at, and what the last toggle changed in it.
 //! Stepping and the tree's keys change only this.
 
-use std::cell::{Cell, OnceCell};
+use std::cell::{Cell, OnceCell, RefCell};
 use std::collections::BTreeSet;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::diagram::{Diagram, DiagramPlane, Progress};
@@ -12,6 +13,7 @@ use crate::record::{NodeId, RayTree, record_pixel};
 use crate::scene::{Scene, Settings};
 use crate::tui::action::{Action, Breakpoint};
 use crate::tui::find_job::Found;
+use crate::tui::view::canvas_lines::{CanvasLines, View};
 use crate::tui::view::stepper;
 use crate::tui::view::steps;
 use crate::tui::view::tree::{self, Row, RowKind};
@@ -39,9 +41,22 @@ pub struct TracedPixel {
     diagrams: [OnceCell<Diagram>; 3],
     /// How many diagrams have been assembled, for the tests.
     assembled: Cell<usize>,
+    /// Each diagram's segments grouped by the dots they paint, for the
+    /// view last drawn (`view::canvas_lines`): made again only when the
+    /// window or the pane's size changes, not at each step.
+    canvas_lines: [RefCell<Option<Arc<CanvasLines>>>; 3],
     /// The tree pane's rows, made once per tree and folding (the layout,
     /// the pane and the row keys all ask for them every frame).
     rows: OnceCell<Vec<Row>>,
+}
+
+/// Where a plane's diagram is kept.
+fn slot(plane: DiagramPlane) -> usize {
+    match plane {
+        DiagramPlane::Top => 0,
+        DiagramPlane::Side => 1,
+        DiagramPlane::Primary => 2,
+    }
 }
 
 impl TracedPixel {
@@ -60,6 +75,7 @@ impl TracedPixel {
             pick_time: started.elapsed(),
             diagrams: Default::default(),
             assembled: Cell::new(0),
+            canvas_lines: Default::default(),
             rows: OnceCell::new(),
         }
     }
@@ -140,15 +156,30 @@ impl TracedPixel {
     /// reached: assembled the first time it is asked for, then kept until
     /// the tree changes.
     pub(crate) fn diagram(&self, scene: &Scene, plane: DiagramPlane) -> &Diagram {
-        let slot = match plane {
-            DiagramPlane::Top => 0,
-            DiagramPlane::Side => 1,
-            DiagramPlane::Primary => 2,
-        };
-        self.diagrams[slot].get_or_init(|| {
+        self.diagrams[slot(plane)].get_or_init(|| {
             self.assembled.set(self.assembled.get() + 1);
             Diagram::new(scene, &self.tree, plane, Progress::done(&self.tree))
         })
+    }
+
+    /// The diagram on `plane`'s segments grouped for `view`: kept from the
+    /// last frame when it drew the same view, else grouped again.
+    pub(crate) fn canvas_lines(
+        &self,
+        scene: &Scene,
+        plane: DiagramPlane,
+        view: View,
+    ) -> Arc<CanvasLines> {
+        let mut kept = self.canvas_lines[slot(plane)].borrow_mut();
+        match &*kept {
+            Some(lines) if lines.view() == view => Arc::clone(lines),
+            _ => {
+                let segments = (self.diagram(scene, plane).segments.iter()).map(|s| (s.from, s.to));
+                let lines = Arc::new(CanvasLines::new(segments, view));
+                *kept = Some(Arc::clone(&lines));
+                lines
+            }
+        }
     }
 
     /// How many diagrams have been assembled since the app opened: one per
@@ -161,6 +192,7 @@ impl TracedPixel {
     fn set_tree(&mut self, tree: RayTree) {
         self.tree = tree;
         self.diagrams = Default::default();
+        self.canvas_lines = Default::default();
         self.rows = OnceCell::new();
     }
 

@@ -6,6 +6,7 @@
 //! lines to lights that face away.
 
 use std::borrow::Cow;
+use std::sync::Arc;
 
 use glam::DVec2;
 use ratatui::layout::Rect;
@@ -20,6 +21,7 @@ use crate::diagram::{
 use crate::math::to_rgb8;
 use crate::scene::Scene;
 use crate::tui::App;
+use crate::tui::view::canvas_lines::{CanvasLines, View};
 use crate::tui::view::cell_labels::{Wanted, cell, place};
 use crate::tui::view::pan_zoom::PanZoom;
 use crate::tui::view::stepper::progress;
@@ -151,19 +153,33 @@ pub(crate) fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block
     let diagram = pixel.diagram(scene, screen.plane());
     let progress = progress(pixel.tree(), pixel.current());
     let view = screen.diagram_pan_zoom();
-    draw(area, buf, block, (diagram, progress), scene, view);
+    let lines = |view| pixel.canvas_lines(scene, screen.plane(), view);
+    draw(
+        area,
+        buf,
+        block,
+        (diagram, progress),
+        scene,
+        (view, Some(&lines)),
+    );
 }
+
+/// The segments of a diagram grouped for a view (`view::canvas_lines`),
+/// kept between frames by the caller; `None` draws every segment.
+type Lines<'a> = Option<&'a dyn Fn(View) -> Arc<CanvasLines>>;
 
 /// Paints `diagram` (of a pixel of `scene`) into `area`, its rays stroked
 /// with the step-through at `progress`, the block's border holding the ray
-/// key, its window fitted to the diagram then panned and zoomed by `view`.
+/// key, its window fitted to the diagram then panned and zoomed by `view`;
+/// of the segments painting one line of dots, only the last one `lines`
+/// keeps (the same cells: `view::canvas_lines`).
 fn draw(
     area: Rect,
     buf: &mut ratatui::buffer::Buffer,
     block: Block,
     (diagram, progress): (&Diagram, Progress),
     scene: &Scene,
-    view: PanZoom,
+    (view, lines): (PanZoom, Lines),
 ) {
     let block = block.title_bottom(legend());
     let inner = block.inner(area);
@@ -175,6 +191,13 @@ fn draw(
     // one's colour shows.
     let mut objects: Vec<&ObjectOutline> = diagram.objects.iter().collect();
     objects.sort_by_key(|o| o.object);
+    let grouped = lines.map(|lines| {
+        lines(View {
+            x,
+            y,
+            cells: (inner.width, inner.height),
+        })
+    });
     // A dot every third Braille dot across.
     let spacing = 3.0 * (x[1] - x[0]) / (f64::from(inner.width.max(1)) * 2.0);
     let paint = |ctx: &mut Context| {
@@ -199,14 +222,24 @@ fn draw(
                 stroke_color(stroke),
             ));
         };
-        let strokes = || (diagram.segments.iter()).map(|s| (s, s.stroke_at(progress)));
-        (strokes())
-            .filter(|(_, stroke)| *stroke != Stroke::Current)
-            .for_each(|(s, stroke)| draw(ctx, s, stroke));
-        ctx.layer();
-        (strokes())
-            .filter(|(_, stroke)| *stroke == Stroke::Current)
-            .for_each(|(s, stroke)| draw(ctx, s, stroke));
+        let segments = &diagram.segments;
+        let current = |i: usize| segments[i].stroke_at(progress) == Stroke::Current;
+        // The rays, then the current one on its own layer above them.
+        let layers: [Vec<usize>; 2] = match &grouped {
+            Some(lines) => [lines.kept(|i| !current(i)), lines.kept(current)],
+            None => [
+                (0..segments.len()).filter(|&i| !current(i)).collect(),
+                (0..segments.len()).filter(|&i| current(i)).collect(),
+            ],
+        };
+        for (n, layer) in layers.iter().enumerate() {
+            if n > 0 {
+                ctx.layer();
+            }
+            for &i in layer {
+                draw(ctx, &segments[i], segments[i].stroke_at(progress));
+            }
+        }
     };
     Canvas::default()
         .block(block)
@@ -406,7 +439,7 @@ mod tests {
             Block::bordered(),
             (&d, Progress::done(&tree)),
             &scene,
-            PanZoom::fit(),
+            (PanZoom::fit(), None),
         );
         let text: String = (buf.content.iter()).map(|c| c.symbol()).collect();
 
@@ -435,6 +468,90 @@ mod tests {
             })
             .count();
         assert!(dotted > 3, "{dotted}");
+    }
+
+    /// `diagram` at `progress` drawn in a `size` pane with every segment,
+    /// and with only those `CanvasLines` keeps: the two buffers.
+    fn drawn_both_ways(
+        scene: &Scene,
+        diagram: &Diagram,
+        progress: Progress,
+        size: (u16, u16),
+        view: PanZoom,
+    ) -> (Buffer, Buffer, usize) {
+        let area = Rect::new(0, 0, size.0, size.1);
+        let mut all = Buffer::empty(area);
+        draw(
+            area,
+            &mut all,
+            Block::bordered(),
+            (diagram, progress),
+            scene,
+            (view, None),
+        );
+        let lines = std::cell::Cell::new(0);
+        let group = |v| {
+            let grouped = CanvasLines::new(diagram.segments.iter().map(|s| (s.from, s.to)), v);
+            lines.set(grouped.lines());
+            Arc::new(grouped)
+        };
+        let mut thinned = Buffer::empty(area);
+        let kept: Lines = Some(&group);
+        let parts = (diagram, progress);
+        draw(
+            area,
+            &mut thinned,
+            Block::bordered(),
+            parts,
+            scene,
+            (view, kept),
+        );
+        (all, thinned, lines.get())
+    }
+
+    #[test]
+    fn thinned_rays_draw_the_very_same_cells() {
+        // The bench's tree: the three glass planes' pixel (16, 12) with no
+        // weight cutoff and the largest budget, 65,536 rays; and the small
+        // trees of the ball and the pebble. Each on every plane, at its
+        // start, its middle and its end (the current ray on its own layer),
+        // fitted and zoomed in 8 times (most segments then leave the window
+        // and are clipped), at the bench's 200x60 and a narrow 41x13. The
+        // cells (symbol and colours) must not differ in one.
+        let text = include_str!("../../../tests/scenes/three-glass-planes.toml").replace(
+            "[settings]\n",
+            "[settings]\nmin_weight = 0\nmax_rays = 65536\n",
+        );
+        let scene = crate::scene::parse(std::path::Path::new("big.toml"), &text).unwrap();
+        let big = crate::record::record_pixel(&scene, &scene.settings, 16, 12);
+        assert_eq!(big.nodes.len(), 65536);
+        let mut zoomed = PanZoom::fit();
+        zoomed.zoom_by(6);
+        assert!(zoomed.magnification() >= 4.0, "{}", zoomed.magnification());
+        let cases = [(scene, big), pebble(), crate::test_scenes::ball()];
+        for (n, (scene, tree)) in cases.iter().enumerate() {
+            for plane in [DiagramPlane::Top, DiagramPlane::Side, DiagramPlane::Primary] {
+                let d = Diagram::new(scene, tree, plane, Progress::done(tree));
+                let events = tree.events.len();
+                for at in [0, events / 2, events.saturating_sub(1)] {
+                    let progress = progress(tree, at);
+                    for size in [(200, 60), (41, 13)] {
+                        for view in [PanZoom::fit(), zoomed] {
+                            let (all, thinned, lines) =
+                                drawn_both_ways(scene, &d, progress, size, view);
+                            let case = format!("{n} {plane:?} at {at} {size:?} {view:?}");
+                            assert_eq!(all, thinned, "{case}");
+                            // The big tree's thousands of segments fall on
+                            // far fewer lines of dots: the point of it.
+                            if n == 0 && view.is_fit() && size == (200, 60) {
+                                let segments = d.segments.len();
+                                assert!(lines * 10 < segments, "{case}: {lines} of {segments}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -6,6 +6,7 @@
 //! each file tests its own; the app (`app/`) and the panes (`pane/`) both
 //! read them, and nothing here knows either.
 
+pub(crate) mod canvas_lines;
 pub(crate) mod cell_labels;
 pub mod details;
 pub(crate) mod find;

@@ -2,6 +2,7 @@
 //! input that once hung, exhausted memory, died by a signal or destroyed a
 //! file is pinned here, one file per kind of harm, so that it stays fixed.
 
+mod argv;
 mod compare_input;
 mod files;
 mod linear;

@@ -382,3 +382,98 @@ fn the_debugger_draws_no_unprintable_character() {
     assert_printable("the debugger's screen", &shown);
     assert!(shown.contains("ball"), "{shown}");
 }
+
+/// What Graphviz makes of `dot` text: `dot -Tsvg` run on it, which must
+/// succeed without a word on stderr; the SVG's text, line by line.
+fn graphviz_texts(dot_program: &Path, what: &str, dot: &str) -> String {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(dot_program)
+        .arg("-Tsvg")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("dot starts");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(dot.as_bytes())
+        .unwrap();
+    let output = child.wait_with_output().unwrap();
+    let (svg, err) = (stdout(&output), stderr(&output));
+    assert!(output.status.success(), "{what}: dot failed: {err}\n{dot}");
+    assert!(err.is_empty(), "{what}: dot warned: {err}\n{dot}");
+    // Graphviz's SVG starts with its DTD's declaration.
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(&svg, options)
+        .unwrap_or_else(|e| panic!("{what}: dot's SVG is not XML: {e}"));
+    (doc.descendants().filter_map(|n| n.text()))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn graphviz_draws_our_dot_for_any_name_and_every_scene() {
+    let Some(dot_program) = crate::support::program_or_skip("dot") else {
+        return;
+    };
+    // The hostile scene's names again, each now also holding what dot's
+    // strings and Graphviz's labels read specially: `&lt;` (an entity
+    // Graphviz turns into `<` in any label, unless `&` is written
+    // `&amp;`), `<`, `>`, a quote, a backslash (`\l` ends a line in dot),
+    // a line break; and the floor named with 150 characters.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = hostile_scene(dir.path());
+    let special = r#"&lt;x<y>\"q\"\\l\n"#;
+    let long = "f".repeat(150);
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let text = text
+        .replace(TAIL_TOML, &format!("{special}{TAIL_TOML}"))
+        .replace("name = \"floor\"", &format!("name = \"{long}\""));
+    std::fs::write(&scene, text).unwrap();
+    // As Graphviz shows them: the characters themselves, the line break
+    // and the controls spelt out (`crate::printable`).
+    let shown = format!("&lt;x<y>\"q\"\\l\\u{{a}}{TAIL_SPELT}");
+    for pixel in [BALL, SHADOW] {
+        let dot = run_ok(&["inspect", &scene, "--pixel", pixel, "--format", "dot"]);
+        let what = format!("dot {pixel}");
+        let texts = graphviz_texts(&dot_program, &what, &dot);
+        for name in ["ball", "lamp"] {
+            let spelt = format!("{name}{shown}");
+            assert!(texts.contains(&spelt), "{what}: no {spelt} in\n{texts}");
+        }
+    }
+    // The floor is hit at SHADOW: its name cut to 99 characters and `…`
+    // (MODEL §10: 100 at most in a label).
+    let dot = run_ok(&["inspect", &scene, "--pixel", SHADOW, "--format", "dot"]);
+    let texts = graphviz_texts(&dot_program, "the floor", &dot);
+    assert!(
+        texts.contains(&format!("hit {}… at", &long[..99])),
+        "{texts}"
+    );
+    assert!(!texts.contains(&long[..100]), "{texts}");
+
+    // Every scene of scenes/, at its centre pixel of a 16x12 image.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut scenes: Vec<_> = std::fs::read_dir(root.join("scenes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    scenes.push(root.join("scenes/cornell/cornell.toml"));
+    assert!(scenes.len() >= 10, "{scenes:?}");
+    for scene in scenes {
+        let scene = scene.to_str().unwrap();
+        let args = [
+            "inspect", scene, "--size", "16x12", "--pixel", "8,6", "--format", "dot",
+        ];
+        let dot = run_ok(&args);
+        let texts = graphviz_texts(&dot_program, scene, &dot);
+        assert!(texts.contains("primary ray (depth 1)"), "{scene}: {texts}");
+    }
+}

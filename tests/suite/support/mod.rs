@@ -96,3 +96,31 @@ pub fn stderr(output: &Output) -> String {
 pub fn stdout(output: &Output) -> String {
     String::from_utf8_lossy(&output.stdout).into_owned()
 }
+
+/// The program `name` found on PATH, or `None` after printing that the
+/// test calling it is skipped. With CI set (and not `false` or `0`), a
+/// missing program fails the test instead: `.ci/run` installs it.
+pub fn program_or_skip(name: &str) -> Option<std::path::PathBuf> {
+    if let Some(program) = on_path(name) {
+        return Some(program);
+    }
+    let test = std::thread::current()
+        .name()
+        .unwrap_or("a test")
+        .to_string();
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
+    assert!(
+        !ci,
+        "{test}: {name} is not installed, and CI is set (.ci/run installs it)"
+    );
+    eprintln!("note: {test} skipped: {name} is not installed (.ci/run installs it)");
+    None
+}
+
+/// The file `name` in a folder of PATH.
+pub fn on_path(name: &str) -> Option<std::path::PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .map(|dir| dir.join(name))
+        .find(|file| file.is_file())
+}
