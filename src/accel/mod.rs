@@ -474,6 +474,24 @@ impl Nearest<'_> {
     }
 }
 
+impl Nearest<'_> {
+    /// `test` with the intersection given: `hit(range)` is the object's
+    /// nearest hit in `range`, as `LeafShape::intersect` gives it.
+    #[inline(always)]
+    fn test_with(&mut self, object: u32, hit: impl FnOnce(&Ray, Interval) -> Option<f64>) {
+        let object = object as usize;
+        let best = self.best;
+        let max = if object < best.object && best.object != NONE_YET {
+            best.t.next_up()
+        } else {
+            best.t
+        };
+        if let Some(t) = hit(self.ray, Interval::new(self.range.min, max)) {
+            self.best = Candidate { object, t };
+        }
+    }
+}
+
 impl fmt::Debug for Accel {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Accel")
