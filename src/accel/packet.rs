@@ -8,19 +8,29 @@
 //! distances (c - o) (1/d) of all eight rays lie between (c - o) times the
 //! least and the greatest of their 1/d (rounding is monotone, so this holds
 //! for the rounded numbers too). A box the packet misses so, every ray's own
-//! box test (the SSE2 test of `node::BoxTest`, same operations) misses too.
+//! box test (the SSE2 test of `node::BoxTest`, same operations) misses too,
+//! and that test never misses a box holding a ray's nearest hit
+//! (`closest_sse2` answers as brute force); the AVX copy bounds the same
+//! way, without fused steps.
 //! At a leaf, each ray's own box test, done eight rays at a time, decides
 //! which rays test the leaf's objects. So every ray tests every object its
 //! own walk would test where the hit could be (and maybe a few more): its
 //! nearest hit, by the same tie rule (`Nearest::test`), is the same.
 //!
-//! Packets whose rays do not share an origin, or whose directions differ in
-//! sign along an axis or have a zero component (a 1/d interval would then
-//! be unbounded), are traced ray by ray with `closest`.
+//! Packets of fewer than eight rays (a row's last pixels), and those whose
+//! rays do not share an origin, or whose directions differ in sign along an
+//! axis or have a zero component (a 1/d interval would then be unbounded),
+//! are traced ray by ray with `closest`.
 //!
 //! No costs are counted: a render whose recorder counts nodes and
 //! primitives (`--stats`, recordings) keeps the per-ray query, so the
 //! numbers it shows are those of one ray.
+
+#[cfg(target_arch = "x86_64")]
+use std::arch::x86_64::{
+    __m256d, _CMP_LE_OQ, _mm256_cmp_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd,
+    _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd, _mm256_sub_pd,
+};
 
 use arrayvec::ArrayVec;
 use glam::DVec3;
@@ -197,6 +207,70 @@ impl PacketBoxTesting for PacketTest {
     }
 }
 
+/// A packet prepared for the AVX packet test (`packet::PacketTest`'s
+/// arithmetic, (c - o) times the least and the greatest 1/d, four boxes per
+/// instruction; no fused steps, so the bounds hold for each ray's SSE2 test).
+/// Built only where `wide::BoxTest` may be (see its comment).
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy, Debug)]
+pub(super) struct WidePacketTest {
+    origin: [__m256d; 3],
+    least: [__m256d; 3],
+    greatest: [__m256d; 3],
+    downwards: [bool; 3],
+}
+
+#[cfg(target_arch = "x86_64")]
+impl PacketBoxTesting for WidePacketTest {
+    #[inline(always)]
+    fn new(packet: &Packet) -> WidePacketTest {
+        debug_assert!(
+            super::wide::available(),
+            "the AVX packet test on a CPU without AVX"
+        );
+        let (origin, least, greatest, downwards) = packet.bounds();
+        // SAFETY: as for `wide::BoxTest`: built only inside the functions
+        // compiled with AVX, which run only where `wide::available()` said yes.
+        unsafe {
+            WidePacketTest {
+                origin: origin.map(|x| _mm256_set1_pd(x)),
+                least: least.map(|x| _mm256_set1_pd(x)),
+                greatest: greatest.map(|x| _mm256_set1_pd(x)),
+                downwards,
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn entries(&self, node: &Node, t_min: f64, t_max: f64) -> (u32, [f64; WIDTH]) {
+        let mut entry = [0.0; WIDTH];
+        // SAFETY: as above; each load reads one axis's corners of the four
+        // children (four f64 side by side), the store the four of `entry`.
+        let mask = unsafe {
+            let mut low = _mm256_set1_pd(t_min);
+            let mut high = _mm256_set1_pd(t_max);
+            for axis in 0..3 {
+                let down = self.downwards[axis];
+                let near = node.corners[usize::from(down)][axis].as_ptr().cast::<f64>();
+                let far = node.corners[usize::from(!down)][axis]
+                    .as_ptr()
+                    .cast::<f64>();
+                let near = _mm256_sub_pd(_mm256_loadu_pd(near), self.origin[axis]);
+                let far = _mm256_sub_pd(_mm256_loadu_pd(far), self.origin[axis]);
+                let (least, greatest) = (self.least[axis], self.greatest[axis]);
+                let t_near =
+                    _mm256_min_pd(_mm256_mul_pd(near, least), _mm256_mul_pd(near, greatest));
+                let t_far = _mm256_max_pd(_mm256_mul_pd(far, least), _mm256_mul_pd(far, greatest));
+                low = _mm256_max_pd(t_near, low);
+                high = _mm256_min_pd(t_far, high);
+            }
+            _mm256_storeu_pd(entry.as_mut_ptr(), low);
+            _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(low, high)) as u32
+        };
+        (mask, entry)
+    }
+}
+
 impl Accel {
     /// `closest(objects, ray, range, _)` for each ray of `rays` (at most
     /// eight, primary rays of one row), into `found`: the same candidates,
@@ -241,9 +315,7 @@ impl Accel {
         range: Interval,
         found: &mut [Option<Candidate>],
     ) {
-        self.closest_each_with::<super::wide::BoxTest, super::wide::PacketTest>(
-            objects, rays, range, found,
-        )
+        self.closest_each_with::<super::wide::BoxTest, WidePacketTest>(objects, rays, range, found)
     }
 
     #[inline(always)]

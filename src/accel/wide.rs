@@ -22,13 +22,11 @@
 
 use std::arch::x86_64::{
     __m256d, _CMP_LE_OQ, _mm256_cmp_pd, _mm256_fmsub_pd, _mm256_loadu_pd, _mm256_max_pd,
-    _mm256_min_pd, _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd,
-    _mm256_sub_pd,
+    _mm256_min_pd, _mm256_movemask_pd, _mm256_set1_pd, _mm256_storeu_pd,
 };
 use std::sync::OnceLock;
 
 use super::node::{BoxTesting, Node, WIDTH};
-use super::packet::{Packet, PacketBoxTesting};
 use crate::math::Ray;
 
 /// Whether the queries' wide copies may run: the CPU has every feature
@@ -144,63 +142,6 @@ impl BoxTesting for BoxTest {
                 let t_far = _mm256_fmsub_pd(_mm256_loadu_pd(far), factor, origin);
                 // A NaN (only where `slab_factor` gave up on the origin)
                 // keeps the bound: the second operand.
-                low = _mm256_max_pd(t_near, low);
-                high = _mm256_min_pd(t_far, high);
-            }
-            _mm256_storeu_pd(entry.as_mut_ptr(), low);
-            _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(low, high)) as u32
-        };
-        (mask, entry)
-    }
-}
-
-/// A packet prepared for the AVX packet test (`packet::PacketTest`'s
-/// arithmetic, (c - o) times the least and the greatest 1/d, four boxes per
-/// instruction; no fused steps, so the bounds hold for each ray's SSE2 test).
-/// Built only where `BoxTest` may be (see its comment).
-#[derive(Clone, Copy, Debug)]
-pub(super) struct PacketTest {
-    origin: [__m256d; 3],
-    least: [__m256d; 3],
-    greatest: [__m256d; 3],
-    downwards: [bool; 3],
-}
-
-impl PacketBoxTesting for PacketTest {
-    #[inline(always)]
-    fn new(packet: &Packet) -> PacketTest {
-        debug_assert!(available(), "the AVX packet test on a CPU without AVX");
-        let (origin, least, greatest, downwards) = packet.bounds();
-        // SAFETY: see `BoxTest`'s comment.
-        unsafe {
-            PacketTest {
-                origin: origin.map(|x| _mm256_set1_pd(x)),
-                least: least.map(|x| _mm256_set1_pd(x)),
-                greatest: greatest.map(|x| _mm256_set1_pd(x)),
-                downwards,
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn entries(&self, node: &Node, t_min: f64, t_max: f64) -> (u32, [f64; WIDTH]) {
-        let mut entry = [0.0; WIDTH];
-        // SAFETY: as in `BoxTest::entries`.
-        let mask = unsafe {
-            let mut low = _mm256_set1_pd(t_min);
-            let mut high = _mm256_set1_pd(t_max);
-            for axis in 0..3 {
-                let down = self.downwards[axis];
-                let near = node.corners[usize::from(down)][axis].as_ptr().cast::<f64>();
-                let far = node.corners[usize::from(!down)][axis]
-                    .as_ptr()
-                    .cast::<f64>();
-                let near = _mm256_sub_pd(_mm256_loadu_pd(near), self.origin[axis]);
-                let far = _mm256_sub_pd(_mm256_loadu_pd(far), self.origin[axis]);
-                let (least, greatest) = (self.least[axis], self.greatest[axis]);
-                let t_near =
-                    _mm256_min_pd(_mm256_mul_pd(near, least), _mm256_mul_pd(near, greatest));
-                let t_far = _mm256_max_pd(_mm256_mul_pd(far, least), _mm256_mul_pd(far, greatest));
                 low = _mm256_max_pd(t_near, low);
                 high = _mm256_min_pd(t_far, high);
             }
