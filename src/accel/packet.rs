@@ -427,44 +427,43 @@ impl Accel {
             });
             loop {
                 match next {
-                    Some((child, rays)) if child.is_leaf() => {
-                        if rays != 0 {
-                            let first = child.offset as usize;
-                            let leaf = &self.objects[first..first + usize::from(child.count)];
-                            for (&object, shape) in leaf.iter().zip(&self.shapes[first..]) {
-                                let mut left = rays;
-                                if let LeafShape::Triangle(triangle) = shape {
-                                    // The plane's v_0 once for the packet's origin.
-                                    let v_0 = triangle.v_0(origin);
-                                    while left != 0 {
-                                        let i = left.trailing_zeros() as usize;
-                                        left &= left - 1;
-                                        nearest[i].test_with(object, |ray, range| {
-                                            triangle.hit_t_given(v_0, ray, range)
-                                        });
-                                    }
-                                    continue;
-                                }
+                    // A leaf none of the rays meets is skipped.
+                    Some((child, rays)) if child.is_leaf() && rays != 0 => {
+                        let first = child.offset as usize;
+                        let leaf = &self.objects[first..first + usize::from(child.count)];
+                        for (&object, shape) in leaf.iter().zip(&self.shapes[first..]) {
+                            let mut left = rays;
+                            if let LeafShape::Triangle(triangle) = shape {
+                                // The plane's v_0 once for the packet's origin.
+                                let v_0 = triangle.v_0(origin);
                                 while left != 0 {
                                     let i = left.trailing_zeros() as usize;
                                     left &= left - 1;
-                                    nearest[i].test(object, shape, &mut cost);
+                                    nearest[i].test_with(object, |ray, range| {
+                                        triangle.hit_t_given(v_0, ray, range)
+                                    });
                                 }
+                                continue;
                             }
-                            let mut left = rays;
                             while left != 0 {
                                 let i = left.trailing_zeros() as usize;
                                 left &= left - 1;
-                                t_max[i] = nearest[i].best.t;
+                                nearest[i].test(object, shape, &mut cost);
                             }
-                            packet_max = greatest(&t_max);
                         }
+                        let mut left = rays;
+                        while left != 0 {
+                            let i = left.trailing_zeros() as usize;
+                            left &= left - 1;
+                            t_max[i] = nearest[i].best.t;
+                        }
+                        packet_max = greatest(&t_max);
                     }
-                    Some((child, _)) => {
+                    Some((child, _)) if !child.is_leaf() => {
                         node = &self.nodes[child.offset as usize];
                         break;
                     }
-                    None => {}
+                    _ => {}
                 }
                 next = loop {
                     let Some((child, entry, rays)) = stack.pop() else {
