@@ -8,18 +8,25 @@ use anyhow::{Context, Result};
 use image::RgbImage;
 use rayon::prelude::*;
 
-use crate::accel::ShadowCache;
+use crate::accel::{PACKET, ShadowCache};
 use crate::camera::Viewport;
-use crate::math::Ray;
+use crate::math::{Interval, Ray};
 use crate::scene::{Scene, Settings};
-use crate::trace::{NoRecorder, RayStats, Recorder, trace_in_row};
+use crate::trace::{NoRecorder, RayStats, Recorder, trace_found_in_row, trace_in_row};
 
 /// A recorder that can follow a whole render: one per row, summed at the end.
 pub trait RowRecorder: Recorder + Default + Send {
+    /// Whether a render's primary rays may be traced in packets
+    /// (`Accel::closest_each`): the same colours, but the query's cost is
+    /// not counted, so only for a recorder that ignores it.
+    const PACKETS: bool = false;
+
     fn merge(&mut self, other: Self);
 }
 
 impl RowRecorder for NoRecorder {
+    const PACKETS: bool = true;
+
     fn merge(&mut self, _other: Self) {}
 }
 
@@ -64,15 +71,39 @@ pub(crate) fn render_unless<R: RowRecorder>(
     let mut image = RgbImage::new(width, height);
     let (pixels, _) = image.as_chunks_mut::<3>();
     let mistakes = settings.mistakes;
-    let recorder = trace_rows(
-        &viewport(scene, settings, (width, height)),
-        pixels,
-        row_done,
-        cancel,
-        |ray, cache, rec, pixel| {
-            *pixel = mistakes.rgb8(trace_in_row(scene, settings, ray, cache, rec));
-        },
-    )?;
+    let viewport = viewport(scene, settings, (width, height));
+    let recorder = if R::PACKETS {
+        // A primary ray's hit range is (EPS, inf) whatever the mistakes
+        // (`Rules::hit_range`).
+        let range = Interval::in_front();
+        for_each_row(
+            &viewport,
+            pixels,
+            row_done,
+            cancel,
+            |rays, cache, rec, row| {
+                let mut found = [None; PACKET];
+                for (rays, row) in rays.chunks(PACKET).zip(row.chunks_mut(PACKET)) {
+                    let found = &mut found[..rays.len()];
+                    scene.accel.closest_each(&scene.objects, rays, range, found);
+                    for ((ray, &found), pixel) in rays.iter().zip(&*found).zip(row) {
+                        let color = trace_found_in_row(scene, settings, ray, found, cache, rec);
+                        *pixel = mistakes.rgb8(color);
+                    }
+                }
+            },
+        )?
+    } else {
+        trace_rows(
+            &viewport,
+            pixels,
+            row_done,
+            cancel,
+            |ray, cache, rec, pixel| {
+                *pixel = mistakes.rgb8(trace_in_row(scene, settings, ray, cache, rec));
+            },
+        )?
+    };
     Some((image, recorder))
 }
 
@@ -101,18 +132,37 @@ pub(crate) fn trace_rows<T: Send, R: RowRecorder>(
     cancel: &AtomicBool,
     pixel: impl Fn(&Ray, &mut ShadowCache, &mut R, &mut T) + Sync,
 ) -> Option<R> {
+    for_each_row(
+        viewport,
+        pixels,
+        row_done,
+        cancel,
+        |rays, cache, rec, row| {
+            for (ray, out) in rays.iter().zip(row) {
+                pixel(ray, cache, rec, out);
+            }
+        },
+    )
+}
+
+/// `trace_rows` with the whole row's primary rays and pixels handed to `row`.
+fn for_each_row<T: Send, R: RowRecorder>(
+    viewport: &Viewport,
+    pixels: &mut [T],
+    row_done: &(dyn Fn() + Sync),
+    cancel: &AtomicBool,
+    row: impl Fn(&[Ray], &mut ShadowCache, &mut R, &mut [T]) + Sync,
+) -> Option<R> {
     let recorder = pixels
         .par_chunks_mut(viewport.width as usize)
         .enumerate()
-        .map(|(y, row)| {
+        .map(|(y, pixels)| {
             let mut rec = R::default();
             if cancel.load(Ordering::Relaxed) {
                 return rec;
             }
             let mut cache = ShadowCache::default();
-            for (ray, out) in viewport.row(y as u32).iter().zip(row) {
-                pixel(ray, &mut cache, &mut rec, out);
-            }
+            row(&viewport.row(y as u32), &mut cache, &mut rec, pixels);
             row_done();
             rec
         })

@@ -128,6 +128,29 @@ impl TriangleTest {
         let p = self.dropped.project(ray.at(t));
         (count_crossings(self.projected.iter().copied(), p) % 2 == 1).then_some(t)
     }
+
+    /// `Plane::solve`'s v_0 for rays from `origin`, the same for every ray
+    /// of a packet (`packet`): -(N . o + d).
+    #[inline(always)]
+    pub(crate) fn v_0(&self, origin: DVec3) -> f64 {
+        -(self.plane.normal.dot(origin) + self.plane.d)
+    }
+
+    /// `hit_t(ray, range)` given `v_0(ray.origin)`: the same steps
+    /// (`Plane::solve`'s, then the crossings), the same bits.
+    #[inline(always)]
+    pub(crate) fn hit_t_given(&self, v_0: f64, ray: &Ray, range: Interval) -> Option<f64> {
+        let v_d = self.plane.normal.dot(ray.direction);
+        if v_d == 0.0 {
+            return None;
+        }
+        let t = v_0 / v_d;
+        if !range.surrounds(t) {
+            return None;
+        }
+        let p = self.dropped.project(ray.at(t));
+        (count_crossings(&self.projected, p) % 2 == 1).then_some(t)
+    }
 }
 
 /// `Polygon::solve(ray, range).hit_t()` of the polygon (or patch) `shape`,

@@ -23,7 +23,8 @@
 //! packed shape records (`leaf_shapes`, with `edge_bands` for many-sided
 //! polygons), the shadow query that tries a row's last blocker first
 //! (`shadow`), the objects' materials and normal recipes side by side
-//! (`object_tables`, `normals`), and a row's primary rays at once (`rows`).
+//! (`object_tables`, `normals`), a row's primary rays at once (`rows`),
+//! and their nearest hits found eight at a time in one walk (`packet`).
 
 pub mod brute;
 mod bvh;
@@ -33,6 +34,7 @@ mod leaf_shapes;
 mod node;
 mod normals;
 mod object_tables;
+mod packet;
 mod rows;
 mod shadow;
 #[cfg(target_arch = "x86_64")]
@@ -52,6 +54,7 @@ use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;
 use node::{BoxTesting, Child, Node, WIDTH};
 pub(crate) use object_tables::ObjectTables;
+pub(crate) use packet::PACKET;
 pub(crate) use shadow::ShadowCache;
 
 /// What one query tested: the price of a ray, shown to students.
@@ -466,6 +469,24 @@ impl Nearest<'_> {
         };
         let range = Interval::new(self.range.min, max);
         if let Some(t) = shape.intersect(self.objects, object, self.ray, range) {
+            self.best = Candidate { object, t };
+        }
+    }
+}
+
+impl Nearest<'_> {
+    /// `test` with the intersection given: `hit(range)` is the object's
+    /// nearest hit in `range`, as `LeafShape::intersect` gives it.
+    #[inline(always)]
+    fn test_with(&mut self, object: u32, hit: impl FnOnce(&Ray, Interval) -> Option<f64>) {
+        let object = object as usize;
+        let best = self.best;
+        let max = if object < best.object && best.object != NONE_YET {
+            best.t.next_up()
+        } else {
+            best.t
+        };
+        if let Some(t) = hit(self.ray, Interval::new(self.range.min, max)) {
             self.best = Candidate { object, t };
         }
     }

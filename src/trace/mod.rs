@@ -10,4 +10,4 @@ pub use recorder::{Blocker, NoRecorder, NotCast, PruneRule, RayKind, Refraction}
 pub(crate) use recorder::{ChildTerm, DepthLimit, LightTerm, Recorder, SurfaceHit};
 pub use stats::RayStats;
 pub use tracer::trace;
-pub(crate) use tracer::trace_in_row;
+pub(crate) use tracer::{trace_found_in_row, trace_in_row};

@@ -47,6 +47,25 @@ pub(crate) fn trace_in_row<R: Recorder>(
     }
 }
 
+/// `trace_in_row` for a primary ray whose nearest hit `found` was already
+/// looked for (by `Accel::closest_each`, as `closest` would give it over
+/// `hit_range(RayKind::Primary)`): the same colour, for a recorder that
+/// does not count the query's cost.
+pub(crate) fn trace_found_in_row<R: Recorder>(
+    scene: &Scene,
+    settings: &Settings,
+    ray: &Ray,
+    found: Option<Candidate>,
+    cache: &mut ShadowCache,
+    rec: &mut R,
+) -> Color {
+    if settings.mistakes.is_empty() {
+        Tracer::<R, false>::new(scene, settings, cache, rec).primary_found(ray, found)
+    } else {
+        Tracer::<R, true>::new(scene, settings, cache, rec).primary_found(ray, found)
+    }
+}
+
 /// One pixel's trace in progress: the scene, its settings and the rules they
 /// make (with the settings' mistakes if `MISTAKES`), the row's shadow cache,
 /// the recorder, and how many rays the pixel's tree holds so far.
@@ -80,6 +99,14 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         self.trace(ray, RayKind::Primary, 1, 1.0, 1.0).color
     }
 
+    /// `primary` for a ray whose nearest hit was already found (`found`,
+    /// as `closest` gives it, its cost not counted).
+    fn primary_found(&mut self, ray: &Ray, found: Option<Candidate>) -> Color {
+        self.rays += 1;
+        self.rec.ray_cast(RayKind::Primary, 1, ray, 1.0);
+        self.finish(ray, found, Cost::default(), 1, 1.0).color
+    }
+
     /// `path_weight` is the ray's accumulated weight: the product of the
     /// weights from the primary ray (1) down to this ray.
     fn trace(
@@ -97,6 +124,20 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         let found = scene
             .accel
             .closest(&scene.objects, ray, self.rules.hit_range(kind), &mut cost);
+        self.finish(ray, found, cost, depth, path_weight)
+    }
+
+    /// The rest of `trace` once the nearest hit is known: the background,
+    /// or the hit shaded.
+    fn finish(
+        &mut self,
+        ray: &Ray,
+        found: Option<Candidate>,
+        cost: Cost,
+        depth: u32,
+        path_weight: f64,
+    ) -> Traced {
+        let scene = self.scene;
         let Some(candidate) = found else {
             let background = self.settings.background;
             self.rec.miss(background, cost);

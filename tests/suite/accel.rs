@@ -599,3 +599,53 @@ fn time_queries(name: &str, objects: &[Object], accel: &Accel, rng: &mut Rng) {
         cost.primitives as f64 / rays.len() as f64,
     );
 }
+
+/// A plain render traces its primary rays in packets of eight
+/// (`Accel::closest_each`); a render with `--stats` counts each query's cost
+/// and so keeps the per-ray query, the oracle here. Their images must be
+/// the same bytes, with the AVX copy and with the SSE2 copy
+/// (`RAYSTEP_NO_AVX=1`), at a width that is a multiple of eight and at one
+/// that leaves a row's last pixels outside any packet, and with a pixel
+/// mistake (which moves every primary ray).
+#[test]
+fn plain_renders_in_packets_equal_per_ray_renders() {
+    use std::process::Command;
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = [
+        "balls", "gears", "mount", "rings", "teapot", "tetra", "tree",
+    ]
+    .map(|name| format!("{SPD}/{name}-small.nff"));
+    let mut compared = 0;
+    for scene in &scenes {
+        for (size, mistake) in [("64x48", None), ("61x37", Some("pixel-corner"))] {
+            let mut images = Vec::new();
+            for no_avx in [false, true] {
+                for stats in [false, true] {
+                    let out = dir.path().join(format!("{}.png", images.len()));
+                    let mut command = Command::new(env!("CARGO_BIN_EXE_raystep"));
+                    command.args(["render", scene, "-o"]).arg(&out);
+                    command.args(["--size", size, "--threads", "2"]);
+                    if stats {
+                        command.arg("--stats");
+                    }
+                    if let Some(mistake) = mistake {
+                        command.args(["--mistake", mistake]);
+                    }
+                    if no_avx {
+                        command.env("RAYSTEP_NO_AVX", "1");
+                    } else {
+                        command.env_remove("RAYSTEP_NO_AVX");
+                    }
+                    let output = command.output().unwrap();
+                    assert!(output.status.success(), "{scene}: {output:?}");
+                    images.push(std::fs::read(&out).unwrap());
+                }
+            }
+            for (i, image) in images.iter().enumerate() {
+                assert!(image == &images[0], "{scene} {size}: image {i} differs");
+            }
+            compared += images.len();
+        }
+    }
+    assert_eq!(compared, 7 * 2 * 4);
+}
