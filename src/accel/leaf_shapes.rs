@@ -149,7 +149,7 @@ impl TriangleTest {
             return None;
         }
         let p = self.dropped.project(ray.at(t));
-        (count_crossings(&self.projected, p) % 2 == 1).then_some(t)
+        (count_crossings(self.projected.iter().copied(), p) % 2 == 1).then_some(t)
     }
 }
 
