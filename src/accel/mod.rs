@@ -52,7 +52,7 @@ use crate::object::Object;
 use crate::shapes::Roots;
 use bvh::{Bvh, MAX_DEPTH, PrimitiveRef};
 use leaf_shapes::LeafShape;
-use node::{BoxTesting, Child, Node, WIDTH};
+use node::{BoxTesting, Child, Node, WIDTH, nearest_first};
 pub(crate) use object_tables::ObjectTables;
 pub(crate) use packet::PACKET;
 pub(crate) use shadow::ShadowCache;
@@ -349,17 +349,7 @@ impl Accel {
                 12 => Some(nearer_of_two(&mut stack, node, &entry, 2, 3)),
                 _ => {
                     // Three or four: a sorting network of compare-and-swap.
-                    let mut keys = [u64::MAX; WIDTH];
-                    for (i, (key, t)) in keys.iter_mut().zip(entry).enumerate() {
-                        if mask & 1 << i != 0 {
-                            *key = (t.to_bits() & !3) | i as u64;
-                        }
-                    }
-                    for (x, y) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
-                        let (low, high) = (keys[x].min(keys[y]), keys[x].max(keys[y]));
-                        keys[x] = low;
-                        keys[y] = high;
-                    }
+                    let keys = nearest_first(mask, entry);
                     let count = mask.count_ones() as usize;
                     for &key in keys[1..count].iter().rev() {
                         stack.push((node.children[(key & 3) as usize], f64::from_bits(key & !3)));
@@ -456,7 +446,8 @@ impl Nearest<'_> {
     /// Tests one object, through its packed record. The objects come in tree
     /// order, not file order, so a hit at exactly the best t must still win
     /// when its object comes first in the file: for such objects the range is
-    /// closed at the best t.
+    /// closed at the best t. (`test_with` is the same steps; written through
+    /// it, with a closure, the SPD scenes took 0.2 to 0.4 % more instructions.)
     #[inline]
     fn test(&mut self, object: u32, shape: &LeafShape, cost: &mut Cost) {
         cost.primitives += 1;
@@ -499,6 +490,22 @@ impl fmt::Debug for Accel {
             .field("bounded", &self.objects.len())
             .field("unbounded", &self.unbounded.len())
             .finish()
+    }
+}
+
+/// A small deterministic generator for the tests of accel's files (no
+/// dependency needed for this); each test file adds the draws it needs.
+#[cfg(test)]
+struct Numbers(u64);
+
+#[cfg(test)]
+impl Numbers {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 

@@ -214,6 +214,27 @@ impl BoxTesting for BoxTest {
     }
 }
 
+/// The children met (`mask`, three or four of them) nearest first by their
+/// `entry`, ties in child order, as keys: an entry's bits with the child's
+/// index in the two lowest (entries are not negative, so their bits sort as
+/// they do), put in order by a network of compare-and-swap. The keys of the
+/// children not met are `u64::MAX`, after the others.
+#[inline(always)]
+pub(super) fn nearest_first(mask: u32, entry: [f64; WIDTH]) -> [u64; WIDTH] {
+    let mut keys = [u64::MAX; WIDTH];
+    for (i, (key, t)) in keys.iter_mut().zip(entry).enumerate() {
+        if mask & 1 << i != 0 {
+            *key = (t.to_bits() & !3) | i as u64;
+        }
+    }
+    for (x, y) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
+        let (low, high) = (keys[x].min(keys[y]), keys[x].max(keys[y]));
+        keys[x] = low;
+        keys[y] = high;
+    }
+    keys
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -37,7 +37,7 @@ use glam::DVec3;
 
 use super::bvh::MAX_DEPTH;
 use super::leaf_shapes::LeafShape;
-use super::node::{BoxTesting, Child, Node, WIDTH};
+use super::node::{BoxTesting, Child, Node, WIDTH, nearest_first};
 use super::{Accel, Candidate, Cost, NONE_YET, Nearest};
 use crate::math::{Interval, Ray};
 use crate::object::Object;
@@ -390,17 +390,7 @@ impl Accel {
                 0 => None,
                 1 | 2 | 4 | 8 => Some(mask.trailing_zeros() as usize),
                 _ => {
-                    let mut keys = [u64::MAX; WIDTH];
-                    for (i, (key, t)) in keys.iter_mut().zip(entry).enumerate() {
-                        if mask & 1 << i != 0 {
-                            *key = (t.to_bits() & !3) | i as u64;
-                        }
-                    }
-                    for (x, y) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
-                        let (low, high) = (keys[x].min(keys[y]), keys[x].max(keys[y]));
-                        keys[x] = low;
-                        keys[y] = high;
-                    }
+                    let keys = nearest_first(mask, entry);
                     for &key in keys[1..mask.count_ones() as usize].iter().rev() {
                         let i = (key & 3) as usize;
                         let child = node.children[i];
@@ -493,26 +483,14 @@ fn greatest(values: &[f64; PACKET]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{brute, node};
+    use super::super::{Numbers, brute, node};
     use super::*;
     use crate::math::EPS;
     use crate::shapes::{Plane, Polygon, Shape, Sphere};
 
-    /// A small deterministic generator (as in `wide`'s tests).
-    struct Numbers(u64);
-
-    impl Numbers {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-
-        fn vector(&mut self) -> DVec3 {
-            DVec3::new(self.next(), self.next(), self.next()) * 2.0 - 1.0
-        }
+    /// A point of the cube [-1, 1]^3.
+    fn vector(numbers: &mut Numbers) -> DVec3 {
+        DVec3::new(numbers.next(), numbers.next(), numbers.next()) * 2.0 - 1.0
     }
 
     fn object(shape: Shape) -> Object {
@@ -528,15 +506,15 @@ mod tests {
     fn scene(numbers: &mut Numbers) -> Vec<Object> {
         let mut objects = Vec::new();
         for i in 0..400 {
-            let at = numbers.vector() * 3.0;
+            let at = vector(numbers) * 3.0;
             let shape = match i % 4 {
                 0 | 1 => Shape::Sphere(Sphere::new(at, 0.05 + 0.3 * numbers.next()).unwrap()),
                 2 => {
-                    let (a, b) = (numbers.vector() * 0.5, numbers.vector() * 0.5);
+                    let (a, b) = (vector(numbers) * 0.5, vector(numbers) * 0.5);
                     Shape::Polygon(Polygon::new(vec![at, at + a, at + b]).unwrap())
                 }
                 _ => {
-                    let (a, b) = (numbers.vector() * 0.4, numbers.vector() * 0.4);
+                    let (a, b) = (vector(numbers) * 0.4, vector(numbers) * 0.4);
                     Shape::Polygon(Polygon::new(vec![at, at + a, at + a + b, at + b]).unwrap())
                 }
             };
@@ -560,11 +538,11 @@ mod tests {
         } else {
             1 + (numbers.next() * PACKET as f64) as usize
         };
-        let origin = numbers.vector() * 6.0;
+        let origin = vector(numbers) * 6.0;
         // Mostly towards the scene's middle, so that most rays hit.
-        let aim = (numbers.vector() * 2.0 - origin).normalize();
+        let aim = (vector(numbers) * 2.0 - origin).normalize();
         let step = [1e-3, 1e-2, 0.3][(numbers.next() * 3.0) as usize];
-        let across = numbers.vector().cross(aim).normalize() * step;
+        let across = vector(numbers).cross(aim).normalize() * step;
         let kind = (numbers.next() * 10.0) as u32;
         (0..count)
             .map(|i| {

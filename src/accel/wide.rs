@@ -159,7 +159,7 @@ mod tests {
     use glam::DVec3;
 
     use super::super::node::{self, Child};
-    use super::super::{Accel, Cost};
+    use super::super::{Accel, Cost, Numbers};
     use super::*;
     use crate::math::{EPS, Interval};
     use crate::object::Object;
@@ -170,18 +170,7 @@ mod tests {
         BoxTest::new(ray).entries(node, t_min, t_max)
     }
 
-    /// A small deterministic generator (no dependency needed for this).
-    struct Numbers(u64);
-
     impl Numbers {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-
         /// Mostly in [-2, 2], sometimes exactly 0, -0, 1 or -1 (axis-parallel
         /// rays, rays along faces, origins on faces).
         fn coordinate(&mut self) -> f64 {
