@@ -13,7 +13,7 @@ use raystep::raylog::{RaylogReader, raylog};
 use raystep::record::record_pixel;
 use raystep::scene::{Scene, Settings};
 
-use crate::support::{raystep, scene_at, stderr, stdout};
+use crate::support::{raystep, scene_at, stderr, stdout, top_level_toml_scenes};
 
 const GLASS: &str = "scenes/glass.toml";
 
@@ -52,12 +52,7 @@ fn every_pixel_of_every_scene_matches_itself_shown_or_counted() {
     // One log per scene holding all 768 pixels at 32x24: the first 64 are
     // compared in full, the other 704 ray by ray as they stream past. Both
     // ways must find raystep's own rays equal to raystep's.
-    let mut scenes: Vec<_> = std::fs::read_dir(root().join("scenes"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    scenes.sort();
+    let scenes = top_level_toml_scenes();
     assert!(scenes.len() >= 9, "{scenes:?}");
     let pixels: Vec<(u32, u32)> = (0..24).flat_map(|y| (0..32).map(move |x| (x, y))).collect();
     for file in &scenes {

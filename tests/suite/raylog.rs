@@ -12,7 +12,7 @@ use raystep::raylog::{
 use raystep::record::{RayTree, record_pixel};
 use raystep::scene::Scene;
 
-use crate::support::{raystep, scene_at, stdout};
+use crate::support::{raystep, scene_at, stdout, top_level_toml_scenes};
 
 /// Every ray of `log`, with its line, or the first error.
 fn read(log: &str, scene: &Scene) -> Result<Vec<(usize, LoggedRay)>, RaylogError> {
@@ -116,13 +116,7 @@ fn check_against_tree(tree: &RayTree, read: &[(usize, LoggedRay)], context: &str
 
 #[test]
 fn every_pixel_of_every_scene_reads_back_to_its_tree_bit_for_bit() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut scenes: Vec<_> = std::fs::read_dir(root.join("scenes"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    scenes.sort();
+    let scenes = top_level_toml_scenes();
     assert!(scenes.len() >= 9, "{scenes:?}");
     let (mut pixels, mut rays, mut shadow_rays) = (0, 0, 0);
     for path in &scenes {

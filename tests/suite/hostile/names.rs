@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use crate::support::{raystep, stderr, stdout};
+use crate::support::{raystep, stderr, stdout, top_level_toml_scenes};
 
 /// The hostile tail of every name: ESC starting a colour change, BEL, BS,
 /// DEL, NUL and U+FFFE, as TOML spells them.
@@ -460,11 +460,7 @@ fn graphviz_draws_our_dot_for_any_name_and_every_scene() {
 
     // Every scene of scenes/, at its centre pixel of a 16x12 image.
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut scenes: Vec<_> = std::fs::read_dir(root.join("scenes"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
+    let mut scenes = top_level_toml_scenes();
     scenes.push(root.join("scenes/cornell/cornell.toml"));
     assert!(scenes.len() >= 10, "{scenes:?}");
     for scene in scenes {

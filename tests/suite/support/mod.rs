@@ -124,3 +124,16 @@ pub fn on_path(name: &str) -> Option<std::path::PathBuf> {
         .map(|dir| dir.join(name))
         .find(|file| file.is_file())
 }
+
+/// The TOML scenes at the top of `scenes/` (not the SPD, mesh or assignment
+/// folders), in name order.
+pub fn top_level_toml_scenes() -> Vec<std::path::PathBuf> {
+    let scenes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut found: Vec<_> = std::fs::read_dir(scenes)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    found.sort();
+    found
+}
