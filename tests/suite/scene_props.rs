@@ -325,7 +325,10 @@ fn shape(kind: usize) -> BoxedStrategy<String> {
                 )
             })
             .boxed(),
-        _ => (axis(), radius(), 0.0..50.0f64)
+        // An apex radius is 0 (a pointed cone) or in the loader's range
+        // (0.001 and up): one drawn from 0..50 fell below 0.001 about once
+        // in 50,000 cones, and the test blamed the generator.
+        _ => (axis(), radius(), prop_oneof![Just(0.0), 0.001..50.0f64])
             .prop_map(|((b, a), rb, ra)| {
                 format!(
                     "cone = {{ base = {}, base_radius = {rb:?}, apex = {}, apex_radius = {ra:?} }}",
