@@ -14,8 +14,8 @@
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 mod imp {
     use std::arch::x86_64::{
-        __m128d, _mm_cmple_pd, _mm_cvtsd_f64, _mm_max_pd, _mm_min_pd, _mm_movemask_pd, _mm_mul_pd,
-        _mm_set_pd, _mm_set1_pd, _mm_sub_pd, _mm_unpackhi_pd,
+        __m128d, _mm_castpd_ps, _mm_cmple_pd, _mm_cvtps_pd, _mm_cvtsd_f64, _mm_load_sd, _mm_max_pd,
+        _mm_min_pd, _mm_movemask_pd, _mm_mul_pd, _mm_set1_pd, _mm_sub_pd, _mm_unpackhi_pd,
     };
 
     #[derive(Clone, Copy, Debug)]
@@ -23,14 +23,25 @@ mod imp {
     pub(crate) struct Lanes(__m128d);
 
     impl Lanes {
-        #[inline]
+        #[cfg(test)]
         pub(crate) fn new([a, b]: [f64; 2]) -> Lanes {
-            Lanes(unsafe { _mm_set_pd(b, a) })
+            Lanes(unsafe { std::arch::x86_64::_mm_set_pd(b, a) })
         }
 
         #[inline]
         pub(crate) fn splat(x: f64) -> Lanes {
             Lanes(unsafe { _mm_set1_pd(x) })
+        }
+
+        /// Two f32 side by side, widened (exactly) to f64.
+        #[inline]
+        pub(crate) fn widen(pair: &[f32; 2]) -> Lanes {
+            // SAFETY (beyond the module's): the load reads the 8 bytes of `pair`.
+            Lanes(unsafe {
+                _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(
+                    (pair as *const [f32; 2]).cast::<f64>(),
+                )))
+            })
         }
 
         #[inline]
@@ -78,7 +89,7 @@ mod imp {
     pub(crate) struct Lanes([f64; 2]);
 
     impl Lanes {
-        #[inline]
+        #[cfg(test)]
         pub(crate) fn new(values: [f64; 2]) -> Lanes {
             Lanes(values)
         }
@@ -86,6 +97,11 @@ mod imp {
         #[inline]
         pub(crate) fn splat(x: f64) -> Lanes {
             Lanes([x, x])
+        }
+
+        #[inline]
+        pub(crate) fn widen(pair: &[f32; 2]) -> Lanes {
+            Lanes(pair.map(f64::from))
         }
 
         #[inline]

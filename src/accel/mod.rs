@@ -95,18 +95,26 @@ pub struct Accel {
 impl Accel {
     pub fn build(objects: &[Object]) -> Accel {
         let (bvh, unbounded) = build_tree(objects);
-        let shapes = bvh
-            .objects
+        // The builder's tree is freed before the leaf records are made: at
+        // once they were the peak of a large scene's memory (28 bytes a
+        // triangle of tetra at 4^8 and 4^10).
+        let nodes = node::collapse(&bvh.nodes);
+        let Bvh {
+            nodes: binary,
+            objects: order,
+        } = bvh;
+        drop(binary);
+        let shapes = order
             .iter()
             .map(|&object| LeafShape::of(&objects[object as usize].shape))
             .collect();
         let mut positions = vec![u32::MAX; objects.len()];
-        for (position, &object) in bvh.objects.iter().enumerate() {
+        for (position, &object) in order.iter().enumerate() {
             positions[object as usize] = position as u32;
         }
         Accel {
-            nodes: node::collapse(&bvh.nodes),
-            objects: bvh.objects,
+            nodes,
+            objects: order,
             unbounded,
             shapes,
             positions,
@@ -318,19 +326,19 @@ impl Accel {
                 // One child met: one arm per child, so that the next node's
                 // address follows a predicted branch rather than the box
                 // test's result, and its load can start before the test ends.
-                1 => Some(node.children[0]),
-                2 => Some(node.children[1]),
-                4 => Some(node.children[2]),
-                8 => Some(node.children[3]),
+                1 => Some(node.child(0)),
+                2 => Some(node.child(1)),
+                4 => Some(node.child(2)),
+                8 => Some(node.child(3)),
                 _ if !NEAREST_FIRST => {
                     // The first child met goes next, the others wait.
                     let mut rest = mask & (mask - 1);
                     while rest != 0 {
                         let i = rest.trailing_zeros() as usize;
-                        stack.push((node.children[i], entry[i]));
+                        stack.push((node.child(i), entry[i]));
                         rest &= rest - 1;
                     }
-                    Some(node.children[mask.trailing_zeros() as usize])
+                    Some(node.child(mask.trailing_zeros() as usize))
                 }
                 // Nearest first, ties in child order; the others wait on the
                 // stack, the farthest pushed first. An entry is at least
@@ -352,9 +360,9 @@ impl Accel {
                     let keys = nearest_first(mask, entry);
                     let count = mask.count_ones() as usize;
                     for &key in keys[1..count].iter().rev() {
-                        stack.push((node.children[(key & 3) as usize], f64::from_bits(key & !3)));
+                        stack.push((node.child((key & 3) as usize), f64::from_bits(key & !3)));
                     }
-                    Some(node.children[(keys[0] & 3) as usize])
+                    Some(node.child((keys[0] & 3) as usize))
                 }
             };
             loop {
@@ -400,11 +408,11 @@ fn nearer_of_two<const N: usize>(
 ) -> Child {
     let (a, b) = (entry[i].to_bits() & !3, entry[j].to_bits() & !3);
     if a <= b {
-        stack.push((node.children[j], f64::from_bits(b)));
-        node.children[i]
+        stack.push((node.child(j), f64::from_bits(b)));
+        node.child(i)
     } else {
-        stack.push((node.children[i], f64::from_bits(a)));
-        node.children[j]
+        stack.push((node.child(i), f64::from_bits(a)));
+        node.child(j)
     }
 }
 
@@ -563,7 +571,7 @@ mod tests {
             "node {index} has {arity} children"
         );
         for unused in arity..WIDTH {
-            assert_eq!(node.children[unused], Child::NOTHING);
+            assert_eq!(node.child(unused), Child::NOTHING);
             assert_eq!(node.bounds(unused), Aabb::EMPTY);
         }
         let (mut deepest, mut nodes, mut under) = (depth, vec![index], Vec::new());
@@ -571,7 +579,7 @@ mod tests {
             let (d, n, o) = check(
                 accel,
                 objects,
-                node.children[lane],
+                node.child(lane),
                 &node.bounds(lane),
                 b,
                 depth + 1,
@@ -589,11 +597,11 @@ mod tests {
         let everything = Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY);
         let top = &accel.nodes[0];
         let (depth, mut nodes, mut seen) = if top.arity == 1 {
-            assert!(top.children[0].is_leaf(), "a lone root is a leaf");
+            assert!(top.child(0).is_leaf(), "a lone root is a leaf");
             let (depth, _, seen) = check(
                 &accel,
                 objects,
-                top.children[0],
+                top.child(0),
                 &top.bounds(0),
                 &everything,
                 1,

@@ -7,11 +7,10 @@
 //! AVX), and a walk takes half as many steps down as in the binary tree, each
 //! a single node read.
 //!
-//! Bounds are f64, like the tracing, so a box test answers exactly as the
-//! scalar slab test would. Nodes with f32 bounds (rounded outward) were
-//! measured before: the conversions cost more than the smaller nodes saved.
-
-use glam::DVec3;
+//! Bounds are stored as f32 rounded outward and widened to f64 for the test
+//! (see `Node`): each box holds the builder's, so the walk opens every box a
+//! hit lies in, and the hits themselves come from the objects' own f64
+//! tests. The test's arithmetic is f64, like the tracing.
 
 use super::bvh::{BuildNode, surface_area};
 use super::lanes::Lanes;
@@ -52,19 +51,46 @@ impl Child {
 }
 
 /// The boxes of up to four children and what they are. An absent child has
-/// an empty box, which no ray meets. Aligned on a cache line: with 16-byte
-/// alignment (240-byte nodes) three nodes in four began inside a line, and
-/// some of the box test's 32-byte loads of corners straddled two (2 to 4 %
-/// of the trace time of teapot, tetra and balls).
+/// an empty box, which no ray meets.
+///
+/// The corners are f32, rounded outward (`outward`), widened back to f64 by
+/// the box tests: every box holds the builder's, so no ray misses a box it
+/// would meet, and a node is 128 bytes, two cache lines, where f64 corners
+/// took four. On a scene far larger than the caches (a million spheres)
+/// the walk waits on those lines; on the SPD scenes the widening costs
+/// about what the smaller node saves. A box grows by at most one f32 step,
+/// 2^-24 of its coordinates: a ray passing that close to a box opens it
+/// for nothing, which changes the counted tests of a few rays only.
+///
+/// Aligned on a cache line, so that no load of corners straddles two.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub(super) struct Node {
     /// The children's least coordinates (`corners[0]`) and greatest
-    /// (`corners[1]`), per axis: children 0 and 1, then 2 and 3.
-    pub(super) corners: [[[Lanes; 2]; 3]; 2],
-    pub(crate) children: [Child; WIDTH],
+    /// (`corners[1]`), per axis, child by child.
+    pub(super) corners: [[[f32; WIDTH]; 3]; 2],
+    /// What each child is (`child`), split so the node fits two lines.
+    offsets: [u32; WIDTH],
+    counts: [u16; WIDTH],
     /// How many children are present: the boxes a visit tests, for the cost.
     pub(crate) arity: u32,
+}
+
+/// `x` rounded to an f32 towards `towards` (-inf for least corners, +inf
+/// for greatest): the nearest f32 on that side, or `x` itself when exact.
+/// Infinities stay; coordinates beyond f32's range become infinite.
+fn outward(x: f64, towards: f64) -> f32 {
+    let rounded = x as f32;
+    let back = f64::from(rounded);
+    if (towards < 0.0 && back > x) || (towards > 0.0 && back < x) {
+        if towards < 0.0 {
+            rounded.next_down()
+        } else {
+            rounded.next_up()
+        }
+    } else {
+        rounded
+    }
 }
 
 impl Node {
@@ -72,26 +98,57 @@ impl Node {
         debug_assert!(boxes.len() == children.len() && children.len() <= WIDTH);
         let mut all = [Aabb::EMPTY; WIDTH];
         all[..boxes.len()].copy_from_slice(boxes);
-        let mut placed = [Child::NOTHING; WIDTH];
-        placed[..children.len()].copy_from_slice(children);
-        let lanes = |corner: fn(&Aabb) -> DVec3, axis: usize| {
-            [0, 1].map(|half| Lanes::new([0, 1].map(|i| corner(&all[2 * half + i])[axis])))
-        };
-        Node {
-            corners: [
-                [0, 1, 2].map(|axis| lanes(|b| b.min, axis)),
-                [0, 1, 2].map(|axis| lanes(|b| b.max, axis)),
-            ],
-            children: placed,
+        let mut node = Node {
+            corners: [0, 1].map(|side| {
+                let towards = if side == 0 { -1.0 } else { 1.0 };
+                [0, 1, 2].map(|axis| {
+                    all.map(|b| {
+                        let corner = if side == 0 { b.min } else { b.max };
+                        outward(corner[axis], towards)
+                    })
+                })
+            }),
+            offsets: [Child::NOTHING.offset; WIDTH],
+            counts: [Child::NOTHING.count; WIDTH],
             arity: children.len() as u32,
+        };
+        for (i, &child) in children.iter().enumerate() {
+            node.set_child(i, child);
+        }
+        node
+    }
+
+    /// Child `i`: a leaf's run of objects, another node, or `Child::NOTHING`.
+    #[inline(always)]
+    pub(crate) fn child(&self, i: usize) -> Child {
+        Child {
+            offset: self.offsets[i],
+            count: self.counts[i],
         }
     }
 
-    /// Child `i`'s box, as the builder made it.
+    pub(super) fn set_child(&mut self, i: usize, child: Child) {
+        self.offsets[i] = child.offset;
+        self.counts[i] = child.count;
+    }
+
+    /// One axis's corners of children 0 and 1 (`half` 0) or 2 and 3, on one
+    /// side (0 least, 1 greatest), widened to f64.
+    #[inline(always)]
+    pub(super) fn corner_lanes(&self, side: usize, axis: usize, half: usize) -> Lanes {
+        let pair: &[f32; 2] = self.corners[side][axis][2 * half..2 * half + 2]
+            .try_into()
+            .expect("two corners");
+        Lanes::widen(pair)
+    }
+
+    /// Child `i`'s box as the walk sees it: the builder's, rounded outward.
     #[cfg(test)]
     pub(crate) fn bounds(&self, i: usize) -> Aabb {
-        let corner = |l: &[[Lanes; 2]; 3]| DVec3::from(l.map(|v| v[i / 2].to_array()[i % 2]));
-        Aabb::new(corner(&self.corners[0]), corner(&self.corners[1]))
+        let corner = |side: usize| {
+            glam::DVec3::from([0, 1, 2].map(|axis| f64::from(self.corners[side][axis][i])))
+        };
+        Aabb::new(corner(0), corner(1))
     }
 }
 
@@ -143,7 +200,7 @@ fn place(tree: &[BuildNode], index: usize, nodes: &mut Vec<Node>) -> Child {
     nodes.push(Node::new(&boxes, &vec![Child::NOTHING; under.len()]));
     for (slot, &i) in under.iter().enumerate() {
         let child = place(tree, i, nodes);
-        nodes[at].children[slot] = child;
+        nodes[at].set_child(slot, child);
     }
     Child::node(at)
 }
@@ -197,8 +254,8 @@ impl BoxTesting for BoxTest {
             let mut high = Lanes::splat(t_max);
             for axis in 0..3 {
                 let downwards = self.downwards[axis];
-                let near = node.corners[usize::from(downwards)][axis][half];
-                let far = node.corners[usize::from(!downwards)][axis][half];
+                let near = node.corner_lanes(usize::from(downwards), axis, half);
+                let far = node.corner_lanes(usize::from(!downwards), axis, half);
                 let t_near = near.sub(self.origin[axis]).mul(self.inverse[axis]);
                 let t_far = far.sub(self.origin[axis]).mul(self.inverse[axis]);
                 // A NaN (a ray along a face) keeps the bound: the second operand.
@@ -237,7 +294,57 @@ pub(super) fn nearest_first(mask: u32, entry: [f64; WIDTH]) -> [u64; WIDTH] {
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
+
+    #[test]
+    fn corners_round_outward_to_the_nearest_f32() {
+        // 0.1 lies between the f32 0.099999994 and 0.1 (0.100000001490116...):
+        // a least corner takes the first, a greatest the second.
+        assert_eq!(outward(0.1, -1.0), 0.099_999_994);
+        assert_eq!(outward(0.1, 1.0), 0.1_f32);
+        assert!(f64::from(outward(0.1, -1.0)) < 0.1 && f64::from(outward(0.1, 1.0)) > 0.1);
+        assert_eq!(outward(-0.1, -1.0), -0.1_f32);
+        assert_eq!(outward(-0.1, 1.0), -0.099_999_994);
+        // Exact values, infinities and zeros stay; beyond f32's range is infinite.
+        for x in [0.5, -3.0, 0.0, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(f64::from(outward(x, -1.0)), x);
+            assert_eq!(f64::from(outward(x, 1.0)), x);
+        }
+        assert_eq!(outward(1e39, 1.0), f32::INFINITY);
+        assert_eq!(outward(1e39, -1.0), f32::MAX);
+        assert_eq!(outward(-1e39, -1.0), f32::NEG_INFINITY);
+        // Below f32's least step, a positive least corner rounds to 0.
+        assert_eq!(outward(1e-50, -1.0), 0.0);
+        assert_eq!(outward(1e-50, 1.0), f32::from_bits(1));
+    }
+
+    #[test]
+    fn a_node_holds_each_box_it_was_given() {
+        let boxes = [
+            Aabb::new(
+                DVec3::new(0.1, -0.3, 1e-3),
+                DVec3::new(0.7, 2.0 / 3.0, 1e5 + 0.1),
+            ),
+            Aabb::new(DVec3::splat(-1e-9), DVec3::splat(1e-9)),
+        ];
+        let leaf = Child {
+            offset: 0,
+            count: 1,
+        };
+        let node = Node::new(&boxes, &[leaf; 2]);
+        for (i, b) in boxes.iter().enumerate() {
+            let held = node.bounds(i);
+            assert!(
+                held.min.cmple(b.min).all() && b.max.cmple(held.max).all(),
+                "{held:?}"
+            );
+            // Grown by at most one f32 step of each coordinate.
+            let step = (b.min.abs().max(b.max.abs())) * 2f64.powi(-23) + 1e-44;
+            assert!((b.min - held.min).cmple(step).all() && (held.max - b.max).cmple(step).all());
+        }
+    }
 
     fn unit_box() -> Aabb {
         Aabb::new(DVec3::ZERO, DVec3::ONE)
@@ -275,10 +382,10 @@ mod tests {
     }
 
     #[test]
-    fn a_node_fills_four_cache_lines() {
-        // Four boxes (192 bytes), four children (32), the arity (4), padded
-        // to 64 and aligned on a line: no load of four corners straddles two lines.
-        assert_eq!(std::mem::size_of::<Node>(), 256);
+    fn a_node_fills_two_cache_lines() {
+        // Four boxes in f32 (96 bytes), four children (16 + 8), the arity
+        // (4), padded to 64 and aligned on a line: two lines.
+        assert_eq!(std::mem::size_of::<Node>(), 128);
         assert_eq!(std::mem::align_of::<Node>(), 64);
     }
 

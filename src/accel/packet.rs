@@ -28,8 +28,9 @@
 
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::{
-    __m256d, _CMP_LE_OQ, _mm256_cmp_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd,
-    _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd, _mm256_sub_pd,
+    __m256d, _CMP_LE_OQ, _mm_loadu_ps, _mm256_cmp_pd, _mm256_cvtps_pd, _mm256_max_pd,
+    _mm256_min_pd, _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd,
+    _mm256_sub_pd,
 };
 
 use arrayvec::ArrayVec;
@@ -128,8 +129,8 @@ impl Packet {
         let mut high = *t_max;
         for axis in 0..3 {
             let down = usize::from(self.downwards[axis]);
-            let near = node.corners[down][axis][lane / 2].to_array()[lane % 2];
-            let far = node.corners[1 - down][axis][lane / 2].to_array()[lane % 2];
+            let near = f64::from(node.corners[down][axis][lane]);
+            let far = f64::from(node.corners[1 - down][axis][lane]);
             let (near, far) = (near - self.origin[axis], far - self.origin[axis]);
             for i in 0..PACKET {
                 // No NaN here: 1/d is finite and non-zero, the corners at
@@ -189,8 +190,12 @@ impl PacketBoxTesting for PacketTest {
             let mut high = Lanes::splat(t_max);
             for axis in 0..3 {
                 let down = self.downwards[axis];
-                let near = node.corners[usize::from(down)][axis][half].sub(self.origin[axis]);
-                let far = node.corners[usize::from(!down)][axis][half].sub(self.origin[axis]);
+                let near = node
+                    .corner_lanes(usize::from(down), axis, half)
+                    .sub(self.origin[axis]);
+                let far = node
+                    .corner_lanes(usize::from(!down), axis, half)
+                    .sub(self.origin[axis]);
                 // The least and the greatest of (c - o) / d over the packet,
                 // whatever the sign of c - o.
                 let (a, b) = (near.mul(self.least[axis]), near.mul(self.greatest[axis]));
@@ -245,18 +250,16 @@ impl PacketBoxTesting for WidePacketTest {
     fn entries(&self, node: &Node, t_min: f64, t_max: f64) -> (u32, [f64; WIDTH]) {
         let mut entry = [0.0; WIDTH];
         // SAFETY: as above; each load reads one axis's corners of the four
-        // children (four f64 side by side), the store the four of `entry`.
+        // children (four f32 side by side), the store the four of `entry`.
         let mask = unsafe {
             let mut low = _mm256_set1_pd(t_min);
             let mut high = _mm256_set1_pd(t_max);
             for axis in 0..3 {
                 let down = self.downwards[axis];
-                let near = node.corners[usize::from(down)][axis].as_ptr().cast::<f64>();
-                let far = node.corners[usize::from(!down)][axis]
-                    .as_ptr()
-                    .cast::<f64>();
-                let near = _mm256_sub_pd(_mm256_loadu_pd(near), self.origin[axis]);
-                let far = _mm256_sub_pd(_mm256_loadu_pd(far), self.origin[axis]);
+                let near = node.corners[usize::from(down)][axis].as_ptr();
+                let far = node.corners[usize::from(!down)][axis].as_ptr();
+                let near = _mm256_sub_pd(_mm256_cvtps_pd(_mm_loadu_ps(near)), self.origin[axis]);
+                let far = _mm256_sub_pd(_mm256_cvtps_pd(_mm_loadu_ps(far)), self.origin[axis]);
                 let (least, greatest) = (self.least[axis], self.greatest[axis]);
                 let t_near =
                     _mm256_min_pd(_mm256_mul_pd(near, least), _mm256_mul_pd(near, greatest));
@@ -393,7 +396,7 @@ impl Accel {
                     let keys = nearest_first(mask, entry);
                     for &key in keys[1..mask.count_ones() as usize].iter().rev() {
                         let i = (key & 3) as usize;
-                        let child = node.children[i];
+                        let child = node.child(i);
                         let rays = if child.is_leaf() {
                             packet.each_meets(node, i, t_min, &t_max)
                         } else {
@@ -407,7 +410,7 @@ impl Accel {
                 }
             };
             let mut next = next.map(|i| {
-                let child = node.children[i];
+                let child = node.child(i);
                 let rays = if child.is_leaf() {
                     packet.each_meets(node, i, t_min, &t_max)
                 } else {
