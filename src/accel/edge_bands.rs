@@ -23,10 +23,11 @@
 //!    its sign is the sign of the exact difference. A straddling edge meets
 //!    V = p.y at a point of the edge, so its exact `u_at_axis` is at least
 //!    the distance from p to the edge, more than m, in magnitude; the
-//!    computed one is off by a few rounding errors of numbers at most 2M
-//!    (the differences a and b each rounded once, `b.x - a.x`, a quotient
-//!    of magnitude at most 1, a product and a difference): under 2^-48 M,
-//!    far below m, so its sign, and whether the edge counts, is exact.
+//!    computed one is off by a few rounding errors of numbers at most 4M
+//!    (p lies in the box, so a and b, each rounded once, are at most 2M;
+//!    then `b.x - a.x`, a product, a quotient whose ratio a.y / (b.y - a.y)
+//!    is at most 1 in magnitude, and a difference): under 2^-45 M, far
+//!    below m, so its sign, and whether the edge counts, is exact.
 //! 2. The geometric count's parity is the same at every point of a region
 //!    no edge meets and that is connected (the even-odd rule: it changes
 //!    only where the point crosses an edge). A grown cell is such a region,
@@ -47,7 +48,7 @@
 //! U extent of the part of the edge within the cell's row (its V range,
 //! grown), which meets the cell's U range (grown) exactly when the edge
 //! meets the grown cell; it grows the cell by a further 2m, so its own
-//! rounding (errors of a few 2^-50 M in the extent) cannot pass an edge
+//! rounding (errors under 2^-45 M in the extent) cannot pass an edge
 //! that comes within m of the cell. Polygons whose M lies outside
 //! [1e-150, 1e150] get no grid, so nothing underflows or overflows.
 
