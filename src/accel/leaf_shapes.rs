@@ -154,8 +154,9 @@ impl TriangleTest {
 }
 
 /// `Polygon::solve(ray, range).hit_t()` of the polygon (or patch) `shape`,
-/// whose edges `bands` sorts: the same steps, the crossings counted over
-/// the edges of the hit's band only.
+/// whose edges `bands` sorts: the same steps, inside or outside read from
+/// the bands' grid, or where it cannot tell, the crossings counted over the
+/// edges of the hit's band only.
 fn banded_hit_t(shape: &Shape, bands: &EdgeBands, ray: &Ray, range: Interval) -> Option<f64> {
     let polygon = match shape {
         Shape::Polygon(polygon) => polygon,
@@ -164,7 +165,7 @@ fn banded_hit_t(shape: &Shape, bands: &EdgeBands, ray: &Ray, range: Interval) ->
     };
     let t = polygon.plane.solve(ray, range).hit_t()?;
     let p = polygon.dropped.project(ray.at(t));
-    (bands.crossings(p) % 2 == 1).then_some(t)
+    bands.inside(p).then_some(t)
 }
 
 #[cfg(test)]
