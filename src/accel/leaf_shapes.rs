@@ -7,6 +7,7 @@
 
 use glam::{DVec2, DVec3};
 
+use super::cylinder_reach::CylinderReach;
 use super::edge_bands::EdgeBands;
 use crate::math::{Interval, Ray};
 use crate::object::Object;
@@ -20,6 +21,10 @@ pub(super) enum LeafShape {
     /// A polygon or patch of many vertices (the SPD gears' faces): its
     /// edges sorted into bands of V.
     Banded(Box<EdgeBands>),
+    /// A cylinder (the SPD rings): most rays that reach one's box pass
+    /// clear of it, and are told so here (`cylinder_reach`); the others
+    /// are tested through the object.
+    Cylinder(CylinderReach),
     /// Anything else is tested through its object.
     Other,
 }
@@ -30,6 +35,9 @@ impl LeafShape {
             Shape::Polygon(polygon) => polygon,
             Shape::Patch(patch) => &patch.polygon,
             Shape::Sphere(sphere) => return LeafShape::Sphere(sphere.clone()),
+            Shape::Cone(cone) => {
+                return CylinderReach::of(cone).map_or(LeafShape::Other, LeafShape::Cylinder);
+            }
             _ => return LeafShape::Other,
         };
         if let Some(triangle) = TriangleTest::of(polygon) {
@@ -47,7 +55,7 @@ impl LeafShape {
         match self {
             LeafShape::Triangle(triangle) => Some(triangle.plane.normal),
             LeafShape::Sphere(sphere) => Some(sphere.normal_at(point)),
-            LeafShape::Banded(_) | LeafShape::Other => None,
+            LeafShape::Banded(_) | LeafShape::Cylinder(_) | LeafShape::Other => None,
         }
     }
 
@@ -64,7 +72,10 @@ impl LeafShape {
             LeafShape::Triangle(triangle) => triangle.hit_t(ray, range),
             LeafShape::Sphere(sphere) => sphere.solve(ray, range).t(),
             LeafShape::Banded(bands) => banded_hit_t(&objects[object].shape, bands, ray, range),
-            LeafShape::Other => objects[object].shape.intersect(ray, range),
+            LeafShape::Cylinder(reach) if reach.misses(ray) => None,
+            LeafShape::Cylinder(_) | LeafShape::Other => {
+                objects[object].shape.intersect(ray, range)
+            }
         }
     }
 
@@ -80,7 +91,10 @@ impl LeafShape {
         match self {
             LeafShape::Triangle(triangle) => Roots::of_one(triangle.hit_t(ray, range)),
             LeafShape::Sphere(sphere) => sphere.roots(ray, range),
-            LeafShape::Banded(_) | LeafShape::Other => self.rare_roots(objects, object, ray, range),
+            LeafShape::Cylinder(reach) if reach.misses(ray) => Roots::NONE,
+            LeafShape::Banded(_) | LeafShape::Cylinder(_) | LeafShape::Other => {
+                self.rare_roots(objects, object, ray, range)
+            }
         }
     }
 
@@ -199,6 +213,15 @@ mod tests {
             Shape::Cone(Box::new(
                 Cone::new(DVec3::ZERO, 0.5, DVec3::new(0.0, 0.0, 1.0), 0.2).unwrap(),
             )),
+            Shape::Cone(Box::new(
+                Cone::new(
+                    DVec3::new(0.1, 0.0, 0.0),
+                    0.3,
+                    DVec3::new(0.2, 0.1, 0.9),
+                    0.3,
+                )
+                .unwrap(),
+            )),
             // A concave star of 24 points around (0.2, 0.2) at z = 0.2, radii
             // alternating 0.5 and 0.2: many-sided, so its edges are banded.
             Shape::Polygon(
@@ -220,10 +243,14 @@ mod tests {
                 LeafShape::Triangle(_) => "triangle",
                 LeafShape::Sphere(_) => "sphere",
                 LeafShape::Banded(_) => "banded",
+                LeafShape::Cylinder(_) => "cylinder",
                 LeafShape::Other => "other",
             })
             .collect();
-        assert_eq!(kinds, ["sphere", "triangle", "other", "other", "banded"]);
+        assert_eq!(
+            kinds,
+            ["sphere", "triangle", "other", "other", "cylinder", "banded"]
+        );
         let objects: Vec<Object> = shapes
             .into_iter()
             .map(|shape| Object {

@@ -28,6 +28,7 @@
 
 pub mod brute;
 mod bvh;
+mod cylinder_reach;
 mod edge_bands;
 mod lanes;
 mod leaf_shapes;

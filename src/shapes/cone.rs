@@ -15,7 +15,7 @@ pub struct Cone {
     pub(crate) apex: DVec3,
     pub(crate) apex_radius: f64,
     /// Unit axis from base to apex, and the distance between them.
-    axis: DVec3,
+    pub(crate) axis: DVec3,
     height: f64,
     /// How fast the radius grows per unit along the axis (0 for a cylinder).
     slope: f64,
