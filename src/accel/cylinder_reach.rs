@@ -72,23 +72,14 @@ impl CylinderReach {
 
 #[cfg(test)]
 mod tests {
+    use super::super::Numbers;
     use super::*;
     use crate::math::Interval;
     use crate::shapes::Shape;
 
-    /// A deterministic stream of numbers in [0, 1).
-    struct Numbers(u64);
-
     impl Numbers {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-
-        fn vector(&mut self, scale: f64) -> DVec3 {
+        /// A point of the cube of half side `scale` around the origin.
+        fn spread(&mut self, scale: f64) -> DVec3 {
             DVec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * 2.0 * scale
         }
     }
@@ -117,8 +108,8 @@ mod tests {
         let mut numbers = Numbers(5);
         let (mut rejected, mut grazing_rejected, mut clear_missed) = (0, 0, 0);
         for _ in 0..200_000 {
-            let base = numbers.vector(50.0);
-            let axis = numbers.vector(1.0);
+            let base = numbers.spread(50.0);
+            let axis = numbers.spread(1.0);
             if axis.length() < 0.05 {
                 continue;
             }
