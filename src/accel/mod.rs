@@ -35,6 +35,7 @@ mod node;
 mod normals;
 mod object_tables;
 mod packet;
+mod packet_triangles;
 mod rows;
 mod shadow;
 #[cfg(target_arch = "x86_64")]
@@ -465,6 +466,7 @@ impl Nearest<'_> {
     }
 }
 
+#[cfg(test)]
 impl Nearest<'_> {
     /// `test` with the intersection given: `hit(range)` is the object's
     /// nearest hit in `range`, as `LeafShape::intersect` gives it.
