@@ -136,30 +136,39 @@ impl Packet {
 
     /// Which rays meet child `lane`'s box of `node` within (t_min, t_max[i]),
     /// each by the arithmetic of its own SSE2 box test (`node::BoxTest`),
-    /// done for the eight rays side by side.
+    /// done for `L::COUNT` rays per instruction: per axis, (c - o) (1/d) to
+    /// the near and far corners, the entry the greater of it and the running
+    /// one (`max(t_near, low)`, SSE2's max: `t_near > low ? t_near : low`),
+    /// the exit the lesser (`min(t_far, high)`), as `Lanes` in `node` does.
     #[inline(always)]
-    fn each_meets(&self, node: &Node, lane: usize, t_min: f64, t_max: &[f64; PACKET]) -> u8 {
-        let mut low = [t_min; PACKET];
-        let mut high = *t_max;
-        for axis in 0..3 {
+    fn each_meets<L: Lanes>(
+        &self,
+        node: &Node,
+        lane: usize,
+        t_min: f64,
+        t_max: &[f64; PACKET],
+    ) -> u8 {
+        let mut corners = [(0.0, 0.0); 3];
+        for (axis, corners) in corners.iter_mut().enumerate() {
             let down = usize::from(self.downwards[axis]);
             let near = node.corners[down][axis][lane / 2].to_array()[lane % 2];
             let far = node.corners[1 - down][axis][lane / 2].to_array()[lane % 2];
-            let (near, far) = (near - self.origin[axis], far - self.origin[axis]);
-            for i in 0..PACKET {
+            *corners = (near - self.origin[axis], far - self.origin[axis]);
+        }
+        let mut mask = 0;
+        for chunk in (0..PACKET).step_by(L::COUNT) {
+            let mut low = L::splat(t_min);
+            let mut high = L::load(t_max, chunk);
+            for (axis, &(near, far)) in corners.iter().enumerate() {
                 // No NaN here: 1/d is finite and non-zero, the corners at
                 // worst infinite (an absent child's empty box).
-                let t_near = near * self.inverse[axis][i];
-                let t_far = far * self.inverse[axis][i];
-                low[i] = if t_near > low[i] { t_near } else { low[i] };
-                high[i] = if t_far < high[i] { t_far } else { high[i] };
+                let inverse = L::load(&self.inverse[axis], chunk);
+                low = L::splat(near).mul(inverse).max(low);
+                high = L::splat(far).mul(inverse).min(high);
             }
+            mask |= high.ge(low).bits() << chunk;
         }
-        let mut mask = 0u8;
-        for i in 0..PACKET {
-            mask |= u8::from(low[i] <= high[i]) << i;
-        }
-        mask
+        mask as u8
     }
 }
 
@@ -425,7 +434,7 @@ impl Accel {
                         let i = (key & 3) as usize;
                         let child = node.children[i];
                         let rays = if child.is_leaf() {
-                            packet.each_meets(node, i, t_min, &bests.t)
+                            packet.each_meets::<P::Lanes>(node, i, t_min, &bests.t)
                         } else {
                             ALL
                         };
@@ -439,7 +448,7 @@ impl Accel {
             let mut next = next.map(|i| {
                 let child = node.children[i];
                 let rays = if child.is_leaf() {
-                    packet.each_meets(node, i, t_min, &bests.t)
+                    packet.each_meets::<P::Lanes>(node, i, t_min, &bests.t)
                 } else {
                     ALL
                 };

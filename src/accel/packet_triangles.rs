@@ -28,8 +28,8 @@
 //! `hit_t_given` would change it (a test checks, bit for bit, with rays
 //! through vertices and along edges, ties, and zero components).
 
+use super::PACKET;
 use super::leaf_shapes::TriangleTest;
-use super::packet::PACKET;
 use crate::shapes::Axis;
 
 /// Each ray's nearest hit so far, side by side: its t (at first the query's
@@ -57,7 +57,8 @@ pub(super) trait Lanes: Copy {
     fn sub(self, other: Self) -> Self;
     fn mul(self, other: Self) -> Self;
     fn div(self, other: Self) -> Self;
-    /// The lesser and the greater of each pair (neither is NaN where used).
+    /// SSE2's min and max: `self < other ? self : other` and
+    /// `self > other ? self : other` (the second on a tie or a NaN).
     fn min(self, other: Self) -> Self;
     fn max(self, other: Self) -> Self;
     /// self < other (false where either is NaN).
