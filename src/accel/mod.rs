@@ -24,7 +24,8 @@
 //! polygons), the shadow query that tries a row's last blocker first
 //! (`shadow`), the objects' materials and normal recipes side by side
 //! (`object_tables`, `normals`), a row's primary rays at once (`rows`),
-//! and their nearest hits found eight at a time in one walk (`packet`).
+//! and their nearest hits found eight at a time in one walk (`packet`,
+//! whose leaves test each triangle across the rays, `packet_triangles`).
 
 pub mod brute;
 mod bvh;

@@ -16,6 +16,9 @@
 //! which rays test the leaf's objects. So every ray tests every object its
 //! own walk would test where the hit could be (and maybe a few more): its
 //! nearest hit, by the same tie rule (`Nearest::test`), is the same.
+//! A leaf's triangles, and the quads met by two rays or more, are tested
+//! across those rays at once (`packet_triangles`, each lane the scalar
+//! test's operations); other objects ray by ray.
 //!
 //! Packets of fewer than eight rays (a row's last pixels), and those whose
 //! rays do not share an origin, or whose directions differ in sign along an
