@@ -788,10 +788,13 @@ mod tests {
         check_with(&run, &hit, object, rays, t_min, active, start, what)
     }
 
+    /// A lanes' test of a packet: from its origin and directions, into bests.
+    type RunLanes<'a> = dyn Fn(&[f64; 3], &[[f64; PACKET]; 3], &mut Bests) + 'a;
+
     /// `check` with the lanes' test run by `run` and the scalar test `hit`.
     #[allow(clippy::too_many_arguments)]
     fn check_with(
-        run: &dyn Fn(&[f64; 3], &[[f64; PACKET]; 3], &mut Bests),
+        run: &RunLanes<'_>,
         hit: &dyn Fn(&Ray, Interval) -> Option<f64>,
         object: u32,
         rays: &[Ray; PACKET],
@@ -805,20 +808,16 @@ mod tests {
         let mut bests = *start;
         run(&origin.to_array(), &direction, &mut bests);
         let (mut hits, mut ties) = (0, 0);
-        for i in 0..PACKET {
+        for (i, ray) in rays.iter().enumerate() {
             let before = (start.t[i], start.object[i]);
             let expected = if active & (1 << i) != 0 {
-                scalar(hit, object, &rays[i], t_min, before)
+                scalar(hit, object, ray, t_min, before)
             } else {
                 // A ray not in the packet's mask keeps its best.
                 (before.0.to_bits(), before.1)
             };
             let got = (bests.t[i].to_bits(), bests.object[i]);
-            assert_eq!(
-                got, expected,
-                "{what}, ray {i}: {:?}, best {before:?}",
-                rays[i]
-            );
+            assert_eq!(got, expected, "{what}, ray {i}: {ray:?}, best {before:?}");
             if got != (before.0.to_bits(), before.1) {
                 hits += 1;
                 ties += usize::from(got.0 == before.0.to_bits());
