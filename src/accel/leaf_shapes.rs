@@ -118,9 +118,9 @@ impl LeafShape {
 /// answers the same to the bit (a test checks).
 #[derive(Clone, Debug)]
 pub(super) struct TriangleTest {
-    plane: Plane,
-    dropped: Axis,
-    projected: [DVec2; 3],
+    pub(super) plane: Plane,
+    pub(super) dropped: Axis,
+    pub(super) projected: [DVec2; 3],
 }
 
 impl TriangleTest {
@@ -151,8 +151,10 @@ impl TriangleTest {
     }
 
     /// `hit_t(ray, range)` given `v_0(ray.origin)`: the same steps
-    /// (`Plane::solve`'s, then the crossings), the same bits.
-    #[inline(always)]
+    /// (`Plane::solve`'s, then the crossings), the same bits. The scalar
+    /// reference of the packets' test (`packet_triangles`), which its
+    /// tests compare it with.
+    #[cfg(test)]
     pub(crate) fn hit_t_given(&self, v_0: f64, ray: &Ray, range: Interval) -> Option<f64> {
         let v_d = self.plane.normal.dot(ray.direction);
         if v_d == 0.0 {

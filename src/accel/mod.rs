@@ -24,7 +24,8 @@
 //! polygons), the shadow query that tries a row's last blocker first
 //! (`shadow`), the objects' materials and normal recipes side by side
 //! (`object_tables`, `normals`), a row's primary rays at once (`rows`),
-//! and their nearest hits found eight at a time in one walk (`packet`).
+//! and their nearest hits found eight at a time in one walk (`packet`,
+//! whose leaves test each triangle across the rays, `packet_triangles`).
 
 pub mod brute;
 mod bvh;
@@ -36,6 +37,7 @@ mod node;
 mod normals;
 mod object_tables;
 mod packet;
+mod packet_triangles;
 mod rows;
 mod shadow;
 #[cfg(target_arch = "x86_64")]
@@ -474,6 +476,7 @@ impl Nearest<'_> {
     }
 }
 
+#[cfg(test)]
 impl Nearest<'_> {
     /// `test` with the intersection given: `hit(range)` is the object's
     /// nearest hit in `range`, as `LeafShape::intersect` gives it.

@@ -16,6 +16,9 @@
 //! which rays test the leaf's objects. So every ray tests every object its
 //! own walk would test where the hit could be (and maybe a few more): its
 //! nearest hit, by the same tie rule (`Nearest::test`), is the same.
+//! A leaf's triangles, and the quads met by two rays or more, are tested
+//! across those rays at once (`packet_triangles`, each lane the scalar
+//! test's operations); other objects ray by ray.
 //!
 //! Packets of fewer than eight rays (a row's last pixels), and those whose
 //! rays do not share an origin, or whose directions differ in sign along an
@@ -39,9 +42,11 @@ use glam::DVec3;
 use super::bvh::MAX_DEPTH;
 use super::leaf_shapes::LeafShape;
 use super::node::{BoxTesting, Child, Node, WIDTH, nearest_first};
+use super::packet_triangles::{Bests, Lanes, NO_OBJECT, Narrow, test_triangle};
 use super::{Accel, Candidate, Cost, NONE_YET, Nearest};
 use crate::math::{Interval, Ray};
 use crate::object::Object;
+use crate::shapes::{Polygon, Shape};
 
 /// Rays per packet.
 pub(crate) const PACKET: usize = 8;
@@ -55,6 +60,8 @@ const ALL: u8 = u8::MAX;
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Packet {
     origin: [f64; 3],
+    /// Each ray's direction and its inverse, axis by axis.
+    direction: [[f64; PACKET]; 3],
     inverse: [[f64; PACKET]; 3],
     least: [f64; 3],
     greatest: [f64; 3],
@@ -68,7 +75,7 @@ impl Packet {
     /// along some axis a 1/d is not finite and non-zero, or the directions
     /// differ in sign.
     #[inline(always)]
-    pub(super) fn new(rays: &[Ray]) -> Option<Packet> {
+    pub(super) fn new<L: Lanes>(rays: &[Ray]) -> Option<Packet> {
         let rays: &[Ray; PACKET] = rays.try_into().ok()?;
         let origin = rays[0].origin;
         let mut same_origin = origin.is_finite();
@@ -80,32 +87,44 @@ impl Packet {
             direction[1][i] = ray.direction.y;
             direction[2][i] = ray.direction.z;
         }
-        // Written axis by axis over the eight rays, without branches, so
-        // that the compiler divides and compares four at a time.
+        if !same_origin {
+            return None;
+        }
+        // Axis by axis, `L::COUNT` rays at a time.
         let mut inverse = [[0.0; PACKET]; 3];
         let mut least = [0.0; 3];
         let mut greatest = [0.0; 3];
         let mut downwards = [false; 3];
-        let mut usable = same_origin;
+        let (zero, infinity) = (L::splat(0.0), L::splat(f64::INFINITY));
         for axis in 0..3 {
-            let mut low = f64::INFINITY;
-            let mut high = f64::NEG_INFINITY;
-            for i in 0..PACKET {
-                let v = 1.0 / direction[axis][i];
-                inverse[axis][i] = v;
-                // Finite and non-zero (false for a NaN).
-                usable &= (v.abs() < f64::INFINITY) & (v.abs() > 0.0);
-                low = if v < low { v } else { low };
-                high = if v > high { v } else { high };
+            let mut low = infinity;
+            let mut high = L::splat(f64::NEG_INFINITY);
+            // The rays whose 1/d is finite and positive, finite and negative
+            // (a NaN is neither).
+            let (mut positive, mut negative) = (0, 0);
+            for chunk in (0..PACKET).step_by(L::COUNT) {
+                let v = L::splat(1.0).div(L::load(&direction[axis], chunk));
+                v.store(&mut inverse[axis], chunk);
+                positive |= zero.lt(v).and(v.lt(infinity)).bits() << chunk;
+                negative |= zero.sub(infinity).lt(v).and(v.lt(zero)).bits() << chunk;
+                low = low.min(v);
+                high = high.max(v);
             }
-            // One sign along the axis.
-            usable &= (low > 0.0) | (high < 0.0);
-            least[axis] = low;
-            greatest[axis] = high;
-            downwards[axis] = high < 0.0;
+            // One sign along the axis, and no 1/d infinite, zero or NaN.
+            if positive != u32::from(ALL) && negative != u32::from(ALL) {
+                return None;
+            }
+            // The least and greatest of the eight (in any order: none is NaN).
+            let (low, high) = (low.to_array(), high.to_array());
+            least[axis] = low[..L::COUNT].iter().fold(f64::INFINITY, |a, &b| a.min(b));
+            greatest[axis] = high[..L::COUNT]
+                .iter()
+                .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
+            downwards[axis] = negative == u32::from(ALL);
         }
-        usable.then_some(Packet {
+        Some(Packet {
             origin: origin.to_array(),
+            direction,
             inverse,
             least,
             greatest,
@@ -122,35 +141,47 @@ impl Packet {
 
     /// Which rays meet child `lane`'s box of `node` within (t_min, t_max[i]),
     /// each by the arithmetic of its own SSE2 box test (`node::BoxTest`),
-    /// done for the eight rays side by side.
+    /// done for `L::COUNT` rays per instruction: per axis, (c - o) (1/d) to
+    /// the near and far corners, the entry the greater of it and the running
+    /// one (`max(t_near, low)`, SSE2's max: `t_near > low ? t_near : low`),
+    /// the exit the lesser (`min(t_far, high)`), as `Lanes` in `node` does.
     #[inline(always)]
-    fn each_meets(&self, node: &Node, lane: usize, t_min: f64, t_max: &[f64; PACKET]) -> u8 {
-        let mut low = [t_min; PACKET];
-        let mut high = *t_max;
-        for axis in 0..3 {
+    fn each_meets<L: Lanes>(
+        &self,
+        node: &Node,
+        lane: usize,
+        t_min: f64,
+        t_max: &[f64; PACKET],
+    ) -> u8 {
+        let mut corners = [(0.0, 0.0); 3];
+        for (axis, corners) in corners.iter_mut().enumerate() {
             let down = usize::from(self.downwards[axis]);
             let near = f64::from(node.corners[down][axis][lane]);
             let far = f64::from(node.corners[1 - down][axis][lane]);
-            let (near, far) = (near - self.origin[axis], far - self.origin[axis]);
-            for i in 0..PACKET {
+            *corners = (near - self.origin[axis], far - self.origin[axis]);
+        }
+        let mut mask = 0;
+        for chunk in (0..PACKET).step_by(L::COUNT) {
+            let mut low = L::splat(t_min);
+            let mut high = L::load(t_max, chunk);
+            for (axis, &(near, far)) in corners.iter().enumerate() {
                 // No NaN here: 1/d is finite and non-zero, the corners at
                 // worst infinite (an absent child's empty box).
-                let t_near = near * self.inverse[axis][i];
-                let t_far = far * self.inverse[axis][i];
-                low[i] = if t_near > low[i] { t_near } else { low[i] };
-                high[i] = if t_far < high[i] { t_far } else { high[i] };
+                let inverse = L::load(&self.inverse[axis], chunk);
+                low = L::splat(near).mul(inverse).max(low);
+                high = L::splat(far).mul(inverse).min(high);
             }
+            mask |= high.ge(low).bits() << chunk;
         }
-        let mut mask = 0u8;
-        for i in 0..PACKET {
-            mask |= u8::from(low[i] <= high[i]) << i;
-        }
-        mask
+        mask as u8
     }
 }
 
 /// A packet prepared for testing a node's four boxes at once.
 pub(super) trait PacketBoxTesting {
+    /// The lanes the leaves' triangles are tested with, across the rays.
+    type Lanes: Lanes;
+
     fn new(packet: &Packet) -> Self;
 
     /// Bit i of the mask is set when some ray of the packet may meet child
@@ -168,6 +199,8 @@ pub(super) struct PacketTest {
 }
 
 impl PacketBoxTesting for PacketTest {
+    type Lanes = Narrow;
+
     #[inline(always)]
     fn new(packet: &Packet) -> PacketTest {
         use super::lanes::Lanes;
@@ -227,6 +260,8 @@ pub(super) struct WidePacketTest {
 
 #[cfg(target_arch = "x86_64")]
 impl PacketBoxTesting for WidePacketTest {
+    type Lanes = super::packet_triangles::Wide;
+
     #[inline(always)]
     fn new(packet: &Packet) -> WidePacketTest {
         debug_assert!(
@@ -330,7 +365,7 @@ impl Accel {
         found: &mut [Option<Candidate>],
     ) {
         assert!(rays.len() <= PACKET && found.len() == rays.len());
-        let packet = match Packet::new(rays) {
+        let packet = match Packet::new::<P::Lanes>(rays) {
             Some(packet) if range.min >= 0.0 => packet,
             _ => {
                 for (ray, found) in rays.iter().zip(found) {
@@ -355,31 +390,39 @@ impl Accel {
                 nearest.test(object, &LeafShape::Other, &mut cost);
             }
         }
+        let mut bests = Bests {
+            t: std::array::from_fn(|i| nearest[i].best.t),
+            object: std::array::from_fn(|i| match nearest[i].best.object {
+                NONE_YET => NO_OBJECT,
+                object => object as f64,
+            }),
+        };
         if !self.nodes.is_empty() {
-            self.walk_packet::<P>(&packet, range.min, &mut nearest);
+            self.walk_packet::<P>(objects, rays, &packet, range, &mut bests);
         }
-        for (nearest, found) in nearest.iter().zip(found) {
-            let best = nearest.best;
-            *found = (best.object != NONE_YET).then_some(best);
+        for (i, found) in found.iter_mut().enumerate() {
+            *found = candidate(&bests, i);
         }
     }
 
     /// The packet's walk: nodes met by the packet, nearest (by the packet's
     /// least entry) first; at each leaf, the rays whose own box test meets
-    /// it test its objects.
+    /// it test its objects: each triangle across those rays at once
+    /// (`packet_triangles`), any other object ray by ray (`Nearest::test`).
     #[inline(always)]
     fn walk_packet<P: PacketBoxTesting>(
         &self,
+        objects: &[Object],
+        rays: &[Ray; PACKET],
         packet: &Packet,
-        t_min: f64,
-        nearest: &mut [Nearest; PACKET],
+        range: Interval,
+        bests: &mut Bests,
     ) {
+        let t_min = range.min;
         let test = P::new(packet);
         let origin = DVec3::from(packet.origin);
-        let mut cost = Cost::default();
-        // Each ray's best so far, and their greatest.
-        let mut t_max: [f64; PACKET] = std::array::from_fn(|i| nearest[i].best.t);
-        let mut packet_max = greatest(&t_max);
+        // The greatest of the rays' bests so far.
+        let mut packet_max = greatest(&bests.t);
         // Children waiting, with the packet's entry, and for leaves the rays
         // that meet them.
         let mut stack = ArrayVec::<(Child, f64, u8), { MAX_DEPTH * (WIDTH - 1) }>::new();
@@ -398,7 +441,7 @@ impl Accel {
                         let i = (key & 3) as usize;
                         let child = node.child(i);
                         let rays = if child.is_leaf() {
-                            packet.each_meets(node, i, t_min, &t_max)
+                            packet.each_meets::<P::Lanes>(node, i, t_min, &bests.t)
                         } else {
                             ALL
                         };
@@ -412,7 +455,7 @@ impl Accel {
             let mut next = next.map(|i| {
                 let child = node.child(i);
                 let rays = if child.is_leaf() {
-                    packet.each_meets(node, i, t_min, &t_max)
+                    packet.each_meets::<P::Lanes>(node, i, t_min, &bests.t)
                 } else {
                     ALL
                 };
@@ -421,36 +464,67 @@ impl Accel {
             loop {
                 match next {
                     // A leaf none of the rays meets is skipped.
-                    Some((child, rays)) if child.is_leaf() && rays != 0 => {
+                    Some((child, meeting)) if child.is_leaf() && meeting != 0 => {
                         let first = child.offset as usize;
                         let leaf = &self.objects[first..first + usize::from(child.count)];
                         for (&object, shape) in leaf.iter().zip(&self.shapes[first..]) {
-                            let mut left = rays;
                             if let LeafShape::Triangle(triangle) = shape {
                                 // The plane's v_0 once for the packet's origin.
                                 let v_0 = triangle.v_0(origin);
-                                while left != 0 {
-                                    let i = left.trailing_zeros() as usize;
-                                    left &= left - 1;
-                                    nearest[i].test_with(object, |ray, range| {
-                                        triangle.hit_t_given(v_0, ray, range)
-                                    });
-                                }
+                                test_triangle::<P::Lanes>(
+                                    triangle,
+                                    object,
+                                    v_0,
+                                    &packet.origin,
+                                    &packet.direction,
+                                    t_min,
+                                    meeting,
+                                    bests,
+                                );
                                 continue;
                             }
+                            // A quad met by two rays or more: across them
+                            // (for one ray the per-ray test, which stops at
+                            // the plane when that is out of range, cost less:
+                            // gears' quads, 2 % of its instructions).
+                            let quad = quad(shape, &objects[object as usize].shape);
+                            if let Some(quad) = quad.filter(|_| meeting & (meeting - 1) != 0) {
+                                P::Lanes::test_quad(
+                                    quad,
+                                    object,
+                                    &packet.origin,
+                                    &packet.direction,
+                                    t_min,
+                                    meeting,
+                                    bests,
+                                );
+                                continue;
+                            }
+                            // Ray by ray, `Nearest::test`'s steps on `bests`:
+                            // the range closed at the best t when this
+                            // object comes earlier in the file (never
+                            // before a hit, when the best's object is -1).
+                            let object_f = f64::from(object);
+                            let mut left = meeting;
                             while left != 0 {
                                 let i = left.trailing_zeros() as usize;
                                 left &= left - 1;
-                                nearest[i].test(object, shape, &mut cost);
+                                let best = bests.t[i];
+                                let max = if object_f < bests.object[i] {
+                                    best.next_up()
+                                } else {
+                                    best
+                                };
+                                let range = Interval::new(t_min, max);
+                                let hit =
+                                    shape.intersect(objects, object as usize, &rays[i], range);
+                                if let Some(t) = hit {
+                                    bests.t[i] = t;
+                                    bests.object[i] = object_f;
+                                }
                             }
                         }
-                        let mut left = rays;
-                        while left != 0 {
-                            let i = left.trailing_zeros() as usize;
-                            left &= left - 1;
-                            t_max[i] = nearest[i].best.t;
-                        }
-                        packet_max = greatest(&t_max);
+                        packet_max = greatest(&bests.t);
                     }
                     Some((child, _)) if !child.is_leaf() => {
                         node = &self.nodes[child.offset as usize];
@@ -469,6 +543,32 @@ impl Accel {
             }
         }
     }
+}
+
+/// The polygon of four vertices whose record `shape` is, tested through its
+/// object (`LeafShape::Other`): a polygon or a patch (whose hit is its
+/// polygon's, `Shape::intersect`).
+#[inline(always)]
+fn quad<'a>(shape: &LeafShape, object: &'a Shape) -> Option<&'a Polygon> {
+    let LeafShape::Other = shape else {
+        return None;
+    };
+    let polygon = match object {
+        Shape::Polygon(polygon) => polygon,
+        Shape::Patch(patch) => &patch.polygon,
+        _ => return None,
+    };
+    (polygon.vertices.len() == 4).then_some(polygon)
+}
+
+/// Ray i's nearest hit in `bests`, if it has one.
+#[inline(always)]
+fn candidate(bests: &Bests, i: usize) -> Option<Candidate> {
+    let object = bests.object[i];
+    (object != NO_OBJECT).then_some(Candidate {
+        object: object as usize,
+        t: bests.t[i],
+    })
 }
 
 /// The greatest of `values` (none is NaN).
@@ -534,8 +634,10 @@ mod tests {
 
     /// Up to eight rays: mostly a camera's neighbouring pixels (one origin,
     /// directions a pixel apart), sometimes spread wide (directions of
-    /// both signs), with zero components, or from two origins.
-    fn packet(numbers: &mut Numbers) -> Vec<Ray> {
+    /// both signs), with zero components (such packets take the per-ray
+    /// query), from two origins, or with the first ray aimed at a
+    /// triangle's or quad's vertex or the middle of one of its edges.
+    fn packet(numbers: &mut Numbers, objects: &[Object]) -> Vec<Ray> {
         let count = if numbers.next() < 0.8 {
             PACKET
         } else {
@@ -543,7 +645,21 @@ mod tests {
         };
         let origin = vector(numbers) * 6.0;
         // Mostly towards the scene's middle, so that most rays hit.
-        let aim = (vector(numbers) * 2.0 - origin).normalize();
+        let mut aim = (vector(numbers) * 2.0 - origin).normalize();
+        if numbers.next() < 0.3 {
+            let object = (numbers.next() * objects.len() as f64) as usize;
+            if let Shape::Polygon(polygon) = &objects[object].shape {
+                let v = &polygon.vertices;
+                let i = (numbers.next() * v.len() as f64) as usize;
+                let j = (i + 1) % v.len();
+                let target = if numbers.next() < 0.5 {
+                    v[i]
+                } else {
+                    (v[i] + v[j]) / 2.0
+                };
+                aim = (target - origin).normalize();
+            }
+        }
         let step = [1e-3, 1e-2, 0.3][(numbers.next() * 3.0) as usize];
         let across = vector(numbers).cross(aim).normalize() * step;
         let kind = (numbers.next() * 10.0) as u32;
@@ -577,8 +693,8 @@ mod tests {
             let objects = scene(&mut numbers);
             let accel = Accel::build(&objects);
             for _ in 0..1500 {
-                let rays_here = packet(&mut numbers);
-                bounded += usize::from(Packet::new(&rays_here).is_some());
+                let rays_here = packet(&mut numbers, &objects);
+                bounded += usize::from(Packet::new::<Narrow>(&rays_here).is_some());
                 let range = if numbers.next() < 0.25 {
                     Interval::new(EPS, 1.0 + 8.0 * numbers.next())
                 } else {
@@ -624,11 +740,11 @@ mod tests {
         let fine: Vec<Ray> = (0..PACKET)
             .map(|i| ray([0.0; 3], [1.0, 0.5 - 0.01 * i as f64, -0.5]))
             .collect();
-        assert!(Packet::new(&fine).is_some());
+        assert!(Packet::new::<Narrow>(&fine).is_some());
         let with = |i: usize, other: Ray| {
             let mut rays = fine.clone();
             rays[i] = other;
-            Packet::new(&rays).is_none()
+            Packet::new::<Narrow>(&rays).is_none()
         };
         // Signs differ along y.
         assert!(with(3, ray([0.0; 3], [1.0, -0.1, -0.5])));
@@ -639,7 +755,7 @@ mod tests {
         // Two origins.
         assert!(with(5, ray([0.0, 0.0, 1e-9], [1.0, 0.4, -0.6])));
         // Fewer than eight rays (a row's last pixels).
-        assert!(Packet::new(&fine[..PACKET - 1]).is_none());
-        assert!(Packet::new(&[]).is_none());
+        assert!(Packet::new::<Narrow>(&fine[..PACKET - 1]).is_none());
+        assert!(Packet::new::<Narrow>(&[]).is_none());
     }
 }
