@@ -38,6 +38,7 @@ mod normals;
 mod object_tables;
 mod packet;
 mod packet_triangles;
+mod ray_lanes;
 mod rows;
 mod shadow;
 #[cfg(target_arch = "x86_64")]

@@ -42,7 +42,8 @@ use glam::DVec3;
 use super::bvh::MAX_DEPTH;
 use super::leaf_shapes::LeafShape;
 use super::node::{BoxTesting, Child, Node, WIDTH, nearest_first};
-use super::packet_triangles::{Bests, Lanes, NO_OBJECT, Narrow, test_triangle};
+use super::packet_triangles::{Bests, NO_OBJECT, TestQuad, test_triangle};
+use super::ray_lanes::{Lanes, Narrow};
 use super::{Accel, Candidate, Cost, NONE_YET, Nearest};
 use crate::math::{Interval, Ray};
 use crate::object::Object;
@@ -180,7 +181,7 @@ impl Packet {
 /// A packet prepared for testing a node's four boxes at once.
 pub(super) trait PacketBoxTesting {
     /// The lanes the leaves' triangles are tested with, across the rays.
-    type Lanes: Lanes;
+    type Lanes: Lanes + TestQuad;
 
     fn new(packet: &Packet) -> Self;
 
@@ -260,7 +261,7 @@ pub(super) struct WidePacketTest {
 
 #[cfg(target_arch = "x86_64")]
 impl PacketBoxTesting for WidePacketTest {
-    type Lanes = super::packet_triangles::Wide;
+    type Lanes = super::ray_lanes::Wide;
 
     #[inline(always)]
     fn new(packet: &Packet) -> WidePacketTest {
