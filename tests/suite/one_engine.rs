@@ -9,14 +9,10 @@ use raystep::render::{render, with_threads};
 use raystep::scene::{Scene, load};
 use raystep::trace::{NoRecorder, RayStats, trace};
 
+use crate::support::top_level_toml_scenes;
+
 fn example_scenes() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
+    let paths = top_level_toml_scenes();
     assert!(paths.len() >= 7, "the example scenes are there");
     paths
 }
