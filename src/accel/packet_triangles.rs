@@ -57,6 +57,10 @@ pub(super) const NO_OBJECT: f64 = -1.0;
 /// from `origin`), with the range `Nearest::test_with` gives it (from
 /// `t_min` to its best so far, closed there when `object` comes earlier
 /// in the file); where it hits, the ray's best becomes (object, t).
+///
+/// The same steps as `test_polygon` with N = 3, spelt out: written as
+/// `test_polygon::<L, 3>`, the same answers cost a fifth more instructions
+/// (callgrind, tetra's primary rays at 256 x 256: 69.7 M -> 83.7 M).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn test_triangle<L: Lanes>(
