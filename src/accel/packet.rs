@@ -40,10 +40,11 @@ use arrayvec::ArrayVec;
 use glam::DVec3;
 
 use super::bvh::MAX_DEPTH;
+use super::lanes::Lanes;
 use super::leaf_shapes::LeafShape;
 use super::node::{BoxTesting, Child, Node, WIDTH, nearest_first};
 use super::packet_triangles::{Bests, NO_OBJECT, TestQuad, test_triangle};
-use super::ray_lanes::{Lanes, Narrow};
+use super::ray_lanes::{Narrow, RayLanes};
 use super::{Accel, Candidate, Cost, NONE_YET, Nearest};
 use crate::math::{Interval, Ray};
 use crate::object::Object;
@@ -76,7 +77,7 @@ impl Packet {
     /// along some axis a 1/d is not finite and non-zero, or the directions
     /// differ in sign.
     #[inline(always)]
-    pub(super) fn new<L: Lanes>(rays: &[Ray]) -> Option<Packet> {
+    pub(super) fn new<L: RayLanes>(rays: &[Ray]) -> Option<Packet> {
         let rays: &[Ray; PACKET] = rays.try_into().ok()?;
         let origin = rays[0].origin;
         let mut same_origin = origin.is_finite();
@@ -147,7 +148,7 @@ impl Packet {
     /// one (`max(t_near, low)`, SSE2's max: `t_near > low ? t_near : low`),
     /// the exit the lesser (`min(t_far, high)`), as `Lanes` in `node` does.
     #[inline(always)]
-    fn each_meets<L: Lanes>(
+    fn each_meets<L: RayLanes>(
         &self,
         node: &Node,
         lane: usize,
@@ -181,7 +182,7 @@ impl Packet {
 /// A packet prepared for testing a node's four boxes at once.
 pub(super) trait PacketBoxTesting {
     /// The lanes the leaves' triangles are tested with, across the rays.
-    type Lanes: Lanes + TestQuad;
+    type Rays: RayLanes + TestQuad;
 
     fn new(packet: &Packet) -> Self;
 
@@ -193,18 +194,17 @@ pub(super) trait PacketBoxTesting {
 
 /// The packet's box test with SSE2, two boxes per instruction.
 pub(super) struct PacketTest {
-    origin: [super::lanes::Lanes; 3],
-    least: [super::lanes::Lanes; 3],
-    greatest: [super::lanes::Lanes; 3],
+    origin: [Lanes; 3],
+    least: [Lanes; 3],
+    greatest: [Lanes; 3],
     downwards: [bool; 3],
 }
 
 impl PacketBoxTesting for PacketTest {
-    type Lanes = Narrow;
+    type Rays = Narrow;
 
     #[inline(always)]
     fn new(packet: &Packet) -> PacketTest {
-        use super::lanes::Lanes;
         let (origin, least, greatest, downwards) = packet.bounds();
         PacketTest {
             origin: origin.map(Lanes::splat),
@@ -216,7 +216,6 @@ impl PacketBoxTesting for PacketTest {
 
     #[inline(always)]
     fn entries(&self, node: &Node, t_min: f64, t_max: f64) -> (u32, [f64; WIDTH]) {
-        use super::lanes::Lanes;
         let mut mask = 0;
         let mut entry = [0.0; WIDTH];
         for half in 0..2 {
@@ -261,7 +260,7 @@ pub(super) struct WidePacketTest {
 
 #[cfg(target_arch = "x86_64")]
 impl PacketBoxTesting for WidePacketTest {
-    type Lanes = super::ray_lanes::Wide;
+    type Rays = super::ray_lanes::Wide;
 
     #[inline(always)]
     fn new(packet: &Packet) -> WidePacketTest {
@@ -366,7 +365,7 @@ impl Accel {
         found: &mut [Option<Candidate>],
     ) {
         assert!(rays.len() <= PACKET && found.len() == rays.len());
-        let packet = match Packet::new::<P::Lanes>(rays) {
+        let packet = match Packet::new::<P::Rays>(rays) {
             Some(packet) if range.min >= 0.0 => packet,
             _ => {
                 for (ray, found) in rays.iter().zip(found) {
@@ -442,7 +441,7 @@ impl Accel {
                         let i = (key & 3) as usize;
                         let child = node.child(i);
                         let rays = if child.is_leaf() {
-                            packet.each_meets::<P::Lanes>(node, i, t_min, &bests.t)
+                            packet.each_meets::<P::Rays>(node, i, t_min, &bests.t)
                         } else {
                             ALL
                         };
@@ -456,7 +455,7 @@ impl Accel {
             let mut next = next.map(|i| {
                 let child = node.child(i);
                 let rays = if child.is_leaf() {
-                    packet.each_meets::<P::Lanes>(node, i, t_min, &bests.t)
+                    packet.each_meets::<P::Rays>(node, i, t_min, &bests.t)
                 } else {
                     ALL
                 };
@@ -472,7 +471,7 @@ impl Accel {
                             if let LeafShape::Triangle(triangle) = shape {
                                 // The plane's v_0 once for the packet's origin.
                                 let v_0 = triangle.v_0(origin);
-                                test_triangle::<P::Lanes>(
+                                test_triangle::<P::Rays>(
                                     triangle,
                                     object,
                                     v_0,
@@ -490,7 +489,7 @@ impl Accel {
                             // gears' quads, 2 % of its instructions).
                             let quad = quad(shape, &objects[object as usize].shape);
                             if let Some(quad) = quad.filter(|_| meeting & (meeting - 1) != 0) {
-                                P::Lanes::test_quad(
+                                P::Rays::test_quad(
                                     quad,
                                     object,
                                     &packet.origin,

@@ -32,8 +32,8 @@ use super::PACKET;
 use glam::{DVec2, DVec3};
 
 use super::leaf_shapes::TriangleTest;
-use super::ray_lanes::Lanes;
 use super::ray_lanes::Narrow;
+use super::ray_lanes::RayLanes;
 #[cfg(target_arch = "x86_64")]
 use super::ray_lanes::Wide;
 use crate::shapes::Axis;
@@ -63,7 +63,7 @@ pub(super) const NO_OBJECT: f64 = -1.0;
 /// (callgrind, tetra's primary rays at 256 x 256: 69.7 M -> 83.7 M).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn test_triangle<L: Lanes>(
+pub(super) fn test_triangle<L: RayLanes>(
     triangle: &TriangleTest,
     object: u32,
     v_0: f64,
@@ -148,7 +148,7 @@ pub(super) fn test_triangle<L: Lanes>(
 /// hold no vertices.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn test_polygon<L: Lanes, const N: usize>(
+pub(super) fn test_polygon<L: RayLanes, const N: usize>(
     (normal, dropped): (DVec3, Axis),
     projected: &[DVec2; N],
     object: u32,
@@ -244,7 +244,7 @@ pub(super) fn test_quad_narrow(
 }
 
 /// `test_polygon` of a four-vertex `quad` across the rays, out of line and
-/// compiled for each form of lanes (`P::Lanes` of the packet's walk).
+/// compiled for each form of lanes (`P::Rays` of the packet's walk).
 pub(super) trait TestQuad {
     #[allow(clippy::too_many_arguments)]
     fn test_quad(
@@ -310,7 +310,7 @@ unsafe fn test_quad_wide(
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn quad_with<L: Lanes>(
+fn quad_with<L: RayLanes>(
     quad: &Polygon,
     object: u32,
     origin: &[f64; 3],
@@ -377,7 +377,7 @@ mod tests {
     /// Runs `test_triangle` with lanes `L` on a packet and checks each ray
     /// against `scalar`; returns how many rays hit and how many were ties
     /// decided by the object order.
-    fn check<L: Lanes>(
+    fn check<L: RayLanes>(
         triangle: &TriangleTest,
         object: u32,
         rays: &[Ray; PACKET],

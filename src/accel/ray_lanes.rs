@@ -10,7 +10,7 @@ use super::PACKET;
 
 /// A few f64 lanes and the operations the test needs; comparisons give
 /// lanes of all ones or all zeros.
-pub(super) trait Lanes: Copy {
+pub(super) trait RayLanes: Copy {
     /// Lanes per value.
     const COUNT: usize;
     /// Reads `COUNT` values from `from[at..]`.
@@ -51,7 +51,7 @@ pub(super) trait Lanes: Copy {
 pub(super) struct Wide(std::arch::x86_64::__m256d);
 
 #[cfg(target_arch = "x86_64")]
-impl Lanes for Wide {
+impl RayLanes for Wide {
     const COUNT: usize = 4;
 
     #[inline(always)]
@@ -194,7 +194,7 @@ pub(super) struct Narrow(std::arch::x86_64::__m128d);
 // SSE2, which the cfg guarantees; each load reads two f64 inside an array
 // of eight (`at` is at most 6, asserted).
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-impl Lanes for Narrow {
+impl RayLanes for Narrow {
     const COUNT: usize = 2;
 
     #[inline(always)]
@@ -326,7 +326,7 @@ impl Narrow {
 }
 
 #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-impl Lanes for Narrow {
+impl RayLanes for Narrow {
     const COUNT: usize = 2;
 
     fn load(from: &[f64; PACKET], at: usize) -> Narrow {
