@@ -25,7 +25,7 @@ fn term_view_redraw(c: &mut Criterion) {
         let mut app = App::open(Some(path), true).unwrap();
         app.update(Action::Resize(200, 60));
         // ambient, diffuse, ..., shadow, rays: the count views scale by a maximum.
-        while app.screen().picture() != Picture::Term(raystep::terms::Term::Rays) {
+        while app.screen().picture() != Picture::Term(raystep_engine::terms::Term::Rays) {
             app.update(Action::CyclePicture);
         }
         assert!(app.renders().terms().is_some());

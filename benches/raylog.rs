@@ -20,10 +20,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-use raystep::divergence::{Tolerance, compare_log};
-use raystep::raylog::{RaylogReader, raylog};
-use raystep::record::record_pixel;
-use raystep::scene::{Scene, load};
+use raystep_engine::record::record_pixel;
+use raystep_engine::scene::{Scene, load};
+use raystep_tools::divergence::{Tolerance, compare_log};
+use raystep_tools::raylog::{RaylogReader, raylog};
 
 const LINES: usize = 1_000_000;
 const SIZE: u32 = 512;

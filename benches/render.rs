@@ -4,10 +4,10 @@
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use raystep::record::record_pixel;
-use raystep::render::render;
-use raystep::scene::{Scene, load};
-use raystep::trace::{NoRecorder, RayStats};
+use raystep_engine::record::record_pixel;
+use raystep_engine::render::render;
+use raystep_engine::scene::{Scene, load};
+use raystep_engine::trace::{NoRecorder, RayStats};
 
 fn scene(relative: &str, size: u32) -> Option<Scene> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);

@@ -1,28 +1,9 @@
 //! raystep: a teaching-oriented, step-through Whitted ray tracer and debugger.
 //!
-//! One engine renders whole images and records, for any pixel, the tree of
-//! rays and illumination terms that produced its colour (see MODEL.md).
+//! This package is the top floor: the command line (`cli`) and the terminal
+//! debugger (`tui`) over the workspace's libraries, `raystep-model` (the
+//! lecture), `raystep-accel` (speed), `raystep-engine` (scenes, tracing,
+//! recording) and `raystep-tools` (ray logs, compare, grading, diagrams).
 
-pub mod accel;
-pub(crate) mod camera;
 pub mod cli;
-pub mod compare;
-pub mod diagram;
-pub mod divergence;
-pub mod grade;
-pub(crate) mod input_file;
-pub mod math;
-pub mod mistakes;
-pub(crate) mod object;
-pub(crate) mod output;
-pub mod printable;
-pub mod raylog;
-pub mod record;
-pub mod render;
-pub mod scene;
-pub mod shapes;
-pub mod terms;
-#[cfg(test)]
-mod test_scenes;
-pub mod trace;
 pub mod tui;

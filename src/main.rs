@@ -8,7 +8,10 @@ fn main() -> ExitCode {
         Err(error) => {
             // A name quoted in the message may hold control characters.
             let message = format!("{error:#}");
-            eprintln!("error: {}", raystep::printable::printable_text(&message));
+            eprintln!(
+                "error: {}",
+                raystep_engine::printable::printable_text(&message)
+            );
             ExitCode::FAILURE
         }
     }

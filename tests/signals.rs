@@ -322,7 +322,7 @@ fn a_signal_during_a_long_render_restores_the_terminal_at_once() {
     // two cores, under way when the first screen is up; the exit must not
     // wait for it (the bound below leaves room for a loaded machine).
     let dir = tempfile::tempdir().unwrap();
-    let scene = raystep::scene::builtin::TEXT
+    let scene = raystep_engine::scene::builtin::TEXT
         .replace("width = 161", "width = 8000")
         .replace("height = 121", "height = 6000");
     let path = dir.path().join("big.toml");

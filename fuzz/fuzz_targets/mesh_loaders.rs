@@ -12,7 +12,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let name = if kind % 2 == 0 { "fuzz.obj" } else { "fuzz.stl" };
-    if let Err(error) = raystep::scene::mesh::load_bytes(Path::new(name), bytes) {
+    if let Err(error) = raystep_engine::scene::mesh::load_bytes(Path::new(name), bytes) {
         let _ = error.to_string();
     }
 });

@@ -8,7 +8,7 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
-    if let Err(error) = raystep::scene::parse(Path::new("fuzz.nff"), &text) {
+    if let Err(error) = raystep_engine::scene::parse(Path::new("fuzz.nff"), &text) {
         let _ = error.to_string();
     }
 });

@@ -9,8 +9,8 @@
 mod raylog_scene;
 
 use libfuzzer_sys::fuzz_target;
-use raystep::divergence::{Tolerance, compare_log, json, text};
-use raystep::raylog::RaylogReader;
+use raystep_tools::divergence::{Tolerance, compare_log, json, text};
+use raystep_tools::raylog::RaylogReader;
 use raylog_scene::scene;
 
 fuzz_target!(|data: &[u8]| {

@@ -8,7 +8,7 @@
 mod raylog_scene;
 
 use libfuzzer_sys::fuzz_target;
-use raystep::raylog::RaylogReader;
+use raystep_tools::raylog::RaylogReader;
 use raylog_scene::scene;
 
 fuzz_target!(|data: &[u8]| {

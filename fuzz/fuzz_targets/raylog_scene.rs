@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::sync::OnceLock;
 
-use raystep::scene::Scene;
+use raystep_engine::scene::Scene;
 
 const SCENE: &str = r#"
 [camera]
@@ -36,5 +36,5 @@ plane = { normal = [0, 1, 0], point = [0, -1, 0] }
 
 pub fn scene() -> &'static Scene {
     static SCENE_ONCE: OnceLock<Scene> = OnceLock::new();
-    SCENE_ONCE.get_or_init(|| raystep::scene::parse(Path::new("fuzz.toml"), SCENE).unwrap())
+    SCENE_ONCE.get_or_init(|| raystep_engine::scene::parse(Path::new("fuzz.toml"), SCENE).unwrap())
 }

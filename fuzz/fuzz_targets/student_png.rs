@@ -7,7 +7,7 @@ use std::io::Cursor;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    match raystep::compare::student::read(Cursor::new(data), "fuzz.png") {
+    match raystep_tools::compare::student::read(Cursor::new(data), "fuzz.png") {
         Ok(student) => {
             let (w, h) = student.image.dimensions();
             assert!(w > 0 && h > 0);

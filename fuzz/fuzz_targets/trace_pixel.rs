@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
-use raystep::record::record_pixel;
+use raystep_engine::record::record_pixel;
 
 /// The image is resized to SIDE x SIDE, so any pixel of the 16 is cheap.
 const SIDE: u32 = 4;
@@ -31,7 +31,7 @@ fuzz_target!(|data: &[u8]| {
     };
     let name = if selector & 1 == 0 { "fuzz.toml" } else { "fuzz.nff" };
     let text = String::from_utf8_lossy(rest);
-    let Ok(scene) = raystep::scene::parse(Path::new(name), &text) else {
+    let Ok(scene) = raystep_engine::scene::parse(Path::new(name), &text) else {
         return;
     };
     let Ok(mut scene) = scene.with_size(SIDE, SIDE) else {
@@ -48,5 +48,5 @@ fuzz_target!(|data: &[u8]| {
     if let Err(error) = tree.check_finite() {
         panic!("{error}");
     }
-    let _ = raystep::math::to_rgb8(color);
+    let _ = raystep_model::math::to_rgb8(color);
 });

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use clap::builder::PossibleValue;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::mistakes::{Mistake, Mistakes};
-use crate::scene::{self, Scene, Settings};
+use raystep_engine::scene::{self, Scene, Settings};
+use raystep_model::mistakes::{Mistake, Mistakes};
 
 /// raystep: a step-through debugger for Whitted ray tracing.
 ///
@@ -232,8 +232,8 @@ pub(crate) struct CompareArgs {
     /// When two logged numbers agree: GEOMETRY (relative, on positions,
     /// directions and t; default 1e-4) and optionally COLOUR (absolute,
     /// on colours, terms, S and weights; default 1/512). Only with --rays.
-    #[arg(long, value_name = "GEOMETRY[,COLOUR]", value_parser = crate::divergence::Tolerance::parse, requires = "rays")]
-    pub(crate) tolerance: Option<crate::divergence::Tolerance>,
+    #[arg(long, value_name = "GEOMETRY[,COLOUR]", value_parser = raystep_tools::divergence::Tolerance::parse, requires = "rays")]
+    pub(crate) tolerance: Option<raystep_tools::divergence::Tolerance>,
     /// Output form: a report for people, or JSON for graders.
     #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
     pub(crate) format: CompareFormat,
@@ -343,27 +343,42 @@ pub(crate) struct MistakeArgs {
     /// Trace with this classic student mistake (repeatable; README and
     /// docs/MODEL.md §8 list them), to make the wrong image on purpose.
     #[arg(long = "mistake", value_name = "NAME", value_enum)]
-    pub(crate) mistakes: Vec<Mistake>,
+    pub(crate) mistakes: Vec<MistakeName>,
 }
 
 impl MistakeArgs {
     /// The scene's settings with these mistakes.
     pub(crate) fn settings(&self, scene: &Scene) -> Settings {
         Settings {
-            mistakes: self.mistakes.iter().copied().collect::<Mistakes>(),
+            mistakes: self.mistakes.iter().map(|m| m.0).collect::<Mistakes>(),
             ..scene.settings
         }
     }
 }
 
-/// The catalogue's fixed names are the option's values.
-impl ValueEnum for Mistake {
+/// A mistake named on the command line: the catalogue's fixed names are
+/// the option's values. (The catalogue lives in the lecture crate, which
+/// knows no command line.)
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MistakeName(pub(crate) Mistake);
+
+const MISTAKE_NAMES: [MistakeName; Mistake::ALL.len()] = {
+    let mut names = [MistakeName(Mistake::ALL[0]); Mistake::ALL.len()];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = MistakeName(Mistake::ALL[i]);
+        i += 1;
+    }
+    names
+};
+
+impl ValueEnum for MistakeName {
     fn value_variants<'a>() -> &'a [Self] {
-        &Mistake::ALL
+        &MISTAKE_NAMES
     }
 
     fn to_possible_value(&self) -> Option<PossibleValue> {
-        Some(PossibleValue::new(self.name()))
+        Some(PossibleValue::new(self.0.name()))
     }
 }
 

@@ -6,14 +6,14 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::ExitCode;
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 
 use super::{CompareArgs, CompareFormat, SizeArg, emit, emit_text, load_scene};
-use crate::compare::Comparison;
-use crate::divergence::{LogComparison, compare_log};
-use crate::output;
-use crate::raylog::RaylogReader;
-use crate::scene::Scene;
+use raystep_engine::scene::Scene;
+use raystep_tools::compare::Comparison;
+use raystep_tools::divergence::{LogComparison, compare_log};
+use raystep_tools::output;
+use raystep_tools::raylog::RaylogReader;
 
 /// Exit status of `compare` when a `--max-*` threshold is exceeded.
 const OVER_THRESHOLD: u8 = 3;
@@ -22,7 +22,7 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
     let student = args
         .image
         .as_deref()
-        .map(crate::compare::student::load)
+        .map(raystep_tools::compare::student::load)
         .transpose()?;
     let image_size = student.as_ref().map(|s| s.image.dimensions());
     if let (Some((w, h)), Some((sw, sh))) = (image_size, args.size)
@@ -56,10 +56,11 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
         .map(|log| read_log(&scene, log, args.tolerance.unwrap_or_default()))
         .transpose()?;
     let comparison = student
-        .map(|student| crate::compare::compare(&scene, student))
+        .map(|student| raystep_tools::compare::compare(&scene, student))
         .transpose()?;
     if let (Some(diff), Some(comparison)) = (diff, &comparison) {
-        output::write_all(None, std::iter::once((&diff, comparison.error_map.clone())))?;
+        let map = (comparison.error_map.clone()).context("this build has no FLIP for --diff")?;
+        output::write_all(None, std::iter::once((&diff, map)))?;
     }
     let scene_name = args.scene.display().to_string();
     match args.format {
@@ -70,7 +71,8 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
     }
     let over = comparison.as_ref().is_some_and(|c| {
         let m = &c.metrics;
-        args.max_flip.is_some_and(|f| m.flip_mean > f)
+        args.max_flip
+            .is_some_and(|f| m.flip_mean.is_some_and(|mean| mean > f))
             || args.max_mean_abs.is_some_and(|e| m.mean_abs > e)
     });
     Ok(if over {
@@ -84,13 +86,14 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
 fn read_log(
     scene: &Scene,
     log: &Path,
-    tolerance: crate::divergence::Tolerance,
+    tolerance: raystep_tools::divergence::Tolerance,
 ) -> Result<LogComparison> {
     let name = log.display().to_string();
     let input: Box<dyn BufRead> = if log == Path::new("-") {
         Box::new(BufReader::new(std::io::stdin().lock()))
     } else {
-        let file = crate::input_file::open(log, "the ray log", crate::raylog::LOG_CAP)?;
+        let file =
+            raystep_engine::input_file::open(log, "the ray log", raystep_tools::raylog::LOG_CAP)?;
         Box::new(BufReader::new(file))
     };
     Ok(compare_log(
@@ -108,7 +111,7 @@ fn text(
 ) -> String {
     let mut out = String::new();
     if let (Some(comparison), Some(image)) = (comparison, &args.image) {
-        out.push_str(&crate::compare::text(
+        out.push_str(&raystep_tools::compare::text(
             comparison,
             &image.display().to_string(),
             scene,
@@ -118,7 +121,7 @@ fn text(
         if !out.is_empty() {
             out.push('\n');
         }
-        out.push_str(&crate::divergence::text(
+        out.push_str(&raystep_tools::divergence::text(
             rays,
             &log.display().to_string(),
             scene,
@@ -132,7 +135,7 @@ fn text(
 /// beside it under "image".
 fn json(comparison: Option<&Comparison>, rays: Option<&LogComparison>) -> Result<String> {
     let image = comparison.map(serde_json::to_value).transpose()?;
-    let value = match (rays.map(crate::divergence::json), image) {
+    let value = match (rays.map(raystep_tools::divergence::json), image) {
         (Some(mut rays), image) => {
             if let (Some(object), Some(image)) = (rays.as_object_mut(), image) {
                 object.insert("image".into(), image);

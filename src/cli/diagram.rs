@@ -8,12 +8,12 @@ use clap::ValueEnum;
 
 use super::recorded::record;
 use super::{DiagramArgs, PlaneArg, ShadowsArg};
-use crate::diagram::svg::Caption;
-use crate::output::{self, Target};
-use crate::record::RayTree;
+use raystep_engine::record::RayTree;
+use raystep_tools::diagram::svg::Caption;
+use raystep_tools::output::{self, Target};
 
 pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
-    use crate::diagram::{Diagram, DiagramPlane, Progress, Shadows, svg};
+    use raystep_tools::diagram::{Diagram, DiagramPlane, Progress, Shadows, svg};
     let target = output::file(&args.output)?;
     // `--plane crossing` with `--zoom` or `--shadows` is refused as a usage
     // error before this (`Cli::check_combinations`).
@@ -46,7 +46,7 @@ pub(super) fn run(args: &DiagramArgs) -> Result<ExitCode> {
 
 /// `--plane crossing`: the first polygon hit, or else passed by; none is an error.
 fn crossing_figure(tree: &RayTree, target: &Target, caption: &Caption) -> Result<ExitCode> {
-    use crate::diagram::svg::crossing_figure;
+    use raystep_tools::diagram::svg::crossing_figure;
     let Some(subject) = crossing_figure::subject(tree) else {
         anyhow::bail!(
             "pixel ({}, {}): no ray of its tree hits a polygon or patch or passes one by, \
@@ -75,7 +75,7 @@ fn caption(args: &DiagramArgs) -> Caption {
             .mistakes
             .mistakes
             .iter()
-            .map(|m| format!("--mistake {}", m.name())),
+            .map(|m| format!("--mistake {}", m.0.name())),
     );
     options.extend(pixel.set.iter().map(|s| format!("--set {s}")));
     if args.shadows != ShadowsArg::All {

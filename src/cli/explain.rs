@@ -6,7 +6,7 @@ use anyhow::Result;
 
 use super::recorded::record;
 use super::{PixelArgs, emit_text};
-use crate::record::explain;
+use raystep_engine::record::explain;
 
 pub(super) fn run(args: &PixelArgs) -> Result<ExitCode> {
     let recorded = record(args)?;

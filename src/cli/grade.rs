@@ -12,9 +12,9 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 
 use super::{GradeArgs, emit};
-use crate::grade::{self, Assignment, Graded, ReportDir, Student};
-use crate::output::{self, Target};
-use crate::render::with_threads;
+use raystep_engine::render::with_threads;
+use raystep_tools::grade::{self, Assignment, Graded, ReportDir, Student};
+use raystep_tools::output::{self, Target};
 
 pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
     let assignment = grade::assignment::load(&args.assignment)?;
@@ -46,8 +46,8 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
         (None, None) => String::new(),
     };
     // It names REPORT/ as argv spelt it, and the assignment's titles and
-    // file names: spelt as names are (`crate::printable`).
-    emit(&crate::printable::printable_text(&summary))?;
+    // file names: spelt as names are (`raystep_engine::printable`).
+    emit(&raystep_engine::printable::printable_text(&summary))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -177,8 +177,8 @@ fn class_summary(graded: &Graded, dir: &Path) -> String {
     let mean = grades.students.iter().map(|s| s.total).sum::<f64>() / count.max(1) as f64;
     format!(
         "graded {} on {}: mean {} of {} points; the report is in {}\n",
-        crate::record::count(count as u64, "student", "students"),
-        crate::record::count(grades.scenes.len() as u64, "scene", "scenes"),
+        raystep_engine::record::count(count as u64, "student", "students"),
+        raystep_engine::record::count(grades.scenes.len() as u64, "scene", "scenes"),
         grade::points_text((mean * 100.0).round() / 100.0),
         grade::points_text(grades.max_total),
         dir.display()

@@ -7,8 +7,8 @@ use anyhow::Result;
 
 use super::recorded::record;
 use super::{InspectArgs, InspectFormat, emit, emit_text, emit_with};
-use crate::raylog::raylog;
-use crate::record::{dot, text, write_json};
+use raystep_engine::record::{dot, text, write_json};
+use raystep_tools::raylog::raylog;
 
 pub(super) fn run(args: &InspectArgs) -> Result<ExitCode> {
     let recorded = record(&args.pixel)?;

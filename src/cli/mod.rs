@@ -9,8 +9,8 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
-use crate::printable::printable_text;
-use crate::scene::{self, Scene};
+use raystep_engine::printable::printable_text;
+use raystep_engine::scene::{self, Scene};
 
 mod args;
 mod compare;
@@ -86,7 +86,7 @@ fn emit_with(write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>)
 }
 
 /// Writes text meant for a terminal to stdout: no control character from a
-/// name reaches it raw (see `crate::printable`).
+/// name reaches it raw (see `raystep_engine::printable`).
 fn emit_text(text: &str) -> Result<()> {
     emit(&printable_text(text))
 }

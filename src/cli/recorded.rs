@@ -5,8 +5,8 @@
 use anyhow::{Result, bail};
 
 use super::{PixelArgs, load_scene};
-use crate::record::{RayTree, record_pixel};
-use crate::scene::{self, Scene};
+use raystep_engine::record::{RayTree, record_pixel};
+use raystep_engine::scene::{self, Scene};
 
 /// The pixel's recording, and for `--set` or `--diff-against` the one it
 /// is compared with and what that was.
@@ -23,7 +23,7 @@ impl Recorded {
             None => String::new(),
             Some((before, what)) => format!(
                 "\nWhat changed against {what}:\n{}",
-                crate::record::diff(before, &self.tree)
+                raystep_engine::record::diff(before, &self.tree)
             ),
         }
     }

@@ -9,11 +9,11 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 
 use super::{RenderArgs, emit, load_scene};
-use crate::output::{self, Target};
-use crate::render::{render, with_threads};
-use crate::scene::{Scene, Settings};
-use crate::terms::{Term, TermImages, render_terms};
-use crate::trace::{NoRecorder, RayStats};
+use raystep_engine::render::{render, with_threads};
+use raystep_engine::scene::{Scene, Settings};
+use raystep_engine::terms::{Term, TermImages, render_terms};
+use raystep_engine::trace::{NoRecorder, RayStats};
+use raystep_tools::output::{self, Target};
 
 /// The image, its stats when `stats`, and the term images when `terms`: one
 /// trace, as the terms pass gives the image (and the stats) too.

@@ -2,7 +2,7 @@
 //! quotes the offending argument verbatim (`unexpected argument '…'`), so an
 //! argument holding ESC, BEL, a C1 control, DEL, U+FFFE/U+FFFF (or bytes
 //! that are not UTF-8) would reach the terminal raw: when one does, the
-//! message is rendered without colours and spelt as `crate::printable`
+//! message is rendered without colours and spelt as `raystep_engine::printable`
 //! spells names (`\u{1b}`). Exit codes stay clap's: 2 for a usage error,
 //! 0 for `--help` and `--version` (which print to stdout).
 
@@ -13,7 +13,7 @@ use clap::builder::Styles;
 use clap::{CommandFactory, FromArgMatches};
 
 use super::Cli;
-use crate::printable::{printable_text, unprintable};
+use raystep_engine::printable::{printable_text, unprintable};
 
 /// `Cli::parse()` and the flag combinations clap cannot check itself
 /// (`Cli::check_combinations`), with argv escaped in any message.

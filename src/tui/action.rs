@@ -4,9 +4,9 @@
 //! find, what the image pane shows). The key table (`keymap.rs`) speaks
 //! only this vocabulary.
 
-use crate::mistakes::Mistake;
-use crate::scene::Switch;
-use crate::terms::Term;
+use raystep_engine::scene::Switch;
+use raystep_engine::terms::Term;
+use raystep_model::mistakes::Mistake;
 
 /// Something the user asked for, or a tick of the clock.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

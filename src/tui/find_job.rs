@@ -9,10 +9,10 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, channel};
 use std::thread;
 
-use crate::record::{RayTree, record_pixel};
-use crate::scene::{Scene, Settings};
 use crate::tui::action::Find;
 use crate::tui::view::find;
+use raystep_engine::record::{RayTree, record_pixel};
+use raystep_engine::scene::{Scene, Settings};
 
 /// The first pixel after the start that has what was looked for.
 pub(crate) struct Found {

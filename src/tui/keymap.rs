@@ -5,7 +5,7 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use super::action::{Action, Breakpoint, Find, Pane, Picture, Step};
-use crate::scene::Switch;
+use raystep_engine::scene::Switch;
 
 /// How far Shift (or H J K L) moves the pixel cursor.
 pub(crate) const BIG_STEP: i32 = 10;

@@ -46,10 +46,10 @@ use crossterm::event::Event;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-pub use crate::scene::Switch;
 pub use action::{Action, Breakpoint, Find, Pane, Picture, Step};
 pub use app::App;
 pub use keymap::Mode;
+pub use raystep_engine::scene::Switch;
 
 /// Where terminal events come from: the real terminal, or a script in tests.
 pub trait Input {
@@ -114,7 +114,10 @@ where
         // Names are data: ratatui drops control characters from text, but
         // keeps U+FFFE and U+FFFF; a cell holding one shows U+FFFD instead.
         for cell in &mut frame.buffer_mut().content {
-            if cell.symbol().contains(crate::printable::unprintable) {
+            if cell
+                .symbol()
+                .contains(raystep_engine::printable::unprintable)
+            {
                 cell.set_symbol("\u{fffd}");
             }
         }
@@ -194,7 +197,9 @@ pub(crate) fn run(opening: Opening) -> Result<ExitCode> {
         pixel,
         rays,
     } = opening;
-    let student = compare.map(crate::compare::student::load).transpose()?;
+    let student = compare
+        .map(raystep_tools::compare::student::load)
+        .transpose()?;
     let mut ray_log = None;
     if pixel.is_some() || rays.is_some() {
         // Traced at the image's size with --compare, and the log's pixels with it.
@@ -220,11 +225,11 @@ pub(crate) fn run(opening: Opening) -> Result<ExitCode> {
     }
     if let Some(image) = compare {
         // Seconds on a large scene, before the screen changes: say why.
-        // The path is argv's: spelt as names are (`crate::printable`).
+        // The path is argv's: spelt as names are (`raystep_engine::printable`).
         let shown = image.display().to_string();
         eprintln!(
             "comparing {} with the scene…",
-            crate::printable::printable_text(&shown)
+            raystep_engine::printable::printable_text(&shown)
         );
     }
     let mut app = App::open_with(path.map(Path::to_path_buf), student, false)?.watching();

@@ -14,10 +14,10 @@ use std::time::{Duration, Instant};
 
 use image::RgbImage;
 
-use crate::render::render_unless;
-use crate::scene::{Scene, Settings};
-use crate::terms::{TermImages, render_terms_unless};
-use crate::trace::NoRecorder;
+use raystep_engine::render::render_unless;
+use raystep_engine::scene::{Scene, Settings};
+use raystep_engine::terms::{TermImages, render_terms_unless};
+use raystep_engine::trace::NoRecorder;
 
 /// What to render: the image alone, or every term (which includes the image).
 #[derive(Clone)]
@@ -253,7 +253,7 @@ mod tests {
     use super::*;
 
     fn seven_rays(width: u32, height: u32) -> Scene {
-        let scene = crate::scene::builtin::load_file_or_builtin(None).unwrap();
+        let scene = raystep_engine::scene::builtin::load_file_or_builtin(None).unwrap();
         scene.with_size(width, height).unwrap()
     }
 
@@ -266,8 +266,13 @@ mod tests {
         let preview = preview_image(&scene, &scene.settings, &AtomicBool::new(false)).unwrap();
         assert_eq!(preview.dimensions(), (400, 300));
         assert_eq!(preview.get_pixel(0, 0), preview.get_pixel(2, 2));
-        let small =
-            crate::render::render_at::<NoRecorder>(&scene, &scene.settings, (134, 100), &|| {}).0;
+        let small = raystep_engine::render::render_at::<NoRecorder>(
+            &scene,
+            &scene.settings,
+            (134, 100),
+            &|| {},
+        )
+        .0;
         assert_eq!(preview.get_pixel(123, 77), small.get_pixel(41, 25));
     }
 
@@ -284,7 +289,7 @@ mod tests {
                 cancel.store(true, Ordering::Relaxed);
             }
         };
-        let result = crate::render::with_threads(Some(4), || {
+        let result = raystep_engine::render::with_threads(Some(4), || {
             render_unless::<NoRecorder>(&scene, &scene.settings, (200, 2000), &tick, &cancel)
         })
         .unwrap();

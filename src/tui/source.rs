@@ -6,8 +6,8 @@ use std::sync::mpsc::{Receiver, channel};
 
 use notify::{EventKind, RecursiveMode, Watcher as _};
 
-use crate::scene::builtin::{self, load_file_or_builtin};
-use crate::scene::{Scene, SceneError, Settings};
+use raystep_engine::scene::builtin::{self, load_file_or_builtin};
+use raystep_engine::scene::{Scene, SceneError, Settings};
 
 /// The scene file, or `None` for the built-in scene, and the size it is
 /// traced at when not its own (a compared image's).
@@ -107,7 +107,7 @@ impl FileWatcher {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mistakes::Mistake;
+    use raystep_model::mistakes::Mistake;
 
     #[test]
     fn a_reload_keeps_the_mistakes_turned_on() {

@@ -6,11 +6,11 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use glam::DVec3;
-use raystep::accel::{Accel, Candidate, Cost, brute};
-use raystep::math::{EPS, Interval, Ray};
-use raystep::scene::Object;
-use raystep::shapes::{Cone, Patch, Plane, Polygon, Shape, Sphere};
-use raystep::trace::NoRecorder;
+use raystep_accel::{Accel, Candidate, Cost, brute};
+use raystep_engine::scene::Object;
+use raystep_engine::trace::NoRecorder;
+use raystep_model::math::{EPS, Interval, Ray};
+use raystep_model::shapes::{Cone, Patch, Plane, Polygon, Shape, Sphere};
 
 const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/spd");
 
@@ -529,7 +529,7 @@ fn timings() {
         "balls", "gears", "mount", "rings", "teapot", "tetra", "tree",
     ] {
         let path = std::path::Path::new(SPD).join(format!("{name}.nff"));
-        let description = match raystep::scene::load(&path) {
+        let description = match raystep_engine::scene::load(&path) {
             Ok(description) => description,
             Err(e) => {
                 println!("{name}: skipped ({e})");
@@ -543,7 +543,7 @@ fn timings() {
         let start = Instant::now();
         for y in 0..256 {
             for x in 0..256 {
-                let color = raystep::trace::trace(
+                let color = raystep_engine::trace::trace(
                     &scene,
                     &scene.settings,
                     &viewport.primary_ray(x, y),

@@ -575,7 +575,7 @@ fn every_mistake_comes_first_on_a_scene_that_shows_it() {
         "clamp-before-adding" => path(&bright_mirror).to_string(),
         _ => SCENE.to_string(),
     };
-    for mistake in raystep::mistakes::Mistake::ALL {
+    for mistake in raystep_model::mistakes::Mistake::ALL {
         let name = mistake.name();
         let scene = scene_of(name);
         let image = render(
@@ -717,23 +717,26 @@ fn mistakes_are_found_through_another_tracers_rounding() {
 }
 
 /// The text report for raystep's own glass scene rendered under `mistakes`.
-fn report(mistakes: &[raystep::mistakes::Mistake]) -> String {
-    let scene = raystep::scene::load(Path::new(SCENE)).unwrap();
+fn report(mistakes: &[raystep_model::mistakes::Mistake]) -> String {
+    let scene = raystep_engine::scene::load(Path::new(SCENE)).unwrap();
     let mut settings = scene.settings;
     settings.mistakes = mistakes.iter().copied().collect();
-    let (image, _) =
-        raystep::render::render::<raystep::trace::NoRecorder>(&scene, &settings, &|| {});
-    let student = raystep::compare::StudentImage {
+    let (image, _) = raystep_engine::render::render::<raystep_engine::trace::NoRecorder>(
+        &scene,
+        &settings,
+        &|| {},
+    );
+    let student = raystep_tools::compare::StudentImage {
         image,
         notes: Vec::new(),
     };
-    let comparison = raystep::compare::compare(&scene, student).unwrap();
-    raystep::compare::text(&comparison, "yours.png", SCENE)
+    let comparison = raystep_tools::compare::compare(&scene, student).unwrap();
+    raystep_tools::compare::text(&comparison, "yours.png", SCENE)
 }
 
 #[test]
 fn the_text_report_reads_as_reviewed() {
-    use raystep::mistakes::Mistake;
+    use raystep_model::mistakes::Mistake;
     // Reviewed: one mistake (no ambient: every pixel darker, one region,
     // the diagnosis "− ambient") and two at once (black glass shadows and
     // Phong highlights, both named, the second fitting fully on top of

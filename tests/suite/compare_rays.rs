@@ -7,11 +7,11 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-use raystep::divergence::{PIXELS_SHOWN, Tolerance, compare_log};
-use raystep::mistakes::{Mistake, Mistakes};
-use raystep::raylog::{RaylogReader, raylog};
-use raystep::record::record_pixel;
-use raystep::scene::{Scene, Settings};
+use raystep_engine::record::record_pixel;
+use raystep_engine::scene::{Scene, Settings};
+use raystep_model::mistakes::{Mistake, Mistakes};
+use raystep_tools::divergence::{PIXELS_SHOWN, Tolerance, compare_log};
+use raystep_tools::raylog::{RaylogReader, raylog};
 
 use crate::support::{raystep, scene_at, stderr, stdout, top_level_toml_scenes};
 

@@ -7,11 +7,11 @@
 
 use std::path::Path;
 
-use raystep::divergence::{Divergence, Kind, PixelReport, Tolerance, Value, compare_log};
-use raystep::mistakes::{Mistake, Mistakes};
-use raystep::raylog::{RaylogReader, raylog};
-use raystep::record::record_pixel;
-use raystep::scene::{Scene, Settings};
+use raystep_engine::record::record_pixel;
+use raystep_engine::scene::{Scene, Settings};
+use raystep_model::mistakes::{Mistake, Mistakes};
+use raystep_tools::divergence::{Divergence, Kind, PixelReport, Tolerance, Value, compare_log};
+use raystep_tools::raylog::{RaylogReader, raylog};
 
 use crate::support::{scene, scene_at};
 
@@ -100,7 +100,7 @@ fn a_reflected_ray_without_eps_finds_the_mirror_it_leaves() {
 "#;
     let report = compared(&s, log);
     let d = first(&report, "P/R", "hit", Kind::SelfHit);
-    assert_eq!(d.ours, Some(Value::Hit(raystep::raylog::Hit::Miss)));
+    assert_eq!(d.ours, Some(Value::Hit(raystep_tools::raylog::Hit::Miss)));
     assert!(
         d.words.contains(
             "yours hit object 0 (floor), the surface the ray starts on; ours hit nothing"

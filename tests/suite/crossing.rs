@@ -2,8 +2,8 @@
 //! figure) and the near misses of spheres.
 
 use crate::support::{raystep, record, scene, stderr};
-use raystep::record::record_pixel;
-use raystep::shapes::{RootChoice, Working};
+use raystep_engine::record::record_pixel;
+use raystep_model::shapes::{RootChoice, Working};
 
 /// polygons.toml's star; pixel (40, 54) lies between its two lower legs.
 /// Its ray meets z = 0 at (-1.7963, 2.0002). Drop z: U = x, V = y. The
@@ -15,8 +15,8 @@ use raystep::shapes::{RootChoice, Working};
 /// Every other edge lies above y = 2.2. Two crossings: even, outside.
 const NOTCH: (u32, u32) = (40, 54);
 
-fn polygons() -> raystep::scene::Scene {
-    raystep::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap()
+fn polygons() -> raystep_engine::scene::Scene {
+    raystep_engine::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap()
 }
 
 #[test]
@@ -85,7 +85,7 @@ fn inspect_and_explain_name_the_edges_that_crossed() {
 
 const CAMERA: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n";
 
-fn unit_ball() -> raystep::scene::Scene {
+fn unit_ball() -> raystep_engine::scene::Scene {
     scene(&format!(
         "{CAMERA}
         [materials.m]
@@ -118,7 +118,7 @@ fn a_ray_through_a_spheres_box_past_the_sphere_is_a_near_miss() {
     assert!((c.t - 5.0).abs() < 1e-12);
     assert!((c.distance - 1.62f64.sqrt()).abs() < 1e-12);
     assert_eq!(c.radius, 1.0);
-    let text = raystep::record::text(&tree);
+    let text = raystep_engine::record::text(&tree);
     assert!(
         text.contains("no real roots: the ray passes the sphere by"),
         "{text}"

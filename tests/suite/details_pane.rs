@@ -7,10 +7,10 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
-use raystep::math::to_rgb8;
-use raystep::record::EventKind;
 use raystep::tui::pane::details;
 use raystep::tui::{Action, App, Step};
+use raystep_engine::record::EventKind;
+use raystep_model::math::to_rgb8;
 
 /// A mirror ball in front of a grey wall, lit from the eye's right. The centre
 /// pixel hits the ball at (0, 0, 1), facing the eye: its reflected ray

@@ -4,9 +4,9 @@
 
 use std::path::Path;
 
-use raystep::mistakes::{Mistake, Mistakes};
-use raystep::record::{Children, explain, node_lines, record_pixel, shaping_events};
-use raystep::scene::{Scene, load};
+use raystep_engine::record::{Children, explain, node_lines, record_pixel, shaping_events};
+use raystep_engine::scene::{Scene, load};
+use raystep_model::mistakes::{Mistake, Mistakes};
 
 use crate::support::{record, scene};
 

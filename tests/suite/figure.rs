@@ -50,8 +50,8 @@ fn the_figure_is_svg_with_every_ray_light_and_blocker() {
             );
         }
     }
-    let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    let scene = raystep_engine::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 135, 58);
     let shadows = tree
         .nodes
         .iter()
@@ -211,8 +211,8 @@ fn a_polygon_passed_by_is_ringed_not_hit() {
     // beside it and in the legend.
     let dir = tempfile::tempdir().unwrap();
     let svg = reviewed(dir.path(), REVIEWED[8]);
-    let scene = raystep::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap();
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 40, 54);
+    let scene = raystep_engine::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap();
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 40, 54);
     let passed = tree
         .root()
         .near_misses
@@ -318,8 +318,9 @@ fn a_partly_blocked_shadow_ray_has_its_own_colour() {
     assert!(output.status.success(), "{}", stderr(&output));
     let svg = std::fs::read_to_string(out).unwrap();
     roxmltree::Document::parse(&svg).expect("well-formed XML");
-    let scene = raystep::scene::load(std::path::Path::new("scenes/two-lights.toml")).unwrap();
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 3, 64);
+    let scene =
+        raystep_engine::scene::load(std::path::Path::new("scenes/two-lights.toml")).unwrap();
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 3, 64);
     let shadows: Vec<_> = (tree.nodes.iter())
         .flat_map(|n| &n.lights)
         .filter_map(|l| l.shadow.as_ref())
@@ -372,8 +373,9 @@ fn a_sphere_passed_by_is_ringed_where_the_ray_comes_nearest() {
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let svg = std::fs::read_to_string(out).unwrap();
-    let scene = raystep::scene::load(std::path::Path::new("scenes/spd/balls-small.nff")).unwrap();
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 200, 300);
+    let scene =
+        raystep_engine::scene::load(std::path::Path::new("scenes/spd/balls-small.nff")).unwrap();
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 200, 300);
     let near: Vec<_> = tree.nodes.iter().flat_map(|n| &n.near_misses).collect();
     assert!(!near.is_empty());
     for n in &near {
@@ -437,9 +439,9 @@ fn diff_against_is_refused_and_set_draws_the_changed_scene() {
     let output = with(&["--set", "settings.max_depth=1"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let svg = std::fs::read_to_string(&out).unwrap();
-    let mut scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    let mut scene = raystep_engine::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
     scene.settings.max_depth = 1;
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 135, 58);
     assert_eq!(tree.nodes.len(), 1);
     let lights = &tree.root().lights;
     let shadows = lights.iter().filter(|l| l.shadow.is_some()).count();
@@ -546,10 +548,10 @@ fn shadows_primary_or_none_leave_shadow_rays_out() {
         assert!(output.status.success(), "{}", stderr(&output));
         std::fs::read_to_string(&out).unwrap()
     };
-    let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    let scene = raystep_engine::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 135, 58);
     let hits = tree.nodes.iter().filter(|n| n.hit.is_some()).count();
-    let lights = |nodes: &[raystep::record::Node]| {
+    let lights = |nodes: &[raystep_engine::record::Node]| {
         let lights: Vec<_> = nodes.iter().flat_map(|n| &n.lights).collect();
         let shadows: Vec<_> = lights.iter().filter_map(|l| l.shadow.as_ref()).collect();
         (
@@ -596,7 +598,7 @@ fn shadows_primary_or_none_leave_shadow_rays_out() {
     let front = (scene.objects.iter())
         .position(|o| o.name == "glass block front")
         .unwrap();
-    let hit = |n: &raystep::record::Node| n.hit.as_ref().map(|h| h.object_index);
+    let hit = |n: &raystep_engine::record::Node| n.hit.as_ref().map(|h| h.object_index);
     assert!(tree.nodes.iter().all(|n| hit(n) != Some(front)));
     assert!(draw("all").contains(">glass block front</text>"));
     assert!(!draw("none").contains("glass block front"));

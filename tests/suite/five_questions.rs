@@ -10,9 +10,9 @@
 
 use std::path::{Path, PathBuf};
 
-use raystep::record::{explain, explain_unwrapped, record_pixel};
-use raystep::scene::load;
 use raystep::tui::{App, Mode};
+use raystep_engine::record::{explain, explain_unwrapped, record_pixel};
+use raystep_engine::scene::load;
 
 use crate::support::debugger::*;
 

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use raystep::record::record_pixel;
-use raystep::scene;
+use raystep_engine::record::record_pixel;
+use raystep_engine::scene;
 
 /// Loads `text` (the format from `name`'s extension); if it loads, records
 /// every pixel (of a 4x4 image, unless the scene's own is at most 8x8) and
@@ -59,7 +59,7 @@ fn light_exactly_at_the_hit_point() {
 /// first one overflowed inside tobj in a build with overflow checks).
 #[test]
 fn mesh_loader_finds() {
-    use raystep::scene::mesh::load_bytes;
+    use raystep_engine::scene::mesh::load_bytes;
     let five_points = "v 552.8 0.0   0.0\nv   0.0 0.0   0.0\nv   0.0 0.0 559.2\n\
                        v 549.6 0.0 559.2\nv 549.6 0.0 559.2\nvt 132.0 0\n";
     // An `l` line of three points with a texture index far out of range:

@@ -4,9 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::support::{raystep, scene_at, stderr};
-use raystep::record::{explain, record_pixel};
-use raystep::render::render;
-use raystep::trace::NoRecorder;
+use raystep_engine::record::{explain, record_pixel};
+use raystep_engine::render::render;
+use raystep_engine::trace::NoRecorder;
 
 fn cornell() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell/cornell.toml")
@@ -295,7 +295,7 @@ fn mtl_warnings_come_once_per_material() {
                usemtl shiny\nf 1 2 3\nf 2 4 3\nf 1 3 2\n";
     let mtl = "newmtl shiny\nKd 1 0 0\nKs 0.2 0.4 0.6\nmap_Kd wood.png\nillum 3\n";
     let dir = folder(&[("m.obj", obj.as_bytes()), ("m.mtl", mtl.as_bytes())]);
-    let scene = raystep::scene::load(&dir.path().join("m.obj")).unwrap();
+    let scene = raystep_engine::scene::load(&dir.path().join("m.obj")).unwrap();
     let warnings = scene.warnings.join("\n");
     assert_eq!(scene.warnings.len(), 2, "{warnings}");
     // k_s is the mean of Ks: (0.2 + 0.4 + 0.6) / 3 = 0.4.
@@ -331,9 +331,9 @@ sphere = {{ center = [0, 0, 0], radius = 1 }}
 "#
         ))
     };
-    let rays = |scene: &raystep::scene::Scene| {
+    let rays = |scene: &raystep_engine::scene::Scene| {
         let tree = crate::support::record(scene, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
-        raystep::record::explain(&tree)
+        raystep_engine::record::explain(&tree)
     };
     let mirror = rays(&scene_with(true));
     let matte_mirror = rays(&scene_with(false));
@@ -358,7 +358,7 @@ fn the_same_mesh_placed_twice_without_a_name_gets_names_of_its_own() {
          [[object]]\nmesh = {{ file = \"m.obj\", translate = [0, 0, -1] }}\n"
     );
     let dir = folder(&[("m.obj", obj.as_bytes()), ("s.toml", scene.as_bytes())]);
-    let scene = raystep::scene::load(&dir.path().join("s.toml")).unwrap();
+    let scene = raystep_engine::scene::load(&dir.path().join("s.toml")).unwrap();
     let names: Vec<String> = scene.objects.iter().map(|o| o.name.to_string()).collect();
     assert_eq!(names, ["m triangle 0", "mesh 1 m triangle 0"]);
 }
@@ -414,7 +414,7 @@ fn an_mtllib_pointing_anywhere_is_read_only_as_mtl() {
     // The MTL named in the folder above is read and used: red.
     let obj = format!("mtllib ../notes.txt\n{TRIANGLE}usemtl x\nf 1 2 3\n");
     std::fs::write(dir.path().join("sub/m.obj"), &obj).unwrap();
-    let scene = raystep::scene::load(&dir.path().join("sub/m.obj")).unwrap();
+    let scene = raystep_engine::scene::load(&dir.path().join("sub/m.obj")).unwrap();
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     assert_eq!(scene.objects[0].name, "m triangle 0 (material x)");
     assert_eq!(before("scene.toml"), scene_bytes);

@@ -5,12 +5,12 @@
 use std::path::Path;
 
 use glam::DVec3;
-use raystep::mistakes::{Mistake, Mistakes};
-use raystep::record::{Children, RayTree, explain, node_lines, record_pixel};
-use raystep::render::render;
-use raystep::scene::{Scene, Settings, parse};
-use raystep::terms::render_terms;
-use raystep::trace::NoRecorder;
+use raystep_engine::record::{Children, RayTree, explain, node_lines, record_pixel};
+use raystep_engine::render::render;
+use raystep_engine::scene::{Scene, Settings, parse};
+use raystep_engine::terms::render_terms;
+use raystep_engine::trace::NoRecorder;
+use raystep_model::mistakes::{Mistake, Mistakes};
 
 use crate::support::{raystep, scene};
 
@@ -698,8 +698,8 @@ fn fov_full_angle_takes_the_tangent_of_the_whole_angle() {
 #[test]
 fn under_every_mistake_the_recording_agrees_with_the_image() {
     let scene = parse(
-        Path::new(raystep::scene::builtin::NAME),
-        raystep::scene::builtin::TEXT,
+        Path::new(raystep_engine::scene::builtin::NAME),
+        raystep_engine::scene::builtin::TEXT,
     )
     .unwrap();
     let all: Mistakes = Mistake::ALL.into_iter().collect();
@@ -812,7 +812,7 @@ fn render_with_a_mistake_writes_the_mistaken_image() {
         String::from_utf8_lossy(&out.stderr)
     );
     let image = image::open(&png).unwrap().to_rgb8();
-    let s = raystep::scene::load(Path::new("scenes/seven-rays.toml"))
+    let s = raystep_engine::scene::load(Path::new("scenes/seven-rays.toml"))
         .unwrap()
         .with_size(16, 12)
         .unwrap();

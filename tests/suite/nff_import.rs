@@ -1,11 +1,11 @@
-//! Every SPD scene in `scenes/spd/` loads through `raystep::scene::load`,
+//! Every SPD scene in `scenes/spd/` loads through `raystep_engine::scene::load`,
 //! with the primitive and light counts of the table in `spd/README.md`.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Instant;
 
-use raystep::scene::load;
+use raystep_engine::scene::load;
 
 const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/spd");
 

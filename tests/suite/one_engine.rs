@@ -3,11 +3,11 @@
 
 use std::path::{Path, PathBuf};
 
-use raystep::math::to_rgb8;
-use raystep::record::record_pixel;
-use raystep::render::{render, with_threads};
-use raystep::scene::{Scene, load};
-use raystep::trace::{NoRecorder, RayStats, trace};
+use raystep_engine::record::record_pixel;
+use raystep_engine::render::{render, with_threads};
+use raystep_engine::scene::{Scene, load};
+use raystep_engine::trace::{NoRecorder, RayStats, trace};
+use raystep_model::math::to_rgb8;
 
 use crate::support::top_level_toml_scenes;
 

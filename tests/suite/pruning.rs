@@ -7,10 +7,10 @@ use std::path::Path;
 use std::process::Command;
 
 use glam::DVec3;
-use raystep::record::{RayTree, explain, record_pixel, text};
-use raystep::render::render;
-use raystep::scene::{Scene, parse};
-use raystep::trace::{NotCast, PruneRule, RayKind, RayStats};
+use raystep_engine::record::{RayTree, explain, record_pixel, text};
+use raystep_engine::render::render;
+use raystep_engine::scene::{Scene, parse};
+use raystep_engine::trace::{NotCast, PruneRule, RayKind, RayStats};
 
 use crate::support::{record, scene};
 
@@ -76,7 +76,7 @@ fn the_third_reflection_between_mirrors_of_ks_one_tenth_is_not_cast() {
     );
     // Graphviz puts the ray, the rule and the reason on three lines of one
     // grey dashed box.
-    assert!(raystep::record::dot(&tree).contains(
+    assert!(raystep_engine::record::dot(&tree).contains(
         "n2p0 [shape=box, style=dashed, color=\"grey\", fontcolor=\"grey40\", label=\"reflected ray\\nnot cast: min_weight\\naccumulated weight 0.001 < min_weight 1/512\"];"
     ));
 }
@@ -327,8 +327,8 @@ fn a_light_within_eps_of_the_point_adds_nothing_and_casts_no_shadow_ray() {
 
 #[test]
 fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
-    use raystep::record::EventKind;
     use raystep::tui::view::{details, steps};
+    use raystep_engine::record::EventKind;
     // The mirrors of ks = 0.1: the third reflection, from ray r2, is not cast.
     let scene = mirrors(0.1, "");
     let tree = bounce(&scene);

@@ -6,11 +6,11 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use raystep::raylog::{
+use raystep_engine::record::{RayTree, record_pixel};
+use raystep_engine::scene::Scene;
+use raystep_tools::raylog::{
     Hit, LoggedRay, MAX_LINE_BYTES, RayPath, RaylogError, RaylogReader, Step, raylog, rays_of,
 };
-use raystep::record::{RayTree, record_pixel};
-use raystep::scene::Scene;
 
 use crate::support::{raystep, scene_at, stdout, top_level_toml_scenes};
 

@@ -9,7 +9,7 @@ fn readme_scene_example_is_valid() {
         std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
     let start = readme.find("```toml\n").expect("a toml example") + "```toml\n".len();
     let end = start + readme[start..].find("```").unwrap();
-    let scene = raystep::scene::parse(Path::new("README.md"), &readme[start..end]).unwrap();
+    let scene = raystep_engine::scene::parse(Path::new("README.md"), &readme[start..end]).unwrap();
     assert_eq!(scene.objects.len(), 7);
     assert_eq!(scene.objects[4].name, "smooth card");
     assert_eq!(
@@ -19,7 +19,7 @@ fn readme_scene_example_is_valid() {
             .find(|m| m.name == "glass")
             .unwrap()
             .specular,
-        Some(raystep::scene::SpecularModel::Phong)
+        Some(raystep_engine::scene::SpecularModel::Phong)
     );
 }
 

@@ -1,11 +1,11 @@
 //! Every number a TOML scene holds is finite and within its range
-//! (`raystep::scene::limits`, README "Scene files"), or the scene is refused
+//! (`raystep_engine::scene::limits`, README "Scene files"), or the scene is refused
 //! with the key, the value and its line and column. Issue 13, section 2:
 //! each case below was accepted before and gave NaN or infinity.
 
 use std::path::Path;
 
-use raystep::scene::{self, SceneError};
+use raystep_engine::scene::{self, SceneError};
 
 /// A valid scene; every case below changes one line of it.
 const GOOD: &str = r#"[camera]

@@ -7,8 +7,8 @@
 use std::path::Path;
 
 use proptest::prelude::*;
-use raystep::record::record_pixel;
-use raystep::scene::{self, Scene};
+use raystep_engine::record::record_pixel;
+use raystep_engine::scene::{self, Scene};
 use serde_json::Value;
 
 // ---------- (a) mutated scene text ----------

@@ -1,7 +1,7 @@
 //! The illumination model against values derived by hand (MODEL §4-§6).
 
 use glam::DVec3;
-use raystep::scene::Scene;
+use raystep_engine::scene::Scene;
 
 use crate::support::{record, scene};
 
@@ -37,7 +37,7 @@ fn one_light_head_on() {
     // diffuse  = 1 * (1, .5, .25) * 0.8 * 1  = (0.8, 0.4, 0.2)
     // specular = 1 * 0.5 * 1^10              = (0.5, 0.5, 0.5)
     // sum = (1.4, 0.95, 0.725) -> bytes (255, floor(242.75) = 242, floor(185.375) = 185).
-    let tree = raystep::record::record_pixel(&s, &s.settings, 0, 0);
+    let tree = raystep_engine::record::record_pixel(&s, &s.settings, 0, 0);
     let root = tree.root();
     assert_eq!(root.hit.as_ref().unwrap().t, 4.0);
     assert!(close(root.ambient, [0.1, 0.05, 0.025]));
@@ -50,7 +50,7 @@ fn one_light_head_on() {
     assert!(close(light.diffuse, [0.8, 0.4, 0.2]));
     assert!(close(light.specular, [0.5, 0.5, 0.5]));
     assert!(close(root.color, [1.4, 0.95, 0.725]));
-    assert_eq!(raystep::math::to_rgb8(root.color), [255, 242, 185]);
+    assert_eq!(raystep_model::math::to_rgb8(root.color), [255, 242, 185]);
 }
 
 /// A floor at y = 0 lit from (0, 4, 0) through a ball of radius 0.5 at (0, 2, 0).
@@ -225,7 +225,7 @@ fn ray_through_a_concave_notch_records_the_polygon_it_passed() {
     let root = tree.root();
     assert!(root.hit.is_none());
     assert_eq!(root.near_misses.len(), 1);
-    let raystep::shapes::Working::Polygon(working) = root.near_misses[0].working else {
+    let raystep_model::shapes::Working::Polygon(working) = root.near_misses[0].working else {
         panic!("a polygon")
     };
     assert_eq!(working.plane.t, Some(5.0));

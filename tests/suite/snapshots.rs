@@ -5,9 +5,9 @@
 use std::path::Path;
 
 use crate::support::scene_at;
-use raystep::record::{explain, record_pixel};
-use raystep::render::render;
-use raystep::trace::NoRecorder;
+use raystep_engine::record::{explain, record_pixel};
+use raystep_engine::render::render;
+use raystep_engine::trace::NoRecorder;
 use serde_json::Value;
 
 fn scene_path(name: &str) -> std::path::PathBuf {
@@ -131,7 +131,7 @@ fn graphviz_of_a_pixel_with_total_internal_reflection() {
     // a light that faces away without a shadow edge, blockers named.
     let scene = scene_at(&scene_path("glass.toml"), None);
     let tree = record_pixel(&scene, &scene.settings, 135, 58);
-    let dot = raystep::record::dot(&tree);
+    let dot = raystep_engine::record::dot(&tree);
     assert_eq!(dot.matches("(TIR)").count(), 2);
     // r5 hits the glass block (k_s 0.1, k_t 0.9) from inside at depth 5 =
     // max_depth with k = -0.7648 (cos_i = 0.4644, eta = 1.5): TIR, so the

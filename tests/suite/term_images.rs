@@ -3,8 +3,8 @@
 //! light faces (purple) and the background (dark blue) apart.
 
 use crate::support::{raystep, stderr};
-use raystep::record::record_pixel;
-use raystep::terms::{NO_LIGHT_FACES, SHADOW_BACKGROUND};
+use raystep_engine::record::record_pixel;
+use raystep_engine::terms::{NO_LIGHT_FACES, SHADOW_BACKGROUND};
 
 #[test]
 fn stats_give_the_count_images_scales_and_shadow_png_its_three_colours() {
@@ -41,7 +41,7 @@ fn check(file: &str) -> (usize, usize, usize) {
 
     // Independently: each pixel's rays are its tree's rays plus one shadow
     // ray per light that got one.
-    let scene = raystep::scene::load(std::path::Path::new(file))
+    let scene = raystep_engine::scene::load(std::path::Path::new(file))
         .unwrap()
         .with_size(32, 24)
         .unwrap();

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use raystep::scene::{SceneError, parse};
+use raystep_engine::scene::{SceneError, parse};
 
 const HEAD: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n\
 [materials.a]\nkd = 1\n[materials.b]\nkd = 0.5\n";

@@ -8,11 +8,11 @@ use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::style::Color;
-use raystep::math::to_rgb8;
-use raystep::record::{EventKind, record_pixel};
-use raystep::scene::SpecularModel;
-use raystep::terms::Term;
 use raystep::tui::{self, Action, App, Breakpoint, Pane, Picture, Step};
+use raystep_engine::record::{EventKind, record_pixel};
+use raystep_engine::scene::SpecularModel;
+use raystep_engine::terms::Term;
+use raystep_model::math::to_rgb8;
 
 use crate::support::debugger::*;
 

@@ -5,14 +5,14 @@ use std::path::Path;
 
 use crossterm::event::KeyCode;
 use image::RgbImage;
-use raystep::compare::student;
-use raystep::mistakes::{Mistake, Mistakes};
-use raystep::record::{record_pixel, text};
-use raystep::render::render;
-use raystep::scene::{Scene, Settings, builtin};
-use raystep::terms::Term;
-use raystep::trace::NoRecorder;
 use raystep::tui::{Action, App, Mode, Picture};
+use raystep_engine::record::{record_pixel, text};
+use raystep_engine::render::render;
+use raystep_engine::scene::{Scene, Settings, builtin};
+use raystep_engine::terms::Term;
+use raystep_engine::trace::NoRecorder;
+use raystep_model::mistakes::{Mistake, Mistakes};
+use raystep_tools::compare::student;
 
 use crate::support::debugger::*;
 
@@ -197,7 +197,7 @@ fn comparing_shows_yours_and_the_error_map_and_ranks_the_mistake() {
     let mut app = comparing(&png);
     let comparison = app.comparison().unwrap().findings();
     assert_eq!(comparison.mistakes[0].mistake, Mistake::NoAmbient);
-    let error_map = comparison.error_map.clone();
+    let error_map = comparison.error_map.clone().expect("the binary has FLIP");
     let (x, y) = app.pixel().cursor();
     // The render, each term, then yours and the error map, then the render.
     for _ in 0..=Term::ALL.len() {
@@ -350,7 +350,13 @@ fn save_png(image: &RgbImage, prefix: &str) -> tempfile::TempPath {
 fn c_and_capital_e_go_straight_to_yours_and_the_error_map() {
     let (png, yours) = students_png(Mistake::NoAmbient);
     let mut app = comparing(&png);
-    let error_map = app.comparison().unwrap().findings().error_map.clone();
+    let error_map = app
+        .comparison()
+        .unwrap()
+        .findings()
+        .error_map
+        .clone()
+        .expect("the binary has FLIP");
     let (x, y) = app.pixel().cursor();
     // On main: 9 presses of v to yours, 10 to the error map.
     chars(&mut app, "c");

@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use crossterm::event::KeyCode;
 use ratatui::layout::Rect;
-use raystep::diagram::{Diagram, Progress};
 use raystep::tui::{Action, App, Pane};
+use raystep_tools::diagram::{Diagram, Progress};
 
 use crate::support::debugger::*;
 
@@ -203,10 +203,10 @@ fn a_polygon_passed_by_is_ringed_in_the_pane_as_in_the_figure() {
     assert_eq!(text.matches("passed by").count(), 2, "{text}");
     assert!(!text.contains("faces away"), "{text}");
     // The same marks as `raystep diagram` draws from the same assembly.
-    let scene = raystep::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap();
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 40, 54);
+    let scene = raystep_engine::scene::load(std::path::Path::new("scenes/polygons.toml")).unwrap();
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 40, 54);
     let diagram = Diagram::new(&scene, &tree, app.screen().plane(), Progress::done(&tree));
-    let svg = raystep::diagram::svg::figure(&diagram, 1.0);
+    let svg = raystep_tools::diagram::svg::figure(&diagram, 1.0);
     assert_eq!(diagram.passed.len(), 1);
     assert_eq!(svg.matches("class=\"passed-by\"").count(), 1);
     assert!(!svg.contains("light facing away"));
@@ -223,12 +223,12 @@ fn a_light_facing_away_is_dotted_and_keyed_in_the_pane() {
     let text = diagram_rows(&mut app).join("\n");
     assert!(key_rows(&mut app).contains("┈ light faces away"), "{text}");
     assert!(!text.contains('○'), "{text}");
-    let scene = raystep::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
-    let tree = raystep::record::record_pixel(&scene, &scene.settings, 135, 58);
+    let scene = raystep_engine::scene::load(std::path::Path::new("scenes/glass.toml")).unwrap();
+    let tree = raystep_engine::record::record_pixel(&scene, &scene.settings, 135, 58);
     let diagram = Diagram::new(&scene, &tree, app.screen().plane(), Progress::done(&tree));
     assert_eq!(diagram.faces_away.len(), 2);
     assert!(diagram.passed.is_empty());
-    let svg = raystep::diagram::svg::figure(&diagram, 1.0);
+    let svg = raystep_tools::diagram::svg::figure(&diagram, 1.0);
     assert!(svg.contains(">light facing away (no shadow ray)<"));
     assert!(!svg.contains("class=\"passed-by\""));
 }

@@ -6,11 +6,11 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use raystep::raylog::raylog;
-use raystep::record::{EventKind, record_pixel};
-use raystep::scene::Scene;
 use raystep::tui::app::RayLog;
 use raystep::tui::{App, Pane};
+use raystep_engine::record::{EventKind, record_pixel};
+use raystep_engine::scene::Scene;
+use raystep_tools::raylog::raylog;
 
 use crate::support::debugger::*;
 use crate::support::{raystep, stderr, stdout};
@@ -18,7 +18,7 @@ use crate::support::{raystep, stderr, stdout};
 const GLASS: &str = "scenes/glass.toml";
 
 fn glass() -> Scene {
-    raystep::scene::load(Path::new(GLASS)).unwrap()
+    raystep_engine::scene::load(Path::new(GLASS)).unwrap()
 }
 
 /// raystep's own log of `pixel` of the glass scene.
@@ -310,8 +310,9 @@ fn without_a_log_y_and_d_say_how_to_open_one() {
 fn turning_on_the_mistake_of_the_log_makes_every_ray_match() {
     // A log raystep prints under eta-inverted: P/T is the first ray where it acts.
     let scene = glass();
-    let settings = raystep::scene::Settings {
-        mistakes: raystep::mistakes::Mistakes::NONE.with(raystep::mistakes::Mistake::EtaInverted),
+    let settings = raystep_engine::scene::Settings {
+        mistakes: raystep_model::mistakes::Mistakes::NONE
+            .with(raystep_model::mistakes::Mistake::EtaInverted),
         ..scene.settings
     };
     let path = log_file(&raylog(&record_pixel(&scene, &settings, 72, 45)));
@@ -400,8 +401,9 @@ fn with_compare_the_logs_pixels_are_at_the_images_size() {
 #[test]
 fn snapshot_first_divergence() {
     let scene = glass();
-    let settings = raystep::scene::Settings {
-        mistakes: raystep::mistakes::Mistakes::NONE.with(raystep::mistakes::Mistake::EtaInverted),
+    let settings = raystep_engine::scene::Settings {
+        mistakes: raystep_model::mistakes::Mistakes::NONE
+            .with(raystep_model::mistakes::Mistake::EtaInverted),
         ..scene.settings
     };
     let path = log_file(&raylog(&record_pixel(&scene, &settings, 72, 45)));

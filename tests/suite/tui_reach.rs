@@ -5,10 +5,10 @@ use std::path::Path;
 use std::time::Duration;
 
 use crossterm::event::KeyCode;
-use raystep::mistakes::{Mistake, Mistakes};
-use raystep::record::{EventKind, record_pixel};
-use raystep::terms::Term;
 use raystep::tui::{Action, App, Mode, Picture};
+use raystep_engine::record::{EventKind, record_pixel};
+use raystep_engine::terms::Term;
+use raystep_model::mistakes::{Mistake, Mistakes};
 
 use crate::support::debugger::*;
 use crate::support::{raystep, stderr};
@@ -396,7 +396,7 @@ fn f_n_on_a_scene_too_big_for_near_misses_says_so() {
         "b 0 0 0\nv\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n\
          l 0 10 10\nf 1 0 0 1 0 0 0 0\n",
     );
-    for i in 0..=raystep::record::NEAR_MISS_SCENE_LIMIT {
+    for i in 0..=raystep_engine::record::NEAR_MISS_SCENE_LIMIT {
         let (x, y) = ((i % 50) as f64 * 0.1 - 2.5, (i / 50) as f64 * 0.1 - 2.0);
         text.push_str(&format!("s {x} {y} 0 0.01\n"));
     }

@@ -9,9 +9,9 @@ use std::time::Instant;
 use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
-use raystep::terms::Term;
 use raystep::tui::keymap::{self, Input};
 use raystep::tui::{self, Action, App, Mode, Pane, Picture};
+use raystep_engine::terms::Term;
 
 use crate::support::debugger::*;
 

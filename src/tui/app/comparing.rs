@@ -3,8 +3,8 @@
 
 use image::RgbImage;
 
-use crate::compare::{Comparison, RegionReport};
-use crate::record::count;
+use raystep_engine::record::count;
+use raystep_tools::compare::{Comparison, RegionReport};
 
 /// The student's image, its comparison with the scene (made once, when the
 /// app opens), and the region `w` went to last.

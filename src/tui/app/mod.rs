@@ -28,8 +28,8 @@ use std::path::PathBuf;
 use image::RgbImage;
 use ratatui::layout::Position;
 
-use crate::compare::{self, StudentImage};
-use crate::scene::{Scene, SceneError, Settings};
+use raystep_engine::scene::{Scene, SceneError, Settings};
+use raystep_tools::compare::{self, StudentImage};
 
 use super::action::{Action, Find, Pane, Picture};
 use super::source::SceneSource;
@@ -602,7 +602,9 @@ impl App {
                 .filter(|t| x < t.width && y < t.height)
                 .map(|t| t.rgb(term, (y * t.width + x) as usize, renders.count_max(term))),
             Picture::Yours => comparison.and_then(|c| pixel(c.yours(), x, y)),
-            Picture::ErrorMap => comparison.and_then(|c| pixel(&c.findings().error_map, x, y)),
+            Picture::ErrorMap => {
+                comparison.and_then(|c| pixel(c.findings().error_map.as_ref()?, x, y))
+            }
         }
     }
 

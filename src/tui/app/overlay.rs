@@ -2,10 +2,10 @@
 //! menu, the go-to prompt or the wait for `f`'s second key. One at a time,
 //! by type: opening one closes the other.
 
-use crate::mistakes::Mistake;
 use crate::tui::action::Action;
 use crate::tui::keymap::Mode;
 use crate::tui::view::help;
+use raystep_model::mistakes::Mistake;
 
 /// The one thing open over the panes.
 #[derive(Clone, Debug, PartialEq, Eq)]

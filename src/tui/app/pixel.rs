@@ -8,15 +8,15 @@ use std::collections::BTreeSet;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::diagram::{Diagram, DiagramPlane, Progress};
-use crate::record::{NodeId, RayTree, record_pixel};
-use crate::scene::{Scene, Settings};
 use crate::tui::action::{Action, Breakpoint};
 use crate::tui::find_job::Found;
 use crate::tui::view::canvas_lines::{CanvasLines, View};
 use crate::tui::view::stepper;
 use crate::tui::view::steps;
 use crate::tui::view::tree::{self, Row, RowKind};
+use raystep_engine::record::{NodeId, RayTree, record_pixel};
+use raystep_engine::scene::{Scene, Settings};
+use raystep_tools::diagram::{Diagram, DiagramPlane, Progress};
 
 pub struct TracedPixel {
     /// The selected pixel, in the scene image's coordinates.
@@ -246,8 +246,8 @@ impl TracedPixel {
     pub(super) fn retrace_with(&mut self, scene: &Scene, settings: &Settings) {
         let before = self.tree.clone();
         self.retrace(scene, settings);
-        self.what_if =
-            (before.pixel == self.tree.pixel).then(|| crate::record::diff(&before, &self.tree));
+        self.what_if = (before.pixel == self.tree.pixel)
+            .then(|| raystep_engine::record::diff(&before, &self.tree));
         self.details_scroll = self.what_if.as_ref().map(|_| 0);
     }
 

@@ -10,12 +10,12 @@ use std::path::Path;
 
 use anyhow::{Result, bail};
 
-use crate::divergence::{
+use raystep_engine::record::{RayTree, count};
+use raystep_engine::scene::Scene;
+use raystep_tools::divergence::{
     LogComparison, OurRays, PixelReport, Tolerance, compare_log, compare_pixel,
 };
-use crate::raylog::{LoggedRay, RaylogReader};
-use crate::record::{RayTree, count};
-use crate::scene::Scene;
+use raystep_tools::raylog::{LoggedRay, RaylogReader};
 
 pub struct RayLog {
     /// The log's file, as given.
@@ -42,7 +42,8 @@ impl RayLog {
         if path == Path::new("-") {
             bail!("the debugger reads its keys from stdin: give the ray log as a file, not -");
         }
-        let file = crate::input_file::open(path, "the ray log", crate::raylog::LOG_CAP)?;
+        let file =
+            raystep_engine::input_file::open(path, "the ray log", raystep_tools::raylog::LOG_CAP)?;
         let reader = RaylogReader::new(name.clone(), BufReader::new(file), scene);
         let comparison = compare_log(scene, reader, Tolerance::default())?;
         Ok(RayLog::of(name, comparison))

@@ -6,9 +6,9 @@ use std::time::Duration;
 
 use image::RgbImage;
 
-use crate::scene::{Scene, Settings};
-use crate::terms::{Term, TermImages};
 use crate::tui::render_job::{Finished, Output, Progress, Renderer, Request};
+use raystep_engine::scene::{Scene, Settings};
+use raystep_engine::terms::{Term, TermImages};
 
 pub struct Renders {
     renderer: Renderer,

@@ -3,10 +3,10 @@
 
 use ratatui::layout::Rect;
 
-use crate::diagram::DiagramPlane;
-use crate::terms::Term;
 use crate::tui::action::{Action, Pane, Picture};
 use crate::tui::view::pan_zoom::PanZoom;
+use raystep_engine::terms::Term;
+use raystep_tools::diagram::DiagramPlane;
 
 pub struct Screen {
     /// The terminal's size, as the last `Action::Resize` gave it.

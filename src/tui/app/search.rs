@@ -3,9 +3,9 @@
 
 use std::time::Instant;
 
-use crate::record::NEAR_MISS_SCENE_LIMIT;
 use crate::tui::action::Find;
 use crate::tui::find_job::{FindJob, Found};
+use raystep_engine::record::NEAR_MISS_SCENE_LIMIT;
 
 use super::pixel::TracedPixel;
 use super::session::Session;

@@ -11,9 +11,9 @@ use std::sync::Arc;
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
-use crate::scene::{Scene, SceneError, Settings, SpecularModel};
 use crate::tui::action::Action;
 use crate::tui::source::{FileWatcher, SceneSource, merge_settings};
+use raystep_engine::scene::{Scene, SceneError, Settings, SpecularModel};
 
 use super::MAX_DEPTH;
 

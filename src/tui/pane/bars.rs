@@ -4,8 +4,8 @@
 use ratatui::style::Stylize;
 use ratatui::text::{Line, Span};
 
-use crate::scene::SpecularModel;
 use crate::tui::{App, Picture, keymap};
+use raystep_engine::scene::SpecularModel;
 
 /// A switch's name: plain green when on, "no ..." in red when off.
 fn on_off(name: &str, on: bool) -> Span<'static> {

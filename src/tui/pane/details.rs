@@ -8,10 +8,10 @@ use ratatui::layout::Rect;
 use ratatui::widgets::Paragraph;
 
 use super::pane_block;
-use crate::record::{EventKind, kind_name};
 use crate::tui::view::details::{compare_line, lines, what_if_lines};
 use crate::tui::view::your_rays::{detail_lines, selected_path};
 use crate::tui::{App, Pane};
+use raystep_engine::record::{EventKind, kind_name};
 
 pub fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let pixel = app.pixel();

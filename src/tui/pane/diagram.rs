@@ -1,6 +1,6 @@
 //! The ray diagram pane: the textbook figure of the selected pixel's ray
 //! tree, drawn in Braille on a ratatui `Canvas`. It only draws the
-//! assembled `crate::diagram::Diagram` (the one `raystep diagram` writes as
+//! assembled `raystep_tools::diagram::Diagram` (the one `raystep diagram` writes as
 //! SVG): object outlines, the eye (◉), the lights (☼), every ray with the
 //! current event's in white, blockers (×), passed-by rings (○) and dotted
 //! lines to lights that face away.
@@ -15,16 +15,15 @@ use ratatui::text::{Line as TextLine, Span};
 use ratatui::widgets::canvas::{Canvas, Circle, Context, Line, Points};
 use ratatui::widgets::{Block, Widget};
 
-use crate::diagram::{
-    Anchor, Diagram, LegendRow, Named, ObjectOutline, Outline, Progress, Segment, Stroke,
-};
-use crate::math::to_rgb8;
-use crate::scene::Scene;
 use crate::tui::App;
 use crate::tui::view::canvas_lines::{CanvasLines, View};
 use crate::tui::view::cell_labels::{Wanted, cell, place};
 use crate::tui::view::pan_zoom::PanZoom;
-use crate::tui::view::stepper::progress;
+use raystep_engine::scene::Scene;
+use raystep_model::math::to_rgb8;
+use raystep_tools::diagram::{
+    Anchor, Diagram, LegendRow, Named, ObjectOutline, Outline, Progress, Segment, Stroke,
+};
 
 /// The passed-by ring, and its and the faces-away line's key entries.
 const PASSED_BY: &str = "○";
@@ -151,7 +150,7 @@ fn mark_key(diagram: &Diagram) -> Vec<(&'static str, Color)> {
 pub(crate) fn render(area: Rect, buf: &mut ratatui::buffer::Buffer, block: Block, app: &App) {
     let (scene, pixel, screen) = (app.session().scene(), app.pixel(), app.screen());
     let diagram = pixel.diagram(scene, screen.plane());
-    let progress = progress(pixel.tree(), pixel.current());
+    let progress = Progress::at(pixel.tree(), pixel.current());
     let view = screen.diagram_pan_zoom();
     let lines = |view| pixel.canvas_lines(scene, screen.plane(), view);
     draw(
@@ -418,8 +417,8 @@ mod tests {
     use ratatui::buffer::Buffer;
 
     use super::*;
-    use crate::diagram::{DiagramPlane, Progress, svg};
-    use crate::test_scenes::pebble;
+    use raystep_engine::test_scenes::pebble;
+    use raystep_tools::diagram::{DiagramPlane, Progress, svg};
 
     #[test]
     fn both_media_draw_the_marks_of_one_diagram() {
@@ -522,19 +521,19 @@ mod tests {
             "[settings]\n",
             "[settings]\nmin_weight = 0\nmax_rays = 65536\n",
         );
-        let scene = crate::scene::parse(std::path::Path::new("big.toml"), &text).unwrap();
-        let big = crate::record::record_pixel(&scene, &scene.settings, 16, 12);
+        let scene = raystep_engine::scene::parse(std::path::Path::new("big.toml"), &text).unwrap();
+        let big = raystep_engine::record::record_pixel(&scene, &scene.settings, 16, 12);
         assert_eq!(big.nodes.len(), 65536);
         let mut zoomed = PanZoom::fit();
         zoomed.zoom_by(6);
         assert!(zoomed.magnification() >= 4.0, "{}", zoomed.magnification());
-        let cases = [(scene, big), pebble(), crate::test_scenes::ball()];
+        let cases = [(scene, big), pebble(), raystep_engine::test_scenes::ball()];
         for (n, (scene, tree)) in cases.iter().enumerate() {
             for plane in [DiagramPlane::Top, DiagramPlane::Side, DiagramPlane::Primary] {
                 let d = Diagram::new(scene, tree, plane, Progress::done(tree));
                 let events = tree.events.len();
                 for at in [0, events / 2, events.saturating_sub(1)] {
-                    let progress = progress(tree, at);
+                    let progress = Progress::at(tree, at);
                     for size in [(200, 60), (41, 13)] {
                         for view in [PanZoom::fit(), zoomed] {
                             let (all, thinned, lines) =

@@ -9,8 +9,8 @@ use ratatui::style::{Color, Stylize};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Widget};
 
-use crate::record::{color, num};
-use crate::terms::{Term, false_color};
+use raystep_engine::record::{color, num};
+use raystep_engine::terms::{Term, false_color};
 
 use super::pane_block;
 use crate::tui::view::image_grid::ImageGrid;

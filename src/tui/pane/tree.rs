@@ -13,13 +13,13 @@ use ratatui::widgets::Paragraph;
 use super::pane_block;
 use std::collections::BTreeSet;
 
-use crate::divergence::RayStatus;
-use crate::record::{NodeId, RayTree};
 use crate::tui::view::tree::{
     LogLabel, Row, row_line, scroll_offset, selected_row, selected_style,
 };
 use crate::tui::view::your_rays::{RowMarks, legend, mark, only_yours_lines};
 use crate::tui::{App, Pane};
+use raystep_engine::record::{NodeId, RayTree};
+use raystep_tools::divergence::RayStatus;
 
 pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let pixel = app.pixel();

@@ -7,7 +7,7 @@
 use ratatui::style::{Color as TermColor, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use crate::record::{self, About, Children, NodeId, RayTree, node_lines};
+use raystep_engine::record::{self, About, Children, NodeId, RayTree, node_lines};
 
 use super::tree::{rgb_swatch, swatch};
 

@@ -2,7 +2,7 @@
 //! blocked (or partly blocked) shadow ray, a total internal reflection, a ray cut by the depth
 //! limit, a hit on the breakpoint object, or a near miss (polygon or sphere); and the go-to prompt's `X,Y`.
 
-use crate::record::{EventKind, RayTree};
+use raystep_engine::record::{EventKind, RayTree};
 
 use super::stepper;
 use crate::tui::action::{Breakpoint, Find};

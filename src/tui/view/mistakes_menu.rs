@@ -5,8 +5,8 @@
 use ratatui::style::{Modifier, Style, Stylize};
 use ratatui::text::{Line, Span};
 
-use crate::compare::Ranked;
-use crate::mistakes::{Mistake, Mistakes};
+use raystep_model::mistakes::{Mistake, Mistakes};
+use raystep_tools::compare::Ranked;
 
 /// "#1 explains 100%": where the comparison ranks `mistake`, if it does.
 pub(crate) fn rank_label(ranked: &[Ranked], mistake: Mistake) -> Option<String> {

@@ -6,7 +6,7 @@
 
 use glam::DVec2;
 
-use crate::diagram::magnified_centre;
+use raystep_tools::diagram::magnified_centre;
 
 /// How far the diagram is panned and zoomed from the fitted window.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -3,9 +3,8 @@
 //! parent's `ChildReturned` event is where it returns. Every function takes
 //! the current event index and returns the new one; none changes the tree.
 
-use crate::diagram::{CurrentRay, Progress};
-use crate::record::{EventKind, RayTree};
 use crate::tui::action::{Breakpoint, Step};
+use raystep_engine::record::{EventKind, RayTree};
 
 fn last(tree: &RayTree) -> usize {
     tree.events.len().saturating_sub(1)
@@ -78,34 +77,10 @@ pub(crate) fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<u
     })
 }
 
-/// How far the step-through at event `current` has come, for the diagram:
-/// the current event's ray is its node's, or its shadow ray when the event
-/// is about a light.
-pub(crate) fn progress(tree: &RayTree, current: usize) -> Progress {
-    let ray = tree.events.get(current).map(|e| CurrentRay {
-        node: e.node,
-        light: event_light(&e.kind),
-    });
-    Progress {
-        reached: current,
-        current: ray,
-    }
-}
-
-/// The light an event is about, if any.
-pub(crate) fn event_light(kind: &EventKind) -> Option<usize> {
-    match kind {
-        EventKind::ShadowCast { light }
-        | EventKind::Blocker { light, .. }
-        | EventKind::Light { light, .. } => Some(*light),
-        _ => None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_scenes::ball;
+    use raystep_engine::test_scenes::ball;
 
     #[test]
     fn steps_move_through_the_ball_pixels_events() {
@@ -140,7 +115,7 @@ mod tests {
         assert_eq!(cast_event(&tree, 1), Some(5));
         assert_eq!(light_event(&tree, 0, 0), Some(3), "the shadow ray first");
         assert_eq!(light_event(&tree, 1, 0), None, "r1 missed: no lights");
-        assert_eq!(event_light(&tree.events[4].kind), Some(0));
-        assert_eq!(event_light(&tree.events[5].kind), None);
+        assert_eq!(tree.events[4].kind.light(), Some(0));
+        assert_eq!(tree.events[5].kind.light(), None);
     }
 }

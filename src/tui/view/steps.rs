@@ -4,9 +4,11 @@
 use ratatui::style::{Color as TermColor, Style};
 use ratatui::text::{Line, Span};
 
-use crate::math::Color;
-use crate::record::{Event, EventKind, RayTree, color, kind_name, not_cast_line, num, root};
-use crate::scene::Scene;
+use raystep_engine::record::{
+    Event, EventKind, RayTree, color, kind_name, not_cast_line, num, root,
+};
+use raystep_engine::scene::Scene;
+use raystep_model::math::Color;
 
 use super::tree::{light_label, swatch};
 
@@ -165,7 +167,7 @@ pub(crate) fn lines(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_scenes::ball;
+    use raystep_engine::test_scenes::ball;
 
     #[test]
     fn the_current_event_is_centred_until_an_end_is_reached() {

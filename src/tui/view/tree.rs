@@ -7,10 +7,8 @@ use std::collections::BTreeSet;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use crate::math::to_rgb8;
-use crate::record::{LightRecord, NodeId, RayTree, kind_name, num};
-
-use super::stepper::event_light;
+use raystep_engine::record::{LightRecord, NodeId, RayTree, kind_name, num};
+use raystep_model::math::to_rgb8;
 
 /// What a row shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -68,7 +66,7 @@ fn push_rows(
 pub(crate) fn selected_row(tree: &RayTree, rows: &[Row], at: usize) -> Option<usize> {
     let event = tree.events.get(at)?;
     let node = event.node;
-    if let Some(light) = event_light(&event.kind) {
+    if let Some(light) = event.kind.light() {
         let index = tree.nodes[node]
             .lights
             .iter()
@@ -108,7 +106,7 @@ pub(crate) fn path_factor(tree: &RayTree, id: NodeId) -> f64 {
 }
 
 /// `part` (already scaled into the pixel) as a share of the pixel's colour.
-fn share(tree: &RayTree, part: crate::math::Color) -> String {
+fn share(tree: &RayTree, part: raystep_model::math::Color) -> String {
     let total = tree.color().element_sum();
     if total <= 1e-12 {
         "  -".into()
@@ -118,7 +116,7 @@ fn share(tree: &RayTree, part: crate::math::Color) -> String {
 }
 
 /// A colour as the pixel shows it: two full blocks in its rgb8.
-pub(crate) fn swatch(color: crate::math::Color) -> Span<'static> {
+pub(crate) fn swatch(color: raystep_model::math::Color) -> Span<'static> {
     rgb_swatch(to_rgb8(color))
 }
 
@@ -126,7 +124,7 @@ pub(crate) fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
     Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
 }
 
-pub(crate) use crate::record::light_label;
+pub(crate) use raystep_engine::record::light_label;
 
 fn light_text(light: &LightRecord) -> String {
     let name = light_label(&light.light);
@@ -224,7 +222,7 @@ pub(crate) fn selected_style(focused: bool) -> Style {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_scenes::ball;
+    use raystep_engine::test_scenes::ball;
 
     #[test]
     fn rows_list_a_ray_its_lights_then_its_children() {

@@ -8,12 +8,14 @@ use std::collections::HashMap;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use crate::divergence::{Check, Divergence, Field, PixelReport, RayStatus, Value, value_text};
-use crate::raylog::{Hit, RayPath, Step, rays_with_nodes};
-use crate::record::{self, EventKind, NodeId, RayTree};
-use crate::scene::Scene;
+use raystep_engine::record::{self, EventKind, NodeId, RayTree};
+use raystep_engine::scene::Scene;
+use raystep_tools::divergence::{
+    Check, Divergence, Field, PixelReport, RayStatus, Value, value_text,
+};
+use raystep_tools::raylog::{Hit, RayPath, Step, rays_with_nodes};
 
-use super::stepper::{cast_event, event_light, light_event};
+use super::stepper::{cast_event, light_event};
 use super::tree::RowKind;
 
 /// A ray's mark in the tree pane and its colour.
@@ -133,7 +135,7 @@ pub(crate) fn only_yours_lines(report: &PixelReport) -> Vec<(String, bool)> {
 /// event is about a light its node cast one to, else the event's node.
 pub(crate) fn selected_path(tree: &RayTree, current: usize) -> Option<RayPath> {
     let event = tree.events.get(current)?;
-    let light = event_light(&event.kind);
+    let light = event.kind.light();
     let rays = rays_with_nodes(tree);
     let shadow = rays.iter().find(|(ray, node)| {
         *node == event.node
@@ -462,9 +464,9 @@ fn divergence_lines(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::divergence::{OurRays, Tolerance, compare_pixel};
-    use crate::raylog::rays_of;
-    use crate::test_scenes::ball;
+    use raystep_engine::test_scenes::ball;
+    use raystep_tools::divergence::{OurRays, Tolerance, compare_pixel};
+    use raystep_tools::raylog::rays_of;
 
     /// The ball's pixel logged as ours, with the reflected ray's direction
     /// negated: r1 (P/R) differs, r0 and the lamp's shadow ray match.

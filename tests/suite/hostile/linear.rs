@@ -16,8 +16,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use raystep::record::record_pixel;
 use raystep::tui::{Action, App, Step};
+use raystep_engine::record::record_pixel;
 
 use crate::support::debugger::{chars, screen};
 

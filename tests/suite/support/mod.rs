@@ -54,10 +54,10 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use glam::DVec3;
-use raystep::math::Ray;
-use raystep::record::{RayTree, TreeRecorder};
-use raystep::scene::{Scene, parse};
-use raystep::trace::trace;
+use raystep_engine::record::{RayTree, TreeRecorder};
+use raystep_engine::scene::{Scene, parse};
+use raystep_engine::trace::trace;
+use raystep_model::math::Ray;
 
 pub fn scene(text: &str) -> Scene {
     parse(Path::new("test.toml"), text).unwrap()
@@ -65,7 +65,7 @@ pub fn scene(text: &str) -> Scene {
 
 /// The scene file at `path`, at `size` if given (its field of view kept).
 pub fn scene_at(path: &Path, size: Option<(u32, u32)>) -> Scene {
-    let scene = raystep::scene::load(path).unwrap();
+    let scene = raystep_engine::scene::load(path).unwrap();
     match size {
         Some((w, h)) => scene.with_size(w, h).unwrap(),
         None => scene,

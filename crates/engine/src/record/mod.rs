@@ -1,0 +1,30 @@
+//! Recording one pixel: the ray tree with every term, the execution-ordered
+//! event list, and their text, JSON and Graphviz forms.
+
+mod diff;
+mod dot;
+mod explain;
+mod finite;
+mod json_stream;
+mod lines;
+mod numbers;
+mod ray_tree;
+mod shaping;
+mod sources;
+mod text;
+mod tree_recorder;
+
+pub use diff::diff;
+pub use dot::dot;
+pub use explain::{Said, Told, explain_lines};
+pub use explain::{explain, explain_unwrapped};
+pub(crate) use finite::{NonFinite, check_finite};
+pub use json_stream::write_json;
+pub use lines::{About, Line};
+pub use numbers::{color, count, num, precise, root, vector};
+pub use ray_tree::{Event, EventKind, Node, RayTree};
+pub use ray_tree::{LightRecord, NearMiss, NodeId};
+pub use shaping::{place, reach, shaping_events};
+pub use text::{Children, node_lines, text};
+pub use text::{kind_name, light_label, not_cast_line, ray_header};
+pub use tree_recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};

@@ -1,0 +1,132 @@
+//! Objects' outlines in the diagram's plane: where the plane cuts them.
+
+use glam::{DVec2, DVec3};
+
+use super::projection::Projection;
+use raystep_model::shapes::Shape;
+
+/// An object's outline in the plane.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outline {
+    Circle {
+        center: DVec2,
+        radius: f64,
+    },
+    /// An infinite line a·(x, y) + c = 0 (a plane cut by the view plane).
+    Line {
+        normal: DVec2,
+        c: f64,
+    },
+    Polyline(Vec<DVec2>),
+}
+
+impl Outline {
+    /// The points that bound the outline, for fitting the view: a circle's
+    /// box corners, a polyline's points; none for an infinite line, which is
+    /// drawn across whatever the view holds.
+    pub(crate) fn points(&self) -> Vec<DVec2> {
+        match self {
+            Outline::Circle { center, radius } => {
+                vec![
+                    *center - DVec2::splat(*radius),
+                    *center + DVec2::splat(*radius),
+                ]
+            }
+            Outline::Polyline(points) => points.clone(),
+            Outline::Line { .. } => Vec::new(),
+        }
+    }
+}
+
+/// The outline of one shape: spheres as circles, polygons as their edges,
+/// cones as their two side lines and end caps, planes as the line where they
+/// cut the view plane (none when parallel to it).
+pub(crate) fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
+    let p = |v: DVec3| projection.project(v);
+    match shape {
+        Shape::Sphere(s) => vec![Outline::Circle {
+            center: p(s.center),
+            radius: s.radius,
+        }],
+        Shape::Plane(plane) => {
+            let normal = DVec2::new(
+                plane.normal.dot(projection.right),
+                plane.normal.dot(projection.up),
+            );
+            let c = plane.normal.dot(projection.origin) + plane.d;
+            if normal.length() < 1e-9 {
+                vec![]
+            } else {
+                vec![Outline::Line { normal, c }]
+            }
+        }
+        Shape::Polygon(polygon) => vec![closed(polygon.vertices.iter().map(|&v| p(v)).collect())],
+        Shape::Patch(patch) => vec![closed(
+            patch.polygon.vertices.iter().map(|&v| p(v)).collect(),
+        )],
+        Shape::Cone(cone) => {
+            let (base, apex) = (p(cone.base), p(cone.apex));
+            let axis = apex - base;
+            if axis.length() < 1e-9 {
+                let r = cone.base_radius.max(cone.apex_radius);
+                return vec![Outline::Circle {
+                    center: base,
+                    radius: r,
+                }];
+            }
+            let side = axis.perp().normalize();
+            let (b0, b1) = (
+                base + side * cone.base_radius,
+                base - side * cone.base_radius,
+            );
+            let (a0, a1) = (
+                apex + side * cone.apex_radius,
+                apex - side * cone.apex_radius,
+            );
+            vec![Outline::Polyline(vec![b0, a0, a1, b1, b0])]
+        }
+    }
+}
+
+fn closed(mut points: Vec<DVec2>) -> Outline {
+    if let Some(&first) = points.first() {
+        points.push(first);
+    }
+    Outline::Polyline(points)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagram::DiagramPlane;
+    use raystep_engine::test_scenes::ball;
+
+    #[test]
+    fn a_sphere_is_a_circle_and_a_plane_its_cut() {
+        let (scene, tree) = ball();
+        let top = Projection::new(DiagramPlane::Top, &scene, &tree);
+        // The centre (0, 0, 0) is 1 ahead of the hit point: up in the top view.
+        assert_eq!(
+            outline(&scene.objects[0].shape, &top),
+            [Outline::Circle {
+                center: DVec2::new(0.0, 1.0),
+                radius: 1.0
+            }]
+        );
+        // The floor y = -1 (y + 1 = 0) lies flat in the top view: no line;
+        // from the right it is the line y + 1 = 0 (c = N·origin + d = 0 + 1).
+        let floor = Shape::Plane(raystep_model::shapes::Plane {
+            normal: DVec3::Y,
+            d: 1.0,
+        });
+        assert_eq!(outline(&floor, &top), []);
+        let side = Projection::new(DiagramPlane::Side, &scene, &tree);
+        assert_eq!(
+            outline(&floor, &side),
+            [Outline::Line {
+                normal: DVec2::new(0.0, 1.0),
+                c: 1.0
+            }]
+        );
+    }
+}

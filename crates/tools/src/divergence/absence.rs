@@ -1,0 +1,149 @@
+//! Why a ray is in one tree and not the other: the rule of MODEL that
+//! casts it, or keeps it from being cast, with our numbers.
+
+use super::ours::OurRays;
+use crate::raylog::{RayPath, Step};
+use raystep_engine::record::{Node, num, precise};
+use raystep_engine::scene::Scene;
+use raystep_engine::trace::{PruneRule, RayKind};
+
+/// Why our tree has no ray at `path` (a ray only in yours).
+pub(crate) fn why_not_ours(scene: &Scene, ours: &OurRays, path: &RayPath) -> String {
+    let mut parent = path.clone();
+    let Some(step) = parent.steps.pop() else {
+        return "MODEL §2: one primary ray per pixel".into();
+    };
+    let Some(node) = ours.node_at(&parent) else {
+        return format!("ours never cast its parent {parent}: it follows from there");
+    };
+    let Some(hit) = &node.hit else {
+        return format!(
+            "our {parent} hit nothing, and a ray that misses spawns nothing (MODEL §5)"
+        );
+    };
+    match step {
+        Step::Shadow(i) => match node.lights.iter().find(|l| l.light_index == i) {
+            Some(light) if light.at_point => format!(
+                "MODEL §4: light {i} is within EPS of the hit point (d_L = {}): no shadow ray",
+                precise(light.distance)
+            ),
+            Some(light) if light.faces_away => format!(
+                "MODEL §4: light {i} is behind the surface (N·L = {} ≤ 0): no shadow ray is cast to it",
+                num(light.n_dot_l)
+            ),
+            _ => format!("MODEL §4: ours cast no shadow ray to light {i} here"),
+        },
+        Step::Reflected | Step::Transmitted => {
+            let kind = if step == Step::Reflected {
+                RayKind::Reflected
+            } else {
+                RayKind::Transmitted
+            };
+            let reflects = scene.material_of(hit.object_index).reflects;
+            secondary_not_cast(scene, node, kind, hit.factors.ks, hit.factors.kt, reflects)
+        }
+    }
+}
+
+fn secondary_not_cast(
+    scene: &Scene,
+    node: &Node,
+    kind: RayKind,
+    ks: f64,
+    kt: f64,
+    reflects: bool,
+) -> String {
+    let max_depth = scene.settings.max_depth;
+    if node.at_depth_limit() || node.depth >= max_depth {
+        return format!(
+            "MODEL §5: a hit at depth k spawns secondary rays only if k < max_depth; \
+             this hit is at depth {} and max_depth is {max_depth}",
+            node.depth
+        );
+    }
+    if let Some(not_cast) = node.not_cast.iter().find(|n| n.kind == kind) {
+        return match not_cast.rule {
+            PruneRule::MinWeight { min_weight } => format!(
+                "MODEL §5: its accumulated weight {} is below min_weight {}: not cast",
+                precise(not_cast.path_weight),
+                precise(min_weight)
+            ),
+            PruneRule::MaxRays { max_rays } => format!(
+                "MODEL §5: the pixel's tree already holds max_rays = {max_rays} rays: not cast"
+            ),
+        };
+    }
+    match kind {
+        RayKind::Transmitted if node.tir() => {
+            let k = node.refraction.map_or(0.0, |r| r.k);
+            format!(
+                "MODEL §5: total internal reflection (k = 1 − η²(1 − cos_i²) = {} < 0): \
+                 no transmitted ray; k_t moves to the reflected ray",
+                num(k)
+            )
+        }
+        RayKind::Transmitted if kt == 0.0 => {
+            "MODEL §5: the material has k_t = 0: no transmitted ray".into()
+        }
+        RayKind::Reflected if ks == 0.0 => {
+            "MODEL §5: a reflected ray is spawned when k_s > 0 or on total internal \
+             reflection; here k_s = 0 and no TIR"
+                .into()
+        }
+        RayKind::Reflected if !reflects => {
+            "MODEL §5: the material has reflect = false (MTL illum 0 to 2): k_s gives \
+             highlights but no mirror ray"
+                .into()
+        }
+        _ => "MODEL §5: a switch of the scene keeps it from being cast".into(),
+    }
+}
+
+/// Why our tree casts ray `ray`, which your log does not have.
+pub(crate) fn why_ours(scene: &Scene, ours: &OurRays, ray: usize) -> String {
+    let path = &ours.rays()[ray].path;
+    let max_depth = scene.settings.max_depth;
+    match path.steps.last() {
+        None => "MODEL §2: one primary ray per pixel, through its centre".into(),
+        Some(Step::Shadow(i)) => match ours.light(ray) {
+            Some(light) => format!(
+                "MODEL §4: a shadow ray to each light in front of the surface; light {i} is \
+                 in front (N·L = {} > 0)",
+                num(light.n_dot_l)
+            ),
+            None => format!("MODEL §4: a shadow ray to light {i}"),
+        },
+        Some(Step::Reflected) => {
+            let parent = ours.source(ray);
+            let (ks, depth) = parent.map_or((0.0, 0), |p| {
+                (p.hit.as_ref().map_or(0.0, |h| h.factors.ks), p.depth)
+            });
+            if parent.is_some_and(Node::tir) {
+                format!(
+                    "MODEL §5: total internal reflection at depth {depth} < max_depth {max_depth} \
+                     spawns a reflected ray of weight k_s + k_t"
+                )
+            } else {
+                format!(
+                    "MODEL §5: a hit with k_s = {} > 0 at depth {depth} < max_depth {max_depth} \
+                     spawns a reflected ray",
+                    num(ks)
+                )
+            }
+        }
+        Some(Step::Transmitted) => {
+            let parent = ours.source(ray);
+            let depth = parent.map_or(0, |p| p.depth);
+            let kt = parent
+                .and_then(|p| p.hit.as_ref())
+                .map_or(0.0, |h| h.factors.kt);
+            let k = parent.and_then(|p| p.refraction).map_or(0.0, |r| r.k);
+            format!(
+                "MODEL §5: a hit with k_t = {} > 0 at depth {depth} < max_depth {max_depth} \
+                 spawns a transmitted ray when k = 1 − η²(1 − cos_i²) ≥ 0; here k = {}",
+                num(kt),
+                num(k)
+            )
+        }
+    }
+}

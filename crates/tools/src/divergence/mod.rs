@@ -1,0 +1,181 @@
+//! `compare --rays`: a student's ray log beside raystep's own trees, pixel
+//! by pixel, down to the first ray and the first number where the two
+//! tracers part (docs/RAYLOG.md). The log streams: the first pixels are
+//! kept whole and reported in full, the rest are compared ray by ray as
+//! they come and only counted.
+
+mod absence;
+mod checks;
+mod kind;
+mod meaning;
+mod moment;
+mod ours;
+mod pixel_report;
+mod tolerance;
+mod words;
+
+use std::collections::HashMap;
+use std::io::BufRead;
+
+pub use checks::{Check, Value};
+pub use kind::Kind;
+pub use moment::Field;
+pub use ours::OurRays;
+pub use pixel_report::compare_pixel;
+pub use pixel_report::{AlignedRay, Divergence, PixelReport, RayStatus, Unpaired};
+pub use tolerance::Tolerance;
+pub use words::value_text;
+pub use words::{json, text};
+
+use crate::raylog::{LoggedRay, RaylogError, RaylogReader};
+use raystep_engine::scene::Scene;
+
+/// The pixels reported in full; the rest are counted.
+pub const PIXELS_SHOWN: usize = 64;
+
+/// Our trees kept for the counted pixels: a log usually holds a pixel's
+/// rays together, so a few suffice; out of order, a tree is recorded again.
+const TREES_KEPT: usize = 8;
+
+/// Everything `compare --rays` found.
+pub struct LogComparison {
+    /// The first `PIXELS_SHOWN` pixels of the log, in the order they first
+    /// appear in it.
+    pub pixels: Vec<PixelReport>,
+    /// Every pixel of the log, and those whose rays all match ours.
+    pub pixel_count: usize,
+    pub matching: usize,
+    pub rays_read: usize,
+    pub unknown_keys: Vec<String>,
+    pub tolerance: Tolerance,
+}
+
+/// A counted pixel's rays so far.
+#[derive(Default)]
+struct Tally {
+    /// Our rays of the pixel, and how many of them the log has.
+    ours: usize,
+    logged: usize,
+    differs: bool,
+}
+
+/// The pixels past the first `PIXELS_SHOWN`, compared ray by ray as they
+/// come: on a thread of its own, beside the one reading the log.
+struct Counter<'a> {
+    scene: &'a Scene,
+    tolerance: Tolerance,
+    tallies: HashMap<(u32, u32), Tally>,
+    trees: Vec<OurRays>,
+}
+
+impl Counter<'_> {
+    fn count(&mut self, ray: &LoggedRay) {
+        let pixel = ray.pixel;
+        let at = match self.trees.iter().position(|t| t.tree.pixel == pixel) {
+            Some(at) => at,
+            None => {
+                if self.trees.len() == TREES_KEPT {
+                    self.trees.remove(0);
+                }
+                self.trees
+                    .push(OurRays::record(self.scene, &self.scene.settings, pixel));
+                self.trees.len() - 1
+            }
+        };
+        let ours = &self.trees[at];
+        let tally = self.tallies.entry(pixel).or_default();
+        tally.ours = ours.rays().len();
+        match ours.find(&ray.path) {
+            Some(found) => {
+                tally.logged += 1;
+                tally.differs |= !checks::all_agree(ray, &ours.rays()[found], &self.tolerance);
+            }
+            None => tally.differs = true,
+        }
+    }
+
+    fn matching(&self) -> usize {
+        self.tallies
+            .values()
+            .filter(|t| !t.differs && t.logged == t.ours)
+            .count()
+    }
+}
+
+/// Rays handed to the counting thread at a time, and batches in flight:
+/// enough to keep both threads busy, few enough to bound the memory.
+const BATCH: usize = 4096;
+const BATCHES_IN_FLIGHT: usize = 4;
+
+/// Reads the whole log and compares it with `scene` as written.
+pub fn compare_log<R: BufRead>(
+    scene: &Scene,
+    mut reader: RaylogReader<R>,
+    tolerance: Tolerance,
+) -> Result<LogComparison, RaylogError> {
+    let mut shown: Vec<((u32, u32), Vec<LoggedRay>)> = Vec::new();
+    let mut shown_at: HashMap<(u32, u32), usize> = HashMap::new();
+    let mut rays_read = 0;
+    let (read, counter) = std::thread::scope(|threads| {
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<LoggedRay>>(BATCHES_IN_FLIGHT);
+        let counting = threads.spawn(move || {
+            let mut counter = Counter {
+                scene,
+                tolerance,
+                tallies: HashMap::new(),
+                trees: Vec::new(),
+            };
+            for batch in receive {
+                for ray in &batch {
+                    counter.count(ray);
+                }
+            }
+            counter
+        });
+        let mut batch = Vec::with_capacity(BATCH);
+        let read = (|| {
+            for item in reader.by_ref() {
+                let (_, ray) = item?;
+                rays_read += 1;
+                if let Some(&at) = shown_at.get(&ray.pixel) {
+                    shown[at].1.push(ray);
+                } else if shown.len() < PIXELS_SHOWN {
+                    // No pixel is counted before the shown ones are all found.
+                    shown_at.insert(ray.pixel, shown.len());
+                    shown.push((ray.pixel, vec![ray]));
+                } else {
+                    batch.push(ray);
+                    if batch.len() == BATCH {
+                        // The counter only stops when this thread does.
+                        let _ = send.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
+                    }
+                }
+            }
+            Ok(())
+        })();
+        if read.is_ok() && !batch.is_empty() {
+            let _ = send.send(batch);
+        }
+        drop(send);
+        let counter = counting.join().expect("the counting thread does not panic");
+        (read, counter)
+    });
+    read?;
+    let unknown_keys = reader.unknown_keys().iter().cloned().collect();
+    let pixels: Vec<PixelReport> = shown
+        .into_iter()
+        .map(|(pixel, yours)| {
+            let ours = OurRays::record(scene, &scene.settings, pixel);
+            compare_pixel(scene, yours, &ours, &tolerance)
+        })
+        .collect();
+    let matching = pixels.iter().filter(|p| p.matches).count() + counter.matching();
+    Ok(LogComparison {
+        pixel_count: pixels.len() + counter.tallies.len(),
+        pixels,
+        matching,
+        rays_read,
+        unknown_keys,
+        tolerance,
+    })
+}

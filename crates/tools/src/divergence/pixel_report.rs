@@ -1,0 +1,262 @@
+//! One pixel's rays beside ours: aligned by path, every difference placed
+//! in the order the trace makes it, the first one explained, the
+//! catalogue's mistakes tried on the whole tree.
+
+use std::collections::HashMap;
+
+use super::absence::{why_not_ours, why_ours};
+use super::checks::{Check, Value, checks};
+use super::kind::{Kind, classify};
+use super::meaning::meaning;
+use super::moment::{Field, cast_order, in_trace_order};
+use super::ours::OurRays;
+use super::tolerance::Tolerance;
+use crate::raylog::{LoggedRay, RayPath};
+use raystep_engine::scene::{Scene, Settings};
+use raystep_model::mistakes::{Mistake, Mistakes};
+
+/// A ray of either tree, with the other tree's ray of the same path.
+#[derive(Clone, Debug)]
+pub struct AlignedRay {
+    pub path: RayPath,
+    /// Its index among your logged rays of the pixel.
+    pub yours: Option<usize>,
+    /// Its index among our rays (`OurRays::rays`).
+    pub ours: Option<usize>,
+    /// Each field you logged, against ours; empty unless both cast it.
+    pub checks: Vec<Check>,
+}
+
+/// How a ray of the pixel compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayStatus {
+    Matches,
+    Differs,
+    OnlyYours,
+    OnlyOurs,
+}
+
+impl AlignedRay {
+    pub fn status(&self) -> RayStatus {
+        match (self.yours, self.ours) {
+            (Some(_), None) => RayStatus::OnlyYours,
+            (None, _) => RayStatus::OnlyOurs,
+            _ if self.checks.iter().all(|c| c.agrees) => RayStatus::Matches,
+            _ => RayStatus::Differs,
+        }
+    }
+}
+
+/// Your rays of one pixel and ours, in the order the tracer casts them.
+pub(crate) fn align(yours: &[LoggedRay], ours: &OurRays, tolerance: &Tolerance) -> Vec<AlignedRay> {
+    let mut by_path: HashMap<&RayPath, usize> = HashMap::new();
+    for (i, ray) in yours.iter().enumerate() {
+        by_path.insert(&ray.path, i);
+    }
+    let mut aligned: Vec<AlignedRay> = ours
+        .rays()
+        .iter()
+        .enumerate()
+        .map(|(o, ray)| {
+            let y = by_path.remove(&ray.path);
+            AlignedRay {
+                path: ray.path.clone(),
+                yours: y,
+                ours: Some(o),
+                checks: y.map_or_else(Vec::new, |y| checks(&yours[y], ray, tolerance)),
+            }
+        })
+        .collect();
+    aligned.extend(by_path.into_iter().map(|(path, y)| AlignedRay {
+        path: path.clone(),
+        yours: Some(y),
+        ours: None,
+        checks: Vec::new(),
+    }));
+    aligned.sort_by(|a, b| cast_order(&a.path, &b.path));
+    aligned
+}
+
+/// The first place your trace parts from ours.
+#[derive(Clone, Debug)]
+pub struct Divergence {
+    pub path: RayPath,
+    pub field: Field,
+    pub yours: Value,
+    pub ours: Option<Value>,
+    pub kind: Kind,
+    /// The kind in words, with the numbers that show it.
+    pub words: String,
+    /// The MODEL formula behind our value, with our numbers.
+    pub meaning: Vec<String>,
+}
+
+/// A ray in one tree only, and the rule of MODEL that decides it.
+#[derive(Clone, Debug)]
+pub struct Unpaired {
+    pub path: RayPath,
+    pub rule: String,
+}
+
+/// One pixel of the log, compared in full.
+#[derive(Clone, Debug)]
+pub struct PixelReport {
+    pub pixel: (u32, u32),
+    /// Every ray and every logged number agree, and no ray is in one tree only.
+    pub matches: bool,
+    pub first_divergence: Option<Divergence>,
+    /// How many differences (numbers, and rays in one tree only) come after
+    /// the first: they follow from it.
+    pub later_differences: usize,
+    pub only_yours: Vec<Unpaired>,
+    pub only_ours: Vec<Unpaired>,
+    /// The catalogue mistakes whose tree is your log, within the tolerance.
+    pub mistakes: Vec<Mistake>,
+    /// Your rays as logged, and both trees aligned.
+    pub yours: Vec<LoggedRay>,
+    pub aligned: Vec<AlignedRay>,
+    pub rays_ours: usize,
+}
+
+/// A difference's place: the ray (aligned) and the field.
+struct Difference<'a> {
+    ray: &'a AlignedRay,
+    check: Option<&'a Check>,
+}
+
+impl Difference<'_> {
+    fn field(&self) -> Field {
+        self.check.map_or(Field::Ray, |c| c.field)
+    }
+}
+
+fn differences(aligned: &[AlignedRay]) -> Vec<Difference<'_>> {
+    let mut found: Vec<Difference> = Vec::new();
+    for ray in aligned {
+        match ray.status() {
+            RayStatus::OnlyYours | RayStatus::OnlyOurs => {
+                found.push(Difference { ray, check: None })
+            }
+            _ => found.extend(
+                ray.checks
+                    .iter()
+                    .filter(|c| !c.agrees)
+                    .map(|check| Difference {
+                        ray,
+                        check: Some(check),
+                    }),
+            ),
+        }
+    }
+    found.sort_by(|a, b| in_trace_order((&a.ray.path, a.field()), (&b.ray.path, b.field())));
+    found
+}
+
+/// Compares your rays of one pixel with `ours`, its reference tree, and
+/// when they differ tries the catalogue.
+pub fn compare_pixel(
+    scene: &Scene,
+    yours: Vec<LoggedRay>,
+    ours: &OurRays,
+    tolerance: &Tolerance,
+) -> PixelReport {
+    let aligned = align(&yours, ours, tolerance);
+    let found = differences(&aligned);
+    let first_divergence = found.first().map(|d| divergence(scene, ours, d));
+    let unpaired = |status: RayStatus, rule: &dyn Fn(&AlignedRay) -> String| -> Vec<Unpaired> {
+        aligned
+            .iter()
+            .filter(|a| a.status() == status)
+            .map(|a| Unpaired {
+                path: a.path.clone(),
+                rule: rule(a),
+            })
+            .collect()
+    };
+    let only_yours = unpaired(RayStatus::OnlyYours, &|a| {
+        why_not_ours(scene, ours, &a.path)
+    });
+    let only_ours = unpaired(RayStatus::OnlyOurs, &|a| {
+        why_ours(scene, ours, a.ours.unwrap_or(0))
+    });
+    let matches = found.is_empty();
+    let later_differences = found.len().saturating_sub(1);
+    let mistakes = if matches {
+        Vec::new()
+    } else {
+        catalogue(scene, ours.tree.pixel, &yours, tolerance)
+    };
+    PixelReport {
+        pixel: ours.tree.pixel,
+        matches,
+        first_divergence,
+        later_differences,
+        only_yours,
+        only_ours,
+        mistakes,
+        rays_ours: ours.rays().len(),
+        yours,
+        aligned,
+    }
+}
+
+fn divergence(scene: &Scene, ours: &OurRays, d: &Difference) -> Divergence {
+    let path = d.ray.path.clone();
+    match (d.check, d.ray.ours) {
+        (Some(check), Some(ray)) => {
+            let (kind, words) = classify(scene, ours, ray, check);
+            Divergence {
+                path,
+                field: check.field,
+                yours: check.yours,
+                ours: check.ours,
+                kind,
+                words,
+                meaning: meaning(scene, ours, ray, check.field),
+            }
+        }
+        (_, Some(ray)) => Divergence {
+            path,
+            field: Field::Ray,
+            yours: Value::Cast(false),
+            ours: Some(Value::Cast(true)),
+            kind: Kind::OnlyOurs,
+            words: "your log does not have this ray: you never cast it".into(),
+            meaning: vec![why_ours(scene, ours, ray)],
+        },
+        (_, None) => Divergence {
+            words: "ours never casts this ray".into(),
+            meaning: vec![why_not_ours(scene, ours, &path)],
+            path,
+            field: Field::Ray,
+            yours: Value::Cast(true),
+            ours: Some(Value::Cast(false)),
+            kind: Kind::OnlyYours,
+        },
+    }
+}
+
+/// The catalogue mistakes a log can show: those of the bytes act after
+/// every ray is traced, so no ray shows them.
+pub(crate) fn traceable_mistakes() -> impl Iterator<Item = Mistake> {
+    Mistake::ALL.into_iter().filter(|m| !m.acts_only_on_bytes())
+}
+
+/// The mistakes under which our tree of `pixel` is your log.
+fn catalogue(
+    scene: &Scene,
+    pixel: (u32, u32),
+    yours: &[LoggedRay],
+    tolerance: &Tolerance,
+) -> Vec<Mistake> {
+    traceable_mistakes()
+        .filter(|&mistake| {
+            let settings = Settings {
+                mistakes: Mistakes::from_iter([mistake]),
+                ..scene.settings
+            };
+            let ours = OurRays::record(scene, &settings, pixel);
+            differences(&align(yours, &ours, tolerance)).is_empty()
+        })
+        .collect()
+}

@@ -1,0 +1,231 @@
+//! The report of `compare --rays`, for people (text) and for graders
+//! (JSON, whose keys are a contract: docs/RAYLOG.md).
+
+use std::fmt::Write;
+
+use serde_json::{Value as Json, json as object};
+
+use super::checks::Value;
+use super::meaning::{fine, fine3};
+use super::pixel_report::{PixelReport, Unpaired};
+use super::{LogComparison, PIXELS_SHOWN};
+use crate::raylog::Hit;
+use raystep_engine::record::count;
+
+/// The report in words. `image_matches` is whether the image compared
+/// beside the log matched, when one was given.
+pub fn text(
+    comparison: &LogComparison,
+    log: &str,
+    scene: &str,
+    image_matches: Option<bool>,
+) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "Your rays ({log}) beside raystep's ({scene}); tolerance: {}.",
+        comparison.tolerance
+    );
+    for pixel in &comparison.pixels {
+        out.push('\n');
+        pixel_text(&mut out, pixel);
+    }
+    let more = comparison.pixel_count - comparison.pixels.len();
+    out.push('\n');
+    let _ = write!(
+        out,
+        "{} logged ({}), {} matching ours",
+        count(comparison.pixel_count as u64, "pixel", "pixels"),
+        count(comparison.rays_read as u64, "ray", "rays"),
+        comparison.matching
+    );
+    if more > 0 {
+        let _ = write!(
+            out,
+            "; the first {PIXELS_SHOWN} are shown, the other {more} only counted"
+        );
+    }
+    out.push_str(".\n");
+    let all_match = comparison.matching == comparison.pixel_count;
+    if all_match {
+        out.push_str(match image_matches {
+            Some(false) => {
+                "Your rays match ours but your image does not: the difference comes after \
+                 tracing, where a colour becomes a byte (clamping, rounding, gamma, byte-wrap), \
+                 which no ray log shows (MODEL §6).\n"
+            }
+            _ => {
+                "Every logged ray matches. Mistakes of the bytes (gamma, byte-wrap) act after \
+                 tracing and are out of a log's reach: compare your image to check them.\n"
+            }
+        });
+    }
+    if !comparison.unknown_keys.is_empty() {
+        let _ = writeln!(
+            out,
+            "Keys raystep doesn't know, ignored: {}.",
+            comparison.unknown_keys.join(", ")
+        );
+    }
+    out
+}
+
+fn pixel_text(out: &mut String, pixel: &PixelReport) {
+    let (x, y) = pixel.pixel;
+    let rays = format!(
+        "{} logged, {} in ours",
+        count(pixel.yours.len() as u64, "ray", "rays"),
+        pixel.rays_ours
+    );
+    let Some(first) = &pixel.first_divergence else {
+        let _ = writeln!(out, "Pixel ({x}, {y}): matches ours ({rays}).");
+        return;
+    };
+    let _ = writeln!(out, "Pixel ({x}, {y}): differs ({rays}).");
+    let _ = writeln!(out, "  First divergence: {} {}", first.path, first.field);
+    let _ = writeln!(out, "    yours  {}", value_text(Some(first.yours)));
+    let _ = writeln!(out, "    ours   {}", value_text(first.ours));
+    if first.words.is_empty() {
+        let _ = writeln!(out, "    {}", first.kind.name());
+    } else {
+        let _ = writeln!(out, "    {}: {}", first.kind.name(), first.words);
+    }
+    if !first.meaning.is_empty() {
+        let _ = writeln!(out, "  What ours is:");
+        for line in &first.meaning {
+            let _ = writeln!(out, "    {line}");
+        }
+    }
+    if pixel.later_differences > 0 {
+        let _ = writeln!(
+            out,
+            "  {} from the first.",
+            count(
+                pixel.later_differences as u64,
+                "difference after it follows",
+                "differences after it follow"
+            )
+        );
+    }
+    unpaired_text(out, "Only in yours", &pixel.only_yours);
+    unpaired_text(out, "Only in ours", &pixel.only_ours);
+    if pixel.mistakes.is_empty() {
+        out.push_str("  No mistake of raystep's catalogue gives your rays: the first divergence is where to look.\n");
+    } else {
+        let names: Vec<&str> = pixel.mistakes.iter().map(|m| m.name()).collect();
+        let _ = writeln!(
+            out,
+            "  Your rays are raystep's under the catalogue's mistake: {}.",
+            names.join(", ")
+        );
+    }
+}
+
+/// At most this many rays in one tree only are listed per pixel.
+const UNPAIRED_SHOWN: usize = 8;
+
+fn unpaired_text(out: &mut String, title: &str, rays: &[Unpaired]) {
+    if rays.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "  {title}:");
+    for ray in rays.iter().take(UNPAIRED_SHOWN) {
+        let _ = writeln!(out, "    {}: {}", ray.path, ray.rule);
+    }
+    if rays.len() > UNPAIRED_SHOWN {
+        let _ = writeln!(out, "    and {} more", rays.len() - UNPAIRED_SHOWN);
+    }
+}
+
+/// A logged value as the report writes it.
+pub fn value_text(value: Option<Value>) -> String {
+    match value {
+        None => "(none)".into(),
+        Some(Value::Vector(v)) => fine3(v),
+        Some(Value::Number(x)) => fine(x),
+        Some(Value::Hit(Hit::Object(i))) => format!("object {i}"),
+        Some(Value::Hit(Hit::Miss)) => "nothing (a miss)".into(),
+        Some(Value::Cast(true)) => "cast".into(),
+        Some(Value::Cast(false)) => "not cast".into(),
+    }
+}
+
+/// A number for JSON: NaN and the infinities, which JSON lacks, as strings.
+fn number(x: f64) -> Json {
+    if x.is_finite() {
+        object!(x)
+    } else if x.is_nan() {
+        object!("NaN")
+    } else if x > 0.0 {
+        object!("Infinity")
+    } else {
+        object!("-Infinity")
+    }
+}
+
+fn value_json(value: Option<Value>) -> Json {
+    match value {
+        None => Json::Null,
+        Some(Value::Vector(v)) => Json::Array(v.to_array().map(number).to_vec()),
+        Some(Value::Number(x)) => number(x),
+        Some(Value::Hit(Hit::Object(i))) => object!(i),
+        Some(Value::Hit(Hit::Miss)) => Json::Null,
+        Some(Value::Cast(cast)) => object!(cast),
+    }
+}
+
+/// The report as JSON.
+pub fn json(comparison: &LogComparison) -> Json {
+    let pixels: Vec<Json> = comparison.pixels.iter().map(pixel_json).collect();
+    object!({
+        "pixels": pixels,
+        "pixel_count": comparison.pixel_count,
+        "matching_pixels": comparison.matching,
+        "rays_read": comparison.rays_read,
+        "tolerance": {
+            "geometry": comparison.tolerance.geometry,
+            "colour": comparison.tolerance.colour,
+        },
+        "unknown_keys": comparison.unknown_keys,
+    })
+}
+
+fn pixel_json(pixel: &PixelReport) -> Json {
+    let paths =
+        |rays: &[Unpaired]| -> Vec<String> { rays.iter().map(|r| r.path.to_string()).collect() };
+    let rules = |rays: &[Unpaired], side: &str| -> Vec<Json> {
+        rays.iter()
+            .map(|r| object!({"path": r.path.to_string(), "in": side, "rule": r.rule}))
+            .collect()
+    };
+    let first = pixel.first_divergence.as_ref().map_or(Json::Null, |d| {
+        object!({
+            "path": d.path.to_string(),
+            "field": d.field.to_string(),
+            "yours": value_json(Some(d.yours)),
+            "ours": value_json(d.ours),
+            "kind": d.kind.name(),
+            "words": d.words,
+            "meaning": d.meaning,
+        })
+    });
+    let mistakes: Vec<Json> = pixel
+        .mistakes
+        .iter()
+        .map(|m| object!({"name": m.name()}))
+        .collect();
+    let mut unpaired = rules(&pixel.only_yours, "yours");
+    unpaired.extend(rules(&pixel.only_ours, "ours"));
+    object!({
+        "pixel": [pixel.pixel.0, pixel.pixel.1],
+        "matches": pixel.matches,
+        "first_divergence": first,
+        "later_differences": pixel.later_differences,
+        "only_yours": paths(&pixel.only_yours),
+        "only_ours": paths(&pixel.only_ours),
+        "unpaired": unpaired,
+        "mistakes": mistakes,
+        "rays_yours": pixel.yours.len(),
+        "rays_ours": pixel.rays_ours,
+    })
+}

@@ -1,0 +1,335 @@
+//! The assignment file: the scenes a class renders, the file each student
+//! hands in for each, and what each is worth. TOML, read as scene files are
+//! read: unknown keys are refused and every error points at its file, line
+//! and column. Each scene is loaded as `raystep render` loads it, at the
+//! size the assignment asks for.
+//!
+//! ```toml
+//! title = "A5: Whitted ray tracing"
+//!
+//! [[scene]]
+//! file = "glass.toml"   # relative to this file; TOML or NFF
+//! submit = "glass.png"  # the file each student hands in for it
+//! points = 10
+//! size = [160, 120]     # optional: default, the scene's own size
+//! partial = true        # optional: partial credit from FLIP (default false)
+//! max_flip = 0.2        # optional, with partial: the FLIP mean that scores 0
+//! ```
+
+use std::collections::HashSet;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::compare::student::check_compared_size;
+use raystep_engine::input_file::{self, Cap};
+use raystep_engine::scene::{self, Scene, SceneError, check_image_size};
+
+/// With `partial` and no `max_flip`: the FLIP mean that scores 0. Every
+/// classic mistake of the catalogue that changes much of the image scores
+/// FLIP means of a few hundredths to a few tenths on the example scenes.
+pub(crate) const DEFAULT_MAX_FLIP: f64 = 0.2;
+
+/// The largest assignment file read: a few lines a scene.
+pub(crate) const ASSIGNMENT_CAP: Cap = Cap {
+    bytes: 16 << 20,
+    of: "an assignment file",
+};
+
+/// An assignment, its scenes loaded.
+pub struct Assignment {
+    pub(crate) title: String,
+    pub scenes: Vec<AssignedScene>,
+}
+
+/// One scene of the assignment.
+pub struct AssignedScene {
+    /// The scene file as the assignment names it.
+    pub(crate) file: String,
+    /// Where it was read from: the assignment's folder joined to `file`.
+    pub path: PathBuf,
+    /// The file name each student hands in for it.
+    pub submit: String,
+    pub(crate) points: f64,
+    /// With partial credit, the FLIP mean that scores 0.
+    pub(crate) max_flip: Option<f64>,
+    /// Loaded at the size every submission must have.
+    pub scene: Scene,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileDef {
+    title: Option<String>,
+    #[serde(default)]
+    scene: Vec<SceneDef>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneDef {
+    file: Spanned<String>,
+    submit: Spanned<String>,
+    points: Spanned<f64>,
+    size: Option<Spanned<[u32; 2]>>,
+    #[serde(default)]
+    partial: bool,
+    max_flip: Option<Spanned<f64>>,
+}
+
+/// Reads the assignment at `path` and loads its scenes.
+pub fn load(path: &Path) -> Result<Assignment, SceneError> {
+    let bytes = input_file::read(path, "the assignment", ASSIGNMENT_CAP)
+        .map_err(|e| SceneError::plain(e.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        SceneError::plain(format!(
+            "{} is not UTF-8 text (byte {} is 0x{:02X}): assignment files must be UTF-8",
+            path.display(),
+            e.utf8_error().valid_up_to(),
+            e.as_bytes()[e.utf8_error().valid_up_to()]
+        ))
+    })?;
+    parse(path, &text)
+}
+
+/// Parses assignment text; `path` names it in messages, and scene files
+/// are found relative to its folder.
+pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
+    let error = |span: Range<usize>, message: String| SceneError::at(path, text, span, message);
+    let file: FileDef = toml::from_str(text).map_err(|e| {
+        let message = e.message().trim_end().to_string();
+        match e.span() {
+            Some(span) => error(span, message),
+            None => SceneError::plain(format!("{}: {message}", path.display())),
+        }
+    })?;
+    if file.scene.is_empty() {
+        return Err(SceneError::plain(format!(
+            "{}: an assignment needs at least one [[scene]], with file, submit and points",
+            path.display()
+        )));
+    }
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let mut submits = HashSet::new();
+    let mut scenes = Vec::with_capacity(file.scene.len());
+    for def in file.scene {
+        check_submit(def.submit.get_ref()).map_err(|m| error(def.submit.span(), m))?;
+        if !submits.insert(def.submit.get_ref().clone()) {
+            return Err(error(
+                def.submit.span(),
+                format!(
+                    "two scenes ask for the same file {:?}: each scene needs its own",
+                    def.submit.get_ref()
+                ),
+            ));
+        }
+        let points = *def.points.get_ref();
+        if !(points.is_finite() && points >= 0.0) {
+            return Err(error(
+                def.points.span(),
+                format!("points must be a number of at least 0, got {points}"),
+            ));
+        }
+        let max_flip = match (def.partial, &def.max_flip) {
+            (false, Some(max)) => {
+                return Err(error(
+                    max.span(),
+                    "max_flip counts only with partial = true: add it, or leave max_flip out"
+                        .into(),
+                ));
+            }
+            (false, None) => None,
+            (true, None) => Some(DEFAULT_MAX_FLIP),
+            (true, Some(max)) => {
+                let value = *max.get_ref();
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(error(
+                        max.span(),
+                        format!("max_flip must be a number above 0, got {value}"),
+                    ));
+                }
+                Some(value)
+            }
+        };
+        let scene_path = folder.join(def.file.get_ref());
+        if !scene_path.is_file() {
+            return Err(error(
+                def.file.span(),
+                format!(
+                    "no scene file {} (scene files are found from the assignment's folder)",
+                    scene_path.display()
+                ),
+            ));
+        }
+        let scene = scene::load(&scene_path)?;
+        let scene = match &def.size {
+            None => scene,
+            Some(size) => {
+                let [width, height] = *size.get_ref();
+                check_image_size(width, height).map_err(|m| error(size.span(), m))?;
+                scene
+                    .with_size(width, height)
+                    .map_err(|e| error(size.span(), e.message))?
+            }
+        };
+        // Every student's image is compared at this size: refuse it once
+        // here, not once per student.
+        let size_span = def.size.as_ref().map_or(def.file.span(), |s| s.span());
+        check_compared_size(scene.width, scene.height).map_err(|m| error(size_span, m))?;
+        scenes.push(AssignedScene {
+            file: def.file.into_inner(),
+            path: scene_path,
+            submit: def.submit.into_inner(),
+            points,
+            max_flip,
+            scene,
+        });
+    }
+    let title = file.title.unwrap_or_else(|| {
+        path.file_stem()
+            .map_or("assignment".into(), |s| s.to_string_lossy().into_owned())
+    });
+    Ok(Assignment { title, scenes })
+}
+
+/// A file name each student's folder can hold: one name, no folders.
+fn check_submit(name: &str) -> Result<(), String> {
+    let plain =
+        !name.is_empty() && name != "." && name != ".." && !name.contains(['/', '\\', '\0']);
+    if plain {
+        Ok(())
+    } else {
+        Err(format!(
+            "submit must be a file name in the student's folder, such as \"glass.png\", got {name:?}"
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `parse` from a folder holding glass.toml, as scenes/ does.
+    fn parse_here(text: &str) -> Result<Assignment, SceneError> {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join("scenes/a.toml");
+        parse(&path, text)
+    }
+
+    fn error(text: &str) -> String {
+        let message = parse_here(text).err().expect("refused").to_string();
+        message.lines().next().unwrap().to_string()
+    }
+
+    #[test]
+    fn a_scene_takes_its_own_size_unless_the_assignment_gives_one() {
+        let assignment = parse_here(
+            "title = \"A5\"\n[[scene]]\nfile = \"glass.toml\"\nsubmit = \"glass.png\"\npoints = 10\n\
+             [[scene]]\nfile = \"shadows.toml\"\nsubmit = \"s.png\"\npoints = 2.5\nsize = [32, 24]\n\
+             partial = true\n",
+        )
+        .unwrap();
+        assert_eq!(assignment.title, "A5");
+        let [glass, shadows] = &assignment.scenes[..] else {
+            panic!("two scenes")
+        };
+        // glass.toml says 160 x 120 in its [image].
+        assert_eq!((glass.scene.width, glass.scene.height), (160, 120));
+        assert_eq!((glass.points, glass.max_flip), (10.0, None));
+        assert_eq!((shadows.scene.width, shadows.scene.height), (32, 24));
+        // Partial credit without max_flip: the documented default.
+        assert_eq!(shadows.max_flip, Some(DEFAULT_MAX_FLIP));
+        assert!(glass.path.ends_with("scenes/glass.toml"));
+    }
+
+    #[test]
+    fn mistakes_in_the_file_are_told_at_their_line_and_column() {
+        let head = "[[scene]]\nfile = \"glass.toml\"\nsubmit = \"glass.png\"\n";
+        let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join("scenes/a.toml");
+        let at = |line_col: &str| format!("{}:{line_col}: ", file.display());
+        // A misspelt key: line 5, column 1.
+        let message = error(&format!("{head}points = 10\npartal = true\n"));
+        assert!(message.starts_with(&at("5:1")), "{message}");
+        assert!(message.contains("unknown field `partal`"), "{message}");
+        // max_flip at or below 0, or not finite: at the value, line 6 col 12.
+        for bad in ["0", "-0.1", "nan", "inf"] {
+            let message = error(&format!(
+                "{head}points = 10\npartial = true\nmax_flip = {bad}\n"
+            ));
+            assert!(message.starts_with(&at("6:12")), "{message}");
+            assert!(message.contains("max_flip must be a number above 0"));
+        }
+        let message = error(&format!("{head}points = 10\nmax_flip = 0.1\n"));
+        assert!(message.starts_with(&at("5:12")), "{message}");
+        assert!(message.contains("only with partial = true"), "{message}");
+        let message = error(&format!("{head}points = -1\n"));
+        assert!(message.starts_with(&at("4:10")), "{message}");
+        let message = error(&format!("{head}points = 1\nsize = [0, 10]\n"));
+        assert!(message.starts_with(&at("5:8")), "{message}");
+        assert!(message.contains("image size 0x10 is empty"), "{message}");
+        // A size raystep renders but does not compare (2048 x 2048 pixels
+        // at most): refused once here, not once per student.
+        let message = error(&format!("{head}points = 1\nsize = [4096, 2048]\n"));
+        assert!(message.starts_with(&at("5:8")), "{message}");
+        assert!(
+            message.contains("4096x2048 is too large to compare"),
+            "{message}"
+        );
+        let message =
+            error("[[scene]]\nfile = \"glass.toml\"\nsubmit = \"../x.png\"\npoints = 1\n");
+        assert!(message.starts_with(&at("3:10")), "{message}");
+        let message = error(&format!(
+            "{head}points = 1\n[[scene]]\nfile = \"shadows.toml\"\nsubmit = \"glass.png\"\npoints = 1\n"
+        ));
+        assert!(message.starts_with(&at("7:10")), "{message}");
+        assert!(message.contains("the same file \"glass.png\""), "{message}");
+        let message = error("[[scene]]\nfile = \"nope.toml\"\nsubmit = \"x.png\"\npoints = 1\n");
+        assert!(message.starts_with(&at("2:8")), "{message}");
+        assert!(message.contains("no scene file"), "{message}");
+        let message = error("title = \"empty\"\n");
+        assert!(message.contains("at least one [[scene]]"), "{message}");
+    }
+
+    #[test]
+    fn the_example_and_readmes_assignment_load() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let example = load(&root.join("scenes/assignments/a5.toml")).unwrap();
+        assert_eq!(example.title, "A5: Whitted ray tracing");
+        let submits: Vec<&str> = example.scenes.iter().map(|s| s.submit.as_str()).collect();
+        assert_eq!(
+            submits,
+            [
+                "shadows.png",
+                "highlights.png",
+                "mirrors.png",
+                "glass.png",
+                "attenuation.png"
+            ]
+        );
+        for scene in &example.scenes {
+            assert_eq!((scene.scene.width, scene.scene.height), (160, 120));
+        }
+        // 10 + 10 + 10 + 20 + 10; glass and attenuation with partial credit.
+        assert_eq!(example.scenes.iter().map(|s| s.points).sum::<f64>(), 60.0);
+        let partial: Vec<Option<f64>> = example.scenes.iter().map(|s| s.max_flip).collect();
+        assert_eq!(
+            partial,
+            [None, None, None, Some(0.2), Some(DEFAULT_MAX_FLIP)]
+        );
+        // README's block, its scene found beside the example scenes.
+        let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+        let start = readme
+            .find("```toml\ntitle = ")
+            .expect("README's assignment")
+            + 8;
+        let end = start + readme[start..].find("```").unwrap();
+        let block = parse_here(&readme[start..end]).unwrap();
+        assert_eq!(block.scenes.len(), 1);
+        assert_eq!(block.scenes[0].max_flip, Some(0.2));
+    }
+}

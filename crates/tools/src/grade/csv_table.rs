@@ -1,0 +1,105 @@
+//! grades.csv: one row per student, for a spreadsheet. Per scene the
+//! points, whether it matches, FLIP's mean, the top mistake and why it was
+//! refused (blank where it was compared); then the total. Fields are quoted
+//! as RFC 4180 says, and one that a spreadsheet would run as a formula
+//! (starting with `=`, `+`, `-`, `@`, a tab or a carriage return) gets a
+//! leading `'`, as OWASP's advice on CSV injection has it: a student's
+//! folder name is data, never a formula.
+
+use super::model::{ClassGrades, SceneGrade};
+
+/// The whole table, header first, each line ending in CRLF (RFC 4180).
+pub(crate) fn csv(grades: &ClassGrades) -> String {
+    let mut header = vec!["student".to_string()];
+    for scene in &grades.scenes {
+        for column in ["points", "match", "flip", "mistake", "refused"] {
+            header.push(format!("{} {column}", scene.submit));
+        }
+    }
+    header.push("total".into());
+    let mut out = line(&header);
+    for student in &grades.students {
+        let mut row = vec![student.student.clone()];
+        for scene in &student.scenes {
+            row.extend(cells(scene));
+        }
+        row.push(number(student.total));
+        out += &line(&row);
+    }
+    out
+}
+
+/// One scene's five cells.
+fn cells(scene: &SceneGrade) -> [String; 5] {
+    let compared = scene.refused.is_none();
+    [
+        number(scene.points),
+        match (compared, scene.matches) {
+            (false, _) => String::new(),
+            (true, true) => "yes".into(),
+            (true, false) => "no".into(),
+        },
+        scene
+            .flip_mean
+            .map(|f| format!("{f:.4}"))
+            .unwrap_or_default(),
+        scene.mistakes.first().cloned().unwrap_or_default(),
+        scene.refused.clone().unwrap_or_default(),
+    ]
+}
+
+/// Points as written by hand: 10, 7.5, 3.85.
+pub fn number(x: f64) -> String {
+    let text = format!("{x:.2}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+fn line(fields: &[String]) -> String {
+    let mut out = fields
+        .iter()
+        .map(|f| field(f))
+        .collect::<Vec<_>>()
+        .join(",");
+    out.push_str("\r\n");
+    out
+}
+
+/// One field: defused if a spreadsheet would read it as a formula, then
+/// quoted when it holds a comma, a quote, a line break or a leading or
+/// trailing space (quotes doubled).
+fn field(text: &str) -> String {
+    let text = if text.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+        format!("'{text}")
+    } else {
+        text.to_string()
+    };
+    let quote =
+        text.contains([',', '"', '\n', '\r']) || text.starts_with(' ') || text.ends_with(' ');
+    if quote {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fields_are_quoted_and_formulas_defused() {
+        assert_eq!(field("ada"), "ada");
+        assert_eq!(field("Lovelace, Ada"), "\"Lovelace, Ada\"");
+        assert_eq!(field("say \"hi\""), "\"say \"\"hi\"\"\"");
+        assert_eq!(field("two\nlines"), "\"two\nlines\"");
+        assert_eq!(field("=HYPERLINK(\"x\")"), "\"'=HYPERLINK(\"\"x\"\")\"");
+        assert_eq!(field("+1"), "'+1");
+        assert_eq!(field("-2"), "'-2");
+        assert_eq!(field("@SUM(A1)"), "'@SUM(A1)");
+        assert_eq!(field(" padded"), "\" padded\"");
+        assert_eq!(number(10.0), "10");
+        assert_eq!(number(7.5), "7.5");
+        assert_eq!(number(3.85), "3.85");
+        assert_eq!(number(0.0), "0");
+    }
+}

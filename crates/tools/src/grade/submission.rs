@@ -1,0 +1,90 @@
+//! One student's file for one scene, read without trusting the folder it
+//! is in: what is not a PNG of the assignment's size is refused with the
+//! reason, never followed out of the folder, never opened when it is not a
+//! regular file (a FIFO would block the whole class).
+
+use std::fs;
+use std::io::{BufReader, Seek};
+use std::path::Path;
+
+use image::{ImageFormat, ImageReader};
+
+use crate::compare::StudentImage;
+use crate::compare::student;
+use raystep_engine::input_file;
+
+/// A file larger than this many bytes per pixel (plus `SLACK_BYTES`) is
+/// refused before its pixels are read: an uncompressed PNG of 16-bit RGBA
+/// takes 8.
+const MAX_BYTES_PER_PIXEL: u64 = 8;
+const SLACK_BYTES: u64 = 1 << 20;
+
+/// Reads `submit` in the student's `folder` (canonical), which must be a PNG
+/// of `width` x `height`; `Err` says why it was refused.
+pub(crate) fn read(
+    folder: &Path,
+    submit: &str,
+    (width, height): (u32, u32),
+) -> Result<StudentImage, String> {
+    let path = folder.join(submit);
+    match fs::symlink_metadata(&path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(format!("missing: the folder holds no {submit}"));
+        }
+        Err(e) => return Err(format!("cannot read {submit}: {e}")),
+        Ok(_) => {}
+    }
+    let real = fs::canonicalize(&path).map_err(|e| match fs::read_link(&path) {
+        Ok(to) => format!(
+            "{submit} is a symbolic link to {}, which cannot be read ({e})",
+            to.display()
+        ),
+        Err(_) => format!("cannot read {submit}: {e}"),
+    })?;
+    if !real.starts_with(folder) || real == folder {
+        return Err(format!(
+            "{submit} is a symbolic link that leads out of the student's folder: refused \
+             (a submission must be a file in its folder)"
+        ));
+    }
+    let meta = fs::metadata(&real).map_err(|e| format!("cannot read {submit}: {e}"))?;
+    if meta.is_dir() {
+        return Err(format!("{submit} is a folder, not a PNG file"));
+    }
+    if !meta.is_file() {
+        return Err(format!(
+            "{submit} is a device, pipe or socket, not a PNG file"
+        ));
+    }
+    let file =
+        input_file::open_regular(&real, false).map_err(|e| format!("cannot read {submit}: {e}"))?;
+    let length = file
+        .metadata()
+        .map_err(|e| format!("cannot read {submit}: {e}"))?
+        .len();
+    let mut reader = BufReader::new(file);
+    // The size in the header first: a wrong size is told as such, before
+    // the pixels are decoded.
+    let header = ImageReader::with_format(&mut reader, ImageFormat::Png).into_dimensions();
+    if let Ok((w, h)) = header
+        && (w, h) != (width, height)
+    {
+        return Err(format!(
+            "rendered at {w}x{h}, the assignment asks for {width}x{height}"
+        ));
+    }
+    // Then the file's length, before the pixels are decoded: what could
+    // follow a right header is bounded by what such a PNG can take.
+    let limit = MAX_BYTES_PER_PIXEL * u64::from(width) * u64::from(height) + SLACK_BYTES;
+    if length > limit {
+        return Err(format!(
+            "{submit} is too large: {length} bytes, more than a PNG of {width}x{height} takes \
+             (at most {limit})"
+        ));
+    }
+    reader
+        .rewind()
+        .map_err(|e| format!("cannot read {submit}: {e}"))?;
+    // compare's reader says what is wrong with anything else.
+    student::read(reader, submit).map_err(|e| format!("{e:#}"))
+}
