@@ -535,3 +535,158 @@ fn every_link_between_the_documents_leads_somewhere() {
         "your-tracers-rays-beside-ours-compare---rays"
     );
 }
+
+/// A scene with one of each table, every key left out that a test sets.
+fn defaults_scene(
+    camera: &str,
+    image: &str,
+    settings: &str,
+    material: &str,
+    light: &str,
+    mesh: &str,
+) -> String {
+    // `[image]` takes both sizes or is left out.
+    let image = if image.is_empty() {
+        String::new()
+    } else {
+        format!("[image]\n{image}\n")
+    };
+    format!(
+        "[camera]\neye = [0, 1, 6]\nlook_at = [0, 0, 0]\n{camera}\n\
+         {image}[settings]\n{settings}\n\
+         [materials.m]\n{material}\n\
+         [[light]]\nposition = [2, 4, 4]\n{light}\n\
+         [[object]]\nname = \"ball\"\nmaterial = \"m\"\nsphere = {{ center = [0, 0, 0], radius = 1 }}\n\
+         [[object]]\nname = \"box\"\nmesh = {{ file = \"cornell/cornell.obj\"{mesh} }}\n"
+    )
+}
+
+#[test]
+fn scenes_guide_defaults_are_the_readers() {
+    // Each row of SCENES.md's table of defaults: the key written with the
+    // default the table gives reads as the same scene as the key left out.
+    let scenes = doc("docs/SCENES.md");
+    let start = scenes
+        .find("| key | default |")
+        .expect("the table of defaults");
+    let rows: BTreeMap<String, String> = scenes[start..]
+        .lines()
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            (cells[1].to_string(), cells[2].to_string())
+        })
+        .collect();
+    // (row's key, what its default says, the section and line that write it)
+    let literal = [
+        ("`camera.up`", "`[0, 1, 0]`", 0, "up = [0, 1, 0]"),
+        ("`camera.fov`", "45 ", 0, "fov = 45"),
+        (
+            "`image.width` x `image.height`",
+            "320 x 240",
+            1,
+            "width = 320\nheight = 240",
+        ),
+        (
+            "`settings.background`",
+            "`[0, 0, 0]`",
+            2,
+            "background = [0, 0, 0]",
+        ),
+        (
+            "`settings.ambient` (I_a)",
+            "`[0, 0, 0]`",
+            2,
+            "ambient = [0, 0, 0]",
+        ),
+        (
+            "`settings.light_attenuation`",
+            "`[1, 0, 0]`",
+            2,
+            "light_attenuation = [1, 0, 0]",
+        ),
+        (
+            "`settings.ray_attenuation`",
+            "`[1, 0, 0]`",
+            2,
+            "ray_attenuation = [1, 0, 0]",
+        ),
+        ("`settings.max_depth`", "5", 2, "max_depth = 5"),
+        (
+            "`settings.min_weight`",
+            "0.001953125",
+            2,
+            "min_weight = 0.001953125",
+        ),
+        ("`settings.max_rays`", "4096", 2, "max_rays = 4096"),
+        (
+            "`settings.specular`",
+            "`\"blinn\"`",
+            2,
+            "specular = \"blinn\"",
+        ),
+        (
+            "material `color` (O_d)",
+            "`[1, 1, 1]`",
+            3,
+            "color = [1, 1, 1]",
+        ),
+        ("material `kd`", "1", 3, "kd = 1"),
+        ("material `ks`", "0", 3, "ks = 0"),
+        ("material `n`", "20", 3, "n = 20"),
+        ("material `kt`", "0 ", 3, "kt = 0"),
+        ("material `ior`", "1", 3, "ior = 1"),
+        ("material `ka`", "1", 3, "ka = 1"),
+        ("material `reflect`", "`true`", 3, "reflect = true"),
+        ("light `name`", "`\"light 0\"`", 4, "name = \"light 0\""),
+        ("light `color` (I_p)", "`[1, 1, 1]`", 4, "color = [1, 1, 1]"),
+        ("mesh `scale`", "1", 5, ", scale = 1"),
+        ("mesh `rotate`", "`[0, 0, 0]`", 5, ", rotate = [0, 0, 0]"),
+        (
+            "mesh `translate`",
+            "`[0, 0, 0]`",
+            5,
+            ", translate = [0, 0, 0]",
+        ),
+    ];
+    // Rows whose default is no value a file could write the same way.
+    let described = [
+        "`camera.eye`, `camera.look_at`",
+        "material `specular`",
+        "object `name`",
+        "object `material`",
+        "mesh `material`",
+        "a mesh alone",
+    ];
+    let read = |parts: [&str; 6]| {
+        let [c, i, s, m, l, x] = parts;
+        let text = defaults_scene(c, i, s, m, l, x);
+        let scene = raystep::scene::parse(Path::new("scenes/defaults.toml"), &text)
+            .unwrap_or_else(|e| panic!("{e}\n{text}"));
+        format!("{scene:?}")
+    };
+    let bare = read([""; 6]);
+    for (key, default, section, line) in literal {
+        let cell = rows.get(key).unwrap_or_else(|| panic!("no row {key}"));
+        assert!(
+            cell.starts_with(default)
+                || cell.contains(&format!(" {default}"))
+                || cell.contains(&format!("= {default}")),
+            "{key}: {cell}"
+        );
+        let mut parts = [""; 6];
+        parts[section] = line;
+        assert_eq!(read(parts), bare, "{key} = its default in SCENES.md");
+    }
+    // The comparison sees a change: a depth of 6 is not the default.
+    assert_ne!(read(["", "", "max_depth = 6", "", "", ""]), bare);
+    let covered: Vec<&str> = literal.iter().map(|r| r.0).chain(described).collect();
+    for key in rows.keys() {
+        assert!(
+            covered.contains(&key.as_str()),
+            "the row {key} is checked by no one"
+        );
+    }
+    assert_eq!(rows.len(), covered.len());
+}
