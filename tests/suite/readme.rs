@@ -356,7 +356,16 @@ fn check(shown: &Shown) -> Result<(), String> {
         return Ok(());
     }
     let matches = Cli::command().try_get_matches_from(&argv).unwrap();
-    let (_, args) = matches.subcommand().unwrap_or(("debug", &matches));
+    let (command, args) = matches.subcommand().unwrap_or(("debug", &matches));
+    // The ids read below are clap's names of `Cli`'s fields: a renamed one
+    // must fail here, not skip the checks.
+    let id = if command == "grade" {
+        "assignment"
+    } else {
+        "scene"
+    };
+    args.try_get_one::<PathBuf>(id)
+        .map_err(|e| format!("raystep {command} has no argument `{id}`: {e}"))?;
     // The files the command reads that the documents must provide (the
     // student's image, log and submissions are the reader's own, and so is
     // an absolute path: an autograder's container).
