@@ -109,7 +109,7 @@ pub(crate) enum Command {
 #[derive(Args, Debug)]
 pub(crate) struct GradeArgs {
     /// The assignment file (TOML): its scenes, the file each student hands
-    /// in for each, and the points (README, "Grading a class").
+    /// in for each, and the points (docs/TEACHERS.md).
     pub(crate) assignment: PathBuf,
     /// The students' folders, one per student (SUBMISSIONS/<student>/glass.png).
     #[arg(

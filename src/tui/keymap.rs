@@ -1,5 +1,5 @@
 //! Every key of the debugger in one table. Dispatch (`event.rs`), the `?`
-//! help, the status line and README's key table all read `KEYMAP`, so they
+//! help, the status line and the key table of docs/DEBUGGER.md all read `KEYMAP`, so they
 //! cannot drift apart: a key that is not in a row does nothing.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
@@ -571,7 +571,7 @@ impl Input {
         }
     }
 
-    /// The input as the help and README name it (Shift+h is `H`).
+    /// The input as the help and docs/DEBUGGER.md name it (Shift+h is `H`).
     pub fn name(self) -> String {
         match self {
             Input::Key(code) => code_name(code),
@@ -596,7 +596,7 @@ fn code_name(code: KeyCode) -> String {
 }
 
 impl Binding {
-    /// The row's keys as the help and README show them: each name once, the
+    /// The row's keys as the help and docs/DEBUGGER.md show them: each name once, the
     /// four arrows as `arrows`.
     pub fn keys(&self) -> String {
         let mut names: Vec<String> = self.inputs.iter().map(|(i, _)| i.name()).collect();

@@ -447,7 +447,7 @@ fn json_output_never_hides_a_non_finite_number() {
     // The light sits exactly at the hit point: MODEL §4 says it adds
     // nothing and is recorded with N·L = 0 and `at_point`, so the JSON has
     // numbers only (a NaN would be refused by `check_finite`, unit-tested
-    // in src/record/finite.rs, never written as null).
+    // in crates/engine/src/record/finite.rs, never written as null).
     assert!(output.status.success(), "{}", stderr(&output));
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     assert!(json["color"].as_array().unwrap().iter().all(|c| c.is_f64()));

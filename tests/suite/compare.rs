@@ -475,7 +475,7 @@ fn png_refusals_say_error_once_in_lower_case_on_both_paths() {
 
 #[test]
 fn the_json_report_has_the_documented_keys() {
-    // The keys graders rely on, as README documents them.
+    // The keys graders rely on, as docs/STUDENTS.md documents them.
     let dir = tempfile::tempdir().unwrap();
     let yours = render(dir.path(), SCENE, "yours.png", &["--size", "40x30"]);
     let mut image = image::open(&yours).unwrap().into_rgb8();
@@ -770,7 +770,7 @@ fn shape(value: &serde_json::Value) -> serde_json::Value {
 
 #[test]
 fn the_json_shape_is_pinned() {
-    // Reviewed against README's schema: metrics, regions (with objects,
+    // Reviewed against STUDENTS.md's schema: metrics, regions (with objects,
     // explain lines and a diagnosis) and mistakes (name, explains, fits,
     // pixel), for glass.toml under opaque-shadows and phong-not-blinn.
     let dir = tempfile::tempdir().unwrap();

@@ -1,7 +1,7 @@
 //! The crate's layout (issue 14): no import circle between the top-level
 //! modules of src/ (a circle means neither module can be read, tested or
 //! moved without the other; the shared thing belongs in the lower one); in
-//! the debugger, the state and the views know no pane; README's Layout
+//! the debugger, the state and the views know no pane; CONTRIBUTING.md's Layout
 //! section names every folder of the debugger. Issue 25: no circle between
 //! the files of any one folder either (`super::` and `crate::<folder>::`).
 //!
@@ -316,13 +316,13 @@ fn the_path_reader_sees_uses_groups_and_inline_paths() {
 }
 
 #[test]
-fn readme_layout_names_every_folder_of_the_debugger() {
+fn contributing_layout_names_every_folder_of_the_debugger() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = fs::read_to_string(root.join("README.md")).unwrap();
-    let start = readme
+    let guide = fs::read_to_string(root.join("docs/CONTRIBUTING.md")).unwrap();
+    let start = guide
         .find("## Layout")
-        .expect("README has a Layout section");
-    let section = &readme[start..];
+        .expect("CONTRIBUTING.md has a Layout section");
+    let section = &guide[start..];
     let section = &section[..section[1..].find("\n## ").map_or(section.len(), |i| i + 1)];
     let mut folders = vec!["src/tui/".to_string()];
     for entry in fs::read_dir(root.join("src/tui")).unwrap() {
@@ -336,7 +336,7 @@ fn readme_layout_names_every_folder_of_the_debugger() {
     for folder in folders {
         assert!(
             section.contains(&format!("`{folder}`")),
-            "README's Layout section does not say what `{folder}` holds"
+            "CONTRIBUTING.md's Layout section does not say what `{folder}` holds"
         );
     }
 }
@@ -373,20 +373,33 @@ fn named_paths(text: &str) -> BTreeSet<String> {
 }
 
 #[test]
-fn every_path_that_model_and_readme_name_exists() {
-    // MODEL.md's "where in the code" lines and README's Layout section are
-    // read by newcomers to find things: a moved file must take them along.
+fn every_path_that_the_documents_name_exists() {
+    // MODEL.md's "where in the code" lines, CONTRIBUTING.md's Layout
+    // section, README's floors and the guides are read by newcomers to
+    // find things: a moved file must take them along.
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    for doc in ["docs/MODEL.md", "README.md"] {
-        let paths = named_paths(&fs::read_to_string(root.join(doc)).unwrap());
-        assert!(
-            paths.contains("src/trace/tracer.rs") || paths.contains("src/trace/"),
-            "{doc}: {paths:?}"
-        );
+    let mut docs: Vec<PathBuf> = vec![root.join("README.md")];
+    for entry in fs::read_dir(root.join("docs")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            docs.push(path);
+        }
+    }
+    assert!(docs.len() >= 8, "README and the guides: {docs:?}");
+    for doc in &docs {
+        let name = doc.strip_prefix(root).unwrap().display().to_string();
+        let paths = named_paths(&fs::read_to_string(doc).unwrap());
+        if ["docs/MODEL.md", "docs/CONTRIBUTING.md", "README.md"].contains(&name.as_str()) {
+            assert!(
+                paths.contains("crates/engine/src/trace/tracer.rs")
+                    || paths.contains("crates/engine/src/trace/"),
+                "{name}: {paths:?}"
+            );
+        }
         let missing: Vec<_> = paths.iter().filter(|p| !root.join(p).exists()).collect();
         assert!(
             missing.is_empty(),
-            "{doc} names paths that do not exist: {missing:?}"
+            "{name} names paths that do not exist: {missing:?}"
         );
     }
     let example = "see `src/a.rs` and `tests/b/`, not `cargo test` or `scenes/*.toml`";
@@ -398,7 +411,7 @@ fn every_path_that_model_and_readme_name_exists() {
 
 #[test]
 fn the_diagram_is_assembled_once_and_the_media_only_draw_it() {
-    // src/diagram/ assembles the ray diagram knowing neither medium: no
+    // crates/tools/src/diagram/ assembles the ray diagram knowing neither medium: no
     // file of it outside svg/ names the SVG writer, the debugger or
     // ratatui. The two media (svg/ and the debugger's diagram pane) take
     // the assembled diagram: neither projects rays or picks the objects
@@ -576,9 +589,10 @@ fn switches_and_mistakes_enter_the_tracer_only_through_its_rules() {
     // Issue 25: the ambient switch went through `Rules` while shadows,
     // reflection and transmission were read from the settings in the
     // tracer: one mechanism now, `trace/rules.rs`.
-    let tracer =
-        fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("src/trace/tracer.rs"))
-            .unwrap();
+    let tracer = fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/engine/src/trace/tracer.rs"),
+    )
+    .unwrap();
     let code: String = library_part_of(&tracer)
         .lines()
         .filter(|l| !l.trim_start().starts_with("//"))

@@ -1,5 +1,5 @@
 //! Every number a TOML scene holds is finite and within its range
-//! (`raystep_engine::scene::limits`, README "Scene files"), or the scene is refused
+//! (`raystep_engine::scene::limits`, docs/SCENES.md), or the scene is refused
 //! with the key, the value and its line and column. Issue 13, section 2:
 //! each case below was accepted before and gave NaN or infinity.
 

@@ -1,4 +1,4 @@
-//! TOML scenes are read one `[[object]]` section at a time (src/scene/toml_sections.rs):
+//! TOML scenes are read one `[[object]]` section at a time (crates/engine/src/scene/toml_sections.rs):
 //! the scene read that way is the scene the whole file describes, and errors
 //! in any section still name the file's own line and column.
 

@@ -9,7 +9,7 @@
 //! - The file is then opened without blocking (should a FIFO have been put
 //!   in its place since) and checked again, open, so what is read is what
 //!   was checked.
-//! - Its length is checked against the reader's size cap (README, "Bad
+//! - Its length is checked against the reader's size cap (docs/SCENES.md, "Bad
 //!   input") before a byte is read, and no more than the cap is read should
 //!   it grow meanwhile.
 

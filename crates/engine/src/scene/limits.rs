@@ -1,5 +1,5 @@
 //! The range of every number a scene file may hold, written once for both
-//! formats (README "Scene files", MODEL §4 and §5).
+//! formats (docs/SCENES.md, MODEL §4 and §5).
 //!
 //! The ranges are far wider than a teaching scene or an SPD scene needs, and
 //! narrow enough that no product the tracer forms can overflow or lose every

@@ -321,14 +321,14 @@ mod tests {
             partial,
             [None, None, None, Some(0.2), Some(DEFAULT_MAX_FLIP)]
         );
-        // README's block, its scene found beside the example scenes.
-        let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-        let start = readme
+        // TEACHERS.md's block, its scene found beside the example scenes.
+        let guide = std::fs::read_to_string(root.join("docs/TEACHERS.md")).unwrap();
+        let start = guide
             .find("```toml\ntitle = ")
-            .expect("README's assignment")
+            .expect("TEACHERS.md's assignment")
             + 8;
-        let end = start + readme[start..].find("```").unwrap();
-        let block = parse_here(&readme[start..end]).unwrap();
+        let end = start + guide[start..].find("```").unwrap();
+        let block = parse_here(&guide[start..end]).unwrap();
         assert_eq!(block.scenes.len(), 1);
         assert_eq!(block.scenes[0].max_flip, Some(0.2));
     }

@@ -1,4 +1,4 @@
-//! The scoring rule, as README states it: a submission that `compare`
+//! The scoring rule, as docs/TEACHERS.md states it: a submission that `compare`
 //! calls a match scores the scene's points; one that differs scores 0, or
 //! with `partial = true` points × max(0, 1 − FLIP mean / max_flip); a
 //! refused one scores 0. Points are rounded to hundredths, and a total is

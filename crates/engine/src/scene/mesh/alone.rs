@@ -1,6 +1,6 @@
 //! A mesh file given alone (`raystep render box.obj`): the mesh with a
 //! default camera that frames its bounding box and one light (MODEL §2,
-//! README "Meshes"), so a course mesh can be looked at before a scene is
+//! docs/SCENES.md "Meshes"), so a course mesh can be looked at before a scene is
 //! written around it.
 
 use std::path::Path;
