@@ -55,6 +55,7 @@ pub use ray_log::RayLog;
 pub(crate) use renders::Renders;
 pub(crate) use screen::Screen;
 use search::Search;
+use session::Reloaded;
 pub(crate) use session::Session;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
@@ -377,11 +378,11 @@ impl App {
     fn collect_reload(&mut self) {
         match self.session.finished_reload() {
             None => {}
-            Some(Some(settings)) => {
+            Some(Reloaded::Scene(settings)) => {
                 self.apply_settings(settings);
                 self.message = Some(format!("reloaded {}", self.session.source().name()));
             }
-            Some(None) => {
+            Some(Reloaded::Broken) => {
                 self.message =
                     Some("the scene file has an error: the last good scene stays".into());
             }
