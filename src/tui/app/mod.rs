@@ -211,6 +211,8 @@ impl App {
                 self.search = None;
                 self.renders.cancel();
             }
+            // The main loop suspends the process itself (`tui::run_loop`);
+            // the state stays as it is (a test's keys may still bring it here).
             Action::Suspend => {}
             Action::Move(dx, dy) => self.move_cursor(dx, dy),
             Action::Pick(x, y) => self.pick(x, y),
