@@ -317,39 +317,44 @@ mod tests {
         (nearest.best.t.to_bits(), object)
     }
 
+    /// One packet's test: `object` tested by the rays (all from one
+    /// origin) whose bit is set in `active`, from `t_min`, their bests
+    /// `start` before.
+    struct Case<'a> {
+        object: u32,
+        rays: &'a [Ray; PACKET],
+        t_min: f64,
+        active: u8,
+        start: &'a Bests,
+    }
+
     /// Runs `test_triangle` with lanes `L` on a packet and checks each ray
     /// against `scalar`; returns how many rays hit and how many were ties
     /// decided by the object order.
-    fn check<L: RayLanes>(
-        triangle: &TriangleTest,
-        object: u32,
-        rays: &[Ray; PACKET],
-        t_min: f64,
-        active: u8,
-        start: &Bests,
-        what: &str,
-    ) -> (usize, usize) {
-        let v_0 = triangle.v_0(rays[0].origin);
-        let run = |leaf: &mut LeafRays| test_triangle::<L>(triangle, object, v_0, leaf);
+    fn check<L: RayLanes>(triangle: &TriangleTest, case: &Case, what: &str) -> (usize, usize) {
+        let v_0 = triangle.v_0(case.rays[0].origin);
+        let run = |leaf: &mut LeafRays| test_triangle::<L>(triangle, case.object, v_0, leaf);
         let hit = |ray: &Ray, range| triangle.hit_t_given(v_0, ray, range);
-        check_with(&run, &hit, object, rays, t_min, active, start, what)
+        check_with(&run, &hit, case, what)
     }
 
     /// A lanes' test of a packet at a leaf.
     type RunLanes<'a> = dyn Fn(&mut LeafRays) + 'a;
 
     /// `check` with the lanes' test run by `run` and the scalar test `hit`.
-    #[allow(clippy::too_many_arguments)]
     fn check_with(
         run: &RunLanes<'_>,
         hit: &dyn Fn(&Ray, Interval) -> Option<f64>,
-        object: u32,
-        rays: &[Ray; PACKET],
-        t_min: f64,
-        active: u8,
-        start: &Bests,
+        case: &Case,
         what: &str,
     ) -> (usize, usize) {
+        let Case {
+            object,
+            rays,
+            t_min,
+            active,
+            start,
+        } = *case;
         let origin = rays[0].origin;
         let direction = [0, 1, 2].map(|axis| rays.map(|ray| ray.direction[axis]));
         let mut bests = *start;
@@ -380,18 +385,11 @@ mod tests {
     }
 
     /// Both copies, where the CPU has AVX.
-    fn check_both(
-        triangle: &TriangleTest,
-        object: u32,
-        rays: &[Ray; PACKET],
-        t_min: f64,
-        active: u8,
-        start: &Bests,
-    ) -> (usize, usize) {
-        let narrow = check::<Narrow>(triangle, object, rays, t_min, active, start, "SSE2");
+    fn check_both(triangle: &TriangleTest, case: &Case) -> (usize, usize) {
+        let narrow = check::<Narrow>(triangle, case, "SSE2");
         #[cfg(target_arch = "x86_64")]
         if super::super::wide::available() {
-            let wide = check::<Wide>(triangle, object, rays, t_min, active, start, "AVX");
+            let wide = check::<Wide>(triangle, case, "AVX");
             assert_eq!(wide, narrow);
         }
         narrow
@@ -478,7 +476,14 @@ mod tests {
                     ];
                     for start in &starts {
                         for active in [u8::MAX, 0b1010_0110] {
-                            let (hits, ties) = check_both(&test, 5, &rays, EPS, active, start);
+                            let case = Case {
+                                object: 5,
+                                rays: &rays,
+                                t_min: EPS,
+                                active,
+                                start,
+                            };
+                            let (hits, ties) = check_both(&test, &case);
                             totals.0 += hits;
                             totals.1 += ties;
                         }
@@ -566,7 +571,14 @@ mod tests {
                 }
             }
             let active = (numbers.next() * 256.0) as u8 | 1;
-            let (h, t) = check_both(&test, object, &rays, t_min, active, &start);
+            let case = Case {
+                object,
+                rays: &rays,
+                t_min,
+                active,
+                start: &start,
+            };
+            let (h, t) = check_both(&test, &case);
             hits += h;
             ties += t;
             misses += active.count_ones() as usize - h;
@@ -650,11 +662,18 @@ mod tests {
             // Through `test_quad`, as the walk calls it (v_0 and the
             // projected vertices computed there).
             let narrow = |leaf: &mut LeafRays| Narrow::test_quad(&polygon, object, leaf);
-            let (h, t) = check_with(&narrow, &hit, object, &rays, t_min, active, &start, "SSE2");
+            let case = Case {
+                object,
+                rays: &rays,
+                t_min,
+                active,
+                start: &start,
+            };
+            let (h, t) = check_with(&narrow, &hit, &case, "SSE2");
             #[cfg(target_arch = "x86_64")]
             if super::super::wide::available() {
                 let wide = |leaf: &mut LeafRays| Wide::test_quad(&polygon, object, leaf);
-                let got = check_with(&wide, &hit, object, &rays, t_min, active, &start, "AVX");
+                let got = check_with(&wide, &hit, &case, "AVX");
                 assert_eq!(got, (h, t));
             }
             hits += h;
