@@ -72,7 +72,7 @@ fn in_pane(command: Command, pane: Pane) -> Option<Action> {
 #[cfg(test)]
 mod tests {
     //! What every key does in every mode and pane is pinned by the key
-    //! table's snapshot (`tests/tui_screens.rs`, `tui_screens__key_table`).
+    //! table's snapshot (`tests/suite/tui_screens.rs`, `tui_screens__key_table`).
 
     use crossterm::event::KeyModifiers;
 

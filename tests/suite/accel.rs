@@ -228,7 +228,8 @@ fn random_ray(rng: &mut Rng, objects: &[Object], frame: Frame) -> Ray {
     }
 }
 
-/// `n`, times `ACCEL_STRESS` when set: `ACCEL_STRESS=100 cargo test --release --test accel`.
+/// `n`, times `ACCEL_STRESS` when set:
+/// `ACCEL_STRESS=100 cargo test --release --test suite accel::`.
 fn rays(n: usize) -> usize {
     let stress = std::env::var("ACCEL_STRESS").ok();
     n * stress.and_then(|s| s.parse().ok()).unwrap_or(1)
@@ -508,7 +509,8 @@ fn empty_scene_has_no_hits() {
     assert_eq!(cost, Cost::default());
 }
 
-/// Timings, not a pass/fail test: `cargo test --release --test accel -- --ignored --nocapture`.
+/// Timings, not a pass/fail test:
+/// `cargo test --release --test suite accel:: -- --ignored --nocapture`.
 /// Per scene: the build, closest-hit queries towards random objects (and the
 /// brute force on a tenth of them), and a 256 x 256 render of the SPD scenes.
 #[test]

@@ -1,32 +1,31 @@
 //! Inputs the cargo-fuzz targets (`fuzz/`) found, minimized, each pinned so
-//! that it stays fixed: loading gives a scene or an error naming a line,
-//! never a panic, and a loaded scene records finite pixels.
+//! that it stays fixed. Each regression asserts that its input reaches the
+//! path it pins: a scene that must trace loads (a load error fails the
+//! test, it does not pass it) and records finite pixels that went where the
+//! input leads; a mesh that must be refused is refused at its line.
 
 use std::path::Path;
 
-use raystep_engine::record::record_pixel;
-use raystep_engine::scene;
+use raystep_engine::record::{RayTree, record_pixel};
+use raystep_engine::scene::{self, Scene};
 
-/// Loads `text` (the format from `name`'s extension); if it loads, records
-/// every pixel (of a 4x4 image, unless the scene's own is at most 8x8) and
-/// checks that each number is finite.
-fn load_and_trace(name: &str, text: &str) {
-    let scene = match scene::parse(Path::new(name), text) {
-        Ok(scene) => scene,
-        Err(error) => {
-            assert!(error.location.is_some(), "no line in: {error}");
-            let _ = error.to_string();
-            return;
-        }
-    };
-    let scene = if scene.width * scene.height <= 64 {
-        scene
-    } else {
-        scene.with_size(4, 4).unwrap()
-    };
+/// The scene `text` (the format from `name`'s extension), which must load:
+/// a regression that needs a trace is not passed by a load error.
+fn load(name: &str, text: &str) -> Scene {
+    scene::parse(Path::new(name), text).unwrap_or_else(|error| panic!("{name} must load: {error}"))
+}
+
+/// The recording of every pixel of `scene` (at most 8x8), row by row, each
+/// checked to be finite in its colour and in every number it records.
+fn trace_every_pixel(scene: &Scene) -> Vec<RayTree> {
+    assert!(
+        scene.width * scene.height <= 64,
+        "a regression's image is small"
+    );
+    let mut trees = Vec::new();
     for y in 0..scene.height {
         for x in 0..scene.width {
-            let tree = record_pixel(&scene, &scene.settings, x, y);
+            let tree = record_pixel(scene, &scene.settings, x, y);
             assert!(
                 tree.color().is_finite(),
                 "pixel ({x}, {y}) is {}",
@@ -35,23 +34,34 @@ fn load_and_trace(name: &str, text: &str) {
             if let Err(error) = tree.check_finite() {
                 panic!("pixel ({x}, {y}): {error}");
             }
+            trees.push(tree);
         }
     }
+    trees
 }
 
 /// Found by hand while checking the trace target can fail (the fuzzer, with
 /// max_depth clamped to 8, found nothing in 577k runs): the primary ray of a
-/// 1x1 image hits the plane exactly at the light, so L = normalize(0) is NaN
-/// and so are N·L, the diffuse term and the pixel.
+/// 1x1 image hits the plane exactly at the light, so L = normalize(0) was NaN
+/// and so were N·L, the diffuse term and the pixel. MODEL §4 now takes a
+/// light within EPS of the point as at the point.
 #[test]
 fn light_exactly_at_the_hit_point() {
-    load_and_trace(
+    let scene = load(
         "lit.toml",
         "[camera]\neye = [0, 5, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\n\
          [image]\nwidth = 1\nheight = 1\n[materials.m]\nkd = 1\n\
          [[light]]\nposition = [0, 0, 0]\n\
          [[object]]\nmaterial = \"m\"\nplane = { normal = [0, 1, 0], point = [0, 0, 0] }\n",
     );
+    let trees = trace_every_pixel(&scene);
+    let root = trees[0].root();
+    // The path pinned: the plane is hit at the light's own position.
+    let hit = root.hit.as_ref().expect("the primary ray hits the plane");
+    assert_eq!((hit.object_index, hit.t), (0, 5.0));
+    assert_eq!(hit.point, glam::DVec3::ZERO);
+    let light = &root.lights[0];
+    assert!(light.at_point, "the light is at the hit point: {light:?}");
 }
 
 /// The mesh loaders' finds (fuzz target `mesh_loaders`), minimized: each is

@@ -39,6 +39,7 @@ mod shading;
 mod snapshots;
 mod student_tracer;
 mod term_images;
+mod text_files;
 mod toml_sections;
 mod tui;
 mod tui_compare;

@@ -7,27 +7,17 @@
 //! since issue 22), the first divergence must be the ray and the number
 //! where the slip acts, and a slip the catalogue holds is named by it.
 //! The tracer also renders whole images (`-o IMAGE.png`), for
-//! `raystep compare SCENE IMAGE.png` tried the same way.
+//! `raystep compare SCENE IMAGE.png` tried the same way. Each test that runs
+//! the tracer needs python3: without it the test is skipped with a note, and
+//! with CI set it fails (`program_or_skip`), so CI cannot pass untested.
 
 use std::process::Command;
 
 use serde_json::Value;
 
-use crate::support::{raystep, stdout};
+use crate::support::{program_or_skip, raystep, stdout};
 
 const TRACER: &str = "tests/student/whitted.py";
-
-/// Whether python3 runs here; CI has it, a machine without it skips.
-fn python_available() -> bool {
-    let found = Command::new("python3")
-        .arg("--version")
-        .output()
-        .is_ok_and(|output| output.status.success());
-    if !found {
-        eprintln!("student_tracer: python3 not found, the student's tracer is not run");
-    }
-    found
-}
 
 /// The student's log for pixel (x, y) of `scene`, or a `w`x`h` rectangle
 /// from it, with `mistakes` switched on.
@@ -127,7 +117,7 @@ fn the_student_tracer_prints_raylog_md_s_own_log_ray() {
 
 #[test]
 fn a_tracer_written_from_model_md_matches_raystep_ray_for_ray() {
-    if !python_available() {
+    if program_or_skip("python3").is_none() {
         return;
     }
     // The pixels each scene's opening comment points at, and a rectangle
@@ -185,7 +175,7 @@ fn assert_first(scene: &str, pixel: (u32, u32), mistake: &str, expected: [&str; 
 
 #[test]
 fn the_student_slips_the_catalogue_holds_are_named_at_tree_level() {
-    if !python_available() {
+    if program_or_skip("python3").is_none() {
         return;
     }
     // Pixel 72,45 of glass.toml, as below. Each slip is the catalogue's
@@ -217,7 +207,7 @@ fn the_student_slips_the_catalogue_holds_are_named_at_tree_level() {
 
 #[test]
 fn each_student_slip_is_found_at_the_ray_and_number_where_it_acts() {
-    if !python_available() {
+    if program_or_skip("python3").is_none() {
         return;
     }
     let glass = "scenes/glass.toml";
@@ -314,7 +304,7 @@ fn where_model_md_was_silent_it_now_says_what_raystep_does() {
     // towards the longest), and a cone's tip, where the radial direction
     // vanishes (N_g is the axis towards the tip; normalising the zero
     // vector gave NaN). Every pixel of both must match.
-    if !python_available() {
+    if program_or_skip("python3").is_none() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
@@ -351,7 +341,7 @@ fn where_model_md_was_silent_it_now_says_what_raystep_does() {
 
 #[test]
 fn the_student_s_images_match_and_their_slips_are_named_first() {
-    if !python_available() {
+    if program_or_skip("python3").is_none() {
         return;
     }
     // Without a slip the student's PNG is raystep's render byte for byte,

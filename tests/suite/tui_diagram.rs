@@ -190,7 +190,7 @@ fn key_rows(app: &mut App) -> String {
 #[test]
 fn a_polygon_passed_by_is_ringed_in_the_pane_as_in_the_figure() {
     // polygons.toml's pixel (40, 54): the primary ray passes the star by
-    // (tests/figure.rs: the SVG rings it). The pane showed no ring: now a
+    // (tests/suite/figure.rs: the SVG rings it). The pane showed no ring: now a
     // ○ where the ray crosses the star's plane, "passed by" beside it (the
     // star, which blocks a shadow ray, is named at its outline already)
     // and in the key; no light faces away from the back wall's hit, so

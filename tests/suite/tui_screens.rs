@@ -74,7 +74,8 @@ fn snapshot_wide_side_view() {
     snapshot!("wide_side_view", screen(&mut app, 200, 60).backend());
 }
 
-/// Timings for the report: `cargo test --release --test tui -- --ignored --nocapture`.
+/// Timings for the report:
+/// `cargo test --release --test suite tui_screens:: -- --ignored --nocapture`.
 #[test]
 #[ignore = "a measurement, not a check"]
 fn measure_pick_and_render_on_the_teapot() {

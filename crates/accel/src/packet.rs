@@ -43,7 +43,7 @@ use super::bvh::MAX_DEPTH;
 use super::lanes::Lanes;
 use super::leaf_shapes::LeafShape;
 use super::node::{BoxTesting, Child, Node, WIDTH, nearest_first};
-use super::packet_triangles::{Bests, NO_OBJECT, TestQuad, test_triangle};
+use super::packet_triangles::{Bests, LeafRays, NO_OBJECT, TestQuad, test_triangle};
 use super::ray_lanes::{Narrow, RayLanes};
 use super::{Accel, Candidate, Cost, NONE_YET, Nearest};
 use raystep_model::math::{Interval, Ray};
@@ -467,20 +467,18 @@ impl Accel {
                     Some((child, meeting)) if child.is_leaf() && meeting != 0 => {
                         let first = child.offset as usize;
                         let leaf = &self.objects[first..first + usize::from(child.count)];
+                        let mut leaf_rays = LeafRays {
+                            origin: &packet.origin,
+                            direction: &packet.direction,
+                            t_min,
+                            rays: meeting,
+                            bests: &mut *bests,
+                        };
                         for (&object, shape) in leaf.iter().zip(&self.shapes[first..]) {
                             if let LeafShape::Triangle(triangle) = shape {
                                 // The plane's v_0 once for the packet's origin.
                                 let v_0 = triangle.v_0(origin);
-                                test_triangle::<P::Rays>(
-                                    triangle,
-                                    object,
-                                    v_0,
-                                    &packet.origin,
-                                    &packet.direction,
-                                    t_min,
-                                    meeting,
-                                    bests,
-                                );
+                                test_triangle::<P::Rays>(triangle, object, v_0, &mut leaf_rays);
                                 continue;
                             }
                             // A quad met by two rays or more: across them
@@ -489,15 +487,7 @@ impl Accel {
                             // gears' quads, 2 % of its instructions).
                             let quad = quad(shape, &objects[object as usize].shape);
                             if let Some(quad) = quad.filter(|_| meeting & (meeting - 1) != 0) {
-                                P::Rays::test_quad(
-                                    quad,
-                                    object,
-                                    &packet.origin,
-                                    &packet.direction,
-                                    t_min,
-                                    meeting,
-                                    bests,
-                                );
+                                P::Rays::test_quad(quad, object, &mut leaf_rays);
                                 continue;
                             }
                             // Ray by ray, `Nearest::test`'s steps on `bests`:
@@ -505,6 +495,7 @@ impl Accel {
                             // object comes earlier in the file (never
                             // before a hit, when the best's object is -1).
                             let object_f = f64::from(object);
+                            let bests = &mut *leaf_rays.bests;
                             let mut left = meeting;
                             while left != 0 {
                                 let i = left.trailing_zeros() as usize;

@@ -52,27 +52,35 @@ pub(super) struct Bests {
 /// `Bests::object` of a ray without a hit yet.
 pub(super) const NO_OBJECT: f64 = -1.0;
 
+/// A packet at a leaf, as each leaf test reads it and writes it: the rays'
+/// shared origin and their directions side by side, the query's t_min,
+/// the rays that test the leaf (one bit each), and every ray's best so far.
+pub(super) struct LeafRays<'a> {
+    pub(super) origin: &'a [f64; 3],
+    pub(super) direction: &'a [[f64; PACKET]; 3],
+    pub(super) t_min: f64,
+    pub(super) rays: u8,
+    pub(super) bests: &'a mut Bests,
+}
+
 /// `TriangleTest::hit_t_given(v_0, ray, range)` for each ray i of the packet
-/// whose bit is set in `rays` (directions side by side in `direction`, all
-/// from `origin`), with the range `Nearest::test_with` gives it (from
-/// `t_min` to its best so far, closed there when `object` comes earlier
-/// in the file); where it hits, the ray's best becomes (object, t).
+/// whose bit is set in `leaf.rays`, with the range `Nearest::test_with`
+/// gives it (from `t_min` to its best so far, closed there when `object`
+/// comes earlier in the file); where it hits, the ray's best becomes
+/// (object, t).
 ///
 /// The same steps as `test_polygon` with N = 3, spelt out: written as
 /// `test_polygon::<L, 3>`, the same answers cost a fifth more instructions
 /// (callgrind, tetra's primary rays at 256 x 256: 69.7 M -> 83.7 M).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub(super) fn test_triangle<L: RayLanes>(
     triangle: &TriangleTest,
     object: u32,
     v_0: f64,
-    origin: &[f64; 3],
-    direction: &[[f64; PACKET]; 3],
-    t_min: f64,
-    rays: u8,
-    bests: &mut Bests,
+    leaf: &mut LeafRays,
 ) {
+    let (origin, direction, t_min, rays) = (leaf.origin, leaf.direction, leaf.t_min, leaf.rays);
+    let bests = &mut *leaf.bests;
     let normal = triangle.plane.normal;
     // The axes kept by `Axis::project`: (U, V) in x-y-z order.
     let (u, v) = match triangle.dropped {
@@ -147,18 +155,15 @@ pub(super) fn test_triangle<L: RayLanes>(
 /// quads tested through their object (`LeafShape::Other`), whose records
 /// hold no vertices.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub(super) fn test_polygon<L: RayLanes, const N: usize>(
     (normal, dropped): (DVec3, Axis),
     projected: &[DVec2; N],
     object: u32,
     v_0: f64,
-    origin: &[f64; 3],
-    direction: &[[f64; PACKET]; 3],
-    t_min: f64,
-    rays: u8,
-    bests: &mut Bests,
+    leaf: &mut LeafRays,
 ) {
+    let (origin, direction, t_min, rays) = (leaf.origin, leaf.direction, leaf.t_min, leaf.rays);
+    let bests = &mut *leaf.bests;
     // The axes kept by `Axis::project`: (U, V) in x-y-z order.
     let (u, v) = match dropped {
         Axis::X => (1, 2),
@@ -230,109 +235,47 @@ pub(super) fn test_polygon<L: RayLanes, const N: usize>(
 /// test it made the walk 30 % slower on triangle scenes without quads
 /// (callgrind, tetra), its code and registers spread over the walk's.
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
-pub(super) fn test_quad_narrow(
-    quad: &Polygon,
-    object: u32,
-    origin: &[f64; 3],
-    direction: &[[f64; PACKET]; 3],
-    t_min: f64,
-    rays: u8,
-    bests: &mut Bests,
-) {
-    quad_with::<Narrow>(quad, object, origin, direction, t_min, rays, bests)
+pub(super) fn test_quad_narrow(quad: &Polygon, object: u32, leaf: &mut LeafRays) {
+    quad_with::<Narrow>(quad, object, leaf)
 }
 
 /// `test_polygon` of a four-vertex `quad` across the rays, out of line and
 /// compiled for each form of lanes (`P::Rays` of the packet's walk).
 pub(super) trait TestQuad {
-    #[allow(clippy::too_many_arguments)]
-    fn test_quad(
-        quad: &Polygon,
-        object: u32,
-        origin: &[f64; 3],
-        direction: &[[f64; PACKET]; 3],
-        t_min: f64,
-        rays: u8,
-        bests: &mut Bests,
-    );
+    fn test_quad(quad: &Polygon, object: u32, leaf: &mut LeafRays);
 }
 
 #[cfg(target_arch = "x86_64")]
 impl TestQuad for Wide {
     #[inline(always)]
-    fn test_quad(
-        quad: &Polygon,
-        object: u32,
-        origin: &[f64; 3],
-        direction: &[[f64; PACKET]; 3],
-        t_min: f64,
-        rays: u8,
-        bests: &mut Bests,
-    ) {
+    fn test_quad(quad: &Polygon, object: u32, leaf: &mut LeafRays) {
         // SAFETY: `Wide` lanes exist only inside the AVX copies of the
         // queries, which run only where `wide::available()` said yes.
-        unsafe { test_quad_wide(quad, object, origin, direction, t_min, rays, bests) }
+        unsafe { test_quad_wide(quad, object, leaf) }
     }
 }
 
 impl TestQuad for Narrow {
     #[inline(always)]
-    fn test_quad(
-        quad: &Polygon,
-        object: u32,
-        origin: &[f64; 3],
-        direction: &[[f64; PACKET]; 3],
-        t_min: f64,
-        rays: u8,
-        bests: &mut Bests,
-    ) {
-        test_quad_narrow(quad, object, origin, direction, t_min, rays, bests)
+    fn test_quad(quad: &Polygon, object: u32, leaf: &mut LeafRays) {
+        test_quad_narrow(quad, object, leaf)
     }
 }
 
 /// `test_quad_narrow` with AVX: only called where `wide::available()`.
 #[cfg(target_arch = "x86_64")]
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
 #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,popcnt,sse3,ssse3,sse4.1,sse4.2")]
-unsafe fn test_quad_wide(
-    quad: &Polygon,
-    object: u32,
-    origin: &[f64; 3],
-    direction: &[[f64; PACKET]; 3],
-    t_min: f64,
-    rays: u8,
-    bests: &mut Bests,
-) {
-    quad_with::<Wide>(quad, object, origin, direction, t_min, rays, bests)
+unsafe fn test_quad_wide(quad: &Polygon, object: u32, leaf: &mut LeafRays) {
+    quad_with::<Wide>(quad, object, leaf)
 }
 
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn quad_with<L: RayLanes>(
-    quad: &Polygon,
-    object: u32,
-    origin: &[f64; 3],
-    direction: &[[f64; PACKET]; 3],
-    t_min: f64,
-    rays: u8,
-    bests: &mut Bests,
-) {
+fn quad_with<L: RayLanes>(quad: &Polygon, object: u32, leaf: &mut LeafRays) {
     let plane = &quad.plane;
-    let v_0 = -(plane.normal.dot(DVec3::from_array(*origin)) + plane.d);
+    let v_0 = -(plane.normal.dot(DVec3::from_array(*leaf.origin)) + plane.d);
     let projected: [DVec2; 4] = std::array::from_fn(|i| quad.dropped.project(quad.vertices[i]));
-    test_polygon::<L, 4>(
-        (plane.normal, quad.dropped),
-        &projected,
-        object,
-        v_0,
-        origin,
-        direction,
-        t_min,
-        rays,
-        bests,
-    );
+    test_polygon::<L, 4>((plane.normal, quad.dropped), &projected, object, v_0, leaf);
 }
 
 #[cfg(test)]
@@ -374,47 +317,54 @@ mod tests {
         (nearest.best.t.to_bits(), object)
     }
 
+    /// One packet's test: `object` tested by the rays (all from one
+    /// origin) whose bit is set in `active`, from `t_min`, their bests
+    /// `start` before.
+    struct Case<'a> {
+        object: u32,
+        rays: &'a [Ray; PACKET],
+        t_min: f64,
+        active: u8,
+        start: &'a Bests,
+    }
+
     /// Runs `test_triangle` with lanes `L` on a packet and checks each ray
     /// against `scalar`; returns how many rays hit and how many were ties
     /// decided by the object order.
-    fn check<L: RayLanes>(
-        triangle: &TriangleTest,
-        object: u32,
-        rays: &[Ray; PACKET],
-        t_min: f64,
-        active: u8,
-        start: &Bests,
-        what: &str,
-    ) -> (usize, usize) {
-        let v_0 = triangle.v_0(rays[0].origin);
-        let run = |origin: &[f64; 3], direction: &[[f64; PACKET]; 3], bests: &mut Bests| {
-            test_triangle::<L>(
-                triangle, object, v_0, origin, direction, t_min, active, bests,
-            )
-        };
+    fn check<L: RayLanes>(triangle: &TriangleTest, case: &Case, what: &str) -> (usize, usize) {
+        let v_0 = triangle.v_0(case.rays[0].origin);
+        let run = |leaf: &mut LeafRays| test_triangle::<L>(triangle, case.object, v_0, leaf);
         let hit = |ray: &Ray, range| triangle.hit_t_given(v_0, ray, range);
-        check_with(&run, &hit, object, rays, t_min, active, start, what)
+        check_with(&run, &hit, case, what)
     }
 
-    /// A lanes' test of a packet: from its origin and directions, into bests.
-    type RunLanes<'a> = dyn Fn(&[f64; 3], &[[f64; PACKET]; 3], &mut Bests) + 'a;
+    /// A lanes' test of a packet at a leaf.
+    type RunLanes<'a> = dyn Fn(&mut LeafRays) + 'a;
 
     /// `check` with the lanes' test run by `run` and the scalar test `hit`.
-    #[allow(clippy::too_many_arguments)]
     fn check_with(
         run: &RunLanes<'_>,
         hit: &dyn Fn(&Ray, Interval) -> Option<f64>,
-        object: u32,
-        rays: &[Ray; PACKET],
-        t_min: f64,
-        active: u8,
-        start: &Bests,
+        case: &Case,
         what: &str,
     ) -> (usize, usize) {
+        let Case {
+            object,
+            rays,
+            t_min,
+            active,
+            start,
+        } = *case;
         let origin = rays[0].origin;
         let direction = [0, 1, 2].map(|axis| rays.map(|ray| ray.direction[axis]));
         let mut bests = *start;
-        run(&origin.to_array(), &direction, &mut bests);
+        run(&mut LeafRays {
+            origin: &origin.to_array(),
+            direction: &direction,
+            t_min,
+            rays: active,
+            bests: &mut bests,
+        });
         let (mut hits, mut ties) = (0, 0);
         for (i, ray) in rays.iter().enumerate() {
             let before = (start.t[i], start.object[i]);
@@ -435,18 +385,11 @@ mod tests {
     }
 
     /// Both copies, where the CPU has AVX.
-    fn check_both(
-        triangle: &TriangleTest,
-        object: u32,
-        rays: &[Ray; PACKET],
-        t_min: f64,
-        active: u8,
-        start: &Bests,
-    ) -> (usize, usize) {
-        let narrow = check::<Narrow>(triangle, object, rays, t_min, active, start, "SSE2");
+    fn check_both(triangle: &TriangleTest, case: &Case) -> (usize, usize) {
+        let narrow = check::<Narrow>(triangle, case, "SSE2");
         #[cfg(target_arch = "x86_64")]
         if super::super::wide::available() {
-            let wide = check::<Wide>(triangle, object, rays, t_min, active, start, "AVX");
+            let wide = check::<Wide>(triangle, case, "AVX");
             assert_eq!(wide, narrow);
         }
         narrow
@@ -533,7 +476,14 @@ mod tests {
                     ];
                     for start in &starts {
                         for active in [u8::MAX, 0b1010_0110] {
-                            let (hits, ties) = check_both(&test, 5, &rays, EPS, active, start);
+                            let case = Case {
+                                object: 5,
+                                rays: &rays,
+                                t_min: EPS,
+                                active,
+                                start,
+                            };
+                            let (hits, ties) = check_both(&test, &case);
                             totals.0 += hits;
                             totals.1 += ties;
                         }
@@ -621,7 +571,14 @@ mod tests {
                 }
             }
             let active = (numbers.next() * 256.0) as u8 | 1;
-            let (h, t) = check_both(&test, object, &rays, t_min, active, &start);
+            let case = Case {
+                object,
+                rays: &rays,
+                t_min,
+                active,
+                start: &start,
+            };
+            let (h, t) = check_both(&test, &case);
             hits += h;
             ties += t;
             misses += active.count_ones() as usize - h;
@@ -704,17 +661,19 @@ mod tests {
             let active = (numbers.next() * 256.0) as u8 | 1;
             // Through `test_quad`, as the walk calls it (v_0 and the
             // projected vertices computed there).
-            let narrow = |origin: &[f64; 3], direction: &[[f64; PACKET]; 3], bests: &mut Bests| {
-                Narrow::test_quad(&polygon, object, origin, direction, t_min, active, bests)
+            let narrow = |leaf: &mut LeafRays| Narrow::test_quad(&polygon, object, leaf);
+            let case = Case {
+                object,
+                rays: &rays,
+                t_min,
+                active,
+                start: &start,
             };
-            let (h, t) = check_with(&narrow, &hit, object, &rays, t_min, active, &start, "SSE2");
+            let (h, t) = check_with(&narrow, &hit, &case, "SSE2");
             #[cfg(target_arch = "x86_64")]
             if super::super::wide::available() {
-                let wide =
-                    |origin: &[f64; 3], direction: &[[f64; PACKET]; 3], bests: &mut Bests| {
-                        Wide::test_quad(&polygon, object, origin, direction, t_min, active, bests)
-                    };
-                let got = check_with(&wide, &hit, object, &rays, t_min, active, &start, "AVX");
+                let wide = |leaf: &mut LeafRays| Wide::test_quad(&polygon, object, leaf);
+                let got = check_with(&wide, &hit, &case, "AVX");
                 assert_eq!(got, (h, t));
             }
             hits += h;

@@ -55,6 +55,7 @@ pub use ray_log::RayLog;
 pub(crate) use renders::Renders;
 pub(crate) use screen::Screen;
 use search::Search;
+use session::Reloaded;
 pub(crate) use session::Session;
 
 /// The deepest max_depth the depth keys go to (a glass scene's tree doubles
@@ -210,6 +211,8 @@ impl App {
                 self.search = None;
                 self.renders.cancel();
             }
+            // The main loop suspends the process itself (`tui::run_loop`);
+            // the state stays as it is (a test's keys may still bring it here).
             Action::Suspend => {}
             Action::Move(dx, dy) => self.move_cursor(dx, dy),
             Action::Pick(x, y) => self.pick(x, y),
@@ -377,11 +380,11 @@ impl App {
     fn collect_reload(&mut self) {
         match self.session.finished_reload() {
             None => {}
-            Some(Some(settings)) => {
+            Some(Reloaded::Scene(settings)) => {
                 self.apply_settings(settings);
                 self.message = Some(format!("reloaded {}", self.session.source().name()));
             }
-            Some(None) => {
+            Some(Reloaded::Broken) => {
                 self.message =
                     Some("the scene file has an error: the last good scene stays".into());
             }

@@ -20,6 +20,17 @@ use super::MAX_DEPTH;
 /// How long the file must be quiet before a reload (editors write in bursts).
 const RELOAD_DELAY: Duration = Duration::from_millis(150);
 
+/// How a reload ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Reloaded {
+    /// The new scene is in place: trace it with these settings (the file's
+    /// with the user's toggles, `merge_settings`).
+    Scene(Settings),
+    /// The file is broken: the banner shows its error while the last good
+    /// scene stays.
+    Broken,
+}
+
 pub struct Session {
     source: SceneSource,
     /// The last good file's scene, with the file's own settings; shared with
@@ -110,11 +121,8 @@ impl Session {
         self.loading = Some(receive);
     }
 
-    /// The reload that has ended since the last call, if one has: the
-    /// settings to trace the new scene with (`merge_settings`'), or `None`
-    /// for a broken file, whose error the banner shows while the last good
-    /// scene stays.
-    pub(super) fn finished_reload(&mut self) -> Option<Option<Settings>> {
+    /// The reload that has ended since the last call, if one has.
+    pub(super) fn finished_reload(&mut self) -> Option<Reloaded> {
         let loaded = match self.loading.as_ref()?.try_recv() {
             Err(TryRecvError::Empty) => return None,
             Err(TryRecvError::Disconnected) => Err("the reload ended without a scene".into()),
@@ -127,11 +135,11 @@ impl Session {
                     merge_settings(&self.scene.settings, &file_scene.settings, &self.settings);
                 self.scene = Arc::new(file_scene);
                 self.error = None;
-                Some(settings)
+                Reloaded::Scene(settings)
             }
             Err(error) => {
                 self.error = Some(error);
-                None
+                Reloaded::Broken
             }
         })
     }
@@ -250,7 +258,10 @@ mod tests {
             assert!(Instant::now() < deadline, "the reload ends once released");
             std::thread::sleep(Duration::from_millis(5));
         };
-        assert!(finished.is_some(), "the scene came back");
+        assert!(
+            matches!(finished, Reloaded::Scene(_)),
+            "the scene came back"
+        );
         assert!(!session.reload_waits());
     }
 
@@ -266,7 +277,7 @@ mod tests {
             false,
         );
         session.start_reload_with(|_| Err(SceneError::plain("the newer file is broken")), true);
-        assert_eq!(session.finished_reload(), Some(None));
+        assert_eq!(session.finished_reload(), Some(Reloaded::Broken));
         assert_eq!(session.error(), Some("the newer file is broken"));
     }
 }

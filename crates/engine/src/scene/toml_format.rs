@@ -1,6 +1,7 @@
 //! Native scene files in TOML: comments, familiar syntax, and errors that
 //! carry line and column. Unknown keys are errors, so a misspelt `radious`
-//! never silently falls back to a default.
+//! never silently falls back to a default. The file's schema, what serde
+//! reads, is `schema.rs`; this file turns it into the engine's scene.
 //!
 //! ```toml
 //! # A red ball under one light.
@@ -34,7 +35,7 @@
 //! sphere = { center = [0, 1, 0], radius = 1 }
 //! ```
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::HashSet;
 use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -46,237 +47,18 @@ use toml::Spanned;
 use super::toml_sections;
 use super::{
     Light, MAX_RAYS_LIMIT, Material, Object, ObjectName, SceneError, SceneParts, Settings,
-    SpecularModel, check_camera, check_image_size,
+    check_camera, check_image_size,
 };
 use raystep_model::camera::Camera;
 use raystep_model::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
 
 mod bounds;
+mod schema;
 
-/// A number that must be finite: TOML allows `nan` and `inf`, scenes do not.
-#[derive(Clone, Copy, Debug)]
-struct Finite(f64);
-
-impl<'de> Deserialize<'de> for Finite {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let value = f64::deserialize(deserializer)?;
-        if value.is_finite() {
-            Ok(Finite(value))
-        } else {
-            Err(serde::de::Error::custom(format!(
-                "numbers must be finite, got {value}"
-            )))
-        }
-    }
-}
-
-/// A finite number and where it is written, so that a range check can point at it.
-type Number = Spanned<Finite>;
-
-fn number(n: &Number) -> f64 {
-    n.get_ref().0
-}
-
-/// Exactly three finite numbers, each with its place: a fourth element or a
-/// missing third is an error, never dropped or defaulted.
-#[derive(Clone, Debug)]
-struct Vec3([Number; 3]);
-
-impl<'de> Deserialize<'de> for Vec3 {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        deserializer.deserialize_seq(Vec3Visitor)
-    }
-}
-
-struct Vec3Visitor;
-
-impl<'de> serde::de::Visitor<'de> for Vec3Visitor {
-    type Value = Vec3;
-
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("an array of three numbers")
-    }
-
-    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec3, A::Error> {
-        let mut values = Vec::with_capacity(3);
-        while values.len() < 3 {
-            match seq.next_element::<Number>()? {
-                Some(value) => values.push(value),
-                None => return Err(wrong_length(values.len())),
-            }
-        }
-        // Count the extra elements, whatever they are, to say how many there were.
-        let mut length = 3;
-        while seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
-            length += 1;
-        }
-        match <[Number; 3]>::try_from(values) {
-            Ok(values) if length == 3 => Ok(Vec3(values)),
-            _ => Err(wrong_length(length)),
-        }
-    }
-}
-
-fn wrong_length<E: serde::de::Error>(length: usize) -> E {
-    E::custom(format!(
-        "expected an array of three numbers (x, y, z or red, green, blue), got {length}"
-    ))
-}
-
-fn vec3(v: &Vec3) -> DVec3 {
-    DVec3::new(number(&v.0[0]), number(&v.0[1]), number(&v.0[2]))
-}
-
-fn triple(v: &Vec3) -> [f64; 3] {
-    vec3(v).to_array()
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileDef {
-    camera: Spanned<CameraDef>,
-    image: Option<Spanned<ImageDef>>,
-    #[serde(default)]
-    settings: SettingsDef,
-    #[serde(default)]
-    materials: BTreeMap<String, Spanned<MaterialDef>>,
-    #[serde(default, rename = "light")]
-    lights: Vec<Spanned<LightDef>>,
-    /// `None` when the file has no objects or they were cut out to be read
-    /// one by one (`toml_sections`).
-    #[serde(default, rename = "object")]
-    objects: Option<Vec<Spanned<ObjectDef>>>,
-}
-
-/// One `[[object]]` section read on its own.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ObjectSectionDef {
-    #[serde(rename = "object")]
-    objects: Vec<Spanned<ObjectDef>>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CameraDef {
-    eye: Vec3,
-    look_at: Vec3,
-    up: Option<Vec3>,
-    fov: Option<Number>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ImageDef {
-    width: u32,
-    height: u32,
-}
-
-#[derive(Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-struct SettingsDef {
-    background: Option<Vec3>,
-    ambient: Option<Vec3>,
-    light_attenuation: Option<Vec3>,
-    ray_attenuation: Option<Vec3>,
-    max_depth: Option<Spanned<u32>>,
-    min_weight: Option<Spanned<Finite>>,
-    max_rays: Option<Spanned<u32>>,
-    specular: Option<SpecularModel>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MaterialDef {
-    color: Option<Vec3>,
-    kd: Option<Number>,
-    ks: Option<Number>,
-    n: Option<Number>,
-    kt: Option<Number>,
-    ior: Option<Number>,
-    ka: Option<Number>,
-    specular: Option<SpecularModel>,
-    /// False: k_s gives highlights but no mirror-reflected ray (MODEL §5).
-    reflect: Option<bool>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LightDef {
-    name: Option<String>,
-    position: Vec3,
-    color: Option<Vec3>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ObjectDef {
-    name: Option<Spanned<String>>,
-    /// Required, except for a mesh (whose MTL gives its materials).
-    material: Option<Spanned<String>>,
-    mesh: Option<Spanned<MeshDef>>,
-    sphere: Option<Spanned<SphereDef>>,
-    plane: Option<Spanned<PlaneDef>>,
-    polygon: Option<Spanned<PolygonDef>>,
-    patch: Option<Spanned<PatchDef>>,
-    cylinder: Option<Spanned<CylinderDef>>,
-    cone: Option<Spanned<ConeDef>>,
-}
-
-/// `mesh = { file = "box.obj", scale = 2, rotate = [0, 30, 0], translate = [1, 0, 0] }`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MeshDef {
-    file: Spanned<String>,
-    scale: Option<Number>,
-    /// Degrees about x, then y, then z.
-    rotate: Option<Vec3>,
-    translate: Option<Vec3>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SphereDef {
-    center: Vec3,
-    radius: Number,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PlaneDef {
-    normal: Vec3,
-    point: Vec3,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PolygonDef {
-    vertices: Vec<Vec3>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PatchDef {
-    vertices: Vec<Vec3>,
-    normals: Vec<Vec3>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CylinderDef {
-    base: Vec3,
-    apex: Vec3,
-    radius: Number,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ConeDef {
-    base: Vec3,
-    base_radius: Number,
-    apex: Vec3,
-    apex_radius: Number,
-}
+use schema::{
+    CameraDef, FileDef, LightDef, MaterialDef, MeshDef, ObjectDef, ObjectSectionDef, SettingsDef,
+    Vec3, number, triple, vec3,
+};
 
 /// The default image size when a file has no `[image]` table.
 pub(crate) const DEFAULT_SIZE: (u32, u32) = (320, 240);

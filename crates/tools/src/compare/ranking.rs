@@ -4,8 +4,9 @@
 //!
 //! The student's tracer is another program: its rounding speckles other
 //! pixels than ours (shadow acne) and its edges fall elsewhere. So images are
-//! compared by the mean colour of 8 x 8 blocks, not pixel by pixel: two
-//! speckled images of the same density agree there, where a clean one does not.
+//! compared by the mean colour of 16 x 16 blocks (`BLOCK`), not pixel by
+//! pixel: two speckled images of the same density agree there, where a
+//! clean one does not.
 //!
 //! A mistake is judged where it changes the image: in the blocks its render
 //! changes, does it bring the reference to the student's image? That finds

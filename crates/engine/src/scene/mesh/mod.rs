@@ -2,26 +2,24 @@
 //! an STL file, placed in a scene as polygons (flat) or patches (with the
 //! OBJ's vertex normals), one object per triangle (MODEL §2 "Meshes").
 //!
-//! Each loader gives plain triangles in the file's coordinates; this module
+//! Each loader gives plain triangles in the file's coordinates; `placing.rs`
 //! places them (scale, then rotate about x, y, z, then translate), skips the
 //! degenerate ones, names each one and turns MTL emitters into point lights.
 
 pub(crate) mod alone;
 mod mtl;
 mod obj;
+mod placing;
 mod stl;
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{DMat3, DVec3};
 
-use super::limits::COORDINATE;
 use super::{Light, Material, Object, ObjectName, SceneError};
 use crate::input_file::{self, Cap};
 use raystep_model::object::MeshNames;
-use raystep_model::shapes::{Aabb, Patch, Polygon, Shape};
 
 /// The largest mesh or MTL file read: far above a course mesh (a million
 /// triangles of OBJ take about 60 MB, BENCHMARKS.md).
@@ -149,7 +147,7 @@ pub(crate) fn load(request: &Request) -> Result<Placed, SceneError> {
             )));
         }
     };
-    place(request, loaded)
+    placing::place(request, loaded)
 }
 
 /// Reads a mesh from bytes already in memory (the fuzz target's way in):
@@ -166,159 +164,7 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<usize, SceneError> {
         material: None,
         first_material: 0,
     };
-    Ok(place(&request, loaded)?.objects.len())
-}
-
-fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneError> {
-    let path = request.path;
-    let rotation = request.placement.rotation();
-    let scale = request.placement.scale;
-    let translate = request.placement.translate;
-    let to_scene = |p: DVec3| rotation * (p * scale) + translate;
-    let mut files = vec![path.to_owned()];
-    files.extend(loaded.libraries);
-    let mut placed = Placed {
-        warnings: loaded.warnings,
-        files,
-        ..Placed::default()
-    };
-    // The MTL's materials, then (when some triangle has none) the default.
-    let mut material_index = Vec::with_capacity(loaded.materials.len());
-    let mut emitters = Vec::new();
-    for read in &loaded.materials {
-        let (material, warnings) = mtl::to_model(read);
-        for w in warnings {
-            placed
-                .warnings
-                .push(format!("{}: material `{}`: {w}", path.display(), read.name));
-        }
-        if read.emission.is_some() {
-            emitters.push(material_index.len());
-        }
-        material_index.push(request.first_material + placed.materials.len());
-        placed.materials.push(material);
-    }
-    let mut default_material = None;
-    // Each emitter's area-weighted centre over its triangles, its area,
-    // the sum of its faces' (v1 - v0) x (v2 - v0) and its bounding box.
-    let mut emitter_sums =
-        vec![(DVec3::ZERO, 0.0, DVec3::ZERO, Aabb::EMPTY); loaded.materials.len()];
-    let mut per_group = vec![0usize; loaded.groups.len()];
-    let mut degenerate = 0usize;
-    let prefix = request.name.map(|n| format!("{n} ")).unwrap_or_default();
-    placed.groups = loaded
-        .groups
-        .iter()
-        .map(|g| format!("{prefix}{g}"))
-        .collect();
-    let mut names = MeshNames::new(
-        placed.groups.clone(),
-        loaded.materials.iter().map(|m| m.name.clone()).collect(),
-    );
-    // Triangles whose index does not fit the shared names' u32, named in full.
-    let mut named_in_full = Vec::new();
-    placed.objects.reserve(loaded.triangles.len());
-    for t in &loaded.triangles {
-        let index = per_group[t.group];
-        per_group[t.group] += 1;
-        let vertices = t.vertices.map(to_scene);
-        if let Some(v) = vertices
-            .iter()
-            .find(|v| v.to_array().iter().any(|c| COORDINATE.check(*c).is_err()))
-        {
-            return Err(SceneError::plain(format!(
-                "{}: {} triangle {index}: vertex {v} lies outside the scene's bounds once placed (coordinates {}..{})",
-                path.display(),
-                loaded.groups[t.group],
-                COORDINATE.min,
-                COORDINATE.max
-            )));
-        }
-        let shape = match t.normals {
-            Some(normals) => Patch::new(vertices.to_vec(), normals.map(|n| rotation * n).to_vec())
-                .map(Shape::Patch),
-            None => Polygon::new(vertices.to_vec()).map(Shape::Polygon),
-        };
-        let Ok(shape) = shape else {
-            degenerate += 1;
-            continue;
-        };
-        let (material, material_name) = match (request.material, t.material) {
-            (Some(m), _) => (m, None),
-            (None, Some(m)) => (material_index[m], Some(m)),
-            (None, None) => {
-                let m = *default_material.get_or_insert_with(|| {
-                    placed.materials.push(Material::default_white());
-                    request.first_material + placed.materials.len() - 1
-                });
-                (m, None)
-            }
-        };
-        if let (None, Some(m)) = (request.material, t.material)
-            && loaded.materials[m].emission.is_some()
-        {
-            let cross = (vertices[1] - vertices[0]).cross(vertices[2] - vertices[0]);
-            let area = cross.length() / 2.0;
-            let centre = (vertices[0] + vertices[1] + vertices[2]) / 3.0;
-            let sums = &mut emitter_sums[m];
-            sums.0 += centre * area;
-            sums.1 += area;
-            sums.2 += cross;
-            sums.3 = sums.3.union(&Aabb::around(&vertices));
-        }
-        if names.push(t.group, index, material_name).is_none() {
-            let mut name = format!("{} triangle {index}", placed.groups[t.group]);
-            if let Some(m) = material_name {
-                let _ = write!(name, " (material {})", loaded.materials[m].name);
-            }
-            named_in_full.push((placed.objects.len(), name));
-        }
-        placed.objects.push(Object {
-            // Set below, once the mesh's names are complete.
-            name: ObjectName::Given(Box::default()),
-            shape,
-            material,
-        });
-    }
-    let names = Arc::new(names);
-    // `push` numbered the others in order from 0: object i is name i less
-    // the objects named in full before it.
-    let mut in_full = named_in_full.into_iter().peekable();
-    let mut index = 0u32;
-    for (i, object) in placed.objects.iter_mut().enumerate() {
-        object.name = match in_full.next_if(|(at, _)| *at == i) {
-            Some((_, name)) => name.as_str().into(),
-            None => {
-                index += 1;
-                ObjectName::MeshTriangle {
-                    names: Arc::clone(&names),
-                    index: index - 1,
-                }
-            }
-        };
-    }
-    if degenerate > 0 {
-        placed.warnings.push(format!(
-            "{}: {degenerate} degenerate triangle(s) skipped (their vertices are collinear)",
-            path.display()
-        ));
-    }
-    for m in emitters {
-        let (sum, area, normal, bounds) = emitter_sums[m];
-        let read = &loaded.materials[m];
-        if area <= 0.0 {
-            continue;
-        }
-        // The light sits just off the emitter, on the side its faces'
-        // winding faces, so that its own faces never shadow what it lights.
-        let offset = normal.normalize_or_zero() * (EMITTER_OFFSET * bounds.diagonal());
-        placed.lights.push(Light {
-            name: format!("{prefix}light (Ke of material {})", read.name),
-            position: sum / area + offset,
-            color: read.emission.unwrap_or_default() * mtl::EMITTER_INTENSITY,
-        });
-    }
-    Ok(placed)
+    Ok(placing::place(&request, loaded)?.objects.len())
 }
 
 impl Placed {

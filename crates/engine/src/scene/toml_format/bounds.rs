@@ -1,7 +1,8 @@
 //! Every number of a parsed TOML scene within its range (`scene::limits`),
 //! refused at its own line and column with its key, before anything is built.
 
-use super::{FileDef, MaterialDef, Number, ObjectDef, SettingsDef, Source, Vec3};
+use super::Source;
+use super::schema::{FileDef, MaterialDef, Number, ObjectDef, SettingsDef, Vec3, vec3};
 use crate::scene::limits::{
     ATTENUATION, Bounds, COEFFICIENT, COLOR, COORDINATE, IOR, SHININESS, SIZE, TRANSMISSION,
     WEIGHT, check_cone_length, check_cone_radius, show,
@@ -155,7 +156,7 @@ fn cone_length(
     base: &Vec3,
     apex: &Vec3,
 ) -> Result<(), SceneError> {
-    check_cone_length(super::vec3(base), super::vec3(apex))
+    check_cone_length(vec3(base), vec3(apex))
         .map_err(|reason| source.error(span, format!("`{key}`: {reason}")))
 }
 

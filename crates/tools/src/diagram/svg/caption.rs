@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::labels::escape;
+use super::escaping::escape;
 
 /// The heading's largest and smallest font size, and the figures' width.
 const HEADING_SIZE: f64 = 15.0;

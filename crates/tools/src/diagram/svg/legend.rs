@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use super::labels::escape;
+use super::escaping::escape;
 use super::{FACES_AWAY, HEIGHT, LEGEND, MARGIN, PASSED, WIDTH, stroke_colour};
 use crate::diagram::{LegendRow, Stroke};
 

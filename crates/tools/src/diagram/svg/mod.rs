@@ -10,6 +10,8 @@
 mod caption;
 mod cell_index;
 pub mod crossing_figure;
+mod escaping;
+mod frame_geometry;
 mod labels;
 mod legend;
 mod plane_map;
@@ -19,7 +21,8 @@ use std::fmt::Write;
 use glam::DVec2;
 
 pub use self::caption::Caption;
-use self::labels::{Box2, Labels, clip};
+use self::frame_geometry::{Box2, clip};
+use self::labels::Labels;
 use self::plane_map::{PlaneMap, label_anchor, outline_segments, write_outline};
 use super::{Anchor, Diagram, DiagramPlane, Named, Role, Stroke};
 use raystep_engine::record::light_label;
@@ -161,7 +164,7 @@ fn write_edge_on_note(out: &mut String, labels: &mut Labels, plane: DiagramPlane
         "<text x=\"{}\" y=\"{}\" font-size=\"{NOTE_SIZE}\" fill=\"#555555\">{}</text>",
         corner.x,
         corner.y,
-        labels::escape(&note)
+        escaping::escape(&note)
     );
 }
 
@@ -235,7 +238,7 @@ fn write_line(
 /// A point's place in the figure, when it is inside the frame.
 fn framed(map: &PlaneMap, p: DVec2) -> Option<DVec2> {
     let at = map.to_figure(p);
-    labels::contains(FRAME, (at, at)).then_some(at)
+    frame_geometry::contains(FRAME, (at, at)).then_some(at)
 }
 
 /// The blockers' ×, the hits' dots, the passed-by rings, the eye and the
@@ -287,7 +290,8 @@ fn write_labels(out: &mut String, labels: &mut Labels, map: &PlaneMap, diagram: 
             // A plane is named where a ray hits it, if one does in the frame.
             Anchor::Outline { outline, hits } => {
                 let hit = hits.iter().find_map(|h| framed(map, *h));
-                label_anchor(outline, map, hit).filter(|a| labels::contains(FRAME, (*a, *a)))
+                label_anchor(outline, map, hit)
+                    .filter(|a| frame_geometry::contains(FRAME, (*a, *a)))
             }
         };
         let Some(at) = at else { continue };

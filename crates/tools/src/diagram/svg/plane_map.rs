@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use glam::DVec2;
 
-use super::labels::clip;
+use super::frame_geometry::clip;
 use super::{FRAME, HEIGHT, MARGIN, WIDTH};
 use crate::diagram::{Outline, magnified_centre};
 

@@ -22,9 +22,8 @@ use raystep_engine::record::num;
 use raystep_engine::scene::Scene;
 
 /// The kinds of difference `compare --rays` recognises; their JSON names
-/// are a contract (docs/RAYLOG.md).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+/// are a contract (docs/RAYLOG.md), written once, in `Kind::name`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
     /// A ray in your log that our tree does not cast.
     OnlyYours,
@@ -91,6 +90,13 @@ impl Kind {
             Kind::Clamped => "clamped",
             Kind::Other => "other",
         }
+    }
+}
+
+/// As its JSON name: serde and the JSON report name a kind alike.
+impl Serialize for Kind {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
     }
 }
 
@@ -491,5 +497,18 @@ mod tests {
             "{words}"
         );
         assert!(words.contains("|N·L|"), "{words}");
+    }
+
+    #[test]
+    fn a_kind_serialises_as_its_json_name() {
+        for kind in [
+            Kind::OnlyYours,
+            Kind::HitWhereOursMissed,
+            Kind::OtherT,
+            Kind::Nan,
+        ] {
+            let json = serde_json::to_value(kind).unwrap();
+            assert_eq!(json, kind.name());
+        }
     }
 }
