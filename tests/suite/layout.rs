@@ -1,9 +1,14 @@
-//! The crate's layout (issue 14): no import circle between the top-level
-//! modules of src/ (a circle means neither module can be read, tested or
-//! moved without the other; the shared thing belongs in the lower one); in
-//! the debugger, the state and the views know no pane; CONTRIBUTING.md's Layout
-//! section names every folder of the debugger. Issue 25: no circle between
-//! the files of any one folder either (`super::` and `crate::<folder>::`).
+//! The layout, where the compiler does not keep it. The walls between the
+//! floors are the workspace's crates (issue 37: model, accel, engine,
+//! tools, and this package), which the compiler keeps; what is checked
+//! here is what it cannot see: no import circle between the top-level
+//! modules of any one crate (a circle means neither module can be read,
+//! tested or moved without the other; the shared thing belongs in the lower
+//! one), nor between the files of any one folder (issue 25: `super::` and
+//! `crate::<folder>::`); in the debugger, the state and the views know no
+//! pane; CONTRIBUTING.md's Layout section names every folder of the
+//! debugger; no floor below the binary pulls in a terminal, signals, file
+//! watching or C++ (`cargo tree`); a `pub` item is used outside its crate.
 //!
 //! Module A depends on B when any file of A names `crate::B` (in a `use`,
 //! a path or a doc link) outside its unit tests. This reads the source, not
@@ -15,6 +20,23 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 type Graph = BTreeMap<String, BTreeSet<String>>;
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The library crates below the binary, by folder under `crates/`.
+const FLOORS: [&str; 4] = ["model", "accel", "engine", "tools"];
+
+/// Each crate's source folder: the four floors' and this package's.
+fn crate_sources() -> Vec<PathBuf> {
+    let mut sources: Vec<PathBuf> = FLOORS
+        .iter()
+        .map(|floor| root().join("crates").join(floor).join("src"))
+        .collect();
+    sources.push(root().join("src"));
+    sources
+}
 
 /// Every `.rs` file under `path` (or `path` itself when it is a file).
 fn rust_files(path: &Path) -> Vec<PathBuf> {
@@ -86,7 +108,12 @@ fn module_graph(src: &Path) -> Graph {
     for (name, path) in &modules {
         let mut uses = BTreeSet::new();
         for file in rust_files(path) {
-            uses.extend(crate_references(&library_part(&file)));
+            let library = library_part(&file);
+            uses.extend(crate_references(&library));
+            // In a file at the crate's root, `super::` is the crate.
+            if file.parent() == Some(src) {
+                uses.extend(references_after(&library, "super::"));
+            }
         }
         uses.retain(|used| used != name && modules.contains_key(used));
         graph.insert(name.clone(), uses);
@@ -188,20 +215,34 @@ fn circles(graph: &Graph) -> Vec<String> {
 
 #[test]
 fn no_import_circle_between_top_level_modules() {
-    let graph = module_graph(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
-    assert!(graph.contains_key("scene") && graph.contains_key("accel"));
-    let found = circles(&graph);
-    assert!(
-        found.is_empty(),
-        "import circles in src/: {found:#?}\ngraph: {graph:#?}"
-    );
+    let mut found = Vec::new();
+    for src in crate_sources() {
+        let graph = module_graph(&src);
+        found.extend(
+            circles(&graph)
+                .into_iter()
+                .map(|c| format!("{}: {c}", src.display())),
+        );
+    }
+    let engine = module_graph(&root().join("crates/engine/src"));
+    assert!(engine["record"].contains("trace"), "{engine:#?}");
+    // accel's files name each other as `super::` too.
+    let accel = module_graph(&root().join("crates/accel/src"));
+    assert!(accel["packet"].contains("node"), "{accel:#?}");
+    assert!(found.is_empty(), "import circles: {found:#?}");
 }
 
 #[test]
 fn no_import_circle_between_the_files_of_a_folder() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let folders = folders(&src);
+    let folders: Vec<_> = crate_sources()
+        .iter()
+        .flat_map(|src| folders(src))
+        .collect();
     assert!(folders.iter().any(|(_, m)| m == "tui::app"), "{folders:?}");
+    assert!(
+        folders.iter().any(|(_, m)| m == "divergence::kind"),
+        "{folders:?}"
+    );
     let mut found = Vec::new();
     for (folder, module) in &folders {
         let graph = folder_graph(folder, module);
@@ -220,10 +261,7 @@ fn no_import_circle_between_the_files_of_a_folder() {
 #[test]
 fn the_folder_reader_sees_super_and_absolute_paths() {
     // record/dot.rs names its siblings both ways; its unit tests don't count.
-    let graph = folder_graph(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src/record"),
-        "record",
-    );
+    let graph = folder_graph(&root().join("crates/engine/src/record"), "record");
     assert!(graph.contains_key("dot") && !graph.contains_key("mod"));
     let text = "use super::{tree::RayTree, text};\nlet x = crate::record::lines::f();\n";
     let mut names = references_after(text, "super::");
@@ -341,19 +379,47 @@ fn contributing_layout_names_every_folder_of_the_debugger() {
     }
 }
 
+/// The packages in the normal (not dev or build) dependency tree of
+/// `package`, with its default features, by name.
+fn normal_dependencies(package: &str) -> BTreeSet<String> {
+    let output = std::process::Command::new(env!("CARGO"))
+        .current_dir(root())
+        .args(["tree", "--offline", "-e", "normal", "--prefix", "none"])
+        .args(["--format", "{p}", "-p", package])
+        .output()
+        .expect("cargo runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout)
+        .unwrap()
+        .lines()
+        .filter_map(|line| line.split_whitespace().next())
+        .map(String::from)
+        .collect()
+}
+
 #[test]
-fn only_the_command_line_reaches_into_the_debugger() {
-    // The SVG figure, the recording and the renderer are no part of the
-    // debugger; what they share with it (the assembled ray diagram) lives
-    // outside `src/tui/`. Only `cli.rs` launches the debugger.
-    let graph = module_graph(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
-    assert!(graph["cli"].contains("tui"), "the reader sees cli -> tui");
-    let users: Vec<_> = graph
-        .iter()
-        .filter(|(name, uses)| name.as_str() != "cli" && uses.contains("tui"))
-        .map(|(name, _)| name)
-        .collect();
-    assert!(users.is_empty(), "modules naming crate::tui: {users:?}");
+fn no_floor_below_the_binary_needs_a_terminal_signals_file_watching_or_cpp() {
+    // The web page builds the floors for WebAssembly: none may need
+    // crossterm, ratatui, signal-hook, notify or nv-flip (C++). Only the
+    // binary turns on the tools' `flip` feature.
+    let binary_only = ["crossterm", "ratatui", "signal-hook", "notify", "nv-flip"];
+    for floor in FLOORS {
+        let package = format!("raystep-{floor}");
+        let tree = normal_dependencies(&package);
+        assert!(tree.contains(&package), "{package}: {tree:?}");
+        let found: Vec<_> = binary_only.iter().filter(|p| tree.contains(**p)).collect();
+        assert!(found.is_empty(), "{package} depends on {found:?}");
+    }
+    // The check sees them where they are.
+    let binary = normal_dependencies("raystep");
+    assert!(
+        binary_only.iter().all(|p| binary.contains(*p)),
+        "{binary:?}"
+    );
 }
 
 /// The `src/`, `tests/`, `benches/`, `docs/` and `scenes/` paths that `text`
@@ -363,7 +429,7 @@ fn named_paths(text: &str) -> BTreeSet<String> {
         .skip(1)
         .step_by(2)
         .filter(|quoted| {
-            ["src/", "tests/", "benches/", "docs/", "scenes/"]
+            ["src/", "crates/", "tests/", "benches/", "docs/", "scenes/"]
                 .iter()
                 .any(|root| quoted.starts_with(root))
         })
@@ -411,19 +477,18 @@ fn every_path_that_the_documents_name_exists() {
 
 #[test]
 fn the_diagram_is_assembled_once_and_the_media_only_draw_it() {
-    // crates/tools/src/diagram/ assembles the ray diagram knowing neither medium: no
-    // file of it outside svg/ names the SVG writer, the debugger or
-    // ratatui. The two media (svg/ and the debugger's diagram pane) take
+    // The tools' diagram/ assembles the ray diagram knowing neither medium:
+    // no file of it outside svg/ names the SVG writer (the debugger and
+    // ratatui it cannot reach: they are the binary's). The two media (svg/ and the debugger's diagram pane) take
     // the assembled diagram: neither projects rays or picks the objects
     // itself, as each did when they drifted apart.
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let diagram = src.join("diagram");
+    let diagram = root().join("crates/tools/src/diagram");
     for file in rust_files(&diagram) {
         if file.starts_with(diagram.join("svg")) {
             continue;
         }
         let segments = path_segments(&fs::read_to_string(&file).unwrap());
-        for medium in ["svg", "tui", "ratatui"] {
+        for medium in ["svg"] {
             assert!(
                 !segments.contains(medium),
                 "{} names {medium}",
@@ -432,7 +497,7 @@ fn the_diagram_is_assembled_once_and_the_media_only_draw_it() {
         }
     }
     let mut media = rust_files(&diagram.join("svg"));
-    media.push(src.join("tui/pane/diagram.rs"));
+    media.push(root().join("src/tui/pane/diagram.rs"));
     for file in media {
         let text = fs::read_to_string(&file).unwrap();
         let library = text.split("#[cfg(test)]\nmod ").next().unwrap_or_default();
@@ -512,44 +577,65 @@ fn public_interfaces(text: &str) -> String {
     shown
 }
 
+/// The words of the Rust files under `dirs` (of the repository), less
+/// their unit tests where `library` is set.
+fn words_of(files: impl IntoIterator<Item = PathBuf>, library: bool) -> BTreeSet<String> {
+    let mut words = BTreeSet::new();
+    for file in files {
+        let text = if library {
+            library_part(&file)
+        } else {
+            fs::read_to_string(&file).unwrap()
+        };
+        words.extend(
+            text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .map(String::from),
+        );
+    }
+    words
+}
+
 #[test]
-fn the_library_makes_public_only_what_is_used_outside_it() {
-    // Issue 25: an item is `pub(crate)` unless a test, bench, fuzz target or
-    // the binary needs it, so that the compiler finds dead code. A `pub`
-    // item whose name no file outside the library mentions is needed by
-    // nobody there (a method, field or type the outside reaches is named).
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut outside = String::new();
-    for dir in ["tests", "benches", "fuzz/fuzz_targets"] {
-        for file in rust_files(&root.join(dir)) {
-            outside += &fs::read_to_string(file).unwrap();
-        }
-    }
-    outside += &fs::read_to_string(root.join("src/main.rs")).unwrap();
-    let mentioned: BTreeSet<&str> = outside
-        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+fn each_crate_makes_public_only_what_is_used_outside_it() {
+    // Issue 25, then 37: an item is `pub(crate)` unless another crate (a
+    // floor above, the binary), a test, bench or fuzz target needs it, so
+    // that the compiler finds dead code. A `pub` item whose name nothing
+    // outside its crate mentions is needed by nobody there (a method,
+    // field or type the outside reaches is named).
+    let mut everywhere: Vec<PathBuf> = ["tests", "benches", "fuzz/fuzz_targets"]
+        .iter()
+        .flat_map(|dir| rust_files(&root().join(dir)))
         .collect();
-    // A type that a public signature, field or enum variant names is needed
-    // wherever that item is: the compiler refuses it more private.
-    let files = rust_files(&root.join("src"));
-    let mut interfaces = String::new();
-    for file in &files {
-        interfaces += &public_interfaces(&library_part(file));
+    for src in crate_sources() {
+        everywhere.extend(rust_files(&src));
     }
-    let in_interfaces: BTreeSet<&str> = interfaces
-        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
-        .collect();
     let mut unneeded = Vec::new();
-    for file in &files {
-        for name in public_names(&library_part(file)) {
-            if !mentioned.contains(name.as_str()) && !in_interfaces.contains(name.as_str()) {
-                unneeded.push(format!("{}: {name}", file.display()));
+    for src in crate_sources() {
+        let files = rust_files(&src);
+        let outside = everywhere
+            .iter()
+            .filter(|f| !f.starts_with(&src) || f.ends_with("src/main.rs"));
+        let mentioned = words_of(outside.cloned(), false);
+        // A type that a public signature, field or enum variant names is
+        // needed wherever that item is: the compiler refuses it more private.
+        let mut interfaces = String::new();
+        for file in &files {
+            interfaces += &public_interfaces(&library_part(file));
+        }
+        let in_interfaces: BTreeSet<&str> = interfaces
+            .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .collect();
+        for file in &files {
+            for name in public_names(&library_part(file)) {
+                if !mentioned.contains(&name) && !in_interfaces.contains(name.as_str()) {
+                    unneeded.push(format!("{}: {name}", file.display()));
+                }
             }
         }
     }
     assert!(
         unneeded.is_empty(),
-        "pub, but named nowhere outside src/: {unneeded:#?}"
+        "pub, but named nowhere outside its crate: {unneeded:#?}"
     );
     let example = "pub fn a() {}\npub(crate) fn b() {}\npub struct C {\n    pub d: u8,\n}\npub mod e;\npub use f::G;\npub unsafe fn h() {}";
     assert_eq!(public_names(example), ["a", "C", "d", "h"]);
@@ -558,20 +644,22 @@ fn the_library_makes_public_only_what_is_used_outside_it() {
 #[test]
 fn a_file_name_says_one_thing() {
     // Issue 25: four files were called mistakes.rs, two recorder.rs, three
-    // tree.rs. A name is used once in src/, except for a debugger pane's
-    // pair (what it shows, in view/, and how, in pane/) and a command's
-    // body in cli/ (named after its command).
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    // tree.rs. A name is used once in the workspace's sources, except for a
+    // debugger pane's pair (what it shows, in view/, and how, in pane/), a
+    // command's body in cli/ (named after its command), and each crate's
+    // lib.rs.
     let mut by_name: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for file in rust_files(&src) {
-        let name = file.file_name().unwrap().to_string_lossy().into_owned();
-        let relative = file
-            .strip_prefix(&src)
-            .unwrap()
-            .to_string_lossy()
-            .into_owned();
-        if name != "mod.rs" && !relative.starts_with("cli/") {
-            by_name.entry(name).or_default().push(relative);
+    for src in crate_sources() {
+        for file in rust_files(&src) {
+            let name = file.file_name().unwrap().to_string_lossy().into_owned();
+            let relative = file
+                .strip_prefix(&src)
+                .unwrap()
+                .to_string_lossy()
+                .into_owned();
+            if !["mod.rs", "lib.rs"].contains(&name.as_str()) && !relative.starts_with("cli/") {
+                by_name.entry(name).or_default().push(relative);
+            }
         }
     }
     let shared: Vec<_> = by_name

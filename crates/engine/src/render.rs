@@ -9,7 +9,7 @@ use image::RgbImage;
 use rayon::prelude::*;
 
 use crate::scene::{Scene, Settings};
-use crate::trace::{NoRecorder, RayStats, Recorder, trace_found_in_row, trace_in_row};
+use crate::trace::{Nearest, NoRecorder, RayStats, Recorder, trace_in_row};
 use raystep_accel::{PACKET, ShadowCache};
 use raystep_model::camera::Viewport;
 use raystep_model::math::{Interval, Ray};
@@ -72,38 +72,16 @@ pub fn render_unless<R: RowRecorder>(
     let (pixels, _) = image.as_chunks_mut::<3>();
     let mistakes = settings.mistakes;
     let viewport = viewport(scene, settings, (width, height));
-    let recorder = if R::PACKETS {
-        // A primary ray's hit range is (EPS, inf) whatever the mistakes
-        // (`Rules::hit_range`).
-        let range = Interval::in_front();
-        for_each_row(
-            &viewport,
-            pixels,
-            row_done,
-            cancel,
-            |rays, cache, rec, row| {
-                let mut found = [None; PACKET];
-                for (rays, row) in rays.chunks(PACKET).zip(row.chunks_mut(PACKET)) {
-                    let found = &mut found[..rays.len()];
-                    scene.accel.closest_each(&scene.objects, rays, range, found);
-                    for ((ray, &found), pixel) in rays.iter().zip(&*found).zip(row) {
-                        let color = trace_found_in_row(scene, settings, ray, found, cache, rec);
-                        *pixel = mistakes.rgb8(color);
-                    }
-                }
-            },
-        )?
-    } else {
-        trace_rows(
-            &viewport,
-            pixels,
-            row_done,
-            cancel,
-            |ray, cache, rec, pixel| {
-                *pixel = mistakes.rgb8(trace_in_row(scene, settings, ray, cache, rec));
-            },
-        )?
-    };
+    let recorder = trace_rows(
+        scene,
+        &viewport,
+        pixels,
+        row_done,
+        cancel,
+        |ray, nearest, cache, rec, pixel| {
+            *pixel = mistakes.rgb8(trace_in_row(scene, settings, ray, nearest, cache, rec));
+        },
+    )?;
     Some((image, recorder))
 }
 
@@ -119,36 +97,37 @@ pub fn viewport(scene: &Scene, settings: &Settings, (width, height): (u32, u32))
 
 /// The one row loop of whole images: `pixels` (a row of the viewport's width
 /// each) shared among threads by rows, each row's primary rays handed to
-/// `pixel` with the row's shadow cache and recorder, the recorders summed.
-/// Each row looks at `cancel` before it starts; `None` when it was set.
+/// `pixel` with their nearest hits in `scene` where the recorder allows
+/// finding them together (`RowRecorder::PACKETS`), the row's shadow cache
+/// and recorder; the recorders summed. Each row looks at `cancel` before it
+/// starts; `None` when it was set.
 pub fn trace_rows<T: Send, R: RowRecorder>(
+    scene: &Scene,
     viewport: &Viewport,
     pixels: &mut [T],
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
-    pixel: impl Fn(&Ray, &mut ShadowCache, &mut R, &mut T) + Sync,
+    pixel: impl Fn(&Ray, Nearest, &mut ShadowCache, &mut R, &mut T) + Sync,
 ) -> Option<R> {
-    for_each_row(
-        viewport,
-        pixels,
-        row_done,
-        cancel,
-        |rays, cache, rec, row| {
-            for (ray, out) in rays.iter().zip(row) {
-                pixel(ray, cache, rec, out);
+    // A primary ray's hit range is (EPS, inf) whatever the mistakes
+    // (`Rules::hit_range`).
+    let range = Interval::in_front();
+    let row = |rays: &[Ray], cache: &mut ShadowCache, rec: &mut R, row: &mut [T]| {
+        let mut nearest = [Nearest::ToFind; PACKET];
+        let mut found = [None; PACKET];
+        for (rays, row) in rays.chunks(PACKET).zip(row.chunks_mut(PACKET)) {
+            if R::PACKETS {
+                let found = &mut found[..rays.len()];
+                scene.accel.closest_each(&scene.objects, rays, range, found);
+                for (nearest, &found) in nearest.iter_mut().zip(&*found) {
+                    *nearest = Nearest::Found(found);
+                }
             }
-        },
-    )
-}
-
-/// `trace_rows` with the whole row's primary rays and pixels handed to `row`.
-fn for_each_row<T: Send, R: RowRecorder>(
-    viewport: &Viewport,
-    pixels: &mut [T],
-    row_done: &(dyn Fn() + Sync),
-    cancel: &AtomicBool,
-    row: impl Fn(&[Ray], &mut ShadowCache, &mut R, &mut [T]) + Sync,
-) -> Option<R> {
+            for ((ray, &nearest), out) in rays.iter().zip(&nearest).zip(row) {
+                pixel(ray, nearest, cache, rec, out);
+            }
+        }
+    };
     let recorder = pixels
         .par_chunks_mut(viewport.width as usize)
         .enumerate()

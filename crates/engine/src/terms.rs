@@ -195,13 +195,15 @@ pub fn render_terms_unless<R: RowRecorder>(
     let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
     // Each pixel has its own terms recorder; the row's recorder sees it all.
     let counts = trace_rows::<_, R>(
+        scene,
         &viewport(scene, settings, size),
         &mut pixels,
         row_done,
         cancel,
-        |ray, cache, counts, pixel| {
+        |ray, nearest, cache, counts, pixel| {
             let mut rec = TermsRecorder::default();
-            let color = trace_in_row(scene, settings, ray, cache, &mut Both(counts, &mut rec));
+            let both = &mut Both(counts, &mut rec);
+            let color = trace_in_row(scene, settings, ray, nearest, cache, both);
             rec.terms.color = color;
             rec.terms.shadow =
                 (rec.shadow_count > 0).then(|| rec.shadow_sum / rec.shadow_count as f64);

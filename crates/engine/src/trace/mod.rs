@@ -12,4 +12,4 @@ pub use recorder::{Blocker, NoRecorder, NotCast, PruneRule, RayKind, Refraction}
 pub use recorder::{ChildTerm, DepthLimit, LightTerm, Recorder, SurfaceHit};
 pub use stats::RayStats;
 pub use tracer::trace;
-pub use tracer::{trace_found_in_row, trace_in_row};
+pub use tracer::{Nearest, trace_in_row};

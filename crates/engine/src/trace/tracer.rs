@@ -26,43 +26,37 @@ struct Traced {
 /// The colour, unclamped, that the primary ray `ray` brings back from
 /// `scene` traced with `settings` (the scene's own, or the debugger's).
 pub fn trace<R: Recorder>(scene: &Scene, settings: &Settings, ray: &Ray, rec: &mut R) -> Color {
-    trace_in_row(scene, settings, ray, &mut ShadowCache::default(), rec)
+    let mut cache = ShadowCache::default();
+    trace_in_row(scene, settings, ray, Nearest::ToFind, &mut cache, rec)
 }
 
-/// `trace` for a render that goes along a row with one shadow cache: the
-/// colour is the same, only the shadow queries get cheaper.
+/// A primary ray's nearest hit as the tracer is handed it: still to be
+/// found by the scene's query, or already found by a walk over a row's
+/// rays together (`Accel::closest_each`, which gives what `closest` gives
+/// over `hit_range(RayKind::Primary)`, without counting its cost).
+#[derive(Clone, Copy, Debug)]
+pub enum Nearest {
+    ToFind,
+    Found(Option<Candidate>),
+}
+
+/// `trace` for a render that goes along a row with one shadow cache and
+/// may have found the row's nearest hits already: the colour is the same,
+/// only the queries get cheaper.
 pub fn trace_in_row<R: Recorder>(
     scene: &Scene,
     settings: &Settings,
     ray: &Ray,
+    nearest: Nearest,
     cache: &mut ShadowCache,
     rec: &mut R,
 ) -> Color {
     // Two tracers: the model's, where every rule is a constant, and one that
     // asks the set; the common case pays nothing for the mistakes.
     if settings.mistakes.is_empty() {
-        Tracer::<R, false>::new(scene, settings, cache, rec).primary(ray)
+        Tracer::<R, false>::new(scene, settings, cache, rec).primary(ray, nearest)
     } else {
-        Tracer::<R, true>::new(scene, settings, cache, rec).primary(ray)
-    }
-}
-
-/// `trace_in_row` for a primary ray whose nearest hit `found` was already
-/// looked for (by `Accel::closest_each`, as `closest` would give it over
-/// `hit_range(RayKind::Primary)`): the same colour, for a recorder that
-/// does not count the query's cost.
-pub fn trace_found_in_row<R: Recorder>(
-    scene: &Scene,
-    settings: &Settings,
-    ray: &Ray,
-    found: Option<Candidate>,
-    cache: &mut ShadowCache,
-    rec: &mut R,
-) -> Color {
-    if settings.mistakes.is_empty() {
-        Tracer::<R, false>::new(scene, settings, cache, rec).primary_found(ray, found)
-    } else {
-        Tracer::<R, true>::new(scene, settings, cache, rec).primary_found(ray, found)
+        Tracer::<R, true>::new(scene, settings, cache, rec).primary(ray, nearest)
     }
 }
 
@@ -95,16 +89,8 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         }
     }
 
-    fn primary(&mut self, ray: &Ray) -> Color {
-        self.trace(ray, RayKind::Primary, 1, 1.0, 1.0).color
-    }
-
-    /// `primary` for a ray whose nearest hit was already found (`found`,
-    /// as `closest` gives it, its cost not counted).
-    fn primary_found(&mut self, ray: &Ray, found: Option<Candidate>) -> Color {
-        self.rays += 1;
-        self.rec.ray_cast(RayKind::Primary, 1, ray, 1.0);
-        self.finish(ray, found, Cost::default(), 1, 1.0).color
+    fn primary(&mut self, ray: &Ray, nearest: Nearest) -> Color {
+        self.trace(ray, RayKind::Primary, nearest, 1, 1.0, 1.0).color
     }
 
     /// `path_weight` is the ray's accumulated weight: the product of the
@@ -113,6 +99,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         &mut self,
         ray: &Ray,
         kind: RayKind,
+        nearest: Nearest,
         depth: u32,
         weight: f64,
         path_weight: f64,
@@ -121,9 +108,13 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         self.rays += 1;
         self.rec.ray_cast(kind, depth, ray, weight);
         let mut cost = Cost::default();
-        let found = scene
-            .accel
-            .closest(&scene.objects, ray, self.rules.hit_range(kind), &mut cost);
+        let found = match nearest {
+            Nearest::Found(found) => found,
+            Nearest::ToFind => {
+                let range = self.rules.hit_range(kind);
+                scene.accel.closest(&scene.objects, ray, range, &mut cost)
+            }
+        };
         self.finish(ray, found, cost, depth, path_weight)
     }
 
@@ -413,7 +404,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
             return Color::ZERO;
         }
         let ray = Ray::new(hit.point, direction);
-        let traced = self.trace(&ray, kind, depth + 1, weight, path_weight);
+        let traced = self.trace(&ray, kind, Nearest::ToFind, depth + 1, weight, path_weight);
         let attenuation = traced
             .distance
             .map_or(1.0, |t| attenuation(self.settings.ray_attenuation, t));

@@ -36,13 +36,14 @@ pub(crate) fn render(scene: &Scene, settings: &Settings) -> Reference {
     // and the objects as `Option<usize>` took 40.
     let mut pixels = vec![([0u8; 3], BACKGROUND); width as usize * height as usize];
     trace_rows::<_, NoRecorder>(
+        scene,
         &viewport(scene, settings, (width, height)),
         &mut pixels,
         &|| {},
         &AtomicBool::new(false),
-        |ray, cache, _, pixel| {
+        |ray, nearest, cache, _, pixel| {
             let mut first = FirstHit::default();
-            let color = trace_in_row(scene, settings, ray, cache, &mut first);
+            let color = trace_in_row(scene, settings, ray, nearest, cache, &mut first);
             let object = first.object.flatten().map_or(BACKGROUND, |o| {
                 u32::try_from(o).expect("a scene has fewer than 2^32 - 1 objects")
             });

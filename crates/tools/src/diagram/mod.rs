@@ -20,4 +20,4 @@ pub use assembly::{Anchor, LegendRow, Named, ObjectOutline, Role};
 pub use outline::Outline;
 pub use projection::{DiagramPlane, magnified_centre};
 pub use rays::Progress;
-pub use rays::{CurrentRay, Segment, Stroke};
+pub use rays::{Segment, Stroke};

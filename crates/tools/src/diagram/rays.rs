@@ -81,7 +81,7 @@ pub struct Progress {
 /// The ray the step-through is at: a node's own ray, or (with `light`) its
 /// shadow ray to that light.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct CurrentRay {
+pub(crate) struct CurrentRay {
     pub(crate) node: NodeId,
     pub(crate) light: Option<usize>,
 }
