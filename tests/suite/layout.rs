@@ -479,22 +479,21 @@ fn every_path_that_the_documents_name_exists() {
 fn the_diagram_is_assembled_once_and_the_media_only_draw_it() {
     // The tools' diagram/ assembles the ray diagram knowing neither medium:
     // no file of it outside svg/ names the SVG writer (the debugger and
-    // ratatui it cannot reach: they are the binary's). The two media (svg/ and the debugger's diagram pane) take
-    // the assembled diagram: neither projects rays or picks the objects
-    // itself, as each did when they drifted apart.
+    // ratatui it cannot reach: they are the binary's). The two media (svg/
+    // and the debugger's diagram pane) take the assembled diagram: neither
+    // projects rays or picks the objects itself, as each did when they
+    // drifted apart.
     let diagram = root().join("crates/tools/src/diagram");
     for file in rust_files(&diagram) {
         if file.starts_with(diagram.join("svg")) {
             continue;
         }
         let segments = path_segments(&fs::read_to_string(&file).unwrap());
-        for medium in ["svg"] {
-            assert!(
-                !segments.contains(medium),
-                "{} names {medium}",
-                file.display()
-            );
-        }
+        assert!(
+            !segments.contains("svg"),
+            "{} names the SVG writer",
+            file.display()
+        );
     }
     let mut media = rust_files(&diagram.join("svg"));
     media.push(root().join("src/tui/pane/diagram.rs"));

@@ -90,7 +90,8 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
     }
 
     fn primary(&mut self, ray: &Ray, nearest: Nearest) -> Color {
-        self.trace(ray, RayKind::Primary, nearest, 1, 1.0, 1.0).color
+        self.trace(ray, RayKind::Primary, nearest, 1, 1.0, 1.0)
+            .color
     }
 
     /// `path_weight` is the ray's accumulated weight: the product of the
