@@ -72,9 +72,15 @@ pub fn render_unless<R: RowRecorder>(
     let (pixels, _) = image.as_chunks_mut::<3>();
     let mistakes = settings.mistakes;
     let viewport = viewport(scene, settings, (width, height));
+    let walk = if R::PACKETS {
+        PrimaryWalk::Packets
+    } else {
+        PrimaryWalk::OneByOne
+    };
     let recorder = trace_rows(
         scene,
         &viewport,
+        walk,
         pixels,
         row_done,
         cancel,
@@ -95,15 +101,24 @@ pub fn viewport(scene: &Scene, settings: &Settings, (width, height): (u32, u32))
         .with_mistakes(settings.mistakes)
 }
 
+/// Whether a row's primary rays find their nearest hits together, in
+/// packets (`Accel::closest_each`): the same hits, but the queries' cost is
+/// not counted, so only where no recorder of the render counts it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrimaryWalk {
+    Packets,
+    OneByOne,
+}
+
 /// The one row loop of whole images: `pixels` (a row of the viewport's width
 /// each) shared among threads by rows, each row's primary rays handed to
-/// `pixel` with their nearest hits in `scene` where the recorder allows
-/// finding them together (`RowRecorder::PACKETS`), the row's shadow cache
-/// and recorder; the recorders summed. Each row looks at `cancel` before it
-/// starts; `None` when it was set.
+/// `pixel` with their nearest hits in `scene` where `walk` finds them
+/// together, the row's shadow cache and recorder; the recorders summed.
+/// Each row looks at `cancel` before it starts; `None` when it was set.
 pub fn trace_rows<T: Send, R: RowRecorder>(
     scene: &Scene,
     viewport: &Viewport,
+    walk: PrimaryWalk,
     pixels: &mut [T],
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
@@ -116,7 +131,7 @@ pub fn trace_rows<T: Send, R: RowRecorder>(
         let mut nearest = [Nearest::ToFind; PACKET];
         let mut found = [None; PACKET];
         for (rays, row) in rays.chunks(PACKET).zip(row.chunks_mut(PACKET)) {
-            if R::PACKETS {
+            if walk == PrimaryWalk::Packets {
                 let found = &mut found[..rays.len()];
                 scene.accel.closest_each(&scene.objects, rays, range, found);
                 for (nearest, &found) in nearest.iter_mut().zip(&*found) {

@@ -6,7 +6,7 @@ use std::sync::atomic::AtomicBool;
 
 use image::RgbImage;
 
-use crate::render::{RowRecorder, trace_rows, viewport};
+use crate::render::{PrimaryWalk, RowRecorder, trace_rows, viewport};
 use crate::scene::{Scene, Settings};
 use crate::trace::{
     Blocker, ChildTerm, DepthLimit, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit,
@@ -194,9 +194,11 @@ pub fn render_terms_unless<R: RowRecorder>(
     let size = (scene.width, scene.height);
     let mut pixels = vec![PixelTerms::default(); scene.width as usize * scene.height as usize];
     // Each pixel has its own terms recorder; the row's recorder sees it all.
+    // Each pixel's recorder counts its primary ray's query (the cost image).
     let counts = trace_rows::<_, R>(
         scene,
         &viewport(scene, settings, size),
+        PrimaryWalk::OneByOne,
         &mut pixels,
         row_done,
         cancel,

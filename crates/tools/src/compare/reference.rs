@@ -6,7 +6,7 @@ use std::sync::atomic::AtomicBool;
 use image::RgbImage;
 
 use raystep_accel::Cost;
-use raystep_engine::render::{trace_rows, viewport};
+use raystep_engine::render::{PrimaryWalk, trace_rows, viewport};
 use raystep_engine::scene::{Scene, Settings};
 use raystep_engine::trace::{NoRecorder, Recorder, SurfaceHit, trace_in_row};
 use raystep_model::math::Color;
@@ -35,9 +35,12 @@ pub(crate) fn render(scene: &Scene, settings: &Settings) -> Reference {
     // Bytes and object side by side, 8 bytes a pixel: the colours in f64
     // and the objects as `Option<usize>` took 40.
     let mut pixels = vec![([0u8; 3], BACKGROUND); width as usize * height as usize];
+    // Only the colour and the first object are kept: the query's cost
+    // does not matter, so the primary rays go in packets as a render's do.
     trace_rows::<_, NoRecorder>(
         scene,
         &viewport(scene, settings, (width, height)),
+        PrimaryWalk::Packets,
         &mut pixels,
         &|| {},
         &AtomicBool::new(false),
