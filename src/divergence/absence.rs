@@ -3,7 +3,7 @@
 
 use super::ours::OurRays;
 use crate::raylog::{RayPath, Step};
-use crate::record::{Node, num, precise};
+use crate::record::{LightFate, Node, num, precise};
 use crate::scene::Scene;
 use crate::trace::{PruneRule, RayKind};
 
@@ -22,12 +22,17 @@ pub(crate) fn why_not_ours(scene: &Scene, ours: &OurRays, path: &RayPath) -> Str
         );
     };
     match step {
-        Step::Shadow(i) => match node.lights.iter().find(|l| l.light_index == i) {
-            Some(light) if light.at_point => format!(
+        Step::Shadow(i) => match node
+            .lights
+            .iter()
+            .find(|l| l.light_index == i)
+            .map(|l| (l, LightFate::of(l)))
+        {
+            Some((light, LightFate::AtPoint)) => format!(
                 "MODEL §4: light {i} is within EPS of the hit point (d_L = {}): no shadow ray",
                 precise(light.distance)
             ),
-            Some(light) if light.faces_away => format!(
+            Some((light, LightFate::FacesAway)) => format!(
                 "MODEL §4: light {i} is behind the surface (N·L = {} ≤ 0): no shadow ray is cast to it",
                 num(light.n_dot_l)
             ),

@@ -8,7 +8,7 @@ use super::moment::Field;
 use super::ours::OurRays;
 use crate::math::EPS;
 use crate::raylog::Step;
-use crate::record::{LightRecord, Node};
+use crate::record::{LightFate, LightRecord, Node};
 use crate::scene::{Scene, SpecularModel};
 use crate::shapes::Working;
 
@@ -233,14 +233,19 @@ fn normal(node: &Node) -> Vec<String> {
 }
 
 fn shadow_factor(light: &LightRecord) -> Vec<String> {
-    let Some(shadow) = &light.shadow else {
-        return Vec::new();
+    let fate = LightFate::of(light);
+    let shadow = match fate {
+        LightFate::AtPoint | LightFate::FacesAway | LightFate::NotCast => return Vec::new(),
+        LightFate::Lit(shadow)
+        | LightFate::Crossed(shadow)
+        | LightFate::PartlyBlocked(shadow)
+        | LightFate::Blocked(shadow) => shadow,
     };
     let mut lines = vec![format!(
         "MODEL §4: S = the product of k_t over every crossing with EPS < t < d_L = {}",
         fine(light.distance)
     )];
-    if shadow.blockers.is_empty() {
+    if let LightFate::Lit(_) = fate {
         lines.push("nothing crosses the segment: S = 1".into());
     } else {
         let crossings: Vec<String> = shadow
@@ -271,14 +276,15 @@ fn diffuse(node: &Node, light: &LightRecord) -> Vec<String> {
     let Some(hit) = &node.hit else {
         return Vec::new();
     };
-    if light.faces_away {
+    let fate = LightFate::of(light);
+    if fate.adds_nothing() {
         return vec![format!(
             "MODEL §4: light {} is behind the surface (N·L = {} ≤ 0): it adds nothing",
             light.light_index,
             fine(light.n_dot_l)
         )];
     }
-    let s = light.shadow.as_ref().map_or(1.0, |s| s.s);
+    let s = fate.s();
     let f = hit.factors;
     vec![format!(
         "MODEL §4: diffuse = S f_att I_p k_d O_d (N·L) = {} × {} × {} × {} × {} × {} = {}",
@@ -296,10 +302,11 @@ fn specular(node: &Node, light: &LightRecord) -> Vec<String> {
     let Some(hit) = &node.hit else {
         return Vec::new();
     };
-    if light.faces_away {
+    let fate = LightFate::of(light);
+    if fate.adds_nothing() {
         return diffuse(node, light);
     }
-    let s = light.shadow.as_ref().map_or(1.0, |s| s.s);
+    let s = fate.s();
     let f = hit.factors;
     let cosine = match light.specular_model {
         SpecularModel::Blinn => "N·H, H = normalize(L + V)",

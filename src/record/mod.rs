@@ -4,6 +4,7 @@
 mod diff;
 mod dot;
 mod explain;
+mod fate;
 mod finite;
 mod json_stream;
 mod lines;
@@ -13,11 +14,13 @@ mod shaping;
 mod sources;
 mod text;
 mod tree_recorder;
+mod words;
 
 pub(crate) use diff::diff;
 pub use dot::dot;
 pub(crate) use explain::{Said, Told, explain_lines};
 pub use explain::{explain, explain_unwrapped};
+pub use fate::LightFate;
 pub(crate) use finite::{NonFinite, check_finite};
 pub(crate) use json_stream::write_json;
 pub(crate) use lines::{About, Line};
@@ -26,5 +29,5 @@ pub use ray_tree::{Event, EventKind, Node, RayTree};
 pub(crate) use ray_tree::{LightRecord, NearMiss, NodeId};
 pub use shaping::{place, reach, shaping_events};
 pub use text::{Children, node_lines, text};
-pub(crate) use text::{kind_name, light_label, not_cast_line, ray_header};
 pub use tree_recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
+pub(crate) use words::{kind_name, light_label, not_cast_line, ray_header};

@@ -18,7 +18,7 @@ use super::checks::{Check, Value};
 use super::moment::Field;
 use super::ours::OurRays;
 use crate::raylog::{Hit, Step};
-use crate::record::num;
+use crate::record::{LightFate, num};
 use crate::scene::Scene;
 
 /// The kinds of difference `compare --rays` recognises; their JSON names
@@ -321,7 +321,7 @@ fn light_facing_away(ours: &OurRays, ray: usize, field: Field) -> Option<(Kind, 
         return None;
     };
     let light = ours.node(ray).lights.iter().find(|l| l.light_index == i)?;
-    (light.faces_away && !light.at_point).then(|| {
+    matches!(LightFate::of(light), LightFate::FacesAway).then(|| {
         (
             Kind::Other,
             format!(
