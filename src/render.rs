@@ -110,11 +110,7 @@ pub(crate) fn render_unless<R: RowRecorder>(
 /// Which primary ray each pixel of an image of `size` gets when `scene` is
 /// traced with `settings`: the camera's, with the settings' pixel mistakes
 /// (MODEL §8). Renders and recordings both ask here, so they agree.
-pub(crate) fn viewport(
-    scene: &Scene,
-    settings: &Settings,
-    (width, height): (u32, u32),
-) -> Viewport {
+pub fn viewport(scene: &Scene, settings: &Settings, (width, height): (u32, u32)) -> Viewport {
     scene
         .camera
         .viewport(width, height)

@@ -45,24 +45,45 @@ pub(crate) fn why_not_ours(scene: &Scene, ours: &OurRays, path: &RayPath) -> Str
                 RayKind::Transmitted
             };
             let reflects = scene.material_of(hit.object_index).reflects;
-            secondary_not_cast(scene, node, kind, hit.factors.ks, hit.factors.kt, reflects)
+            secondary_not_cast(ours, node, kind, hit.factors.ks, hit.factors.kt, reflects)
         }
     }
 }
 
+/// The depth test as the rules ours was traced by put it: k < max_depth,
+/// or k < max_depth − 1 under `depth-off-by-one` (MODEL §5, §8).
+fn depth_rule(ours: &OurRays) -> (u32, String) {
+    let max_depth = ours.tree.settings.max_depth;
+    let limit = ours.rules().spawn_below_depth();
+    let rule = if limit == max_depth {
+        format!("max_depth {max_depth}")
+    } else {
+        format!("max_depth − 1 = {limit} (max_depth {max_depth}, under depth-off-by-one, MODEL §8)")
+    };
+    (limit, rule)
+}
+
 fn secondary_not_cast(
-    scene: &Scene,
+    ours: &OurRays,
     node: &Node,
     kind: RayKind,
     ks: f64,
     kt: f64,
     reflects: bool,
 ) -> String {
-    let max_depth = scene.settings.max_depth;
-    if node.at_depth_limit() || node.depth >= max_depth {
+    let max_depth = ours.tree.settings.max_depth;
+    let (limit, rule) = depth_rule(ours);
+    if node.at_depth_limit() || node.depth >= limit {
+        if limit == max_depth {
+            return format!(
+                "MODEL §5: a hit at depth k spawns secondary rays only if k < max_depth; \
+                 this hit is at depth {} and max_depth is {max_depth}",
+                node.depth
+            );
+        }
         return format!(
-            "MODEL §5: a hit at depth k spawns secondary rays only if k < max_depth; \
-             this hit is at depth {} and max_depth is {max_depth}",
+            "MODEL §5: a hit at depth k spawns secondary rays only if k < {rule}; \
+             this hit is at depth {}",
             node.depth
         );
     }
@@ -81,9 +102,14 @@ fn secondary_not_cast(
     match kind {
         RayKind::Transmitted if node.tir() => {
             let k = node.refraction.map_or(0.0, |r| r.k);
+            let moves = if ours.rules().tir_adds_kt() {
+                "k_t moves to the reflected ray"
+            } else {
+                "k_t is lost, not moved to the reflected ray (tir-dropped, MODEL §8)"
+            };
             format!(
                 "MODEL §5: total internal reflection (k = 1 − η²(1 − cos_i²) = {} < 0): \
-                 no transmitted ray; k_t moves to the reflected ray",
+                 no transmitted ray; {moves}",
                 num(k)
             )
         }
@@ -105,9 +131,9 @@ fn secondary_not_cast(
 }
 
 /// Why our tree casts ray `ray`, which your log does not have.
-pub(crate) fn why_ours(scene: &Scene, ours: &OurRays, ray: usize) -> String {
+pub(crate) fn why_ours(ours: &OurRays, ray: usize) -> String {
     let path = &ours.rays()[ray].path;
-    let max_depth = scene.settings.max_depth;
+    let (_, max_depth) = depth_rule(ours);
     match path.steps.last() {
         None => "MODEL §2: one primary ray per pixel, through its centre".into(),
         Some(Step::Shadow(i)) => match ours.light(ray) {
@@ -124,13 +150,18 @@ pub(crate) fn why_ours(scene: &Scene, ours: &OurRays, ray: usize) -> String {
                 (p.hit.as_ref().map_or(0.0, |h| h.factors.ks), p.depth)
             });
             if parent.is_some_and(Node::tir) {
+                let weight = if ours.rules().tir_adds_kt() {
+                    "k_s + k_t"
+                } else {
+                    "k_s alone (tir-dropped, MODEL §8)"
+                };
                 format!(
-                    "MODEL §5: total internal reflection at depth {depth} < max_depth {max_depth} \
-                     spawns a reflected ray of weight k_s + k_t"
+                    "MODEL §5: total internal reflection at depth {depth} < {max_depth} \
+                     spawns a reflected ray of weight {weight}"
                 )
             } else {
                 format!(
-                    "MODEL §5: a hit with k_s = {} > 0 at depth {depth} < max_depth {max_depth} \
+                    "MODEL §5: a hit with k_s = {} > 0 at depth {depth} < {max_depth} \
                      spawns a reflected ray",
                     num(ks)
                 )
@@ -144,7 +175,7 @@ pub(crate) fn why_ours(scene: &Scene, ours: &OurRays, ray: usize) -> String {
                 .map_or(0.0, |h| h.factors.kt);
             let k = parent.and_then(|p| p.refraction).map_or(0.0, |r| r.k);
             format!(
-                "MODEL §5: a hit with k_t = {} > 0 at depth {depth} < max_depth {max_depth} \
+                "MODEL §5: a hit with k_t = {} > 0 at depth {depth} < {max_depth} \
                  spawns a transmitted ray when k = 1 − η²(1 − cos_i²) ≥ 0; here k = {}",
                 num(kt),
                 num(k)

@@ -3,9 +3,12 @@
 
 use std::collections::HashMap;
 
+use crate::camera::Viewport;
 use crate::raylog::{LoggedRay, RayPath, Step, rays_with_nodes};
 use crate::record::{LightRecord, Node, NodeId, RayTree, record_pixel};
+use crate::render::viewport;
 use crate::scene::{Scene, Settings};
+use crate::trace::Rules;
 
 /// Up to this many rays, a path is found by looking at each: cheaper than
 /// hashing it, and most pixels have a handful of rays.
@@ -42,6 +45,19 @@ impl OurRays {
             nodes,
             by_path,
         }
+    }
+
+    /// The rules ours was traced by: the recorded settings, with their
+    /// mistakes (MODEL §8). An explainer words these, never the model's
+    /// rules written again.
+    pub(crate) fn rules(&self) -> Rules<'_, true> {
+        Rules::new(&self.tree.settings)
+    }
+
+    /// Which primary ray each pixel got when ours was traced: the camera
+    /// with the recorded settings' pixel mistakes, as the render asks.
+    pub(crate) fn viewport(&self, scene: &Scene) -> Viewport {
+        viewport(scene, &self.tree.settings, (scene.width, scene.height))
     }
 
     /// The rays in the order they were cast.

@@ -17,12 +17,12 @@ use crate::scene::{Material, Settings, SpecularModel};
 /// The rules a pixel is traced by: the settings' model, with their mistakes
 /// when `MISTAKES`.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Rules<'a, const MISTAKES: bool> {
+pub struct Rules<'a, const MISTAKES: bool> {
     settings: &'a Settings,
 }
 
 impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
-    pub(crate) fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
+    pub fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
         Rules { settings }
     }
 
@@ -33,14 +33,14 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Whether the ambient term is added: the switch, unless `no-ambient`.
     #[inline]
-    pub(crate) fn ambient(&self) -> bool {
+    pub fn ambient(&self) -> bool {
         self.settings.switches.ambient && !self.has(Mistake::NoAmbient)
     }
 
     /// Whether a light that faces the point casts a shadow ray: the switch
     /// (off, every light is unblocked, S = 1).
     #[inline]
-    pub(crate) fn shadows(&self) -> bool {
+    pub fn shadows(&self) -> bool {
         self.settings.switches.shadows
     }
 
@@ -48,7 +48,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// switched off or for a material that does not reflect (`reflect =
     /// false`; a TIR's k_t still moves to it).
     #[inline]
-    pub(crate) fn mirror_weight(&self, material: &Material) -> f64 {
+    pub fn mirror_weight(&self, material: &Material) -> f64 {
         if self.settings.switches.reflection && material.reflects {
             material.ks
         } else {
@@ -58,14 +58,14 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Whether the material refracts: k_t > 0 with transmission switched on.
     #[inline]
-    pub(crate) fn transmits(&self, material: &Material) -> bool {
+    pub fn transmits(&self, material: &Material) -> bool {
         material.kt > 0.0 && self.settings.switches.transmission
     }
 
     /// Hits at a depth below this spawn secondary rays: max_depth, or one
     /// fewer under `depth-off-by-one`.
     #[inline]
-    pub(crate) fn spawn_below_depth(&self) -> u32 {
+    pub fn spawn_below_depth(&self) -> u32 {
         let max_depth = self.settings.max_depth;
         if self.has(Mistake::DepthOffByOne) {
             max_depth.saturating_sub(1)
@@ -78,7 +78,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// `no-light-attenuation`; else (0, 0, 1), f_att = min(1, 1 / d²), under
     /// `inverse-square`.
     #[inline]
-    pub(crate) fn light_attenuation(&self) -> [f64; 3] {
+    pub fn light_attenuation(&self) -> [f64; 3] {
         if self.has(Mistake::NoLightAttenuation) {
             [1.0, 0.0, 0.0]
         } else if self.has(Mistake::InverseSquare) {
@@ -91,7 +91,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The material's specular model, else the scene's; Phong for every
     /// material under `phong-not-blinn`.
     #[inline]
-    pub(crate) fn specular_model(&self, material: &Material) -> SpecularModel {
+    pub fn specular_model(&self, material: &Material) -> SpecularModel {
         if self.has(Mistake::PhongNotBlinn) {
             SpecularModel::Phong
         } else {
@@ -103,7 +103,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// facing the ray (MODEL §3), or N_g under `no-normal-flip`. Reflection
     /// and refraction always use N.
     #[inline]
-    pub(crate) fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
+    pub fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
         if self.has(Mistake::NoNormalFlip) {
             hit.geometric_normal
         } else {
@@ -114,7 +114,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The hits a ray of `kind` accepts: (EPS, inf); a reflected or
     /// transmitted ray's start at 0 under `no-epsilon`.
     #[inline]
-    pub(crate) fn hit_range(&self, kind: RayKind) -> Interval {
+    pub fn hit_range(&self, kind: RayKind) -> Interval {
         if kind != RayKind::Primary && self.has(Mistake::NoEpsilon) {
             Interval::new(0.0, f64::INFINITY)
         } else {
@@ -126,7 +126,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// starts at 0 under `shadow-acne` or `no-epsilon` and has no end under
     /// `shadows-past-light`.
     #[inline]
-    pub(crate) fn shadow_segment(&self, distance: f64) -> Interval {
+    pub fn shadow_segment(&self, distance: f64) -> Interval {
         let start = if self.has(Mistake::ShadowAcne) || self.has(Mistake::NoEpsilon) {
             0.0
         } else {
@@ -142,14 +142,14 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Every shadow crossing counts as k_t = 0 (`opaque-shadows`).
     #[inline]
-    pub(crate) fn opaque_shadows(&self) -> bool {
+    pub fn opaque_shadows(&self) -> bool {
         self.has(Mistake::OpaqueShadows)
     }
 
     /// Snell's eta: 1 / ior entering, ior leaving (MODEL §5); the other way
     /// round under `eta-inverted`.
     #[inline]
-    pub(crate) fn eta(&self, entering: bool, ior: f64) -> f64 {
+    pub fn eta(&self, entering: bool, ior: f64) -> f64 {
         if entering != self.has(Mistake::EtaInverted) {
             1.0 / ior
         } else {
@@ -159,7 +159,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// At TIR k_t moves to the reflected ray, unless `tir-dropped`.
     #[inline]
-    pub(crate) fn tir_adds_kt(&self) -> bool {
+    pub fn tir_adds_kt(&self) -> bool {
         !self.has(Mistake::TirDropped)
     }
 
@@ -167,7 +167,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// length, or `offset` = P_L - p under `light-not-normalised`. The
     /// shadow ray always goes along the unit L.
     #[inline]
-    pub(crate) fn lighting_direction(&self, offset: DVec3, to_light: DVec3) -> DVec3 {
+    pub fn lighting_direction(&self, offset: DVec3, to_light: DVec3) -> DVec3 {
         if self.has(Mistake::LightNotNormalised) {
             offset
         } else {
@@ -179,7 +179,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// |N·L| under `two-sided-diffuse`, so a light behind the surface lights
     /// it too.
     #[inline]
-    pub(crate) fn light_cosine(&self, n_dot_l: f64) -> f64 {
+    pub fn light_cosine(&self, n_dot_l: f64) -> f64 {
         if self.has(Mistake::TwoSidedDiffuse) {
             n_dot_l.abs()
         } else {
@@ -191,7 +191,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// a light straight behind the point as seen: H is 0 there, not NaN
     /// (MODEL §4). The model's tracer never meets it and skips the test.
     #[inline]
-    pub(crate) fn half_vector(&self, l: DVec3, to_viewer: DVec3) -> DVec3 {
+    pub fn half_vector(&self, l: DVec3, to_viewer: DVec3) -> DVec3 {
         if MISTAKES {
             (l + to_viewer).normalize_or_zero()
         } else {
@@ -202,7 +202,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The reflected direction `mirrored` (R = d - 2 (d·N) N), or -R under
     /// `reflection-sign`.
     #[inline]
-    pub(crate) fn reflected(&self, mirrored: DVec3) -> DVec3 {
+    pub fn reflected(&self, mirrored: DVec3) -> DVec3 {
         if self.has(Mistake::ReflectionSign) {
             -mirrored
         } else {
@@ -213,7 +213,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The normal Snell's law uses, in cos_i and in T: N, facing the ray,
     /// or N_g under `refraction-outward-normal` (they differ only leaving).
     #[inline]
-    pub(crate) fn refraction_normal(&self, hit: &SurfaceHit) -> DVec3 {
+    pub fn refraction_normal(&self, hit: &SurfaceHit) -> DVec3 {
         if self.has(Mistake::RefractionOutwardNormal) {
             hit.geometric_normal
         } else {
@@ -225,7 +225,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// rays' terms are added to it: `local`, or each channel at most 1
     /// under `clamp-before-adding`.
     #[inline]
-    pub(crate) fn local_color(&self, local: Color) -> Color {
+    pub fn local_color(&self, local: Color) -> Color {
         if self.has(Mistake::ClampBeforeAdding) {
             local.min(Color::ONE)
         } else {
