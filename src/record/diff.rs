@@ -9,7 +9,7 @@ use std::fmt::Write;
 
 use super::numbers::color;
 use super::ray_tree::{Node, NodeId, RayTree};
-use super::words::kind_name;
+use super::shared_words::kind_name;
 use crate::math::Color;
 
 /// A change smaller than this in every channel is not reported (well below

@@ -8,7 +8,7 @@ use std::fmt::Write;
 use super::fate::LightFate;
 use super::numbers::{color, num};
 use super::ray_tree::{LightRecord, Node, NodeId, RayTree};
-use super::words::{kind_name, not_cast_reason};
+use super::shared_words::{kind_name, not_cast_reason};
 use crate::math::{Color, to_rgb8};
 use crate::trace::{PruneRule, RayKind};
 

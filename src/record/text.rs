@@ -11,7 +11,7 @@ use super::ray_tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
     ShadowRecord,
 };
-use super::words::{cosine_name, kind_name, not_cast_line, ray_header};
+use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
 use crate::math::EPS;
 use crate::mistakes::Mistake;
 use crate::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};

@@ -48,7 +48,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// switched off or for a material that does not reflect (`reflect =
     /// false`; a TIR's k_t still moves to it).
     #[inline]
-    pub fn mirror_weight(&self, material: &Material) -> f64 {
+    pub(crate) fn mirror_weight(&self, material: &Material) -> f64 {
         if self.settings.switches.reflection && material.reflects {
             material.ks
         } else {
@@ -103,7 +103,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// facing the ray (MODEL §3), or N_g under `no-normal-flip`. Reflection
     /// and refraction always use N.
     #[inline]
-    pub fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
+    pub(crate) fn lighting_normal(&self, hit: &SurfaceHit) -> DVec3 {
         if self.has(Mistake::NoNormalFlip) {
             hit.geometric_normal
         } else {
@@ -142,7 +142,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Every shadow crossing counts as k_t = 0 (`opaque-shadows`).
     #[inline]
-    pub fn opaque_shadows(&self) -> bool {
+    pub(crate) fn opaque_shadows(&self) -> bool {
         self.has(Mistake::OpaqueShadows)
     }
 
@@ -167,7 +167,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// length, or `offset` = P_L - p under `light-not-normalised`. The
     /// shadow ray always goes along the unit L.
     #[inline]
-    pub fn lighting_direction(&self, offset: DVec3, to_light: DVec3) -> DVec3 {
+    pub(crate) fn lighting_direction(&self, offset: DVec3, to_light: DVec3) -> DVec3 {
         if self.has(Mistake::LightNotNormalised) {
             offset
         } else {
@@ -179,7 +179,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// |N·L| under `two-sided-diffuse`, so a light behind the surface lights
     /// it too.
     #[inline]
-    pub fn light_cosine(&self, n_dot_l: f64) -> f64 {
+    pub(crate) fn light_cosine(&self, n_dot_l: f64) -> f64 {
         if self.has(Mistake::TwoSidedDiffuse) {
             n_dot_l.abs()
         } else {
@@ -191,7 +191,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// a light straight behind the point as seen: H is 0 there, not NaN
     /// (MODEL §4). The model's tracer never meets it and skips the test.
     #[inline]
-    pub fn half_vector(&self, l: DVec3, to_viewer: DVec3) -> DVec3 {
+    pub(crate) fn half_vector(&self, l: DVec3, to_viewer: DVec3) -> DVec3 {
         if MISTAKES {
             (l + to_viewer).normalize_or_zero()
         } else {
@@ -225,7 +225,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// rays' terms are added to it: `local`, or each channel at most 1
     /// under `clamp-before-adding`.
     #[inline]
-    pub fn local_color(&self, local: Color) -> Color {
+    pub(crate) fn local_color(&self, local: Color) -> Color {
         if self.has(Mistake::ClampBeforeAdding) {
             local.min(Color::ONE)
         } else {
