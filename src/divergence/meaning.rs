@@ -104,37 +104,48 @@ fn primary_direction(scene: &Scene, ours: &OurRays) -> Vec<String> {
             fine(s)
         )
     };
-    let (x_term, corner_note) = if corner {
-        (
-            "x".to_string(),
-            ", through the pixel's top-left corner under pixel-corner (§8),",
-        )
-    } else {
-        ("(x + 0.5)".to_string(), "")
-    };
+    let corner_note = "through the pixel's top-left corner under pixel-corner (§8)";
+    let x_term = if corner { "x" } else { "(x + 0.5)" };
     let y_name = if viewport.flips_rows() { "y'" } else { "y" };
     let y_term = if corner {
         y_name.to_string()
     } else {
         format!("({y_name} + 0.5)")
     };
-    let row_note = if viewport.flips_rows() {
-        format!(", y' = H − 1 − y = {row}, the row traced for image row {y} under flipped-y (§8),")
-    } else {
-        String::new()
+    // What a mistake changed in each formula, said between it and its numbers.
+    let noted = |notes: Vec<String>| {
+        if notes.is_empty() {
+            String::new()
+        } else {
+            format!(", {},", notes.join("; "))
+        }
     };
+    let px_note = noted(
+        corner
+            .then(|| corner_note.to_string())
+            .into_iter()
+            .collect(),
+    );
+    let py_note = noted(
+        (viewport.flips_rows().then(|| {
+            format!("y' = H − 1 − y = {row}, the row traced for image row {y} under flipped-y (§8)")
+        }))
+        .into_iter()
+        .chain(corner.then(|| corner_note.to_string()))
+        .collect(),
+    );
     let offset = viewport.pixel_offset();
     vec![
         s_line,
         format!(
-            "px = (2 {x_term} / W − 1) s (W / H){corner_note} = (2 × {} / {w} − 1) × {} × {} = {}",
+            "px = (2 {x_term} / W − 1) s (W / H){px_note} = (2 × {} / {w} − 1) × {} × {} = {}",
             x as f64 + offset,
             fine(s),
             fine(w / h),
             fine(px)
         ),
         format!(
-            "py = (1 − 2 {y_term} / H) s{row_note}{corner_note} = (1 − 2 × {} / {h}) × {} = {}",
+            "py = (1 − 2 {y_term} / H) s{py_note} = (1 − 2 × {} / {h}) × {} = {}",
             row as f64 + offset,
             fine(s),
             fine(py)
@@ -459,10 +470,14 @@ mod tests {
     use crate::raylog::RayPath;
     use crate::scene::Settings;
 
-    /// `scene` recorded at `pixel` with `mistake` on (none for `None`).
-    fn ours_under(scene: &Scene, mistake: Option<Mistake>, pixel: (u32, u32)) -> OurRays {
+    /// `scene` recorded at `pixel` with `mistakes` on.
+    fn ours_under(
+        scene: &Scene,
+        mistakes: impl IntoIterator<Item = Mistake>,
+        pixel: (u32, u32),
+    ) -> OurRays {
         let settings = Settings {
-            mistakes: Mistakes::from_iter(mistake),
+            mistakes: Mistakes::from_iter(mistakes),
             ..scene.settings
         };
         OurRays::record(scene, &settings, pixel)
@@ -490,17 +505,20 @@ mod tests {
     #[test]
     fn the_primary_working_is_the_cameras_under_each_camera_mistake() {
         let scene = crate::scene::parse(Path::new("wide.toml"), WIDE).unwrap();
-        let camera_mistakes = [
-            Mistake::PixelCorner,
-            Mistake::FlippedY,
-            Mistake::FovFullAngle,
+        // Each camera mistake alone, and the two pixel ones together.
+        let cases: [&[Mistake]; 5] = [
+            &[],
+            &[Mistake::PixelCorner],
+            &[Mistake::FlippedY],
+            &[Mistake::FovFullAngle],
+            &[Mistake::PixelCorner, Mistake::FlippedY],
         ];
-        for mistake in [None].into_iter().chain(camera_mistakes.map(Some)) {
-            let ours = ours_under(&scene, mistake, (1, 0));
+        for mistake in cases {
+            let ours = ours_under(&scene, mistake.iter().copied(), (1, 0));
             let lines = meaning(&scene, &ours, 0, Field::Dir);
             let text = lines.join("\n");
             // s by MODEL §2 (tan 30° = 1/√3), or §8's fov-full-angle (tan 60° = √3).
-            let s = if mistake == Some(Mistake::FovFullAngle) {
+            let s = if mistake.contains(&Mistake::FovFullAngle) {
                 3f64.sqrt()
             } else {
                 1.0 / 3f64.sqrt()
@@ -525,11 +543,15 @@ mod tests {
             // The numbers put into the formula are the pixel's as traced:
             // x + 0.5 = 1.5 and row 0 + 0.5, or the corner 1 and 0, or row
             // H − 1 − 0 = 1 under flipped-y.
-            let (x_in, y_in) = match mistake {
-                Some(Mistake::PixelCorner) => ("1", "0"),
-                Some(Mistake::FlippedY) => ("1.5", "1.5"),
-                _ => ("1.5", "0.5"),
+            let corner = mistake.contains(&Mistake::PixelCorner);
+            let row = if mistake.contains(&Mistake::FlippedY) {
+                1.0
+            } else {
+                0.0
             };
+            let offset = if corner { 0.0 } else { 0.5 };
+            let (x_in, y_in) = (format!("{}", 1.0 + offset), format!("{}", row + offset));
+            assert!(!text.contains(",,"), "{text}");
             assert!(
                 lines[1].contains(&format!("(2 × {x_in} / 4 − 1)")),
                 "{text}"
