@@ -131,10 +131,15 @@ fn secondary_not_cast(
 }
 
 /// Why our tree casts ray `ray`, which your log does not have.
-pub(crate) fn why_ours(ours: &OurRays, ray: usize) -> String {
+pub(crate) fn why_ours(scene: &Scene, ours: &OurRays, ray: usize) -> String {
     let path = &ours.rays()[ray].path;
     let (_, max_depth) = depth_rule(ours);
     match path.steps.last() {
+        None if ours.viewport(scene).pixel_offset() == 0.0 => {
+            "MODEL §2: one primary ray per pixel, through its top-left corner under \
+             pixel-corner (§8)"
+                .into()
+        }
         None => "MODEL §2: one primary ray per pixel, through its centre".into(),
         Some(Step::Shadow(i)) => match ours.light(ray) {
             Some(light) => format!(
@@ -181,5 +186,54 @@ pub(crate) fn why_ours(ours: &OurRays, ray: usize) -> String {
                 num(k)
             )
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::mistakes::{Mistake, Mistakes};
+    use crate::scene::Settings;
+
+    /// A mirror floor (k_s = 0.5) seen from (0, 1, 1), max_depth 2: the
+    /// primary ray (depth 1) meets it at the origin and, by MODEL §5
+    /// (1 < 2), spawns a reflected ray; under depth-off-by-one (§8) only a
+    /// hit at depth k < max_depth − 1 = 1 does, so ours casts no P/R.
+    const MIRROR_FLOOR: &str = r#"
+        [camera]
+        eye = [0, 1, 1]
+        look_at = [0, 0, 0]
+        [image]
+        width = 1
+        height = 1
+        [settings]
+        max_depth = 2
+        [materials.mirror]
+        ks = 0.5
+        [[object]]
+        material = "mirror"
+        plane = { normal = [0, 1, 0], point = [0, 0, 0] }
+    "#;
+
+    #[test]
+    fn a_ray_the_depth_limit_kept_under_depth_off_by_one_is_told_by_that_limit() {
+        let scene = crate::scene::parse(Path::new("floor.toml"), MIRROR_FLOOR).unwrap();
+        let model = OurRays::record(&scene, &scene.settings, (0, 0));
+        let reflected = RayPath::parse("P/R", 0).unwrap();
+        assert!(model.find(&reflected).is_some(), "the model casts P/R");
+        let settings = Settings {
+            mistakes: Mistakes::from_iter([Mistake::DepthOffByOne]),
+            ..scene.settings
+        };
+        let ours = OurRays::record(&scene, &settings, (0, 0));
+        assert!(ours.find(&reflected).is_none());
+        let why = why_not_ours(&scene, &ours, &reflected);
+        assert!(
+            why.contains("only if k < max_depth − 1 = 1 (max_depth 2, under depth-off-by-one"),
+            "{why}"
+        );
+        assert!(why.contains("this hit is at depth 1"), "{why}");
     }
 }

@@ -177,7 +177,7 @@ pub(crate) fn compare_pixel(
         why_not_ours(scene, ours, &a.path)
     });
     let only_ours = unpaired(RayStatus::OnlyOurs, &|a| {
-        why_ours(ours, a.ours.unwrap_or(0))
+        why_ours(scene, ours, a.ours.unwrap_or(0))
     });
     let matches = found.is_empty();
     let later_differences = found.len().saturating_sub(1);
@@ -222,7 +222,7 @@ fn divergence(scene: &Scene, ours: &OurRays, d: &Difference) -> Divergence {
             ours: Some(Value::Cast(true)),
             kind: Kind::OnlyOurs,
             words: "your log does not have this ray: you never cast it".into(),
-            meaning: vec![why_ours(ours, ray)],
+            meaning: vec![why_ours(scene, ours, ray)],
         },
         (_, None) => Divergence {
             words: "ours never casts this ray".into(),
