@@ -576,8 +576,7 @@ fn public_interfaces(text: &str) -> String {
     shown
 }
 
-/// The words of the Rust files under `dirs` (of the repository), less
-/// their unit tests where `library` is set.
+/// The words of `files`, less their unit tests where `library` is set.
 fn words_of(files: impl IntoIterator<Item = PathBuf>, library: bool) -> BTreeSet<String> {
     let mut words = BTreeSet::new();
     for file in files {

@@ -104,18 +104,71 @@ impl Viewport {
     }
 
     /// The row traced for image row y: y itself, or its mirror under `flipped-y`.
-    pub(crate) fn traced_row(&self, y: u32) -> u32 {
+    pub fn traced_row(&self, y: u32) -> u32 {
         if self.flip_y { self.height - 1 - y } else { y }
     }
 
-    /// The primary ray of image pixel (x, y), through the centre of the
-    /// pixel; x to the right and y downward, both from 0.
-    pub fn primary_ray(&self, x: u32, y: u32) -> Ray {
+    /// Whether image rows are traced upside down (`flipped-y`).
+    pub fn flips_rows(&self) -> bool {
+        self.flip_y
+    }
+
+    /// s: tan(fov / 2), or tan(fov) under `fov-full-angle`.
+    pub fn half_height(&self) -> f64 {
+        self.half_height
+    }
+
+    /// Where in its pixel a primary ray passes: 0.5, the centre, or 0, the
+    /// top-left corner under `pixel-corner`.
+    pub fn pixel_offset(&self) -> f64 {
+        self.pixel_offset
+    }
+
+    /// The camera's frame: forward, right, true up.
+    pub fn frame(&self) -> Frame {
+        Frame {
+            forward: self.forward,
+            right: self.right,
+            true_up: self.true_up,
+        }
+    }
+
+    /// (px, py), where the primary ray of image pixel (x, y) crosses the
+    /// image plane one unit ahead of the eye, along right and true up:
+    /// px = (2 (x + 0.5) / W - 1) s (W / H), py = (1 - 2 (y + 0.5) / H) s,
+    /// y the traced row (MODEL §2, with the pixel mistakes of §8).
+    #[inline]
+    pub fn plane_offsets(&self, x: u32, y: u32) -> (f64, f64) {
         let (w, h) = (self.width as f64, self.height as f64);
         let s = self.half_height;
         let y = self.traced_row(y);
         let px = (2.0 * (x as f64 + self.pixel_offset) / w - 1.0) * s * (w / h);
         let py = (1.0 - 2.0 * (y as f64 + self.pixel_offset) / h) * s;
+        (px, py)
+    }
+
+    /// The mapping of `plane_offsets` read backwards: where a ray from the
+    /// eye along `direction` crosses the image, in pixel units of the
+    /// traced rows ((x + 0.5, y + 0.5) is the centre of pixel (x, y));
+    /// `None` for a direction that does not go forward.
+    pub fn image_point(&self, direction: DVec3) -> Option<(f64, f64)> {
+        let along = direction.dot(self.forward);
+        if along <= 0.0 {
+            return None;
+        }
+        let (px, py) = (
+            direction.dot(self.right) / along,
+            direction.dot(self.true_up) / along,
+        );
+        let (w, h) = (self.width as f64, self.height as f64);
+        let s = self.half_height;
+        Some(((px / (s * w / h) + 1.0) * w / 2.0, (1.0 - py / s) * h / 2.0))
+    }
+
+    /// The primary ray of image pixel (x, y), through the centre of the
+    /// pixel; x to the right and y downward, both from 0.
+    pub fn primary_ray(&self, x: u32, y: u32) -> Ray {
+        let (px, py) = self.plane_offsets(x, y);
         let direction = (self.forward + px * self.right + py * self.true_up).normalize();
         Ray::new(self.eye, direction)
     }

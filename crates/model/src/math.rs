@@ -45,6 +45,16 @@ impl Interval {
         Self::new(EPS, f64::INFINITY)
     }
 
+    /// Its lower end: distances must exceed it.
+    pub fn min(&self) -> f64 {
+        self.min
+    }
+
+    /// Its upper end: distances must stay below it.
+    pub fn max(&self) -> f64 {
+        self.max
+    }
+
     /// True when `min < t < max`.
     pub fn surrounds(&self, t: f64) -> bool {
         self.min < t && t < self.max

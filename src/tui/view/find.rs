@@ -2,7 +2,7 @@
 //! blocked (or partly blocked) shadow ray, a total internal reflection, a ray cut by the depth
 //! limit, a hit on the breakpoint object, or a near miss (polygon or sphere); and the go-to prompt's `X,Y`.
 
-use raystep_engine::record::{EventKind, RayTree};
+use raystep_engine::record::{EventKind, LightFate, RayTree};
 
 use super::stepper;
 use crate::tui::action::{Breakpoint, Find};
@@ -65,8 +65,7 @@ fn partly_blocked(tree: &RayTree, i: usize) -> bool {
         .lights
         .iter()
         .find(|l| l.light_index == light)
-        .and_then(|l| l.shadow.as_ref())
-        .is_some_and(|shadow| shadow.s > 0.0 && shadow.s < 1.0)
+        .is_some_and(|l| matches!(LightFate::of(l), LightFate::PartlyBlocked(_)))
 }
 
 /// The pixels after `from` in reading order (left to right, rows down),

@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use raystep_engine::record::{LightRecord, NodeId, RayTree, kind_name, num};
+use raystep_engine::record::{LightFate, LightRecord, NodeId, RayTree, kind_name, num};
 use raystep_model::math::to_rgb8;
 
 /// What a row shows.
@@ -128,16 +128,12 @@ pub(crate) use raystep_engine::record::light_label;
 
 fn light_text(light: &LightRecord) -> String {
     let name = light_label(&light.light);
-    if light.at_point {
-        return format!("{name}: at the point");
-    }
-    if light.faces_away {
-        return format!("{name}: faces away");
-    }
-    match &light.shadow {
-        None => format!("{name}: shadows off"),
-        Some(s) if s.blockers.is_empty() => format!("{name}: lit, S = 1"),
-        Some(s) => {
+    match LightFate::of(light) {
+        LightFate::AtPoint => format!("{name}: at the point"),
+        LightFate::FacesAway => format!("{name}: faces away"),
+        LightFate::NotCast => format!("{name}: shadows off"),
+        LightFate::Lit(_) => format!("{name}: lit, S = 1"),
+        LightFate::Crossed(s) | LightFate::PartlyBlocked(s) | LightFate::Blocked(s) => {
             let mut names: Vec<&str> = s.blockers.iter().map(|b| b.object.as_str()).collect();
             names.dedup();
             format!("{name}: S = {}, blocked by {}", num(s.s), names.join(", "))

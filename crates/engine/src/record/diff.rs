@@ -9,7 +9,7 @@ use std::fmt::Write;
 
 use super::numbers::color;
 use super::ray_tree::{Node, NodeId, RayTree};
-use super::text::kind_name;
+use super::shared_words::kind_name;
 use raystep_model::math::Color;
 
 /// A change smaller than this in every channel is not reported (well below

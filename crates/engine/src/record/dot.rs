@@ -5,9 +5,10 @@
 
 use std::fmt::Write;
 
+use super::fate::LightFate;
 use super::numbers::{color, num};
 use super::ray_tree::{LightRecord, Node, NodeId, RayTree};
-use super::text::{kind_name, not_cast_reason};
+use super::shared_words::{kind_name, not_cast_reason};
 use crate::trace::{PruneRule, RayKind};
 use raystep_model::math::{Color, to_rgb8};
 
@@ -97,16 +98,16 @@ fn write_ray(out: &mut String, tree: &RayTree, id: NodeId, node: &Node) {
 /// A light at a hit: the shadow ray to it when one was cast (dashed, naming
 /// what blocked it), else a plain dotted line saying why none was.
 fn write_light(out: &mut String, id: NodeId, i: usize, light: &LightRecord) {
-    let fate = match &light.shadow {
-        _ if light.at_point => "at the point".to_string(),
-        _ if light.faces_away => format!("faces away (N·L = {})", num(light.n_dot_l)),
-        None => "shadows off".to_string(),
-        Some(s) if s.blockers.is_empty() => "S = 1, nothing in the way".to_string(),
-        Some(s) if s.s == 0.0 => {
+    let fate = match LightFate::of(light) {
+        LightFate::AtPoint => "at the point".to_string(),
+        LightFate::FacesAway => format!("faces away (N·L = {})", num(light.n_dot_l)),
+        LightFate::NotCast => "shadows off".to_string(),
+        LightFate::Lit(_) => "S = 1, nothing in the way".to_string(),
+        LightFate::Blocked(s) => {
             let names = s.blockers.iter().map(|b| escape(&b.object));
             format!("S = 0, blocked by {}", first_few(names, s.blockers.len()))
         }
-        Some(s) => {
+        LightFate::Crossed(s) | LightFate::PartlyBlocked(s) => {
             let names =
                 (s.blockers.iter()).map(|b| format!("{} (k_t = {})", escape(&b.object), num(b.kt)));
             let names = first_few(names, s.blockers.len());

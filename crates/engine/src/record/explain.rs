@@ -3,12 +3,13 @@
 
 use std::fmt::{self, Write};
 
+use super::fate::LightFate;
 use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
 use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
+use super::shared_words::{kind_name, not_cast_reason};
 use super::sources::{brightness, sources};
-use super::text::{kind_name, not_cast_reason};
 use crate::trace::{PruneRule, RayKind};
 use raystep_model::math::{Color, EPS};
 use raystep_model::shapes::{CrossingFigure, RootChoice, Working};
@@ -389,27 +390,34 @@ fn write_shares(out: &mut Story, tree: &RayTree, id: NodeId) {
 }
 
 fn light_fate(light: &LightRecord) -> String {
-    if light.at_point {
-        return format!(
-            "{}: sits on the point (distance {} < EPS = {}), so it has no direction; it adds nothing and no shadow ray is cast.",
-            light.light,
-            num(light.distance),
-            num(EPS)
-        );
-    }
-    if light.faces_away {
-        return format!(
-            "{}: behind the surface (N·L = {}), so it cannot light this point; no shadow ray is cast.",
-            light.light,
-            num(light.n_dot_l)
-        );
-    }
-    let Some(shadow) = &light.shadow else {
-        return format!(
-            "{}: lit (shadows are switched off), N·L = {}.",
-            light.light,
-            num(light.n_dot_l)
-        );
+    let fate = LightFate::of(light);
+    let shadow = match fate {
+        LightFate::AtPoint => {
+            return format!(
+                "{}: sits on the point (distance {} < EPS = {}), so it has no direction; it adds nothing and no shadow ray is cast.",
+                light.light,
+                num(light.distance),
+                num(EPS)
+            );
+        }
+        LightFate::FacesAway => {
+            return format!(
+                "{}: behind the surface (N·L = {}), so it cannot light this point; no shadow ray is cast.",
+                light.light,
+                num(light.n_dot_l)
+            );
+        }
+        LightFate::NotCast => {
+            return format!(
+                "{}: lit (shadows are switched off), N·L = {}.",
+                light.light,
+                num(light.n_dot_l)
+            );
+        }
+        LightFate::Lit(shadow)
+        | LightFate::Crossed(shadow)
+        | LightFate::PartlyBlocked(shadow)
+        | LightFate::Blocked(shadow) => shadow,
     };
     let distance = if light.f_att < 1.0 {
         format!(
@@ -421,14 +429,18 @@ fn light_fate(light: &LightRecord) -> String {
     } else {
         String::new()
     };
-    if shadow.blockers.is_empty() {
+    if let LightFate::Lit(_) = fate {
         return format!(
             "{}: lit, nothing in the way (N·L = {}).{distance}",
             light.light,
             num(light.n_dot_l)
         );
     }
-    if let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0) {
+    // S = 0 names the opaque crossing that put the light out (k_t = 0);
+    // a product of transparent ones that came to 0 is told as the others.
+    if let LightFate::Blocked(_) = fate
+        && let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0)
+    {
         return format!(
             "{}: in shadow, blocked by {} (opaque) at distance {} along the shadow ray, of {} \
              to the light.",

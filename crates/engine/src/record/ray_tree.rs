@@ -5,8 +5,8 @@ use glam::DVec3;
 use serde::Serialize;
 use serde_json::Value;
 
-use crate::scene::SpecularModel;
-use crate::trace::{DepthLimit, NotCast, RayKind, Refraction};
+use crate::scene::{Settings, SpecularModel};
+use crate::trace::{DepthLimit, NotCast, RayKind, Refraction, SurfaceHit};
 use raystep_accel::Cost;
 use raystep_model::math::Color;
 use raystep_model::mistakes::Mistakes;
@@ -97,6 +97,19 @@ pub struct HitRecord {
 }
 
 impl HitRecord {
+    /// The hit as the tracer held it, for the questions of `trace::Rules`
+    /// (which normal lights it, which one Snell's law uses).
+    pub fn surface_hit(&self) -> SurfaceHit {
+        SurfaceHit {
+            object: self.object_index,
+            t: self.t,
+            point: self.point,
+            geometric_normal: self.geometric_normal,
+            normal: self.normal,
+            entering: self.entering,
+        }
+    }
+
     /// ", material white" to follow the object's kind, or nothing when the
     /// name already says it (a mesh triangle's "(material white)").
     pub(crate) fn material_note(&self) -> String {
@@ -289,6 +302,9 @@ pub struct RayTree {
     pub(crate) max_depth: u32,
     /// The mistakes traced with (MODEL §8); they decide the pixel's bytes too.
     pub mistakes: Mistakes,
+    /// Every setting traced with (the mistakes and max_depth above among
+    /// them): the rules an explainer words are `Rules` of these.
+    pub settings: Settings,
     pub nodes: Vec<Node>,
     pub events: Vec<Event>,
 }

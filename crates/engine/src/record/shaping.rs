@@ -5,7 +5,7 @@
 
 use super::numbers::{color, num, root};
 use super::ray_tree::{LightRecord, MaterialFactors, Node, NodeId, RayTree};
-use super::text::{cosine_name, kind_name, not_cast_reason};
+use super::shared_words::{cosine_name, kind_name, not_cast_reason};
 use raystep_model::math::Color;
 
 /// One event and how much it matters to the pixel: the mean over the three

@@ -4,56 +4,18 @@
 
 use std::fmt::Write;
 
+use super::fate::LightFate;
 use super::lines::{About, Line};
-use super::numbers::{color, count, fraction, num, precise, root, vector};
+use super::numbers::{color, count, num, precise, root, vector};
 use super::ray_tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
+    ShadowRecord,
 };
-use crate::scene::SpecularModel;
-use crate::trace::{NotCast, PruneRule, RayKind};
+use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
+use crate::trace::RayKind;
 use raystep_model::math::EPS;
 use raystep_model::mistakes::Mistake;
 use raystep_model::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};
-
-/// A secondary ray a rule kept from being cast, and the rule, in one line.
-pub fn not_cast_line(ray: &NotCast) -> String {
-    format!(
-        "{} ray not cast: {}",
-        kind_name(ray.kind),
-        not_cast_reason(ray)
-    )
-}
-
-/// "light key", or just the name when it already says "light" (NFF's "light 0").
-pub fn light_label(name: &str) -> String {
-    if name.starts_with("light") {
-        name.to_string()
-    } else {
-        format!("light {name}")
-    }
-}
-
-/// Why a rule kept a secondary ray from being cast.
-pub(crate) fn not_cast_reason(ray: &NotCast) -> String {
-    match ray.rule {
-        PruneRule::MinWeight { min_weight } => format!(
-            "accumulated weight {} < min_weight {}",
-            precise(ray.path_weight),
-            fraction(min_weight)
-        ),
-        PruneRule::MaxRays { max_rays } => {
-            format!("the pixel's tree already has max_rays = {max_rays} rays")
-        }
-    }
-}
-
-pub fn kind_name(kind: RayKind) -> &'static str {
-    match kind {
-        RayKind::Primary => "primary",
-        RayKind::Reflected => "reflected",
-        RayKind::Transmitted => "transmitted",
-    }
-}
 
 /// The intersection worked as in the course notes, a line per step.
 pub(crate) fn working_lines(working: &Working) -> Vec<String> {
@@ -254,46 +216,43 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
 /// (MODEL §4), so that a student can check the formula by hand.
 pub(crate) fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> {
     let about = Some(About::Light(light.light_index));
-    if light.at_point {
-        return vec![Line::text(
-            about,
-            format!(
-                "{}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
-                light.light,
-                precise(light.distance),
-                precise(EPS)
-            ),
-        )];
-    }
-    if light.faces_away {
-        return vec![Line::text(
-            about,
-            format!(
-                "{}: faces away (N·L = {}), no shadow ray, adds nothing",
-                light.light,
-                num(light.n_dot_l)
-            ),
-        )];
-    }
-    let (s, shadow) = match &light.shadow {
-        None => (1.0, "S = 1 (shadows off)".to_string()),
-        Some(s) if s.blockers.is_empty() => (1.0, "S = 1 (nothing in the way)".to_string()),
-        Some(s) => {
-            let names: Vec<String> = s
-                .blockers
-                .iter()
-                .map(|b| format!("{} ({}, k_t = {})", b.object, root("t", b.t), num(b.kt)))
-                .collect();
-            let how = if s.s > 0.0 {
-                "partly blocked"
-            } else {
-                "blocked"
-            };
-            (
-                s.s,
-                format!("S = {}, {how} by {}", num(s.s), names.join("; ")),
-            )
+    let crossings = |s: &ShadowRecord, how: &str| {
+        let names: Vec<String> = s
+            .blockers
+            .iter()
+            .map(|b| format!("{} ({}, k_t = {})", b.object, root("t", b.t), num(b.kt)))
+            .collect();
+        (
+            s.s,
+            format!("S = {}, {how} by {}", num(s.s), names.join("; ")),
+        )
+    };
+    let (s, shadow) = match LightFate::of(light) {
+        LightFate::AtPoint => {
+            return vec![Line::text(
+                about,
+                format!(
+                    "{}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
+                    light.light,
+                    precise(light.distance),
+                    precise(EPS)
+                ),
+            )];
         }
+        LightFate::FacesAway => {
+            return vec![Line::text(
+                about,
+                format!(
+                    "{}: faces away (N·L = {}), no shadow ray, adds nothing",
+                    light.light,
+                    num(light.n_dot_l)
+                ),
+            )];
+        }
+        LightFate::NotCast => (1.0, "S = 1 (shadows off)".to_string()),
+        LightFate::Lit(_) => (1.0, "S = 1 (nothing in the way)".to_string()),
+        LightFate::Crossed(s) | LightFate::PartlyBlocked(s) => crossings(s, "partly blocked"),
+        LightFate::Blocked(s) => crossings(s, "blocked"),
     };
     let cosine = cosine_name(light.specular_model);
     let lead = format!("    = {} · {} · ", num(s), precise(light.f_att));
@@ -375,14 +334,6 @@ fn blocker_lines(working: &Working) -> Vec<String> {
 
 fn indented_strings(lines: Vec<String>) -> Vec<String> {
     lines.into_iter().map(|l| format!("  {l}")).collect()
-}
-
-/// "N·H" for Blinn, "R·V" for Phong.
-pub(crate) fn cosine_name(model: SpecularModel) -> &'static str {
-    match model {
-        SpecularModel::Blinn => "N·H",
-        SpecularModel::Phong => "R·V",
-    }
 }
 
 /// The highlight's cosine as the formula raises it: clamped at 0 (MODEL §4).
@@ -613,16 +564,6 @@ fn child_line(tree: &RayTree, child: NodeId) -> Line {
         format!("{} ray r{child} adds ", kind_name(node.kind)),
     )
     .color(node.contribution)
-}
-
-/// "reflected ray, depth 1, weight 0.5": a ray's first line (no weight for
-/// the primary ray), in the text form and the details pane.
-pub fn ray_header(node: &Node) -> String {
-    let mut text = format!("{} ray, depth {}", kind_name(node.kind), node.depth);
-    if node.kind != RayKind::Primary {
-        let _ = write!(text, ", weight {}", num(node.weight));
-    }
-    text
 }
 
 /// The text form fits an 80-column terminal.

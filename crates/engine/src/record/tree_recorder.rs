@@ -10,7 +10,6 @@ use crate::trace::{
 };
 use raystep_accel::Cost;
 use raystep_model::math::{Color, EPS, Interval, Ray};
-use raystep_model::mistakes::Mistakes;
 use raystep_model::shapes::{
     CrossingFigure, Polygon, PolygonWorking, Shape, Sphere, SphereWorking, Working,
 };
@@ -27,10 +26,10 @@ pub const NEAR_MISS_SCENE_LIMIT: usize = 2000;
 /// Builds a `RayTree` from the tracer's callbacks.
 pub struct TreeRecorder<'a> {
     scene: &'a Scene,
-    /// The settings' depth limit, kept in the tree for its readers.
-    max_depth: u32,
-    /// The settings' mistakes, kept in the tree for its bytes.
-    mistakes: Mistakes,
+    /// The settings traced with, kept in the tree for its readers (the
+    /// depth limit, the mistakes that decide its bytes, the rules the
+    /// explainers word).
+    settings: Settings,
     /// The settings' I_a, kept on each hit for its ambient term's factors.
     ambient_light: Color,
     nodes: Vec<Node>,
@@ -56,8 +55,7 @@ impl<'a> TreeRecorder<'a> {
     pub fn new(scene: &'a Scene, settings: &Settings) -> Self {
         Self {
             scene,
-            max_depth: settings.max_depth,
-            mistakes: settings.mistakes,
+            settings: *settings,
             ambient_light: settings.ambient,
             nodes: Vec::new(),
             events: Vec::new(),
@@ -71,8 +69,9 @@ impl<'a> TreeRecorder<'a> {
     pub fn into_tree(self, pixel: (u32, u32)) -> RayTree {
         RayTree {
             pixel,
-            max_depth: self.max_depth,
-            mistakes: self.mistakes,
+            max_depth: self.settings.max_depth,
+            mistakes: self.settings.mistakes,
+            settings: self.settings,
             nodes: self.nodes,
             events: self.events,
         }

@@ -10,6 +10,6 @@ mod tracer;
 
 pub use recorder::{Blocker, NoRecorder, NotCast, PruneRule, RayKind, Refraction};
 pub use recorder::{ChildTerm, DepthLimit, LightTerm, Recorder, SurfaceHit};
+pub use rules::Rules;
 pub use stats::RayStats;
-pub use tracer::trace;
-pub use tracer::{Nearest, trace_in_row};
+pub use tracer::{Nearest, refract, trace, trace_in_row};

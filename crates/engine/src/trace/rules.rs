@@ -17,12 +17,12 @@ use raystep_model::mistakes::Mistake;
 /// The rules a pixel is traced by: the settings' model, with their mistakes
 /// when `MISTAKES`.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Rules<'a, const MISTAKES: bool> {
+pub struct Rules<'a, const MISTAKES: bool> {
     settings: &'a Settings,
 }
 
 impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
-    pub(crate) fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
+    pub fn new(settings: &'a Settings) -> Rules<'a, MISTAKES> {
         Rules { settings }
     }
 
@@ -33,14 +33,14 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Whether the ambient term is added: the switch, unless `no-ambient`.
     #[inline]
-    pub(crate) fn ambient(&self) -> bool {
+    pub fn ambient(&self) -> bool {
         self.settings.switches.ambient && !self.has(Mistake::NoAmbient)
     }
 
     /// Whether a light that faces the point casts a shadow ray: the switch
     /// (off, every light is unblocked, S = 1).
     #[inline]
-    pub(crate) fn shadows(&self) -> bool {
+    pub fn shadows(&self) -> bool {
         self.settings.switches.shadows
     }
 
@@ -58,14 +58,14 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// Whether the material refracts: k_t > 0 with transmission switched on.
     #[inline]
-    pub(crate) fn transmits(&self, material: &Material) -> bool {
+    pub fn transmits(&self, material: &Material) -> bool {
         material.kt > 0.0 && self.settings.switches.transmission
     }
 
     /// Hits at a depth below this spawn secondary rays: max_depth, or one
     /// fewer under `depth-off-by-one`.
     #[inline]
-    pub(crate) fn spawn_below_depth(&self) -> u32 {
+    pub fn spawn_below_depth(&self) -> u32 {
         let max_depth = self.settings.max_depth;
         if self.has(Mistake::DepthOffByOne) {
             max_depth.saturating_sub(1)
@@ -78,7 +78,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// `no-light-attenuation`; else (0, 0, 1), f_att = min(1, 1 / d²), under
     /// `inverse-square`.
     #[inline]
-    pub(crate) fn light_attenuation(&self) -> [f64; 3] {
+    pub fn light_attenuation(&self) -> [f64; 3] {
         if self.has(Mistake::NoLightAttenuation) {
             [1.0, 0.0, 0.0]
         } else if self.has(Mistake::InverseSquare) {
@@ -91,7 +91,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The material's specular model, else the scene's; Phong for every
     /// material under `phong-not-blinn`.
     #[inline]
-    pub(crate) fn specular_model(&self, material: &Material) -> SpecularModel {
+    pub fn specular_model(&self, material: &Material) -> SpecularModel {
         if self.has(Mistake::PhongNotBlinn) {
             SpecularModel::Phong
         } else {
@@ -114,7 +114,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The hits a ray of `kind` accepts: (EPS, inf); a reflected or
     /// transmitted ray's start at 0 under `no-epsilon`.
     #[inline]
-    pub(crate) fn hit_range(&self, kind: RayKind) -> Interval {
+    pub fn hit_range(&self, kind: RayKind) -> Interval {
         if kind != RayKind::Primary && self.has(Mistake::NoEpsilon) {
             Interval::new(0.0, f64::INFINITY)
         } else {
@@ -126,7 +126,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// starts at 0 under `shadow-acne` or `no-epsilon` and has no end under
     /// `shadows-past-light`.
     #[inline]
-    pub(crate) fn shadow_segment(&self, distance: f64) -> Interval {
+    pub fn shadow_segment(&self, distance: f64) -> Interval {
         let start = if self.has(Mistake::ShadowAcne) || self.has(Mistake::NoEpsilon) {
             0.0
         } else {
@@ -149,7 +149,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// Snell's eta: 1 / ior entering, ior leaving (MODEL §5); the other way
     /// round under `eta-inverted`.
     #[inline]
-    pub(crate) fn eta(&self, entering: bool, ior: f64) -> f64 {
+    pub fn eta(&self, entering: bool, ior: f64) -> f64 {
         if entering != self.has(Mistake::EtaInverted) {
             1.0 / ior
         } else {
@@ -159,7 +159,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
 
     /// At TIR k_t moves to the reflected ray, unless `tir-dropped`.
     #[inline]
-    pub(crate) fn tir_adds_kt(&self) -> bool {
+    pub fn tir_adds_kt(&self) -> bool {
         !self.has(Mistake::TirDropped)
     }
 
@@ -202,7 +202,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The reflected direction `mirrored` (R = d - 2 (d·N) N), or -R under
     /// `reflection-sign`.
     #[inline]
-    pub(crate) fn reflected(&self, mirrored: DVec3) -> DVec3 {
+    pub fn reflected(&self, mirrored: DVec3) -> DVec3 {
         if self.has(Mistake::ReflectionSign) {
             -mirrored
         } else {
@@ -213,7 +213,7 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
     /// The normal Snell's law uses, in cos_i and in T: N, facing the ray,
     /// or N_g under `refraction-outward-normal` (they differ only leaving).
     #[inline]
-    pub(crate) fn refraction_normal(&self, hit: &SurfaceHit) -> DVec3 {
+    pub fn refraction_normal(&self, hit: &SurfaceHit) -> DVec3 {
         if self.has(Mistake::RefractionOutwardNormal) {
             hit.geometric_normal
         } else {

@@ -458,7 +458,7 @@ fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
 
 /// Snell's law with N facing the incoming ray (`Rules::refraction_normal`)
 /// and the ratio `eta` (`Rules::eta`).
-fn refract(direction: DVec3, normal: DVec3, eta: f64) -> Refraction {
+pub fn refract(direction: DVec3, normal: DVec3, eta: f64) -> Refraction {
     let cos_i = -direction.dot(normal);
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
     let tir = k < 0.0;

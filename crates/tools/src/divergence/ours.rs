@@ -5,7 +5,10 @@ use std::collections::HashMap;
 
 use crate::raylog::{LoggedRay, RayPath, Step, rays_with_nodes};
 use raystep_engine::record::{LightRecord, Node, NodeId, RayTree, record_pixel};
+use raystep_engine::render::viewport;
 use raystep_engine::scene::{Scene, Settings};
+use raystep_engine::trace::Rules;
+use raystep_model::camera::Viewport;
 
 /// Up to this many rays, a path is found by looking at each: cheaper than
 /// hashing it, and most pixels have a handful of rays.
@@ -42,6 +45,19 @@ impl OurRays {
             nodes,
             by_path,
         }
+    }
+
+    /// The rules ours was traced by: the recorded settings, with their
+    /// mistakes (MODEL §8). An explainer words these, never the model's
+    /// rules written again.
+    pub(crate) fn rules(&self) -> Rules<'_, true> {
+        Rules::new(&self.tree.settings)
+    }
+
+    /// Which primary ray each pixel got when ours was traced: the camera
+    /// with the recorded settings' pixel mistakes, as the render asks.
+    pub(crate) fn viewport(&self, scene: &Scene) -> Viewport {
+        viewport(scene, &self.tree.settings, (scene.width, scene.height))
     }
 
     /// The rays in the order they were cast.

@@ -10,6 +10,8 @@ use crate::divergence::ours::OurRays;
 use crate::raylog::Step;
 use raystep_engine::record::{Node, num};
 use raystep_engine::scene::Scene;
+use raystep_engine::trace::refract;
+use raystep_model::mistakes::Mistake;
 
 /// The kinds only a direction can have, from the hit the ray leaves.
 pub(super) fn direction_kind(
@@ -34,7 +36,7 @@ pub(super) fn direction_kind(
     // a student recognises, so it is tried first.
     if field == Field::Dir
         && path.steps.last() == Some(&Step::Transmitted)
-        && let Some(found) = refraction_kind(ours.source(ray)?, yours)
+        && let Some(found) = refraction_kind(ours, ours.source(ray)?, yours)
     {
         return Some(found);
     }
@@ -59,22 +61,20 @@ pub(super) fn direction_kind(
     None
 }
 
-/// A transmitted direction refracted with η and 1/η swapped, or with N
-/// not turned to face the ray.
-fn refraction_kind(parent: &Node, yours: DVec3) -> Option<(Kind, String)> {
+/// A transmitted direction refracted with η and 1/η swapped, or with the
+/// other normal: ours refracted again by the tracer's own Snell's law
+/// (`trace::refract`), from the η it recorded and the normal the rules in
+/// force gave it (MODEL §5, §8).
+fn refraction_kind(ours: &OurRays, parent: &Node, yours: DVec3) -> Option<(Kind, String)> {
     let hit = parent.hit.as_ref()?;
     let d = parent.direction;
     let ior = hit.factors.ior;
-    let eta = if hit.entering { 1.0 / ior } else { ior };
-    let refract = |eta: f64, n: DVec3| {
-        let cos_i = -d.dot(n);
-        let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-        (k >= 0.0).then(|| eta * d + (eta * cos_i - k.sqrt()) * n)
-    };
+    let eta = parent.refraction?.eta;
+    let refract = |eta: f64, n: DVec3| refract(d, n, eta).direction;
     let matches = |t: Option<DVec3>| {
         t.is_some_and(|t| close(yours.normalize_or_zero(), t.normalize_or_zero()))
     };
-    let n = hit.normal;
+    let n = ours.rules().refraction_normal(&hit.surface_hit());
     if matches(refract(1.0 / eta, n)) {
         return Some((
             Kind::EtaSwapped,
@@ -89,12 +89,16 @@ fn refraction_kind(parent: &Node, yours: DVec3) -> Option<(Kind, String)> {
     }
     for (eta_used, words) in [(eta, "the same η"), (1.0 / eta, "η and 1/η swapped")] {
         if matches(refract(eta_used, -n)) {
+            let normals = if n == hit.normal {
+                "yours is refracted with −N, the normal facing away from the ray \
+                 (N_g when leaving)"
+            } else {
+                "yours is refracted with N facing the ray, ours with N_g, the outward \
+                 normal (refraction-outward-normal, MODEL §8)"
+            };
             return Some((
                 Kind::OutwardNormal,
-                format!(
-                    "yours is refracted with −N, the normal facing away from the ray \
-                     (N_g when leaving), and {words}; MODEL §5 uses N facing the ray, N·d ≤ 0"
-                ),
+                format!("{normals}, and {words}; MODEL §5 uses N facing the ray, N·d ≤ 0"),
             ));
         }
     }
@@ -102,9 +106,11 @@ fn refraction_kind(parent: &Node, yours: DVec3) -> Option<(Kind, String)> {
 }
 
 /// A primary direction another field of view would give: yours crosses
-/// the image plane at the same point scaled about its centre.
+/// the image plane at the same point scaled about its centre. Ours is the
+/// camera's, with the pixel mistakes it was traced with (MODEL §8).
 fn field_of_view(scene: &Scene, ours: &OurRays, yours: DVec3) -> Option<(Kind, String)> {
-    let frame = scene.camera.frame();
+    let viewport = ours.viewport(scene);
+    let frame = viewport.frame();
     let ours_dir = ours.rays().first()?.dir?;
     let plane = |d: DVec3| {
         let along = d.dot(frame.forward);
@@ -120,35 +126,54 @@ fn field_of_view(scene: &Scene, ours: &OurRays, yours: DVec3) -> Option<(Kind, S
     let scale = ox.abs().max(oy.abs());
     let same = (yx - ratio * ox).abs() <= 1e-3 * scale && (yy - ratio * oy).abs() <= 1e-3 * scale;
     let fov = scene.camera.fov;
+    let s = viewport.half_height();
     if same && ratio.is_finite() && ratio > 0.0 && !close_numbers(ratio, 1.0) {
-        let yours_fov = 2.0 * (ratio * (fov.to_radians() / 2.0).tan()).atan().to_degrees();
+        let yours_fov = 2.0 * (ratio * s).atan().to_degrees();
+        let ours_fov = if ours.tree.mistakes.contains(Mistake::FovFullAngle) {
+            format!(
+                "ours {}° taken as the half angle under fov-full-angle (MODEL §8), so {}° edge \
+                 to edge",
+                num(fov),
+                num(2.0 * s.atan().to_degrees())
+            )
+        } else {
+            format!("ours {}°, edge to edge, MODEL §2", num(fov))
+        };
         return Some((
             Kind::FieldOfView,
             format!(
-                "yours is the ray of a vertical field of view of {}° (ours {}°, edge to edge, \
-                 MODEL §2): its offsets px and py on the image plane are {} × ours",
+                "yours is the ray of a vertical field of view of {}° ({ours_fov}): its offsets \
+                 px and py on the image plane are {} × ours",
                 num(yours_fov),
-                num(fov),
                 num(ratio)
             ),
         ));
     }
-    // Where yours crosses the image plane, in pixel units (MODEL §2 read
-    // backwards): ours crosses at the pixel's centre.
-    let (w, h) = (scene.width as f64, scene.height as f64);
-    let s = (fov.to_radians() / 2.0).tan();
-    let image_x = (yx / (s * w / h) + 1.0) * w / 2.0;
-    let image_y = (1.0 - yy / s) * h / 2.0;
+    // Where yours crosses the image, in pixel units (the camera's mapping
+    // read backwards); ours where the viewport sent it.
+    let (image_x, image_y) = viewport.image_point(yours)?;
     let (x, y) = ours.tree.pixel;
+    let row = viewport.traced_row(y);
+    let offset = viewport.pixel_offset();
+    let place = if offset == 0.0 {
+        "the top-left corner (pixel-corner, MODEL §8)"
+    } else {
+        "the centre"
+    };
+    let pixel = if viewport.flips_rows() {
+        format!("pixel ({x}, {row}), the row traced for image row {y} (flipped-y, MODEL §8)")
+    } else {
+        format!("pixel ({x}, {y})")
+    };
     Some((
         Kind::OtherPixel,
         format!(
-            "yours crosses the image at ({}, {}) in pixel units; ours at ({}, {}), the centre of \
-             pixel ({x}, {y})",
+            "yours crosses the image at ({}, {}) in pixel units; ours at ({}, {}), {place} of \
+             {pixel}",
             num(image_x),
             num(image_y),
-            x as f64 + 0.5,
-            y as f64 + 0.5
+            x as f64 + offset,
+            row as f64 + offset
         ),
     ))
 }

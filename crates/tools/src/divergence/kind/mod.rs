@@ -18,7 +18,7 @@ use super::checks::{Check, Value};
 use super::moment::Field;
 use super::ours::OurRays;
 use crate::raylog::{Hit, Step};
-use raystep_engine::record::num;
+use raystep_engine::record::{LightFate, num};
 use raystep_engine::scene::Scene;
 
 /// The kinds of difference `compare --rays` recognises; their JSON names
@@ -327,7 +327,7 @@ fn light_facing_away(ours: &OurRays, ray: usize, field: Field) -> Option<(Kind, 
         return None;
     };
     let light = ours.node(ray).lights.iter().find(|l| l.light_index == i)?;
-    (light.faces_away && !light.at_point).then(|| {
+    matches!(LightFate::of(light), LightFate::FacesAway).then(|| {
         (
             Kind::Other,
             format!(
@@ -360,6 +360,7 @@ mod tests {
 
     use super::*;
     use crate::raylog::RayPath;
+    use raystep_model::mistakes::Mistake;
 
     /// A water ball (ior 4/3, k_t = 1) at the origin; the only pixel's ray
     /// runs down -z at height 0.8 and enters at p = (0, 0.8, 0.6).
@@ -499,16 +500,77 @@ mod tests {
         assert!(words.contains("|N·L|"), "{words}");
     }
 
-    #[test]
-    fn a_kind_serialises_as_its_json_name() {
-        for kind in [
-            Kind::OnlyYours,
-            Kind::HitWhereOursMissed,
-            Kind::OtherT,
-            Kind::Nan,
-        ] {
-            let json = serde_json::to_value(kind).unwrap();
-            assert_eq!(json, kind.name());
+    /// `text` (a TOML scene) recorded at `pixel` with `mistake` on.
+    fn ours_under(text: &str, mistake: Mistake, pixel: (u32, u32)) -> (Scene, OurRays) {
+        let scene = raystep_engine::scene::parse(Path::new("x.toml"), text).unwrap();
+        let settings = raystep_engine::scene::Settings {
+            mistakes: raystep_model::mistakes::Mistakes::from_iter([mistake]),
+            ..scene.settings
+        };
+        let ours = OurRays::record(&scene, &settings, pixel);
+        (scene, ours)
+    }
+
+    fn direction_check(ours: &OurRays, ray: usize, yours: DVec3) -> Check {
+        Check {
+            field: Field::Dir,
+            yours: Value::Vector(yours),
+            ours: ours.rays()[ray].dir.map(Value::Vector),
+            agrees: false,
         }
+    }
+
+    #[test]
+    fn a_model_refraction_beside_ours_under_eta_inverted_is_eta_swapped_against_our_eta() {
+        // The water ball met lower, at p = (0, 0.3, √0.91), N = p: even
+        // η = 4/3 (ours, eta-inverted: ior entering) refracts there.
+        let text = WATER_BALL.replace("0.8", "0.3");
+        let (scene, ours) = ours_under(&text, Mistake::EtaInverted, (0, 0));
+        let ray = ours.find(&RayPath::parse("P/T", 0).unwrap()).unwrap();
+        // The student's T by MODEL §5, η = 1/ior = 3/4:
+        // T = η d + (η cos_i − √k) N, cos_i = −d·N, k = 1 − η² (1 − cos_i²).
+        let d = ours.rays()[0].dir.unwrap();
+        let n = ours.tree.root().hit.as_ref().unwrap().normal;
+        let (eta, cos_i) = (0.75, -d.dot(n));
+        let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+        let yours = eta * d + (eta * cos_i - k.sqrt()) * n;
+        let (kind, words) = classify(&scene, &ours, ray, &direction_check(&ours, ray, yours));
+        assert_eq!(kind, Kind::EtaSwapped, "{words}");
+        assert!(
+            words.contains(&format!("ours with η = {}", num(4.0 / 3.0))),
+            "{words}"
+        );
+    }
+
+    #[test]
+    fn a_centre_ray_beside_ours_under_pixel_corner_names_our_corner() {
+        // A 4 x 2 image, fov 90 (s = 1, W / H = 2), from the origin down −z.
+        // Pixel (0, 0)'s centre ray by MODEL §2: px = (2 × 0.5 / 4 − 1) × 2
+        // = −1.5, py = (1 − 2 × 0.5 / 2) = 0.5; ours (pixel-corner) goes
+        // through the corner (0, 0), px = −2, py = 1: ratios 0.75 and 0.5,
+        // not one field of view but another point of the image.
+        let text = r#"
+            [camera]
+            eye = [0, 0, 0]
+            look_at = [0, 0, -1]
+            fov = 90
+            [image]
+            width = 4
+            height = 2
+            [materials.wall]
+            kd = 1
+            [[object]]
+            material = "wall"
+            plane = { normal = [0, 0, 1], point = [0, 0, -10] }
+        "#;
+        let (scene, ours) = ours_under(text, Mistake::PixelCorner, (0, 0));
+        let yours = DVec3::new(-1.5, 0.5, -1.0).normalize();
+        let (kind, words) = classify(&scene, &ours, 0, &direction_check(&ours, 0, yours));
+        assert_eq!(kind, Kind::OtherPixel, "{words}");
+        assert!(words.contains("at (0.5, 0.5) in pixel units"), "{words}");
+        assert!(
+            words.contains("ours at (0, 0), the top-left corner"),
+            "{words}"
+        );
     }
 }
