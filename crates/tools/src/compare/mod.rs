@@ -111,7 +111,8 @@ pub fn compare(scene: &Scene, student: StudentImage) -> anyhow::Result<Compariso
 
 /// Renders, in parallel, what every comparison with this scene that differs
 /// renders first: before comparing many images in parallel, so that they do
-/// not all render the same at once.
+/// not all render the same at once (grading does).
+#[cfg(feature = "flip")]
 pub(crate) fn prepare(shared: &SceneRenders) {
     ranking::prepare(shared);
 }

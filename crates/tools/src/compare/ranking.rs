@@ -186,6 +186,7 @@ fn candidates(scene: &Scene) -> impl Iterator<Item = Mistake> + '_ {
 
 /// Renders, in parallel, each mistake the ranking tries alone: what every
 /// ranking of this scene renders first.
+#[cfg(feature = "flip")]
 pub(crate) fn prepare(shared: &SceneRenders) {
     use rayon::prelude::*;
     let tried: Vec<Mistake> = candidates(shared.scene()).collect();
