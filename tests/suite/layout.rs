@@ -576,15 +576,11 @@ fn public_interfaces(text: &str) -> String {
     shown
 }
 
-/// The words of `files`, less their unit tests where `library` is set.
-fn words_of(files: impl IntoIterator<Item = PathBuf>, library: bool) -> BTreeSet<String> {
+/// The words of `files`, their unit tests included.
+fn words_of(files: impl IntoIterator<Item = PathBuf>) -> BTreeSet<String> {
     let mut words = BTreeSet::new();
     for file in files {
-        let text = if library {
-            library_part(&file)
-        } else {
-            fs::read_to_string(&file).unwrap()
-        };
+        let text = fs::read_to_string(&file).unwrap();
         words.extend(
             text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
                 .map(String::from),
@@ -613,7 +609,7 @@ fn each_crate_makes_public_only_what_is_used_outside_it() {
         let outside = everywhere
             .iter()
             .filter(|f| !f.starts_with(&src) || f.ends_with("src/main.rs"));
-        let mentioned = words_of(outside.cloned(), false);
+        let mentioned = words_of(outside.cloned());
         // A type that a public signature, field or enum variant names is
         // needed wherever that item is: the compiler refuses it more private.
         let mut interfaces = String::new();
