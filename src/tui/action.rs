@@ -4,6 +4,7 @@
 //! find, what the image pane shows). The key table (`keymap.rs`) speaks
 //! only this vocabulary.
 
+use raystep_engine::record::stepping::{Breakpoint, Step};
 use raystep_engine::scene::Switch;
 use raystep_engine::terms::Term;
 use raystep_model::mistakes::Mistake;
@@ -125,35 +126,6 @@ impl Pane {
         let i = Pane::ALL.iter().position(|&p| p == self).unwrap_or(0);
         Pane::ALL[(i + Pane::ALL.len() - 1) % Pane::ALL.len()]
     }
-}
-
-/// A way to move to another event.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Step {
-    /// The next event, whatever ray it belongs to.
-    Next,
-    Previous,
-    /// The next ray cast: enter the next child ray.
-    Into,
-    /// The next event of the same ray, skipping child rays' events.
-    Over,
-    /// Where this ray returns to its parent (the end, for the primary ray).
-    Out,
-    /// The first event.
-    Start,
-    /// The last event: the primary ray is done.
-    End,
-}
-
-/// A condition to run forward to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Breakpoint {
-    /// The first blocker of a shadow ray: a light is (partly) in shadow.
-    BlockedShadow,
-    /// A shading ray hits this object (index in the scene).
-    HitObject(usize),
-    /// Total internal reflection.
-    Tir,
 }
 
 /// What `f` looks for in each pixel's recording.

@@ -4,9 +4,10 @@
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
 
-use super::action::{Action, Pane, Step};
+use super::action::{Action, Pane};
 use super::app::App;
 use super::keymap::{self, Command, Input, Mode};
+use raystep_engine::record::stepping::Step;
 
 /// The action for a terminal event, if it means one.
 pub fn action(event: &Event, app: &App) -> Option<Action> {

@@ -4,7 +4,8 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
-use super::action::{Action, Breakpoint, Find, Pane, Picture, Step};
+use super::action::{Action, Find, Pane, Picture};
+use raystep_engine::record::stepping::{Breakpoint, Step};
 use raystep_engine::scene::Switch;
 
 /// How far Shift (or H J K L) moves the pixel cursor.

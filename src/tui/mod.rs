@@ -46,7 +46,7 @@ use crossterm::event::Event;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-pub use action::{Action, Breakpoint, Find, Pane, Picture, Step};
+pub use action::{Action, Find, Pane, Picture};
 pub use app::App;
 pub use keymap::Mode;
 pub use raystep_engine::scene::Switch;

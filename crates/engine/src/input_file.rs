@@ -12,10 +12,16 @@
 //! - Its length is checked against the reader's size cap (docs/SCENES.md, "Bad
 //!   input") before a byte is read, and no more than the cap is read should
 //!   it grow meanwhile.
+//!
+//! Where there is no file system (the web page), the files a user gave are
+//! served from memory instead (`with_files`), under the same caps.
 
+use std::cell::RefCell;
+use std::collections::BTreeMap;
 use std::fs::{self, File, Metadata};
 use std::io::{self, Read};
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
 
 /// The most bytes a reader takes, and what the file is, for the message
 /// ("a scene file").
@@ -44,8 +50,70 @@ pub fn open(path: &Path, what: &str, cap: Cap) -> Result<File, InputError> {
     Ok(file)
 }
 
-/// Reads `path` whole, as `open` opens it.
+/// Files given by a user where there is no file system to read (the web
+/// page): their paths, as a scene names them, and their bytes.
+pub type GivenFiles = BTreeMap<PathBuf, Arc<[u8]>>;
+
+thread_local! {
+    static GIVEN: RefCell<Option<GivenFiles>> = const { RefCell::new(None) };
+}
+
+/// Runs `work` with `read` taking files from `files` alone, never from the
+/// file system, on this thread (scenes and meshes are read on the thread
+/// that loads them).
+pub fn with_files<T>(files: &GivenFiles, work: impl FnOnce() -> T) -> T {
+    struct Restore(Option<GivenFiles>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            GIVEN.with(|given| *given.borrow_mut() = self.0.take());
+        }
+    }
+    let before = GIVEN.with(|given| given.borrow_mut().replace(files.clone()));
+    let _restore = Restore(before);
+    work()
+}
+
+/// A path as its name among given files: `.` dropped and `..` taken back.
+pub fn given_name(path: &Path) -> PathBuf {
+    let mut name = PathBuf::new();
+    for part in path.components() {
+        match part {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                if !name.pop() {
+                    name.push("..");
+                }
+            }
+            other => name.push(other),
+        }
+    }
+    name
+}
+
+/// `path` among the given files, when files are given on this thread.
+fn read_given(path: &Path, what: &str, cap: Cap) -> Option<Result<Vec<u8>, InputError>> {
+    GIVEN.with(|given| {
+        let given = given.borrow();
+        let files = given.as_ref()?;
+        let fail = |why: String| refused(what, path, why);
+        Some(match files.get(&given_name(path)) {
+            None => Err(fail(
+                "no such file among those given (open it together with the scene)".into(),
+            )),
+            Some(bytes) if bytes.len() as u64 > cap.bytes => {
+                Err(fail(too_large(bytes.len() as u64, cap)))
+            }
+            Some(bytes) => Ok(bytes.to_vec()),
+        })
+    })
+}
+
+/// Reads `path` whole, as `open` opens it (or from the given files, see
+/// `with_files`).
 pub fn read(path: &Path, what: &str, cap: Cap) -> Result<Vec<u8>, InputError> {
+    if let Some(given) = read_given(path, what, cap) {
+        return given;
+    }
     let file = open(path, what, cap)?;
     let length = file.metadata().map_or(0, |m| m.len());
     let mut bytes = Vec::with_capacity(length as usize);
@@ -75,6 +143,8 @@ fn refused(what: &str, path: &Path, why: String) -> InputError {
 pub fn open_regular(path: &Path, follow: bool) -> io::Result<File> {
     let mut options = fs::OpenOptions::new();
     options.read(true);
+    #[cfg(not(unix))]
+    let _ = follow;
     #[cfg(unix)]
     {
         use std::os::unix::fs::OpenOptionsExt;
@@ -148,6 +218,36 @@ mod tests {
         bytes: 10,
         of: "a test file",
     };
+
+    #[test]
+    fn given_files_are_read_from_memory_and_never_from_disk() {
+        let dir = tempfile::tempdir().unwrap();
+        let on_disk = dir.path().join("ten");
+        fs::write(&on_disk, b"0123456789").unwrap();
+        let files: GivenFiles = [
+            (PathBuf::from("meshes/box.obj"), Arc::from(&b"v 0 0 0"[..])),
+            (PathBuf::from("big"), Arc::from(&b"0123456789A"[..])),
+        ]
+        .into();
+        with_files(&files, || {
+            // Named as a scene in scenes/ names it from its own folder.
+            let read_as = |p: &str| read(Path::new(p), "the mesh", SMALL);
+            assert_eq!(read_as("./x/../meshes/box.obj").unwrap(), b"v 0 0 0");
+            let missing = read(&on_disk, "", SMALL).unwrap_err().to_string();
+            assert!(
+                missing.contains("no such file among those given"),
+                "{missing}"
+            );
+            // 11 bytes against a cap of 10, as from disk.
+            let big = read_as("big").unwrap_err().to_string();
+            assert!(
+                big.contains("it is 11 bytes, more than the 10 bytes"),
+                "{big}"
+            );
+        });
+        // Outside, the file system again.
+        assert_eq!(read(&on_disk, "", SMALL).unwrap(), b"0123456789");
+    }
 
     #[test]
     fn a_regular_file_within_its_cap_is_read_whole() {

@@ -308,9 +308,15 @@ fn write_temps<'a>(
 
 fn encode(file: &File, image: &RgbImage) -> Result<()> {
     let mut out = BufWriter::new(file);
-    image.write_with_encoder(image::codecs::png::PngEncoder::new(&mut out))?;
+    write_png(image, &mut out)?;
     out.flush()?;
     Ok(())
+}
+
+/// The one PNG encoding of an image raystep writes, to a file or to the web
+/// page's download: the same image gives the same bytes everywhere.
+pub fn write_png(image: &RgbImage, out: &mut impl Write) -> image::ImageResult<()> {
+    image.write_with_encoder(image::codecs::png::PngEncoder::new(out))
 }
 
 /// Creates the folder, returning the directories made, outermost first.

@@ -58,9 +58,8 @@ use search::Search;
 use session::Reloaded;
 pub(crate) use session::Session;
 
-/// The deepest max_depth the depth keys go to (a glass scene's tree doubles
-/// with every level).
-pub const MAX_DEPTH: u32 = 16;
+/// The deepest max_depth the depth keys go to.
+pub const MAX_DEPTH: u32 = raystep_engine::scene::DEEPEST_TOGGLED_DEPTH;
 /// What `y` and `D` say without a log.
 const NO_LOG: &str = "no ray log: open with --rays LOG.jsonl (docs/RAYLOG.md)";
 /// What `w`, `c` and `E` say without an image to compare.

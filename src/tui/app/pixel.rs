@@ -8,12 +8,12 @@ use std::collections::BTreeSet;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::tui::action::{Action, Breakpoint};
+use crate::tui::action::Action;
 use crate::tui::find_job::Found;
 use crate::tui::view::canvas_lines::{CanvasLines, View};
-use crate::tui::view::stepper;
 use crate::tui::view::steps;
 use crate::tui::view::tree::{self, Row, RowKind};
+use raystep_engine::record::stepping::{self, Breakpoint};
 use raystep_engine::record::{NodeId, RayTree, record_pixel};
 use raystep_engine::scene::{Scene, Settings};
 use raystep_tools::diagram::{Diagram, DiagramPlane, Progress};
@@ -84,7 +84,7 @@ impl TracedPixel {
     /// status line's message, when the action has one.
     pub(super) fn update(&mut self, action: Action, scene: &Scene) -> Option<String> {
         match action {
-            Action::Step(step) => self.set_current(stepper::step(&self.tree, self.current, step)),
+            Action::Step(step) => self.set_current(stepping::step(&self.tree, self.current, step)),
             Action::RunTo(breakpoint) => return self.run_to(breakpoint, scene),
             Action::RunToObject => return self.run_to_object(scene),
             Action::CycleBreakObject => return self.cycle_break_object(scene),
@@ -302,7 +302,7 @@ impl TracedPixel {
     }
 
     fn run_to(&mut self, breakpoint: Breakpoint, scene: &Scene) -> Option<String> {
-        if let Some(event) = stepper::run_to(&self.tree, self.current, breakpoint) {
+        if let Some(event) = stepping::run_to(&self.tree, self.current, breakpoint) {
             self.set_current(event);
             return None;
         }
@@ -342,8 +342,8 @@ impl TracedPixel {
     /// Makes a tree row's ray or light the current event.
     fn select(&mut self, kind: RowKind) {
         let event = match kind {
-            RowKind::Ray(node) => stepper::cast_event(&self.tree, node),
-            RowKind::Light { node, light } => stepper::light_event(
+            RowKind::Ray(node) => stepping::cast_event(&self.tree, node),
+            RowKind::Light { node, light } => stepping::light_event(
                 &self.tree,
                 node,
                 self.tree.nodes[node].lights[light].light_index,

@@ -4,8 +4,8 @@
 
 use raystep_engine::record::{EventKind, LightFate, RayTree};
 
-use super::stepper;
-use crate::tui::action::{Breakpoint, Find};
+use crate::tui::action::Find;
+use raystep_engine::record::stepping::{self, Breakpoint};
 
 impl Find {
     /// For the status line: "no pixel with {what}".
@@ -36,11 +36,11 @@ pub(crate) fn first_event(tree: &RayTree, find: Find, object: Option<usize>) -> 
                 .nodes
                 .iter()
                 .position(|n| n.depth_cut().next().is_some())?;
-            return stepper::cast_event(tree, cut);
+            return stepping::cast_event(tree, cut);
         }
         Find::PartialShadow => {
             return (0..tree.events.len()).find(|&i| {
-                stepper::matches(tree, i, Breakpoint::BlockedShadow) && partly_blocked(tree, i)
+                stepping::matches(tree, i, Breakpoint::BlockedShadow) && partly_blocked(tree, i)
             });
         }
         Find::NearMiss => {
@@ -49,10 +49,10 @@ pub(crate) fn first_event(tree: &RayTree, find: Find, object: Option<usize>) -> 
                     .iter()
                     .any(|near| object.is_none_or(|o| near.object_index == o))
             })?;
-            return stepper::cast_event(tree, node);
+            return stepping::cast_event(tree, node);
         }
     };
-    (0..tree.events.len()).find(|&i| stepper::matches(tree, i, breakpoint))
+    (0..tree.events.len()).find(|&i| stepping::matches(tree, i, breakpoint))
 }
 
 /// Whether the blocker event `i` is on a shadow ray with 0 < S < 1.

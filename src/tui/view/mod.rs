@@ -15,7 +15,6 @@ pub(crate) mod image_grid;
 pub(crate) mod layout;
 pub(crate) mod mistakes_menu;
 pub(crate) mod pan_zoom;
-pub(crate) mod stepper;
 pub mod steps;
 pub mod tree;
 pub(crate) mod your_rays;

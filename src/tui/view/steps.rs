@@ -4,128 +4,10 @@
 use ratatui::style::{Color as TermColor, Style};
 use ratatui::text::{Line, Span};
 
-use raystep_engine::record::{
-    Event, EventKind, RayTree, color, kind_name, not_cast_line, num, root,
-};
+use raystep_engine::record::{RayTree, describe_event};
 use raystep_engine::scene::Scene;
-use raystep_model::math::Color;
 
-use super::tree::{light_label, swatch};
-
-fn light_name(scene: &Scene, light: usize) -> String {
-    light_label(scene.lights.get(light).map_or("?", |l| l.name.as_str()))
-}
-
-/// An event in words, and the colour it carries, if any.
-pub fn describe(tree: &RayTree, scene: &Scene, event: &Event) -> (String, Option<Color>) {
-    let node = &tree.nodes[event.node];
-    let ray = format!("r{}", event.node);
-    match &event.kind {
-        EventKind::RayCast { kind, depth } => {
-            let weight = if node.parent.is_some() {
-                format!(", weight {}", num(node.weight))
-            } else {
-                String::new()
-            };
-            (
-                format!(
-                    "{ray}: cast {} ray, depth {depth}{weight}",
-                    kind_name(*kind)
-                ),
-                None,
-            )
-        }
-        EventKind::Hit { object, t, tested } => (
-            format!(
-                "{ray}: hit {} at t = {} ({} primitives tested)",
-                scene.object_name(*object),
-                num(*t),
-                tested.primitives
-            ),
-            None,
-        ),
-        EventKind::Miss { .. } => (
-            format!("{ray}: missed everything: background"),
-            Some(node.color),
-        ),
-        EventKind::Ambient { term } => (format!("{ray}: ambient {}", color(*term)), Some(*term)),
-        EventKind::ShadowCast { light } => (
-            format!("{ray}: shadow ray to {}", light_name(scene, *light)),
-            None,
-        ),
-        EventKind::Blocker { object, t, kt, .. } => (
-            format!(
-                "{ray}: blocked by {} at {}, kt = {}",
-                scene.object_name(*object),
-                root("t", *t),
-                num(*kt)
-            ),
-            None,
-        ),
-        EventKind::Light {
-            light,
-            at_point: true,
-            ..
-        } => (
-            format!(
-                "{ray}: {} is at the point: adds nothing",
-                light_name(scene, *light)
-            ),
-            None,
-        ),
-        EventKind::Light {
-            light,
-            faces_away: true,
-            ..
-        } => (
-            format!(
-                "{ray}: {} faces away: adds nothing",
-                light_name(scene, *light)
-            ),
-            None,
-        ),
-        EventKind::Light {
-            light,
-            s,
-            diffuse,
-            specular,
-            ..
-        } => {
-            let s = s.map_or("shadows off".to_string(), |s| format!("S = {}", num(s)));
-            let term = *diffuse + *specular;
-            (
-                format!(
-                    "{ray}: {}: {s}, adds {}",
-                    light_name(scene, *light),
-                    color(term)
-                ),
-                Some(term),
-            )
-        }
-        EventKind::Refraction { tir: true } => (
-            format!("{ray}: total internal reflection: no transmitted ray"),
-            None,
-        ),
-        EventKind::Refraction { tir: false } => (
-            format!("{ray}: refraction: a transmitted ray will be cast"),
-            None,
-        ),
-        EventKind::ChildReturned {
-            child,
-            kind,
-            contribution,
-        } => (
-            format!(
-                "{ray}: {} ray r{child} returns, adds {}",
-                kind_name(*kind),
-                color(*contribution)
-            ),
-            Some(*contribution),
-        ),
-        EventKind::NotCast(not_cast) => (format!("{ray}: {}", not_cast_line(not_cast)), None),
-        EventKind::RayDone { color: c } => (format!("{ray}: done, colour {}", color(*c)), Some(*c)),
-    }
-}
+use super::tree::swatch;
 
 /// The first event shown when `height` lines centre `current`.
 pub(crate) fn first_line(current: usize, count: usize, height: usize) -> usize {
@@ -146,7 +28,7 @@ pub(crate) fn lines(
     (first..count.min(first + height))
         .map(|i| {
             let event = &tree.events[i];
-            let (text, swatch_color) = describe(tree, scene, event);
+            let (text, swatch_color) = describe_event(tree, scene, event);
             let indent = "  ".repeat(tree.nodes[event.node].depth.saturating_sub(1) as usize);
             let marker = if i == current { "▶" } else { " " };
             let mut spans = vec![Span::raw(format!("{marker}{:>3} {indent}{text}", i + 1))];
@@ -176,26 +58,6 @@ mod tests {
         assert_eq!(first_line(5, 10, 4), 3);
         assert_eq!(first_line(9, 10, 4), 6, "the last 4: events 6..=9");
         assert_eq!(first_line(3, 2, 10), 0, "all fit");
-    }
-
-    #[test]
-    fn events_read_as_what_happened() {
-        let (scene, tree) = ball();
-        let text = |i: usize| describe(&tree, &scene, &tree.events[i]);
-        assert_eq!(text(3), ("r0: shadow ray to light lamp".into(), None));
-        // r1 misses: its colour is the background.
-        let background = Color::new(0.1, 0.2, 0.3);
-        assert_eq!(
-            text(6),
-            ("r1: missed everything: background".into(), Some(background))
-        );
-        // r1 adds ks x background = 0.5 x (0.1, 0.2, 0.3).
-        let (words, carried) = text(8);
-        assert_eq!(
-            words,
-            "r0: reflected ray r1 returns, adds (0.050, 0.100, 0.150)"
-        );
-        assert!((carried.unwrap() - background * 0.5).abs().max_element() < 1e-12);
     }
 
     #[test]

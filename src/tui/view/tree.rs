@@ -7,7 +7,9 @@ use std::collections::BTreeSet;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use raystep_engine::record::{LightFate, LightRecord, NodeId, RayTree, kind_name, num};
+use raystep_engine::record::{
+    NodeId, RayTree, light_summary, path_factor, ray_summary, share_of_pixel,
+};
 use raystep_model::math::to_rgb8;
 
 /// What a row shows.
@@ -93,28 +95,6 @@ pub(crate) fn scroll_offset(selected: usize, height: usize) -> usize {
     (selected + 1).saturating_sub(height.max(1))
 }
 
-/// The product of weights and attenuations from the primary ray down to `id`:
-/// what one unit of this ray's colour is worth in the pixel.
-pub(crate) fn path_factor(tree: &RayTree, id: NodeId) -> f64 {
-    let mut factor = 1.0;
-    let mut node = Some(id);
-    while let Some(n) = node {
-        factor *= tree.nodes[n].weight * tree.nodes[n].attenuation;
-        node = tree.nodes[n].parent;
-    }
-    factor
-}
-
-/// `part` (already scaled into the pixel) as a share of the pixel's colour.
-fn share(tree: &RayTree, part: raystep_model::math::Color) -> String {
-    let total = tree.color().element_sum();
-    if total <= 1e-12 {
-        "  -".into()
-    } else {
-        format!("{:>3.0}%", 100.0 * part.element_sum() / total)
-    }
-}
-
 /// A colour as the pixel shows it: two full blocks in its rgb8.
 pub(crate) fn swatch(color: raystep_model::math::Color) -> Span<'static> {
     rgb_swatch(to_rgb8(color))
@@ -122,23 +102,6 @@ pub(crate) fn swatch(color: raystep_model::math::Color) -> Span<'static> {
 
 pub(crate) fn rgb_swatch([r, g, b]: [u8; 3]) -> Span<'static> {
     Span::styled("██", Style::new().fg(Color::Rgb(r, g, b)))
-}
-
-pub(crate) use raystep_engine::record::light_label;
-
-fn light_text(light: &LightRecord) -> String {
-    let name = light_label(&light.light);
-    match LightFate::of(light) {
-        LightFate::AtPoint => format!("{name}: at the point"),
-        LightFate::FacesAway => format!("{name}: faces away"),
-        LightFate::NotCast => format!("{name}: shadows off"),
-        LightFate::Lit(_) => format!("{name}: lit, S = 1"),
-        LightFate::Crossed(s) | LightFate::PartlyBlocked(s) | LightFate::Blocked(s) => {
-            let mut names: Vec<&str> = s.blockers.iter().map(|b| b.object.as_str()).collect();
-            names.dedup();
-            format!("{name}: S = {}, blocked by {}", num(s.s), names.join(", "))
-        }
-    }
 }
 
 /// What a row says of a student's ray log: its ray's path in the log's
@@ -169,21 +132,14 @@ pub(crate) fn row_line(
                 (true, true) => "▸",
                 (true, false) => "▾",
             };
-            let what = node
-                .hit
-                .as_ref()
-                .map_or("miss".to_string(), |h| format!("hit {}", h.object));
-            let text = format!(
-                "{pad}{marker} r{id} {path}{} → {what}",
-                kind_name(node.kind)
-            );
+            let text = format!("{pad}{marker} r{id} {path}{}", ray_summary(node));
             (text, node.color, node.color * path_factor(tree, id))
         }
         RowKind::Light { node, light } => {
             let record = &tree.nodes[node].lights[light];
             let color = record.diffuse + record.specular;
             (
-                format!("{pad}  ☼ {path}{}", light_text(record)),
+                format!("{pad}  ☼ {path}{}", light_summary(record)),
                 color,
                 color * path_factor(tree, node),
             )
@@ -201,7 +157,7 @@ pub(crate) fn row_line(
         Span::raw(" ".repeat(fill + 1)),
         swatch(color),
         Span::raw(" "),
-        Span::raw(share(tree, part)),
+        Span::raw(share_of_pixel(tree, part)),
     ])
 }
 
@@ -264,19 +220,5 @@ mod tests {
         assert_eq!(scroll_offset(4, 5), 0);
         assert_eq!(scroll_offset(9, 5), 5);
         assert_eq!(scroll_offset(3, 0), 3, "no room: the selected row first");
-    }
-
-    #[test]
-    fn a_rays_worth_in_the_pixel_is_the_product_down_its_path() {
-        let (_, tree) = ball();
-        // r0 counts fully; r1 is weighted by ks = 0.5 (no distance attenuation).
-        assert_eq!(path_factor(&tree, 0), 1.0);
-        assert_eq!(path_factor(&tree, 1), 0.5);
-    }
-
-    #[test]
-    fn light_labels_say_light_once() {
-        assert_eq!(light_label("lamp"), "light lamp");
-        assert_eq!(light_label("light 0"), "light 0");
     }
 }

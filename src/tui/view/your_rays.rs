@@ -15,8 +15,8 @@ use raystep_tools::divergence::{
 };
 use raystep_tools::raylog::{Hit, RayPath, Step, rays_with_nodes};
 
-use super::stepper::{cast_event, light_event};
 use super::tree::RowKind;
+use raystep_engine::record::stepping::{cast_event, light_event};
 
 /// A ray's mark in the tree pane and its colour.
 pub(crate) fn mark(status: RayStatus) -> (&'static str, Color) {

@@ -3,6 +3,7 @@
 
 mod diff;
 mod dot;
+mod event_words;
 mod explain;
 mod fate;
 mod finite;
@@ -13,11 +14,14 @@ mod ray_tree;
 mod shaping;
 mod shared_words;
 mod sources;
+pub mod stepping;
 mod text;
 mod tree_recorder;
+mod tree_words;
 
 pub use diff::diff;
 pub use dot::dot;
+pub use event_words::describe_event;
 pub use explain::{Said, Told, explain_lines};
 pub use explain::{explain, explain_unwrapped};
 pub use fate::LightFate;
@@ -31,3 +35,4 @@ pub use shaping::{place, reach, shaping_events};
 pub use shared_words::{kind_name, light_label, not_cast_line, ray_header};
 pub use text::{Children, node_lines, text};
 pub use tree_recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
+pub use tree_words::{light_summary, path_factor, ray_summary, share_of_pixel};

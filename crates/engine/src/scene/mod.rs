@@ -18,8 +18,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use error::SceneError;
-pub use switches::Switch;
-pub(crate) use switches::Switches;
+pub use switches::{DEEPEST_TOGGLED_DEPTH, Switch, Switches};
 
 use crate::input_file::{self, Cap};
 use raystep_accel::{Accel, ObjectTables};

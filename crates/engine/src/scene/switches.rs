@@ -5,6 +5,10 @@
 
 use serde::Serialize;
 
+/// The deepest max_depth the debugger's and the page's depth toggles go
+/// to (a glass scene's tree doubles with every level).
+pub const DEEPEST_TOGGLED_DEPTH: u32 = 16;
+
 /// One teaching switch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Switch {

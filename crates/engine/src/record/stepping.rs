@@ -3,8 +3,36 @@
 //! parent's `ChildReturned` event is where it returns. Every function takes
 //! the current event index and returns the new one; none changes the tree.
 
-use crate::tui::action::{Breakpoint, Step};
-use raystep_engine::record::{EventKind, RayTree};
+use super::{EventKind, RayTree};
+
+/// A way to move to another event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// The next event, whatever ray it belongs to.
+    Next,
+    Previous,
+    /// The next ray cast: enter the next child ray.
+    Into,
+    /// The next event of the same ray, skipping child rays' events.
+    Over,
+    /// Where this ray returns to its parent (the end, for the primary ray).
+    Out,
+    /// The first event.
+    Start,
+    /// The last event: the primary ray is done.
+    End,
+}
+
+/// A condition to run forward to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Breakpoint {
+    /// The first blocker of a shadow ray: a light is (partly) in shadow.
+    BlockedShadow,
+    /// A shading ray hits this object (index in the scene).
+    HitObject(usize),
+    /// Total internal reflection.
+    Tir,
+}
 
 fn last(tree: &RayTree) -> usize {
     tree.events.len().saturating_sub(1)
@@ -15,7 +43,7 @@ fn find_after(tree: &RayTree, at: usize, test: impl Fn(usize) -> bool) -> Option
     (at + 1..tree.events.len()).find(|&i| test(i))
 }
 
-pub(crate) fn step(tree: &RayTree, at: usize, step: Step) -> usize {
+pub fn step(tree: &RayTree, at: usize, step: Step) -> usize {
     let Some(event) = tree.events.get(at) else {
         return 0;
     };
@@ -41,7 +69,7 @@ pub(crate) fn step(tree: &RayTree, at: usize, step: Step) -> usize {
 }
 
 /// Whether event `i` is where `breakpoint` stops.
-pub(crate) fn matches(tree: &RayTree, i: usize, breakpoint: Breakpoint) -> bool {
+pub fn matches(tree: &RayTree, i: usize, breakpoint: Breakpoint) -> bool {
     match (breakpoint, &tree.events[i].kind) {
         (Breakpoint::BlockedShadow, EventKind::Blocker { .. }) => {
             i > 0 && matches!(tree.events[i - 1].kind, EventKind::ShadowCast { .. })
@@ -53,12 +81,12 @@ pub(crate) fn matches(tree: &RayTree, i: usize, breakpoint: Breakpoint) -> bool 
 }
 
 /// The next event after `at` where `breakpoint` stops, if any.
-pub(crate) fn run_to(tree: &RayTree, at: usize, breakpoint: Breakpoint) -> Option<usize> {
+pub fn run_to(tree: &RayTree, at: usize, breakpoint: Breakpoint) -> Option<usize> {
     find_after(tree, at, |i| matches(tree, i, breakpoint))
 }
 
 /// The event where `node`'s ray is cast.
-pub(crate) fn cast_event(tree: &RayTree, node: usize) -> Option<usize> {
+pub fn cast_event(tree: &RayTree, node: usize) -> Option<usize> {
     tree.events
         .iter()
         .position(|e| e.node == node && matches!(e.kind, EventKind::RayCast { .. }))
@@ -66,7 +94,7 @@ pub(crate) fn cast_event(tree: &RayTree, node: usize) -> Option<usize> {
 
 /// The event where `node` casts its shadow ray to `light`, or where it finds
 /// the light facing away.
-pub(crate) fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<usize> {
+pub fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<usize> {
     let shadow = tree.events.iter().position(|e| {
         e.node == node && matches!(e.kind, EventKind::ShadowCast { light: l } if l == light)
     });
@@ -80,7 +108,7 @@ pub(crate) fn light_event(tree: &RayTree, node: usize, light: usize) -> Option<u
 #[cfg(test)]
 mod tests {
     use super::*;
-    use raystep_engine::test_scenes::ball;
+    use crate::test_scenes::ball;
 
     #[test]
     fn steps_move_through_the_ball_pixels_events() {
