@@ -28,6 +28,15 @@ def packed(data: bytes) -> str:
     return base64.b64encode(gzip.compress(data, 9, mtime=0)).decode("ascii")
 
 
+def is_assignment(path: str) -> bool:
+    """A grading assignment (docs/TEACHERS.md) lists [[scene]] tables; it
+    is not a scene to open."""
+    if not path.lower().endswith(".toml"):
+        return False
+    with open(path, "rb") as f:
+        return any(line.strip() == b"[[scene]]" for line in f)
+
+
 def scene_bundle(folder: str) -> bytes:
     """Every scene and mesh file under `folder`, as one archive: a JSON
     header line (each file's path, relative to `folder`, and length), then
@@ -36,8 +45,8 @@ def scene_bundle(folder: str) -> bytes:
     for top, dirs, names in os.walk(folder):
         dirs.sort()
         for name in sorted(names):
-            if name.lower().endswith(SCENE_FILES + MESH_FILES):
-                path = os.path.join(top, name)
+            path = os.path.join(top, name)
+            if name.lower().endswith(SCENE_FILES + MESH_FILES) and not is_assignment(path):
                 files.append((os.path.relpath(path, folder).replace(os.sep, "/"), path))
     if not any(p.lower().endswith(SCENE_FILES) for p, _ in files):
         sys.exit(f"assemble.py: {folder} holds no .toml or .nff scene")

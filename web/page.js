@@ -261,6 +261,7 @@ function draw() {
   const canvas = $("image");
   const s = scale();
   canvas.width = page.scene.width * s;
+  canvas.dataset.width = page.scene.width;
   canvas.height = page.scene.height * s;
   const g = canvas.getContext("2d");
   g.imageSmoothingEnabled = false;

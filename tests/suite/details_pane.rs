@@ -8,7 +8,8 @@ use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use raystep::tui::pane::details;
-use raystep::tui::{Action, App, Step};
+use raystep::tui::{Action, App};
+use raystep_engine::record::stepping::Step;
 use raystep_engine::record::EventKind;
 use raystep_model::math::to_rgb8;
 

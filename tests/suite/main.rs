@@ -47,4 +47,5 @@ mod tui_diagram;
 mod tui_rays;
 mod tui_reach;
 mod tui_screens;
+mod web_page;
 mod what_if;

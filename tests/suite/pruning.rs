@@ -327,7 +327,8 @@ fn a_light_within_eps_of_the_point_adds_nothing_and_casts_no_shadow_ray() {
 
 #[test]
 fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
-    use raystep::tui::view::{details, steps};
+    use raystep::tui::view::details;
+    use raystep_engine::record::describe_event;
     use raystep_engine::record::EventKind;
     // The mirrors of ks = 0.1: the third reflection, from ray r2, is not cast.
     let scene = mirrors(0.1, "");
@@ -344,7 +345,7 @@ fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
         EventKind::RayDone { .. }
     ));
     let line = "reflected ray not cast: accumulated weight 0.001 < min_weight 1/512";
-    let (text, _) = steps::describe(&tree, &scene, &tree.events[at]);
+    let (text, _) = describe_event(&tree, &scene, &tree.events[at]);
     assert_eq!(text, format!("r2: {line}"));
     let about = details::marked(&tree, 2, Some(at));
     let marked: Vec<String> = details::ray_lines(&tree, 2)

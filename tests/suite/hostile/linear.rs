@@ -16,7 +16,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use raystep::tui::{Action, App, Step};
+use raystep::tui::{Action, App};
+use raystep_engine::record::stepping::Step;
 use raystep_engine::record::record_pixel;
 
 use crate::support::debugger::{chars, screen};

@@ -31,6 +31,11 @@ pub fn chromium_or_skip(test: &str) -> Option<Chromium> {
 }
 
 impl Chromium {
+    /// The browser's program, for a test that drives it itself.
+    pub fn program(&self) -> &Path {
+        &self.program
+    }
+
     /// `page`'s DOM, serialised, after the browser loaded it from `file://`.
     pub fn dump_dom(&self, page: &Path) -> String {
         let dir = tempfile::tempdir().unwrap();

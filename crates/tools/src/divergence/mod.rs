@@ -116,15 +116,16 @@ pub fn compare_log<R: BufRead>(
     let mut shown: Vec<((u32, u32), Vec<LoggedRay>)> = Vec::new();
     let mut shown_at: HashMap<(u32, u32), usize> = HashMap::new();
     let mut rays_read = 0;
+    let new_counter = || Counter {
+        scene,
+        tolerance,
+        tallies: HashMap::new(),
+        trees: Vec::new(),
+    };
     let (read, counter) = std::thread::scope(|threads| {
         let (send, receive) = std::sync::mpsc::sync_channel::<Vec<LoggedRay>>(BATCHES_IN_FLIGHT);
-        let counting = threads.spawn(move || {
-            let mut counter = Counter {
-                scene,
-                tolerance,
-                tallies: HashMap::new(),
-                trees: Vec::new(),
-            };
+        let counting = std::thread::Builder::new().spawn_scoped(threads, move || {
+            let mut counter = new_counter();
             for batch in receive {
                 for ray in &batch {
                     counter.count(ray);
@@ -132,6 +133,14 @@ pub fn compare_log<R: BufRead>(
             }
             counter
         });
+        // Where no thread can be started (the web page), rays are counted
+        // as they are read.
+        let mut inline = counting.is_err().then(new_counter);
+        let mut hand_over = |batch: Vec<LoggedRay>| match &mut inline {
+            Some(counter) => batch.iter().for_each(|ray| counter.count(ray)),
+            // The counter only stops when this thread does.
+            None => drop(send.send(batch)),
+        };
         let mut batch = Vec::with_capacity(BATCH);
         let read = (|| {
             for item in reader.by_ref() {
@@ -146,18 +155,20 @@ pub fn compare_log<R: BufRead>(
                 } else {
                     batch.push(ray);
                     if batch.len() == BATCH {
-                        // The counter only stops when this thread does.
-                        let _ = send.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
+                        hand_over(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
                     }
                 }
             }
             Ok(())
         })();
         if read.is_ok() && !batch.is_empty() {
-            let _ = send.send(batch);
+            hand_over(batch);
         }
         drop(send);
-        let counter = counting.join().expect("the counting thread does not panic");
+        let counter = match counting {
+            Ok(thread) => thread.join().expect("the counting thread does not panic"),
+            Err(_) => inline.expect("counted here when no thread was started"),
+        };
         (read, counter)
     });
     read?;
