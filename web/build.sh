@@ -35,13 +35,14 @@ done
 # and full LTO, as the page runs on one thread; its own target folder, so
 # the native build's cache is untouched.
 cd "$root"
+wasm_target="${CARGO_TARGET_DIR:-$root/target}/wasm"
 RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 \
 CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER=wasm-ld \
 CARGO_PROFILE_RELEASE_PANIC=abort CARGO_PROFILE_RELEASE_LTO=fat \
 CARGO_PROFILE_RELEASE_CODEGEN_UNITS=1 CARGO_PROFILE_RELEASE_DEBUG=0 \
 CARGO_PROFILE_RELEASE_STRIP=true \
     /usr/bin/cargo build --release --locked -Z build-std=std,panic_abort \
-    --target wasm32-unknown-unknown -p raystep-web --target-dir "$root/target/wasm"
+    --target wasm32-unknown-unknown -p raystep-web --target-dir "$wasm_target"
 python3 "$root/web/assemble.py" \
-    --wasm "$root/target/wasm/wasm32-unknown-unknown/release/raystep_web.wasm" \
+    --wasm "$wasm_target/wasm32-unknown-unknown/release/raystep_web.wasm" \
     --scenes "$scenes" --out "$out"

@@ -120,14 +120,16 @@ check((await p.textContent("#raylog-pixels")).includes(`first differs at ${expec
 check((await p.locator("#tree .first").count()) === 1, "the tree marks the ray of the first divergence");
 
 // ---- errors, as the command line gives them ---------------------------------------
-await p.fill("#scene-text", expected.error.text);
-await p.waitForFunction(() => !document.getElementById("scene-error").hidden);
-check((await p.textContent("#scene-error")) === expected.error.message, "a scene error is shown at its line and column, as the command line says it");
 await p.fill("#size", "4096x4096");
 await p.press("#size", "Enter");
 await p.waitForFunction(() => document.getElementById("scene-error").textContent.includes("4096"));
 check((await p.textContent("#scene-error")).startsWith("error: image size 4096x4096 is too large"), "a 4096x4096 size is refused");
 
+await p.fill("#size", "");
+await rendered(() => p.press("#size", "Enter"));
+await p.fill("#scene-text", expected.error.text);
+await p.waitForFunction(() => !document.getElementById("scene-error").hidden);
+check((await p.textContent("#scene-error")) === expected.error.message, "a scene error is shown at its line and column, as the command line says it");
 check(network.length === 0, `no network request (${network.join(", ") || "none"})`);
 check(errors.length === 0, `no script error (${errors.join("; ") || "none"})`);
 await browser.close();
