@@ -32,14 +32,16 @@
 //! [`mean`] pools the errors as nv-flip's `FlipPool::mean` does.
 //!
 //! How close to nv-flip: natively both call the platform's powf and expf,
-//! and the errors agree to the bit but for a few pixels a last bit apart
-//! (at most 6e-8 on the tests' images), the means to the bit. In
-//! WebAssembly, Rust's own math library rounds some powf and expf results
-//! the other way; FLIP's compressions (a 0.7 power of a small HyAB
-//! distance) magnify that to at most 4e-5 on a pixel where the two images
-//! are nearly the same colour, and the mean moves by less than 1e-7 (measured
-//! under Node on glass.toml against its eta-inverted render at 640 × 480,
-//! and on 320 × 240 noise). Either is far below one step of the magma map
+//! and the errors agree to the bit (so the means too) on every image of
+//! the tests. That takes keeping the optimiser from replacing the C++'s
+//! math calls with its own: see the two `black_box`es. In WebAssembly,
+//! Rust's own math library rounds some powf and expf results the other way
+//! (the sRGB transfer on a few bytes, Lab's cube roots, the filters'
+//! weights); FLIP's compressions (a 0.7 power of a small HyAB distance)
+//! magnify that to at most 4e-5 on a pixel where the two images are nearly
+//! the same colour, and the mean moves by less than 1e-7 (measured under
+//! Node on glass.toml against its eta-inverted render at 640 × 480, and on
+//! 320 × 240 noise). Either is far below one step of the magma map
 //! (1/255).
 
 mod colour_spaces;
@@ -231,6 +233,10 @@ fn feature_errors(
     ];
     let mut filtered = vec![vec![0f32; width]; 8];
     let normalisation = 1.0 / 2f32.sqrt();
+    // The C++'s powf, not the square root that LLVM puts for a known
+    // power of 0.5 (correctly rounded, where powf is a last bit away on
+    // some values).
+    let gqf = std::hint::black_box(GQF);
     for y in 0..height {
         for (i, out) in filtered.iter_mut().enumerate() {
             let planes = if i < 4 { &reference } else { &test };
@@ -249,7 +255,7 @@ fn feature_errors(
             let point = (point_reference - point_test).abs();
             // `Max(edge, point)` as the C++'s macro picks.
             let largest = if edge > point { edge } else { point };
-            let feature = (normalisation * largest).powf(GQF);
+            let feature = (normalisation * largest).powf(gqf);
             *error = error.powf(1.0 - feature);
         }
     }
