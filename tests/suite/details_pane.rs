@@ -9,8 +9,8 @@ use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use raystep::tui::pane::details;
 use raystep::tui::{Action, App};
-use raystep_engine::record::stepping::Step;
 use raystep_engine::record::EventKind;
+use raystep_engine::record::stepping::Step;
 use raystep_model::math::to_rgb8;
 
 /// A mirror ball in front of a grey wall, lit from the eye's right. The centre

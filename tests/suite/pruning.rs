@@ -328,8 +328,8 @@ fn a_light_within_eps_of_the_point_adds_nothing_and_casts_no_shadow_ray() {
 #[test]
 fn the_debugger_step_list_and_details_show_a_ray_not_cast() {
     use raystep::tui::view::details;
-    use raystep_engine::record::describe_event;
     use raystep_engine::record::EventKind;
+    use raystep_engine::record::describe_event;
     // The mirrors of ks = 0.1: the third reflection, from ray r2, is not cast.
     let scene = mirrors(0.1, "");
     let tree = bounce(&scene);

@@ -39,15 +39,25 @@ fn tools_or_skip() -> Option<(PathBuf, PathBuf)> {
     let toolchain = Path::new("/usr/bin/cargo").is_file() && Path::new("/usr/bin/rustc").is_file();
     let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
     if !toolchain {
-        assert!(!ci, "Debian's rustc-web is not installed, and CI is set (.ci/run installs it)");
-        eprintln!("note: the web page's test skipped: apt-get install rustc-web cargo-web rust-web-src lld");
+        assert!(
+            !ci,
+            "Debian's rustc-web is not installed, and CI is set (.ci/run installs it)"
+        );
+        eprintln!(
+            "note: the web page's test skipped: apt-get install rustc-web cargo-web rust-web-src lld"
+        );
         return None;
     }
-    let chromium = chromium_or_skip("the web page's test")?.program().to_owned();
+    let chromium = chromium_or_skip("the web page's test")?
+        .program()
+        .to_owned();
     let node = program_or_skip("node")?;
     let playwright = Path::new(ROOT).join("web/tests/node_modules/playwright-core");
     if !playwright.is_dir() {
-        assert!(!ci, "web/tests has no node_modules, and CI is set (.ci/run runs npm ci there)");
+        assert!(
+            !ci,
+            "web/tests has no node_modules, and CI is set (.ci/run runs npm ci there)"
+        );
         eprintln!("note: the web page's test skipped: run npm ci in web/tests");
         return None;
     }
@@ -85,8 +95,15 @@ fn rays_in(ray: &Value) -> usize {
 
 /// glass.toml with another max_depth, for the depth toggle's render.
 fn with_max_depth(text: &str, depth: u32) -> String {
-    assert!(!text.contains("max_depth"), "glass.toml sets max_depth: change this test");
-    text.replacen("[settings]\n", &format!("[settings]\nmax_depth = {depth}\n"), 1)
+    assert!(
+        !text.contains("max_depth"),
+        "glass.toml sets max_depth: change this test"
+    );
+    text.replacen(
+        "[settings]\n",
+        &format!("[settings]\nmax_depth = {depth}\n"),
+        1,
+    )
 }
 
 #[test]
@@ -113,11 +130,22 @@ fn the_page_answers_as_the_command_line_does_in_a_browser() {
         .map(|(i, path)| {
             let relative = path.strip_prefix(root.join("scenes")).unwrap();
             let png = work.join(format!("scene-{i}.png"));
-            raystep_in(root, &["render", path.to_str().unwrap(), "-o", png.to_str().unwrap()]);
+            raystep_in(
+                root,
+                &[
+                    "render",
+                    path.to_str().unwrap(),
+                    "-o",
+                    png.to_str().unwrap(),
+                ],
+            );
             json!({ "path": relative.to_str().unwrap(), "png": png })
         })
         .collect();
-    assert!(scenes.len() >= 20, "scenes/ holds the teaching and SPD scenes");
+    assert!(
+        scenes.len() >= 20,
+        "scenes/ holds the teaching and SPD scenes"
+    );
 
     // A pixel of glass.toml, as explain and inspect tell it; the scene
     // copied beside the student's files, so that names match the page's.
@@ -126,9 +154,11 @@ fn the_page_answers_as_the_command_line_does_in_a_browser() {
     let (x, y) = (80, 60);
     let at = format!("{x},{y}");
     let explain = raystep_in(work, &["explain", "glass.toml", "--pixel", &at]);
-    let tree: Value =
-        serde_json::from_str(&raystep_in(work, &["inspect", "glass.toml", "--pixel", &at, "--format", "json"]))
-            .unwrap();
+    let tree: Value = serde_json::from_str(&raystep_in(
+        work,
+        &["inspect", "glass.toml", "--pixel", &at, "--format", "json"],
+    ))
+    .unwrap();
     let rays = rays_in(&tree["tree"]);
 
     // The first pixel the keyboard picks, (3, 2) of the first scene, stepped.
@@ -143,21 +173,66 @@ fn the_page_answers_as_the_command_line_does_in_a_browser() {
     // The depth toggle ([) against the scene written with that depth.
     let scene = raystep_engine::scene::load(&root.join("scenes/glass.toml")).unwrap();
     let depth = scene.settings.max_depth - 1;
-    std::fs::write(work.join("shallow.toml"), with_max_depth(&glass_text, depth)).unwrap();
+    std::fs::write(
+        work.join("shallow.toml"),
+        with_max_depth(&glass_text, depth),
+    )
+    .unwrap();
     raystep_in(work, &["render", "shallow.toml", "-o", "shallow.png"]);
-    raystep_in(work, &["render", "glass.toml", "--mistake", "flipped-y", "-o", "flipped.png"]);
+    raystep_in(
+        work,
+        &[
+            "render",
+            "glass.toml",
+            "--mistake",
+            "flipped-y",
+            "-o",
+            "flipped.png",
+        ],
+    );
 
     // A mistake's render and ray log, as compare names them.
-    raystep_in(work, &["render", "glass.toml", "--mistake", "eta-inverted", "-o", "eta.png"]);
-    let compared: Value =
-        serde_json::from_str(&raystep_in(work, &["compare", "glass.toml", "eta.png", "--format", "json"]))
-            .unwrap();
+    raystep_in(
+        work,
+        &[
+            "render",
+            "glass.toml",
+            "--mistake",
+            "eta-inverted",
+            "-o",
+            "eta.png",
+        ],
+    );
+    let compared: Value = serde_json::from_str(&raystep_in(
+        work,
+        &["compare", "glass.toml", "eta.png", "--format", "json"],
+    ))
+    .unwrap();
     let first_mistake = compared["mistakes"][0]["name"].as_str().unwrap().to_owned();
-    let log = raystep_in(work, &["inspect", "glass.toml", "--pixel", &at, "--format", "raylog", "--mistake", "eta-inverted"]);
+    let log = raystep_in(
+        work,
+        &[
+            "inspect",
+            "glass.toml",
+            "--pixel",
+            &at,
+            "--format",
+            "raylog",
+            "--mistake",
+            "eta-inverted",
+        ],
+    );
     std::fs::write(work.join("eta.jsonl"), log).unwrap();
     let rays_json: Value = serde_json::from_str(&raystep_in(
         work,
-        &["compare", "glass.toml", "--rays", "eta.jsonl", "--format", "json"],
+        &[
+            "compare",
+            "glass.toml",
+            "--rays",
+            "eta.jsonl",
+            "--format",
+            "json",
+        ],
     ))
     .unwrap();
     let divergence = &rays_json["pixels"][0]["first_divergence"];

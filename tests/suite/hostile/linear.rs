@@ -17,8 +17,8 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use raystep::tui::{Action, App};
-use raystep_engine::record::stepping::Step;
 use raystep_engine::record::record_pixel;
+use raystep_engine::record::stepping::Step;
 
 use crate::support::debugger::{chars, screen};
 

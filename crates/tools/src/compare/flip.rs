@@ -1,6 +1,6 @@
-//! NVIDIA's FLIP (through the `nv-flip` crate, as wgpu's tests use it),
-//! run tile by tile so that its memory stays bounded whatever the image's
-//! size. It compiles C++, so it comes with the `flip` feature only.
+//! NVIDIA's FLIP (LDR-FLIP, `raystep-flip`: the same errors as NVIDIA's
+//! C++ to the bit natively), run tile by tile so that its memory stays
+//! bounded whatever the image's size. It comes with the `flip` feature.
 
 use anyhow::{Result, anyhow};
 use image::RgbImage;
@@ -16,9 +16,10 @@ const FLIP_TILE: u32 = 256;
 /// the image goes on, get from FLIP the very values the whole image gives.
 const FLIP_MARGIN: u32 = 16;
 /// What FLIP allocates at most for each pixel of a tile (with its margin),
-/// counted from its code and rounded up: the two images and four filtered
-/// copies of them in f32 colours (12 bytes each), the feature filters'
-/// copies, the error and its colours.
+/// counted from NVIDIA's code and rounded up (raystep-flip keeps fewer
+/// copies, about 60 bytes): the two images and four filtered copies of
+/// them in f32 colours (12 bytes each), the feature filters' copies, the
+/// error and its colours.
 const FLIP_BYTES_PER_PIXEL: u64 = 200;
 
 /// FLIP's mean error and its error map in magma colours, run tile by tile
@@ -30,14 +31,13 @@ pub(super) fn flip(yours: &RgbImage, reference: &RgbImage) -> Result<(f64, RgbIm
         (FLIP_TILE + 2 * FLIP_MARGIN).min(width),
         (FLIP_TILE + 2 * FLIP_MARGIN).min(height),
     )?;
-    let lut = nv_flip::magma_lut();
     let tiles: Vec<(u32, u32)> = (0..height)
         .step_by(FLIP_TILE as usize)
         .flat_map(|y| (0..width).step_by(FLIP_TILE as usize).map(move |x| (x, y)))
         .collect();
     let done: Vec<Tile> = tiles
         .into_par_iter()
-        .map(|(x, y)| flip_tile(yours, reference, x, y, &lut))
+        .map(|(x, y)| flip_tile(yours, reference, x, y))
         .collect();
     let mut errors = vec![0f32; width as usize * height as usize];
     let mut map = RgbImage::new(width, height);
@@ -51,10 +51,7 @@ pub(super) fn flip(yours: &RgbImage, reference: &RgbImage) -> Result<(f64, RgbIm
             map.put_pixel(x, y, image::Rgb([colour[0], colour[1], colour[2]]));
         }
     }
-    // FLIP's pool adds the errors in f32, row by row: so here, for the
-    // same mean to the last bit.
-    let sum = errors.iter().fold(0f32, |sum, &e| sum + e);
-    Ok(((sum / errors.len() as f32) as f64, map))
+    Ok((raystep_flip::mean(&errors) as f64, map))
 }
 
 /// One tile's own pixels, row by row: FLIP's error and its magma colour.
@@ -67,13 +64,7 @@ struct Tile {
 }
 
 /// FLIP on the tile at (x, y), cut with its margin.
-fn flip_tile(
-    yours: &RgbImage,
-    reference: &RgbImage,
-    x: u32,
-    y: u32,
-    lut: &nv_flip::FlipImageRgb8,
-) -> Tile {
+fn flip_tile(yours: &RgbImage, reference: &RgbImage, x: u32, y: u32) -> Tile {
     let (width, height) = yours.dimensions();
     let (x0, y0) = (x.saturating_sub(FLIP_MARGIN), y.saturating_sub(FLIP_MARGIN));
     let (x1, y1) = (
@@ -82,17 +73,21 @@ fn flip_tile(
     );
     let (cut_width, cut_height) = (x1 - x0, y1 - y0);
     let cut = |image: &RgbImage| {
-        let raw = image::imageops::crop_imm(image, x0, y0, cut_width, cut_height)
+        image::imageops::crop_imm(image, x0, y0, cut_width, cut_height)
             .to_image()
-            .into_raw();
-        nv_flip::FlipImageRgb8::with_data(cut_width, cut_height, &raw)
+            .into_raw()
     };
-    let errors = nv_flip::flip(
-        cut(reference),
-        cut(yours),
-        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    let all_errors = raystep_flip::flip(
+        &cut(reference),
+        &cut(yours),
+        cut_width,
+        cut_height,
+        raystep_flip::DEFAULT_PIXELS_PER_DEGREE,
     );
-    let (all_errors, all_colours) = (errors.to_vec(), errors.apply_color_lut(lut).to_vec());
+    let all_colours: Vec<u8> = all_errors
+        .iter()
+        .flat_map(|&e| raystep_flip::magma(e))
+        .collect();
     let (own_width, own_height) = (FLIP_TILE.min(width - x), FLIP_TILE.min(height - y));
     let mut tile = Tile {
         x,
