@@ -451,7 +451,9 @@ function markEvent() {
   const li = items[page.view.at];
   if (li) {
     li.classList.add("current");
-    li.scrollIntoView({ block: "nearest" });
+    // Within the list only: the page itself stays where the reader put it.
+    const list = $("events");
+    list.scrollTop = li.offsetTop - list.offsetTop - list.clientHeight / 2;
   }
 }
 
@@ -697,17 +699,23 @@ async function start() {
   const bundle = await unpack($("scenes").textContent.trim());
   const newline = bundle.indexOf(10);
   const header = JSON.parse(new TextDecoder().decode(bundle.subarray(0, newline)));
+  const files = [];
   let at = newline + 1;
-  const scenes = [];
   for (const [path, length] of header) {
-    give(path, bundle.slice(at, at + length));
+    files.push([path, bundle.slice(at, at + length)]);
     at += length;
-    if (SCENE.test(path)) scenes.push(path);
   }
+  const scenes = files.map(([path]) => path).filter((path) => SCENE.test(path));
   for (const path of scenes) addSceneOption(path);
   timings.ready = performance.now();
+  // The first scene's folder first, so that its render starts before the
+  // other scenes (megabytes of them) are handed to the worker.
   const first = scenes.includes("seven-rays.toml") ? "seven-rays.toml" : scenes[0];
+  const folder = first.includes("/") ? first.slice(0, first.lastIndexOf("/") + 1) : "";
+  const own = ([path]) => path.startsWith(folder) && !path.slice(folder.length).includes("/");
+  for (const [path, bytes] of files.filter(own)) give(path, bytes);
   openScene(first);
+  for (const [path, bytes] of files.filter((f) => !own(f))) give(path, bytes);
   $("image").focus();
 }
 
