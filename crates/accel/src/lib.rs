@@ -133,6 +133,7 @@ impl Accel {
     }
 
     /// The nearest hit in `range`; on equal distances the first object in file order.
+    #[inline]
     pub fn closest(
         &self,
         objects: &[Object],

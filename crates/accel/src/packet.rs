@@ -313,6 +313,7 @@ impl Accel {
     /// `closest(objects, ray, range, _)` for each ray of `rays` (at most
     /// eight, primary rays of one row), into `found`: the same candidates,
     /// to the bit. Costs are not counted.
+    #[inline]
     pub fn closest_each(
         &self,
         objects: &[Object],

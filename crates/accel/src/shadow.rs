@@ -17,10 +17,12 @@ pub struct ShadowCache {
 }
 
 impl ShadowCache {
+    #[inline]
     fn blocker(&self, light: usize) -> Option<usize> {
         self.blockers.get(light).copied().flatten()
     }
 
+    #[inline]
     fn remember(&mut self, light: usize, object: usize) {
         if self.blockers.len() <= light {
             self.blockers.resize(light + 1, None);
@@ -30,6 +32,7 @@ impl ShadowCache {
 
     /// The light reached the last point: past the edge of a shadow, its
     /// blocker is not worth trying on the next pixels.
+    #[inline]
     fn forget(&mut self, light: usize) {
         if let Some(blocker) = self.blockers.get_mut(light) {
             *blocker = None;

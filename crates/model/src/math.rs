@@ -19,10 +19,12 @@ pub struct Ray {
 }
 
 impl Ray {
+    #[inline]
     pub fn new(origin: DVec3, direction: DVec3) -> Self {
         Self { origin, direction }
     }
 
+    #[inline]
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + t * self.direction
     }
@@ -46,16 +48,19 @@ impl Interval {
     }
 
     /// Its lower end: distances must exceed it.
+    #[inline]
     pub fn min(&self) -> f64 {
         self.min
     }
 
     /// Its upper end: distances must stay below it.
+    #[inline]
     pub fn max(&self) -> f64 {
         self.max
     }
 
     /// True when `min < t < max`.
+    #[inline]
     pub fn surrounds(&self, t: f64) -> bool {
         self.min < t && t < self.max
     }
@@ -63,12 +68,14 @@ impl Interval {
 
 /// `value > bound`, false when either is NaN: validation reads
 /// `!exceeds(radius, 0.0)` to refuse NaN along with non-positive values.
+#[inline]
 pub fn exceeds(value: f64, bound: f64) -> bool {
     value > bound
 }
 
 /// Attenuation `min(1, 1 / (c1 + c2 d + c3 d^2))`, used for lights and for
 /// secondary rays (MODEL §4, §5). A non-positive denominator means no attenuation.
+#[inline]
 pub fn attenuation([c1, c2, c3]: [f64; 3], distance: f64) -> f64 {
     let denominator = c1 + c2 * distance + c3 * distance * distance;
     if denominator <= 0.0 {

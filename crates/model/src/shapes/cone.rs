@@ -134,6 +134,7 @@ impl Cone {
         working
     }
 
+    #[inline]
     pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         let w = self.solve(ray, range);
         let mut roots = Roots::NONE;

@@ -82,6 +82,7 @@ impl Roots {
         count: 0,
     };
 
+    #[inline]
     pub fn of_one(t: Option<f64>) -> Roots {
         let mut roots = Roots::NONE;
         if let Some(t) = t {
@@ -91,6 +92,7 @@ impl Roots {
     }
 
     /// The roots t0 <= t1 that lie in the range; a double root counts once.
+    #[inline]
     fn of_pair(t0: f64, t1: f64, range: Interval) -> Roots {
         let mut roots = Roots::NONE;
         if range.surrounds(t0) {
@@ -102,11 +104,13 @@ impl Roots {
         roots
     }
 
+    #[inline]
     fn push(&mut self, t: f64) {
         self.ts[self.count] = t;
         self.count += 1;
     }
 
+    #[inline]
     pub fn as_slice(&self) -> &[f64] {
         &self.ts[..self.count]
     }

@@ -75,6 +75,7 @@ impl Plane {
         }
     }
 
+    #[inline]
     pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         Roots::of_one(self.solve(ray, range).hit_t())
     }

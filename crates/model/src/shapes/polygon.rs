@@ -158,6 +158,7 @@ impl Polygon {
         PolygonWorking { plane, crossing }
     }
 
+    #[inline]
     pub(crate) fn roots(&self, ray: &Ray, range: Interval) -> Roots {
         Roots::of_one(self.solve(ray, range).hit_t())
     }
@@ -165,6 +166,7 @@ impl Polygon {
     /// Counts the edges that cross the +U axis once the point is moved to the
     /// origin. A vertex with V >= 0 is above the axis, so a vertex lying on it
     /// is counted once.
+    #[inline]
     pub fn crossing_test(&self, point: DVec3) -> CrossingTest {
         let p = self.dropped.project(point);
         let crossings = count_crossings(self.projected(), p);
