@@ -29,7 +29,7 @@ pub(super) enum Item<'a> {
 }
 
 /// A number (or a stand-in); `whole` when it is written as an integer from
-/// 0 (no sign, fraction or exponent) that fits a `u64`.
+/// 0 (no sign, fraction or exponent) of at most 19 digits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Number {
     pub(super) value: f64,
@@ -44,13 +44,6 @@ const MAX_DEPTH: usize = 128;
 const POWERS_OF_10: [f64; 23] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
-
-/// The bare tokens JSON lacks and what they read as.
-const STAND_INS: [(&str, f64); 3] = [
-    ("NaN", f64::NAN),
-    ("Infinity", f64::INFINITY),
-    ("-Infinity", f64::NEG_INFINITY),
 ];
 
 pub(super) struct Scanner<'a> {
@@ -90,7 +83,7 @@ impl<'a> Scanner<'a> {
         self.text.get(start..self.at).unwrap_or_default()
     }
 
-    pub(super) fn error(&self, at: usize, words: impl Into<String>) -> SyntaxError {
+    fn error(&self, at: usize, words: impl Into<String>) -> SyntaxError {
         SyntaxError {
             at,
             words: words.into(),
@@ -98,7 +91,7 @@ impl<'a> Scanner<'a> {
     }
 
     /// The line ended inside `what`.
-    pub(super) fn end_inside(&self, what: &str) -> SyntaxError {
+    fn end_inside(&self, what: &str) -> SyntaxError {
         self.error(self.bytes.len(), format!("EOF while parsing {what}"))
     }
 
@@ -113,7 +106,6 @@ impl<'a> Scanner<'a> {
     /// One value. A list is only opened: its elements are the caller's to
     /// read, or to skip with `skip_list`.
     pub(super) fn item(&mut self) -> Result<Item<'a>, SyntaxError> {
-        let start = self.at;
         match self.peek() {
             None => Err(self.end_inside("a value")),
             Some(b'"') => self.string().map(Item::Text),
@@ -131,7 +123,7 @@ impl<'a> Scanner<'a> {
             Some(b'N' | b'I') => self.stand_in(),
             Some(b'-') if self.bytes.get(self.at + 1) == Some(&b'I') => self.stand_in(),
             Some(b'-' | b'0'..=b'9') => self.number().map(Item::Number),
-            Some(_) => Err(self.error(self.at, format!("expected value{}", self.hint(start)))),
+            Some(_) => Err(self.error(self.at, format!("expected value{}", self.hint(self.at)))),
         }
     }
 
@@ -226,7 +218,7 @@ impl<'a> Scanner<'a> {
         Ok(())
     }
 
-    /// `word` (null, true, false), exactly.
+    /// `word` (null, true, false or a stand-in), exactly.
     fn word(&mut self, word: &str) -> Result<(), SyntaxError> {
         let start = self.at;
         for &expected in word.as_bytes() {
@@ -241,34 +233,14 @@ impl<'a> Scanner<'a> {
         Ok(())
     }
 
-    /// NaN, Infinity or -Infinity, bare.
+    /// NaN, Infinity or -Infinity, bare, by its first byte.
     fn stand_in(&mut self) -> Result<Item<'a>, SyntaxError> {
-        let rest = &self.bytes[self.at..];
-        let Some(&(token, value)) = STAND_INS
-            .iter()
-            .find(|(token, _)| rest.starts_with(token.as_bytes()))
-        else {
-            // Where the word stops being a stand-in.
-            let token = if rest[0] == b'-' {
-                "-Infinity"
-            } else if rest[0] == b'N' {
-                "NaN"
-            } else {
-                "Infinity"
-            };
-            let same = rest
-                .iter()
-                .zip(token.as_bytes())
-                .take_while(|(a, b)| a == b)
-                .count();
-            let start = self.at;
-            self.at += same;
-            if self.at == self.bytes.len() {
-                return Err(self.end_inside("a value"));
-            }
-            return Err(self.error(self.at, format!("expected ident{}", self.hint(start))));
+        let (token, value) = match self.bytes[self.at] {
+            b'N' => ("NaN", f64::NAN),
+            b'I' => ("Infinity", f64::INFINITY),
+            _ => ("-Infinity", f64::NEG_INFINITY),
         };
-        self.at += token.len();
+        self.word(token)?;
         Ok(Item::Number(Number { value, whole: None }))
     }
 
@@ -280,9 +252,10 @@ impl<'a> Scanner<'a> {
         if negative {
             self.at += 1;
         }
-        // The digits as one integer while they fit, and the power of 10
-        // that scales it.
-        let mut digits = Some(0);
+        // The digits as one integer (exact while there are at most 19),
+        // and the power of 10 that scales it.
+        let mut digits = 0;
+        let integer = self.at;
         match self.bytes.get(self.at) {
             Some(b'0') => {
                 self.at += 1;
@@ -296,13 +269,15 @@ impl<'a> Scanner<'a> {
                 return Err(self.error(self.at, format!("invalid number{}", self.hint(start))));
             }
         }
-        let whole = digits.filter(|_| !negative);
+        let mut count = self.at - integer;
+        let whole = (!negative && count <= 19).then_some(digits);
         let mut power = 0i64;
         if self.bytes.get(self.at) == Some(&b'.') {
             self.at += 1;
             let fraction = self.at;
             self.first_digit()?;
             self.digits(&mut digits);
+            count += self.at - fraction;
             power = -((self.at - fraction) as i64);
         }
         let mut exponent = None;
@@ -324,18 +299,16 @@ impl<'a> Scanner<'a> {
         }
         let whole = whole.filter(|_| power == 0 && exponent.is_none());
         let power = power + exponent.unwrap_or(0);
-        let value = match digits {
+        let value = if count <= 19 && digits <= 1 << 53 && power.abs() <= 22 {
             // Clinger's fast path: both exact, so one rounding.
-            Some(m) if m <= 1 << 53 && power.abs() <= 22 => {
-                let scale = POWERS_OF_10[power.unsigned_abs() as usize];
-                let x = m as f64;
-                let x = if power < 0 { x / scale } else { x * scale };
-                if negative { -x } else { x }
-            }
-            _ => self
-                .since(start)
+            let scale = POWERS_OF_10[power.unsigned_abs() as usize];
+            let x = digits as f64;
+            let x = if power < 0 { x / scale } else { x * scale };
+            if negative { -x } else { x }
+        } else {
+            self.since(start)
                 .parse()
-                .map_err(|_| self.error(start, "invalid number"))?,
+                .map_err(|_| self.error(start, "invalid number"))?
         };
         if value.is_infinite() {
             return Err(self.error(self.at - 1, "number out of range"));
@@ -352,12 +325,10 @@ impl<'a> Scanner<'a> {
         }
     }
 
-    /// Digits, appended to `value` (`None` once past a `u64`).
-    fn digits(&mut self, value: &mut Option<u64>) {
+    /// Digits, appended to `value` (which wraps past 19 of them).
+    fn digits(&mut self, value: &mut u64) {
         while let Some(&digit @ b'0'..=b'9') = self.bytes.get(self.at) {
-            *value = value
-                .and_then(|v| v.checked_mul(10))
-                .and_then(|v| v.checked_add(u64::from(digit - b'0')));
+            *value = value.wrapping_mul(10).wrapping_add(u64::from(digit - b'0'));
             self.at += 1;
         }
     }
@@ -652,7 +623,7 @@ mod tests {
             "expected ident (write NaN, Infinity or -Infinity)",
         );
         error_at(
-            "[inf]",
+            "[1, inf]",
             "inf",
             "expected value (write NaN, Infinity or -Infinity)",
         );
