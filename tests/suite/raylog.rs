@@ -172,7 +172,7 @@ const GOOD: &str = r#"{"pixel": [1, 2], "path": "P"}"#;
 #[test]
 fn a_line_that_is_not_json_is_named_with_its_column() {
     // The comma missing before "path": the `"` at column 28, counted in the
-    // line as written (NaN is 3 characters, not its stand-in's 11).
+    // line as written (NaN is its 3 characters).
     let log = format!(
         "# a comment\n{}\n",
         r#"{"t": NaN, "pixel": [1, 2] "path": "P"}"#
@@ -181,7 +181,7 @@ fn a_line_that_is_not_json_is_named_with_its_column() {
     // A line that is JSON but no object.
     assert_error(&error("[1, 2]\n"), 1, 1, "not a JSON object");
     // NaN spelt otherwise is not JSON: `nan` starts at column 24, and
-    // serde_json, reading it as `null`, stops at its `a`, column 25. The
+    // the reader, reading it as `null`, stops at its `a`, column 25. The
     // message says how to write it.
     let log = r#"{"pixel": [1, 2], "t": nan, "path": "P"}"#;
     assert_error(&error(log), 1, 25, "not JSON: expected ident");
@@ -196,7 +196,7 @@ fn a_line_that_is_not_json_is_named_with_its_column() {
             .problem
             .contains("write NaN, Infinity or -Infinity")
     );
-    // A number past f64 is refused, as serde_json refuses it, at its last
+    // A number past f64 is refused, as serde_json would refuse it, at its last
     // digit (1e400 is at columns 37 to 41).
     let log = r#"{"pixel": [1, 2], "path": "P", "t": 1e400}"#;
     assert_error(&error(log), 1, 41, "not JSON: number out of range");
@@ -528,12 +528,11 @@ proptest::proptest! {
 
 #[test]
 fn an_error_just_after_a_wide_character_names_its_column() {
-    // Found by the_reader_never_panics: serde_json's column can fall inside
-    // a character of several bytes (`é` is two), and the hint's look at the
-    // word there sliced the line inside it. A string cut short after `é`:
-    // serde_json's column is the line's length, 10 bytes, so its last byte
-    // is the second of `é` (column 9 of 9 characters). A stray `é`: its
-    // first byte, at column 11.
+    // Found by the_reader_never_panics when serde_json read the lines: its
+    // column could fall inside a character of several bytes (`é` is two),
+    // and the hint's look at the word there sliced the line inside it. A
+    // string cut short after `é`: the line's 8 characters end inside the
+    // string, so the column is just past them, 9. A stray `é`: column 11.
     for (log, column) in [("{\"a\": \"é", 9), ("{\"a\": \"é\" é}", 11), ("[é]", 2)] {
         let e = error(log);
         assert!(e.problem.starts_with("not JSON"), "{e}");

@@ -2,12 +2,12 @@
 //! student's tracer prints them and as raystep prints its own tree, so the
 //! two can be set side by side.
 
+mod json;
+mod line;
 mod logged_ray;
 mod path;
-mod quick_line;
 mod read;
 mod seen;
-mod stand_ins;
 mod write;
 
 pub use logged_ray::{Hit, LoggedRay};
