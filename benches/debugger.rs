@@ -10,7 +10,8 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, criterion_group, criterion_main};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use raystep::tui::{Action, App, Breakpoint, Find, Picture, Step, pane};
+use raystep::tui::{Action, App, Find, Picture, pane};
+use raystep_engine::record::stepping::{Breakpoint, Step};
 
 fn term_view_redraw(c: &mut Criterion) {
     for (name, relative) in [
