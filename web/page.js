@@ -708,11 +708,10 @@ async function start() {
   const scenes = files.map(([path]) => path).filter((path) => SCENE.test(path));
   for (const path of scenes) addSceneOption(path);
   timings.ready = performance.now();
-  // The first scene's folder first, so that its render starts before the
-  // other scenes (megabytes of them) are handed to the worker.
+  // The first scene and every mesh first, so that its render starts before
+  // the other scenes (megabytes of them) are handed to the worker.
   const first = scenes.includes("seven-rays.toml") ? "seven-rays.toml" : scenes[0];
-  const folder = first.includes("/") ? first.slice(0, first.lastIndexOf("/") + 1) : "";
-  const own = ([path]) => path.startsWith(folder) && !path.slice(folder.length).includes("/");
+  const own = ([path]) => path === first || !SCENE.test(path);
   for (const [path, bytes] of files.filter(own)) give(path, bytes);
   openScene(first);
   for (const [path, bytes] of files.filter((f) => !own(f))) give(path, bytes);
