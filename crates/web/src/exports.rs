@@ -4,7 +4,8 @@
 
 use std::cell::RefCell;
 
-use crate::page::{Page, Reply};
+use crate::page::Page;
+use crate::reply::Reply;
 
 thread_local! {
     static PAGE: RefCell<Page> = RefCell::new(Page::default());

@@ -12,7 +12,10 @@
 mod exports;
 mod options;
 mod page;
+mod page_size;
 mod pixel_view;
+mod reply;
 mod student_work;
 
-pub use page::{Page, Reply};
+pub use page::Page;
+pub use reply::Reply;

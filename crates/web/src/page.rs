@@ -16,21 +16,10 @@ use raystep_engine::trace::NoRecorder;
 use raystep_tools::diagram::svg::Caption;
 
 use crate::options::{Options, catalogue};
+use crate::page_size::check_page_size;
 use crate::pixel_view::PixelView;
+use crate::reply::Reply;
 use crate::student_work::StudentWork;
-
-/// The most pixels the page renders: a browser tab's memory and one thread
-/// (the command line renders up to 8192 x 8192).
-pub const PAGE_MAX_PIXELS: u64 = 2048 * 2048;
-
-/// What a call answers: JSON for the page to read, text or bytes to show
-/// or download as they are (an SVG, a PNG).
-#[derive(Debug)]
-pub enum Reply {
-    Json(Value),
-    Text(String),
-    Bytes(Vec<u8>),
-}
 
 /// The scene read, as it was named and at the size asked.
 struct Loaded {
@@ -242,20 +231,6 @@ impl Page {
         raystep_tools::output::write_png(&image, &mut std::io::Cursor::new(&mut png))?;
         Ok(Reply::Bytes(png))
     }
-}
-
-/// Refuses what the page would not render in a browser tab, in the words
-/// the command line refuses an image size with.
-pub(crate) fn check_page_size(width: u32, height: u32) -> Result<()> {
-    scene::check_image_size(width, height).map_err(anyhow::Error::msg)?;
-    if width as u64 * height as u64 > PAGE_MAX_PIXELS {
-        bail!(
-            "image size {width}x{height} is too large for the page: at most {PAGE_MAX_PIXELS} \
-             pixels (2048 x 2048) are rendered in a browser; `raystep render` renders up to \
-             8192 x 8192"
-        );
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -17,7 +17,7 @@ use raystep_model::math::{Color, to_rgb8};
 use raystep_tools::diagram::svg::{self, Caption, crossing_figure};
 use raystep_tools::diagram::{Diagram, DiagramPlane, Progress, Shadows};
 
-use crate::page::Reply;
+use crate::reply::Reply;
 use crate::student_work::{LoggedPixel, PixelLog};
 
 /// A recorded pixel and the event the stepping is at.

@@ -43,7 +43,7 @@ impl StudentWork {
         let student = raystep_tools::compare::student::read(Cursor::new(bytes), name)?;
         let (width, height) = student.image.dimensions();
         let scene_at_size = scene.clone().with_size(width, height)?;
-        crate::page::check_page_size(width, height)?;
+        crate::page_size::check_page_size(width, height)?;
         let comparison = raystep_tools::compare::compare(&scene_at_size, student)?;
         let report =
             raystep_tools::compare::text(&comparison, name, &scene_path.display().to_string());

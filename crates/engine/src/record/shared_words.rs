@@ -11,7 +11,7 @@ use crate::scene::SpecularModel;
 use crate::trace::{NotCast, PruneRule, RayKind};
 
 /// A secondary ray a rule kept from being cast, and the rule, in one line.
-pub fn not_cast_line(ray: &NotCast) -> String {
+pub(crate) fn not_cast_line(ray: &NotCast) -> String {
     format!(
         "{} ray not cast: {}",
         kind_name(ray.kind),
