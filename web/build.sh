@@ -32,15 +32,18 @@ for tool in /usr/bin/cargo /usr/bin/rustc wasm-ld python3; do
 done
 # /usr/bin's cargo and rustc by path (rustup's come first on PATH); the
 # standard library built from rust-web-src, panics abort; one codegen unit
-# and full LTO, as the page runs on one thread; its own target folder, so
-# the native build's cache is untouched.
+# and full LTO, as the page runs on one thread; WebAssembly's 128-bit SIMD
+# (in every browser since 2021: Chrome 91, Firefox 89, Safari 16.4), which
+# makes the render about 1.3 times faster and changes no byte (the page's
+# test compares every scene with the command line's); its own target
+# folder, so the native build's cache is untouched.
 cd "$root"
 wasm_target="${CARGO_TARGET_DIR:-$root/target}/wasm"
 RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 \
 CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER=wasm-ld \
 CARGO_PROFILE_RELEASE_PANIC=abort CARGO_PROFILE_RELEASE_LTO=fat \
 CARGO_PROFILE_RELEASE_CODEGEN_UNITS=1 CARGO_PROFILE_RELEASE_DEBUG=0 \
-CARGO_PROFILE_RELEASE_STRIP=true \
+CARGO_PROFILE_RELEASE_STRIP=true RUSTFLAGS="-C target-feature=+simd128" \
     /usr/bin/cargo build --release --locked -Z build-std=std,panic_abort \
     --target wasm32-unknown-unknown -p raystep-web --target-dir "$wasm_target"
 python3 "$root/web/assemble.py" \

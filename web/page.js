@@ -251,16 +251,18 @@ async function render() {
   document.body.dataset.rendered = String(id);
 }
 
-function scale() {
-  const w = page.scene.width, h = page.scene.height;
-  return Math.max(1, Math.floor(Math.min(640 / w, 480 / h)));
+/** How much larger than the image it is shown: up to 640 x 480 on screen. */
+function fit() {
+  return Math.max(1, Math.min(640 / page.scene.width, 480 / page.scene.height));
 }
 
 function draw() {
   if (!page.bitmap) return;
   const canvas = $("image");
-  const s = scale();
+  // Drawn at a whole scale, shown at the fitting one: every pixel a block.
+  const s = Math.ceil(fit());
   canvas.width = page.scene.width * s;
+  canvas.style.width = `${page.scene.width * fit()}px`;
   canvas.dataset.width = page.scene.width;
   canvas.height = page.scene.height * s;
   const g = canvas.getContext("2d");
