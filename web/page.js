@@ -312,9 +312,8 @@ function pick(x, y) {
   page.view = view;
   page.collapsed = new Set();
   page.row = 0;
-  const [r, g, b] = view.rgb8;
   const title = $("pixel-title");
-  title.textContent = `Pixel (${x}, ${y}): colour ${view.color} = rgb8 (${r}, ${g}, ${b}), ${view.rays} ray${view.rays === 1 ? "" : "s"}`;
+  title.textContent = view.title;
   title.append(swatch(view.rgb8));
   $("explain").textContent = view.explain;
   $("only-yours").textContent = (view.only_yours || []).join("\n");
@@ -559,7 +558,7 @@ function readRayLog(name, bytes) {
     const button = document.createElement("button");
     button.textContent = `(${p.pixel[0]}, ${p.pixel[1]})`;
     button.onclick = () => pick(p.pixel[0], p.pixel[1]);
-    li.append(button, p.matches ? " your rays match ours" : ` first differs at ${p.first}`);
+    li.append(button, ` ${p.words}`);
     list.append(li);
   }
   status(`${name}: ${reply.pixel_count} pixel${reply.pixel_count === 1 ? "" : "s"} logged`);

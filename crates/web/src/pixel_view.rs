@@ -71,8 +71,16 @@ impl PixelView {
                 })
             })
             .collect();
+        let (x, y) = tree.pixel;
+        let [r, g, b] = tree.rgb8();
+        let title = format!(
+            "Pixel ({x}, {y}): colour {} = rgb8 ({r}, {g}, {b}), {}",
+            record::color(tree.color()),
+            record::count(tree.nodes.len() as u64, "ray", "rays")
+        );
         json!({
             "pixel": tree.pixel,
+            "title": title,
             "rgb8": tree.rgb8(),
             "color": record::color(tree.color()),
             "rays": tree.nodes.len(),

@@ -87,11 +87,15 @@ impl StudentWork {
         );
         let pixels: Vec<Value> = (comparison.pixels.iter())
             .map(|p| {
+                // The debugger's words for a logged pixel (src/tui/app/ray_log.rs).
+                let words = match &p.first_divergence {
+                    None => "your rays match ours".to_string(),
+                    Some(d) => format!("first differs at {} {}", d.path, d.field),
+                };
                 json!({
                     "pixel": p.pixel,
                     "matches": p.matches,
-                    "first": p.first_divergence.as_ref()
-                        .map(|d| printable_text(&format!("{} {}", d.path, d.field)).into_owned()),
+                    "words": printable_text(&words).into_owned(),
                 })
             })
             .collect();
