@@ -16,16 +16,15 @@ use raystep_model::math::{Interval, Ray};
 
 /// A recorder that can follow a whole render: one per row, summed at the end.
 pub trait RowRecorder: Recorder + Default + Send {
-    /// Whether a render's primary rays may be traced in packets
-    /// (`Accel::closest_each`): the same colours, but the query's cost is
-    /// not counted, so only for a recorder that ignores it.
-    const PACKETS: bool = false;
+    /// How a render with this recorder finds its primary rays' hits: in
+    /// packets only for a recorder that ignores the queries' cost.
+    const PRIMARY_WALK: PrimaryWalk = PrimaryWalk::OneByOne;
 
     fn merge(&mut self, other: Self);
 }
 
 impl RowRecorder for NoRecorder {
-    const PACKETS: bool = true;
+    const PRIMARY_WALK: PrimaryWalk = PrimaryWalk::Packets;
 
     fn merge(&mut self, _other: Self) {}
 }
@@ -72,15 +71,10 @@ pub fn render_unless<R: RowRecorder>(
     let (pixels, _) = image.as_chunks_mut::<3>();
     let mistakes = settings.mistakes;
     let viewport = viewport(scene, settings, (width, height));
-    let walk = if R::PACKETS {
-        PrimaryWalk::Packets
-    } else {
-        PrimaryWalk::OneByOne
-    };
     let recorder = trace_rows(
         scene,
         &viewport,
-        walk,
+        R::PRIMARY_WALK,
         pixels,
         row_done,
         cancel,
@@ -128,17 +122,18 @@ pub fn trace_rows<T: Send, R: RowRecorder>(
     // (`Rules::hit_range`).
     let range = Interval::in_front();
     let row = |rays: &[Ray], cache: &mut ShadowCache, rec: &mut R, row: &mut [T]| {
-        let mut nearest = [Nearest::ToFind; PACKET];
         let mut found = [None; PACKET];
         for (rays, row) in rays.chunks(PACKET).zip(row.chunks_mut(PACKET)) {
             if walk == PrimaryWalk::Packets {
-                let found = &mut found[..rays.len()];
-                scene.accel.closest_each(&scene.objects, rays, range, found);
-                for (nearest, &found) in nearest.iter_mut().zip(&*found) {
-                    *nearest = Nearest::Found(found);
-                }
+                scene
+                    .accel
+                    .closest_each(&scene.objects, rays, range, &mut found[..rays.len()]);
             }
-            for ((ray, &nearest), out) in rays.iter().zip(&nearest).zip(row) {
+            for ((ray, &found), out) in rays.iter().zip(&found).zip(row) {
+                let nearest = match walk {
+                    PrimaryWalk::Packets => Nearest::Found(found),
+                    PrimaryWalk::OneByOne => Nearest::ToFind,
+                };
                 pixel(ray, nearest, cache, rec, out);
             }
         }

@@ -96,6 +96,9 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
 
     /// `path_weight` is the ray's accumulated weight: the product of the
     /// weights from the primary ray (1) down to this ray.
+    // Inlined so that a primary ray found by its row's walk goes straight
+    // to `finish`, as cheap as when the walk had its own door.
+    #[inline(always)]
     fn trace(
         &mut self,
         ray: &Ray,
@@ -121,6 +124,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
 
     /// The rest of `trace` once the nearest hit is known: the background,
     /// or the hit shaded.
+    #[inline(never)]
     fn finish(
         &mut self,
         ray: &Ray,
