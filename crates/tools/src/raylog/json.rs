@@ -40,12 +40,6 @@ pub(super) struct Number {
 /// stack overflowed.
 const MAX_DEPTH: usize = 128;
 
-/// 10^0 to 10^22, each exactly a double.
-const POWERS_OF_10: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
-
 pub(super) struct Scanner<'a> {
     text: &'a str,
     bytes: &'a [u8],
@@ -252,8 +246,7 @@ impl<'a> Scanner<'a> {
         if negative {
             self.at += 1;
         }
-        // The digits as one integer (exact while there are at most 19),
-        // and the power of 10 that scales it.
+        // The integer's digits as one integer (exact while at most 19).
         let mut digits = 0;
         let integer = self.at;
         match self.bytes.get(self.at) {
@@ -269,51 +262,69 @@ impl<'a> Scanner<'a> {
                 return Err(self.error(self.at, format!("invalid number{}", self.hint(start))));
             }
         }
-        let mut count = self.at - integer;
-        let whole = (!negative && count <= 19).then_some(digits);
-        let mut power = 0i64;
-        if self.bytes.get(self.at) == Some(&b'.') {
-            self.at += 1;
-            let fraction = self.at;
-            self.first_digit()?;
-            self.digits(&mut digits);
-            count += self.at - fraction;
-            power = -((self.at - fraction) as i64);
-        }
-        let mut exponent = None;
-        if let Some(b'e' | b'E') = self.bytes.get(self.at) {
-            self.at += 1;
-            let sign = match self.bytes.get(self.at) {
-                Some(b'-') => -1,
-                Some(b'+') => 1,
-                _ => 0,
-            };
-            self.at += usize::from(sign != 0);
-            self.first_digit()?;
-            let mut e = 0i64;
-            while let Some(&digit @ b'0'..=b'9') = self.bytes.get(self.at) {
-                e = (e * 10 + i64::from(digit - b'0')).min(1 << 20);
-                self.at += 1;
+        let count = self.at - integer;
+        let (value, whole) = match self.bytes.get(self.at) {
+            Some(b'.' | b'e' | b'E') => (self.fraction(start)?, None),
+            // At most 19 digits are exact in a u64, whose cast to f64
+            // rounds to the nearest double (ties to even) as parsing does.
+            _ if count <= 19 => {
+                let x = digits as f64;
+                let whole = (!negative).then_some(digits);
+                (if negative { -x } else { x }, whole)
             }
-            exponent = Some(if sign < 0 { -e } else { e });
-        }
-        let whole = whole.filter(|_| power == 0 && exponent.is_none());
-        let power = power + exponent.unwrap_or(0);
-        let value = if count <= 19 && digits <= 1 << 53 && power.abs() <= 22 {
-            // Clinger's fast path: both exact, so one rounding.
-            let scale = POWERS_OF_10[power.unsigned_abs() as usize];
-            let x = digits as f64;
-            let x = if power < 0 { x / scale } else { x * scale };
-            if negative { -x } else { x }
-        } else {
-            self.since(start)
-                .parse()
-                .map_err(|_| self.error(start, "invalid number"))?
+            _ => (self.parsed(start)?, None),
         };
         if value.is_infinite() {
             return Err(self.error(self.at - 1, "number out of range"));
         }
         Ok(Number { value, whole })
+    }
+
+    /// The number from `start` to here, by Rust's own parse.
+    fn parsed(&self, start: usize) -> Result<f64, SyntaxError> {
+        self.since(start)
+            .parse()
+            .map_err(|_| self.error(start, "invalid number"))
+    }
+
+    /// A number from `start` that has a fraction or an exponent (the
+    /// integer part read, up to its `.`, `e` or `E`): its digits are read
+    /// and turned into the double in one pass by fast_float (the algorithm
+    /// of Rust's own parse, so the same bits), not found here and then
+    /// read again. fast_float takes a little more than JSON: `1.` and a
+    /// number stopped short (at `1.5e`, say); those are read again below,
+    /// for the error's words and where it is.
+    fn fraction(&mut self, start: usize) -> Result<f64, SyntaxError> {
+        let dot_then_digit = match &self.bytes[self.at..] {
+            [b'.', next, ..] => next.is_ascii_digit(),
+            _ => true,
+        };
+        if dot_then_digit
+            && let Ok((value, length)) = fast_float2::parse_partial(&self.bytes[start..])
+            && !matches!(
+                self.bytes.get(start + length),
+                Some(b'0'..=b'9' | b'.' | b'e' | b'E' | b'+' | b'-')
+            )
+        {
+            self.at = start + length;
+            return Ok(value);
+        }
+        if self.bytes.get(self.at) == Some(&b'.') {
+            self.at += 1;
+            self.first_digit()?;
+            self.digits(&mut 0);
+        }
+        if let Some(b'e' | b'E') = self.bytes.get(self.at) {
+            self.at += 1;
+            if let Some(b'-' | b'+') = self.bytes.get(self.at) {
+                self.at += 1;
+            }
+            self.first_digit()?;
+            self.digits(&mut 0);
+        }
+        // Valid JSON after all (fast_float reads all of it, so this is
+        // not reached): read as Rust reads it.
+        self.parsed(start)
     }
 
     /// A digit must come next (in a fraction or an exponent).
@@ -544,6 +555,10 @@ mod tests {
             "1.7976931348623157e308",
             "9007199254740993",
             "2.2250738585072011e-308",
+            "0.30000000000000004",
+            "-0.1",
+            "12.0",
+            "1e2",
         ] {
             let mut s = Scanner::new(text);
             assert_eq!(
@@ -563,9 +578,6 @@ mod tests {
         ));
     }
 
-    /// Numbers as tracers print them (shortest, `%.17g`, `%e`, short
-    /// decimals) read to the bits Rust's own parsing gives, on both sides
-    /// of the fast path's limits (2^53, 10^22).
     #[test]
     fn eight_digits_at_once() {
         let read = |text: &[u8; 8]| eight_digits(u64::from_le_bytes(*text));
@@ -583,6 +595,9 @@ mod tests {
         }
     }
 
+    /// Numbers as tracers print them (shortest, `%.17g`, `%e`, short
+    /// decimals) and longer ones read to the bits Rust's own parsing gives,
+    /// on both sides of the fast path's limits (2^53, 10^22, 19 digits).
     #[test]
     fn numbers_read_as_rust_reads_them() {
         let mut state = 0x9E37_79B9_7F4A_7C15u64;
@@ -605,6 +620,9 @@ mod tests {
                 format!("{short}e{power}"),
                 format!("-{}.{:05}", short, next() % 100_000),
                 format!("{}", (1u64 << 53) + next() % 4),
+                // Past 19 significant digits (fast_float's slower path).
+                format!("{x:.24e}"),
+                format!("{}{:019}", short, next() % 10_000_000_000_000_000_000),
             ];
             for text in texts.iter().filter(|t| x.is_finite() || !t.contains("inf")) {
                 let Ok(expected) = text.parse::<f64>() else {
@@ -636,6 +654,14 @@ mod tests {
         error_at("[1.]", "]", "invalid number");
         error_at("[1e+]", "]", "invalid number");
         error_at("[-]", "]", "invalid number");
+        // What fast_float would take but JSON does not (a bare `.`, an
+        // exponent without digits), and a number stopped by another's byte.
+        error_at("[1.e5]", "e5", "invalid number");
+        error_at("[0.5e]", "]", "invalid number");
+        error_at("[2.5E-x]", "x", "invalid number");
+        error_at("[1.5.2]", ".2", "expected `,` or `]`");
+        error_at("[1e5e1]", "e1", "expected `,` or `]`");
+        error_at("[-0.5-1]", "-1", "expected `,` or `]`");
         error_at("[1e400]", "0]", "number out of range");
         error_at("[-1e400]", "0]", "number out of range");
         error_at(r#"["\q"]"#, "q", "invalid escape");
