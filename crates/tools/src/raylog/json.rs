@@ -336,17 +336,10 @@ impl<'a> Scanner<'a> {
         }
     }
 
-    /// Digits, appended to `value` (which wraps past 19 of them): eight at
-    /// a time while eight follow (a double's digits are mostly 16 or 17).
+    /// Digits, appended to `value` (which wraps past 19 of them). Only an
+    /// integer part comes here on the way to a value (fast_float reads the
+    /// rest), mostly a digit or two: one at a time.
     fn digits(&mut self, value: &mut u64) {
-        while let Some(eight) = self.bytes.get(self.at..self.at + 8) {
-            let chunk = u64::from_le_bytes(eight.try_into().unwrap_or_default());
-            let Some(eight) = eight_digits(chunk) else {
-                break;
-            };
-            *value = value.wrapping_mul(100_000_000).wrapping_add(eight);
-            self.at += 8;
-        }
         while let Some(&digit @ b'0'..=b'9') = self.bytes.get(self.at) {
             *value = value.wrapping_mul(10).wrapping_add(u64::from(digit - b'0'));
             self.at += 1;
@@ -482,20 +475,6 @@ impl<'a> Scanner<'a> {
     }
 }
 
-/// Eight ASCII digits (the first in the lowest byte) as their number, or
-/// `None` if one is not a digit: SWAR, as fast_float and simdjson do it.
-fn eight_digits(chunk: u64) -> Option<u64> {
-    let less = chunk.wrapping_sub(0x3030_3030_3030_3030);
-    let more = chunk.wrapping_add(0x4646_4646_4646_4646);
-    if (chunk | less | more) & 0x8080_8080_8080_8080 != 0 {
-        return None;
-    }
-    // Pairs, then fours, then the eight.
-    let pairs = less.wrapping_mul(10).wrapping_add(less >> 8) & 0x00FF_00FF_00FF_00FF;
-    let fours = pairs.wrapping_mul(100).wrapping_add(pairs >> 16) & 0x0000_FFFF_0000_FFFF;
-    Some(fours.wrapping_mul(10_000).wrapping_add(fours >> 32) & 0xFFFF_FFFF)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -576,23 +555,6 @@ mod tests {
             s.item(),
             Ok(Item::Number(Number { whole: None, .. }))
         ));
-    }
-
-    #[test]
-    fn eight_digits_at_once() {
-        let read = |text: &[u8; 8]| eight_digits(u64::from_le_bytes(*text));
-        assert_eq!(read(b"12345678"), Some(12_345_678));
-        assert_eq!(read(b"00000009"), Some(9));
-        assert_eq!(read(b"99999999"), Some(99_999_999));
-        for not in [
-            b"1234567.",
-            b"/2345678",
-            b":2345678",
-            b"1234567e",
-            b"12345\xc3\xa97",
-        ] {
-            assert_eq!(read(not), None, "{not:?}");
-        }
     }
 
     /// Numbers as tracers print them (shortest, `%.17g`, `%e`, short
