@@ -295,8 +295,9 @@ impl<'a> Scanner<'a> {
     /// number stopped short (at `1.5e`, say); those are read again below,
     /// for the error's words and where it is.
     fn fraction(&mut self, start: usize) -> Result<f64, SyntaxError> {
+        // A `.` at the line's end too goes the slow way, to its own error.
         let dot_then_digit = match &self.bytes[self.at..] {
-            [b'.', next, ..] => next.is_ascii_digit(),
+            [b'.', after @ ..] => after.first().is_some_and(u8::is_ascii_digit),
             _ => true,
         };
         if dot_then_digit
@@ -624,6 +625,8 @@ mod tests {
         error_at("[1.5.2]", ".2", "expected `,` or `]`");
         error_at("[1e5e1]", "e1", "expected `,` or `]`");
         error_at("[-0.5-1]", "-1", "expected `,` or `]`");
+        error_at("[1.", "", "EOF while parsing a value");
+        error_at("[1e", "", "EOF while parsing a value");
         error_at("[1e400]", "0]", "number out of range");
         error_at("[-1e400]", "0]", "number out of range");
         error_at(r#"["\q"]"#, "q", "invalid escape");
