@@ -40,12 +40,6 @@ pub(super) struct Number {
 /// stack overflowed.
 const MAX_DEPTH: usize = 128;
 
-/// 10^0 to 10^22, each exactly a double.
-const POWERS_OF_10: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
-
 pub(super) struct Scanner<'a> {
     text: &'a str,
     bytes: &'a [u8],
@@ -252,8 +246,7 @@ impl<'a> Scanner<'a> {
         if negative {
             self.at += 1;
         }
-        // The digits as one integer (exact while there are at most 19),
-        // and the power of 10 that scales it.
+        // The integer's digits as one integer (exact while at most 19).
         let mut digits = 0;
         let integer = self.at;
         match self.bytes.get(self.at) {
@@ -269,51 +262,70 @@ impl<'a> Scanner<'a> {
                 return Err(self.error(self.at, format!("invalid number{}", self.hint(start))));
             }
         }
-        let mut count = self.at - integer;
-        let whole = (!negative && count <= 19).then_some(digits);
-        let mut power = 0i64;
-        if self.bytes.get(self.at) == Some(&b'.') {
-            self.at += 1;
-            let fraction = self.at;
-            self.first_digit()?;
-            self.digits(&mut digits);
-            count += self.at - fraction;
-            power = -((self.at - fraction) as i64);
-        }
-        let mut exponent = None;
-        if let Some(b'e' | b'E') = self.bytes.get(self.at) {
-            self.at += 1;
-            let sign = match self.bytes.get(self.at) {
-                Some(b'-') => -1,
-                Some(b'+') => 1,
-                _ => 0,
-            };
-            self.at += usize::from(sign != 0);
-            self.first_digit()?;
-            let mut e = 0i64;
-            while let Some(&digit @ b'0'..=b'9') = self.bytes.get(self.at) {
-                e = (e * 10 + i64::from(digit - b'0')).min(1 << 20);
-                self.at += 1;
+        let count = self.at - integer;
+        let (value, whole) = match self.bytes.get(self.at) {
+            Some(b'.' | b'e' | b'E') => (self.fraction(start)?, None),
+            // At most 19 digits are exact in a u64, whose cast to f64
+            // rounds to the nearest double (ties to even) as parsing does.
+            _ if count <= 19 => {
+                let x = digits as f64;
+                let whole = (!negative).then_some(digits);
+                (if negative { -x } else { x }, whole)
             }
-            exponent = Some(if sign < 0 { -e } else { e });
-        }
-        let whole = whole.filter(|_| power == 0 && exponent.is_none());
-        let power = power + exponent.unwrap_or(0);
-        let value = if count <= 19 && digits <= 1 << 53 && power.abs() <= 22 {
-            // Clinger's fast path: both exact, so one rounding.
-            let scale = POWERS_OF_10[power.unsigned_abs() as usize];
-            let x = digits as f64;
-            let x = if power < 0 { x / scale } else { x * scale };
-            if negative { -x } else { x }
-        } else {
-            self.since(start)
-                .parse()
-                .map_err(|_| self.error(start, "invalid number"))?
+            _ => (self.parsed(start)?, None),
         };
         if value.is_infinite() {
             return Err(self.error(self.at - 1, "number out of range"));
         }
         Ok(Number { value, whole })
+    }
+
+    /// The number from `start` to here, by Rust's own parse.
+    fn parsed(&self, start: usize) -> Result<f64, SyntaxError> {
+        self.since(start)
+            .parse()
+            .map_err(|_| self.error(start, "invalid number"))
+    }
+
+    /// A number from `start` that has a fraction or an exponent (the
+    /// integer part read, up to its `.`, `e` or `E`): its digits are read
+    /// and turned into the double in one pass by fast_float (the algorithm
+    /// of Rust's own parse, so the same bits), not found here and then
+    /// read again. fast_float takes a little more than JSON: `1.` and a
+    /// number stopped short (at `1.5e`, say); those are read again below,
+    /// for the error's words and where it is.
+    fn fraction(&mut self, start: usize) -> Result<f64, SyntaxError> {
+        // A `.` at the line's end too goes the slow way, to its own error.
+        let dot_then_digit = match &self.bytes[self.at..] {
+            [b'.', after @ ..] => after.first().is_some_and(u8::is_ascii_digit),
+            _ => true,
+        };
+        if dot_then_digit
+            && let Ok((value, length)) = fast_float2::parse_partial(&self.bytes[start..])
+            && !matches!(
+                self.bytes.get(start + length),
+                Some(b'0'..=b'9' | b'.' | b'e' | b'E' | b'+' | b'-')
+            )
+        {
+            self.at = start + length;
+            return Ok(value);
+        }
+        if self.bytes.get(self.at) == Some(&b'.') {
+            self.at += 1;
+            self.first_digit()?;
+            self.digits(&mut 0);
+        }
+        if let Some(b'e' | b'E') = self.bytes.get(self.at) {
+            self.at += 1;
+            if let Some(b'-' | b'+') = self.bytes.get(self.at) {
+                self.at += 1;
+            }
+            self.first_digit()?;
+            self.digits(&mut 0);
+        }
+        // Valid JSON after all (fast_float reads all of it, so this is
+        // not reached): read as Rust reads it.
+        self.parsed(start)
     }
 
     /// A digit must come next (in a fraction or an exponent).
@@ -325,17 +337,10 @@ impl<'a> Scanner<'a> {
         }
     }
 
-    /// Digits, appended to `value` (which wraps past 19 of them): eight at
-    /// a time while eight follow (a double's digits are mostly 16 or 17).
+    /// Digits, appended to `value` (which wraps past 19 of them). Only an
+    /// integer part comes here on the way to a value (fast_float reads the
+    /// rest), mostly a digit or two: one at a time.
     fn digits(&mut self, value: &mut u64) {
-        while let Some(eight) = self.bytes.get(self.at..self.at + 8) {
-            let chunk = u64::from_le_bytes(eight.try_into().unwrap_or_default());
-            let Some(eight) = eight_digits(chunk) else {
-                break;
-            };
-            *value = value.wrapping_mul(100_000_000).wrapping_add(eight);
-            self.at += 8;
-        }
         while let Some(&digit @ b'0'..=b'9') = self.bytes.get(self.at) {
             *value = value.wrapping_mul(10).wrapping_add(u64::from(digit - b'0'));
             self.at += 1;
@@ -471,20 +476,6 @@ impl<'a> Scanner<'a> {
     }
 }
 
-/// Eight ASCII digits (the first in the lowest byte) as their number, or
-/// `None` if one is not a digit: SWAR, as fast_float and simdjson do it.
-fn eight_digits(chunk: u64) -> Option<u64> {
-    let less = chunk.wrapping_sub(0x3030_3030_3030_3030);
-    let more = chunk.wrapping_add(0x4646_4646_4646_4646);
-    if (chunk | less | more) & 0x8080_8080_8080_8080 != 0 {
-        return None;
-    }
-    // Pairs, then fours, then the eight.
-    let pairs = less.wrapping_mul(10).wrapping_add(less >> 8) & 0x00FF_00FF_00FF_00FF;
-    let fours = pairs.wrapping_mul(100).wrapping_add(pairs >> 16) & 0x0000_FFFF_0000_FFFF;
-    Some(fours.wrapping_mul(10_000).wrapping_add(fours >> 32) & 0xFFFF_FFFF)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -544,6 +535,10 @@ mod tests {
             "1.7976931348623157e308",
             "9007199254740993",
             "2.2250738585072011e-308",
+            "0.30000000000000004",
+            "-0.1",
+            "12.0",
+            "1e2",
         ] {
             let mut s = Scanner::new(text);
             assert_eq!(
@@ -564,25 +559,8 @@ mod tests {
     }
 
     /// Numbers as tracers print them (shortest, `%.17g`, `%e`, short
-    /// decimals) read to the bits Rust's own parsing gives, on both sides
-    /// of the fast path's limits (2^53, 10^22).
-    #[test]
-    fn eight_digits_at_once() {
-        let read = |text: &[u8; 8]| eight_digits(u64::from_le_bytes(*text));
-        assert_eq!(read(b"12345678"), Some(12_345_678));
-        assert_eq!(read(b"00000009"), Some(9));
-        assert_eq!(read(b"99999999"), Some(99_999_999));
-        for not in [
-            b"1234567.",
-            b"/2345678",
-            b":2345678",
-            b"1234567e",
-            b"12345\xc3\xa97",
-        ] {
-            assert_eq!(read(not), None, "{not:?}");
-        }
-    }
-
+    /// decimals) and longer ones read to the bits Rust's own parsing gives,
+    /// on both sides of the fast path's limits (2^53, 10^22, 19 digits).
     #[test]
     fn numbers_read_as_rust_reads_them() {
         let mut state = 0x9E37_79B9_7F4A_7C15u64;
@@ -605,6 +583,9 @@ mod tests {
                 format!("{short}e{power}"),
                 format!("-{}.{:05}", short, next() % 100_000),
                 format!("{}", (1u64 << 53) + next() % 4),
+                // Past 19 significant digits (fast_float's slower path).
+                format!("{x:.24e}"),
+                format!("{}{:019}", short, next() % 10_000_000_000_000_000_000),
             ];
             for text in texts.iter().filter(|t| x.is_finite() || !t.contains("inf")) {
                 let Ok(expected) = text.parse::<f64>() else {
@@ -636,6 +617,16 @@ mod tests {
         error_at("[1.]", "]", "invalid number");
         error_at("[1e+]", "]", "invalid number");
         error_at("[-]", "]", "invalid number");
+        // What fast_float would take but JSON does not (a bare `.`, an
+        // exponent without digits), and a number stopped by another's byte.
+        error_at("[1.e5]", "e5", "invalid number");
+        error_at("[0.5e]", "]", "invalid number");
+        error_at("[2.5E-x]", "x", "invalid number");
+        error_at("[1.5.2]", ".2", "expected `,` or `]`");
+        error_at("[1e5e1]", "e1", "expected `,` or `]`");
+        error_at("[-0.5-1]", "-1", "expected `,` or `]`");
+        error_at("[1.", "", "EOF while parsing a value");
+        error_at("[1e", "", "EOF while parsing a value");
         error_at("[1e400]", "0]", "number out of range");
         error_at("[-1e400]", "0]", "number out of range");
         error_at(r#"["\q"]"#, "q", "invalid escape");
