@@ -86,9 +86,9 @@ pub(crate) fn decide(scene: &Scene, pixels: &mut [PixelReport], tolerance: &Tole
     let mut named = Vec::new();
     let mut refuted = Vec::new();
     for m in candidates {
-        let fits_all = pixels.iter().all(|p| {
-            claims(p, m) || (p.matches && fits(scene, m, p.pixel, &p.yours, tolerance))
-        });
+        let fits_all = pixels
+            .iter()
+            .all(|p| claims(p, m) || (p.matches && fits(scene, m, p.pixel, &p.yours, tolerance)));
         let evidence = pixels
             .iter()
             .filter(|p| claims(p, m) && !p.matches && p.colour_agrees != Some(true))
@@ -100,16 +100,16 @@ pub(crate) fn decide(scene: &Scene, pixels: &mut [PixelReport], tolerance: &Tole
         }
     }
     for pixel in pixels.iter_mut() {
-        let (name, keep): (Vec<Consistent>, Vec<Consistent>) = std::mem::take(&mut pixel.consistent)
-            .into_iter()
-            .filter(|c| !refuted.contains(&c.mistake))
-            .partition(|c| named.contains(&c.mistake));
+        let (name, keep): (Vec<Consistent>, Vec<Consistent>) =
+            std::mem::take(&mut pixel.consistent)
+                .into_iter()
+                .filter(|c| !refuted.contains(&c.mistake))
+                .partition(|c| named.contains(&c.mistake));
         pixel.mistakes = name.into_iter().map(|c| c.mistake).collect();
         pixel.consistent = keep;
     }
     // One pixel to tell the candidates still open, away from every logged one.
-    if let Some(first) = pixels.iter().position(|p| !p.consistent.is_empty())
-    {
+    if let Some(first) = pixels.iter().position(|p| !p.consistent.is_empty()) {
         let open: Vec<Mistake> = pixels[first].consistent.iter().map(|c| c.mistake).collect();
         let tell = tell_pixel(scene, pixels[first].pixel, &open, &logged);
         for pixel in pixels.iter_mut() {
