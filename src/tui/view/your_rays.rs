@@ -446,6 +446,9 @@ fn divergence_lines(
             Style::new(),
         ));
     }
+    for line in raystep_tools::divergence::consistent_lines(report) {
+        out.extend(wrapped(&format!("{line} M opens on it."), 0, width, bold()));
+    }
     if !report.mistakes.is_empty() {
         let names: Vec<&str> = report.mistakes.iter().map(|m| m.name()).collect();
         out.extend(wrapped(

@@ -28,7 +28,7 @@ pub use pixel_report::compare_pixel;
 pub use pixel_report::{AlignedRay, Consistent, Divergence, PixelReport, RayStatus, Unpaired};
 pub use tolerance::Tolerance;
 pub use words::value_text;
-pub use words::{json, text};
+pub use words::{consistent_lines, json, text};
 
 use crate::raylog::{LoggedRay, RaylogError, RaylogReader};
 use raystep_engine::scene::Scene;

@@ -5,13 +5,13 @@
 //! anyway), so a name needs the mistake's tree to be the log at every
 //! logged pixel, and at least two pixels whose colour differs from ours
 //! where it acts. Short of that the report says "consistent with X here;
-//! log pixel A,B to tell", A,B a pixel where the candidates' trees differ
-//! from ours and from each other.
+//! log pixel A,B to tell", A,B a pixel where the candidates' colours
+//! differ from ours and from each other.
 
 use std::collections::BTreeSet;
 
 use super::ours::OurRays;
-use super::pixel_report::{Consistent, PixelReport, align, differences, fits};
+use super::pixel_report::{Consistent, PixelReport, fits};
 use super::tolerance::Tolerance;
 use raystep_engine::scene::{Scene, Settings};
 use raystep_model::mistakes::{Mistake, Mistakes};
@@ -19,13 +19,20 @@ use raystep_model::mistakes::{Mistake, Mistakes};
 /// Pixels at which a name needs the mistake to act, the colour differing.
 const PIXELS_TO_NAME: usize = 2;
 
-/// At most this many pixels are tried when looking for a pixel that tells
-/// the candidates apart, nearest first.
-const PIXELS_TRIED: usize = 1024;
+/// The pixels tried when looking for a pixel that tells the candidates
+/// apart: this many nearest first, then every `GRID`th pixel of every
+/// `GRID`th row of the image.
+const PIXELS_NEAR: usize = 1024;
+const GRID: u32 = 4;
 
-/// Whether two of our trees of one pixel differ anywhere.
-fn trees_differ(a: &OurRays, b: &OurRays) -> bool {
-    !differences(&align(a.rays(), b, &Tolerance::default())).is_empty()
+/// Whether two of our trees of one pixel differ in colour: a pixel where
+/// only rays that add nothing differ would not tell (a log is named from
+/// the pixels whose colour differs).
+fn colours_differ(a: &OurRays, b: &OurRays) -> bool {
+    match (a.rays()[0].color, b.rays()[0].color) {
+        (Some(a), Some(b)) => !Tolerance::default().colours(a, b),
+        _ => false,
+    }
 }
 
 fn under(scene: &Scene, mistake: Option<Mistake>, pixel: (u32, u32)) -> OurRays {
@@ -37,7 +44,7 @@ fn under(scene: &Scene, mistake: Option<Mistake>, pixel: (u32, u32)) -> OurRays 
 }
 
 /// The pixel nearest `near`, not among `logged`, where each candidate's
-/// tree differs from ours and from every other candidate's: logging it
+/// colour differs from ours and from every other candidate's: logging it
 /// tells them apart. `None` when there is no candidate, or no such pixel.
 pub(crate) fn tell_pixel(
     scene: &Scene,
@@ -58,14 +65,22 @@ pub(crate) fn tell_pixel(
         dx * dx + dy * dy
     };
     pixels.sort_by_key(|&p| distance(p));
-    pixels.into_iter().take(PIXELS_TRIED).find(|&pixel| {
+    let grid = pixels
+        .iter()
+        .skip(PIXELS_NEAR)
+        .filter(|(x, y)| x % GRID == 0 && y % GRID == 0)
+        .copied()
+        .collect::<Vec<_>>();
+    pixels.truncate(PIXELS_NEAR);
+    pixels.into_iter().chain(grid).find(|&pixel| {
         let model = under(scene, None, pixel);
         let trees: Vec<OurRays> = candidates
             .iter()
             .map(|&m| under(scene, Some(m), pixel))
             .collect();
         trees.iter().enumerate().all(|(i, tree)| {
-            trees_differ(tree, &model) && trees[..i].iter().all(|other| trees_differ(tree, other))
+            colours_differ(tree, &model)
+                && trees[..i].iter().all(|other| colours_differ(tree, other))
         })
     })
 }

@@ -148,7 +148,11 @@ fn pixel_text(out: &mut String, pixel: &PixelReport) {
     unpaired_text(out, "Only in yours", &pixel.only_yours);
     unpaired_text(out, "Only in ours", &pixel.only_ours);
     for line in consistent_lines(pixel) {
-        let _ = writeln!(out, "  {line}");
+        let _ = writeln!(
+            out,
+            "  {line} A mistake is named only where its tree is your log at every logged \
+             pixel and changes the colour at two of them."
+        );
     }
     if pixel.mistakes.is_empty() && pixel.consistent.is_empty() {
         out.push_str("  No mistake of raystep's catalogue gives your rays: the first divergence is where to look.\n");
@@ -174,8 +178,7 @@ pub fn consistent_lines(pixel: &PixelReport) -> Vec<String> {
         None => "log more pixels to tell".to_string(),
     };
     vec![format!(
-        "Consistent with {} here; {tell} (a mistake is named only where its tree is your log \
-         at every logged pixel and changes the colour at two of them).",
+        "Consistent with {} here; {tell}.",
         names.join(" or ")
     )]
 }

@@ -249,23 +249,22 @@ fn number(
             1.0 => "unblocked".to_string(),
             s => format!("partly blocked, S = {}", num(s)),
         };
-        if yours < theirs
-            && let Some(found) = slips::shadow_segment(scene, ours, ray, yours, light)
-        {
-            return found;
-        }
-        return (
-            if yours == 0.0 {
-                Kind::Zero
-            } else {
-                Kind::Other
-            },
-            format!(
-                "your shadow ray to light {light} is {}; ours is {}",
-                seen(yours),
-                seen(theirs)
-            ),
+        let words = format!(
+            "your shadow ray to light {light} is {}; ours is {}",
+            seen(yours),
+            seen(theirs)
         );
+        if yours < theirs
+            && let Some((kind, cause)) = slips::shadow_segment(scene, ours, ray, yours)
+        {
+            return (kind, format!("{words}: {cause}"));
+        }
+        let kind = if yours == 0.0 {
+            Kind::Zero
+        } else {
+            Kind::Other
+        };
+        return (kind, words);
     }
     if theirs != 0.0 && yours == 0.0 {
         return (

@@ -130,7 +130,6 @@ pub(super) fn shadow_segment(
     ours: &OurRays,
     ray: usize,
     yours: f64,
-    light: usize,
 ) -> Option<(Kind, String)> {
     let path = &ours.rays()[ray].path;
     let d_l = ours.light(ray)?.distance;
@@ -156,9 +155,9 @@ pub(super) fn shadow_segment(
             (
                 Kind::SelfHit,
                 format!(
-                    "your shadow ray to light {light} is blocked at t = {:e} by object {} ({}), \
-                     the surface it starts on: a shadow ray looks for blockers over (EPS, d_L), \
-                     EPS = 1e-4 (MODEL §4), or it finds its own surface",
+                    "yours is blocked at t = {:e} by object {} ({}), the surface it starts on: \
+                     a shadow ray looks for blockers over (EPS, d_L), EPS = 1e-4 (MODEL §4), or \
+                     it finds its own surface",
                     blocker.t, blocker.object_index, blocker.object
                 ),
             )
@@ -167,9 +166,9 @@ pub(super) fn shadow_segment(
             (
                 Kind::PastLight,
                 format!(
-                    "your shadow ray to light {light} is blocked by object {} ({}) at t = {}, \
-                     past the light at d_L = {}: a shadow ray looks for blockers over (EPS, d_L) \
-                     (MODEL §4), and nothing beyond the light shadows it",
+                    "yours is blocked by object {} ({}) at t = {}, past the light at d_L = {}: \
+                     a shadow ray looks for blockers over (EPS, d_L) (MODEL §4), and nothing \
+                     beyond the light shadows it",
                     blocker.object_index,
                     blocker.object,
                     num(blocker.t),
