@@ -94,7 +94,7 @@ fn traced_at_text(comparison: &LogComparison) -> Option<String> {
 fn pixel_text(out: &mut String, pixel: &PixelReport) {
     let (x, y) = pixel.pixel;
     let rays = format!(
-        "{} logged, {} in ours",
+        "{} logged, {} in ours, shadow rays included",
         count(pixel.yours.len() as u64, "ray", "rays"),
         pixel.rays_ours
     );
