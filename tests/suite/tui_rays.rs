@@ -445,7 +445,11 @@ fn the_details_say_no_line_twice_and_the_tree_counts_rays_as_compare_does() {
     let terminal = screen(&mut app, 160, 80);
     let rect = app.panes().rect(Pane::Tree);
     let top: String = (rect.x..rect.x + rect.width)
-        .map(|x| terminal.backend().buffer()[(x, rect.y)].symbol().to_string())
+        .map(|x| {
+            terminal.backend().buffer()[(x, rect.y)]
+                .symbol()
+                .to_string()
+        })
         .collect();
     assert!(
         top.contains("· 16 rays (8 shadow) · your log differs"),
