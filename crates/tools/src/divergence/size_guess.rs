@@ -70,7 +70,7 @@ impl SizeGuess {
         let w2 = 2.0 * (x as f64 + 0.5) - h2 * (2.0 * u - w) / h;
         let whole = |a: f64| {
             let r = a.round();
-            ((a - r).abs() <= WHOLE && r >= 1.0 && r <= 65536.0).then_some(r as u32)
+            ((a - r).abs() <= WHOLE && (1.0..=65536.0).contains(&r)).then_some(r as u32)
         };
         let size = (whole(w2)?, whole(h2)?);
         (x < size.0 && y < size.1).then_some(size)
