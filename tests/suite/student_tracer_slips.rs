@@ -185,6 +185,18 @@ fn a_log_whose_colour_agrees_says_so_first_and_is_not_a_bug() {
     assert_eq!(pixel["colour_agrees"], true, "{pixel:#}");
     assert_eq!(pixel["first_divergence"]["kind"], "only_yours");
     assert_eq!(report["colour_agreeing_pixels"], 1);
+    // The text ranks a pixel whose colour differs before one whose colour
+    // agrees, though the log has them the other way round.
+    let glass = "scenes/glass.toml";
+    let both = log(glass, (72, 45), (1, 1), &["no-min-weight"], &[])
+        + &log(glass, (73, 45), (1, 1), &["reflect-plus"], &[]);
+    let text = compare_as(glass, &both, "text", &[]);
+    let (differs, agrees) = (
+        text.find("Pixel (73, 45): differs").expect(&text),
+        text.find("Pixel (72, 45): your colour agrees")
+            .expect(&text),
+    );
+    assert!(differs < agrees, "{text}");
 }
 
 #[test]

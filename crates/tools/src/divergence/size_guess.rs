@@ -83,3 +83,42 @@ impl SizeGuess {
         (!self.broken && spread).then_some(self.guess?)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raylog::rays_with_nodes;
+    use raystep_engine::record::record_pixel;
+
+    /// The primary rays of `pixels` of the ball scene traced at `size`,
+    /// seen by a guess that reads them at the scene's own 11x11.
+    fn guess(size: (u32, u32), pixels: &[(u32, u32)]) -> Option<(u32, u32)> {
+        let (scene, _) = raystep_engine::test_scenes::ball();
+        let traced = scene.clone().with_size(size.0, size.1).unwrap();
+        let mut guess = SizeGuess::new(&scene);
+        for &(x, y) in pixels {
+            let tree = record_pixel(&traced, &traced.settings, x, y);
+            let (primary, _) = rays_with_nodes(&tree).into_iter().next().unwrap();
+            guess.see(&primary);
+        }
+        guess.traced_at()
+    }
+
+    #[test]
+    fn primary_rays_of_another_size_tell_it_from_two_rows_and_columns() {
+        assert_eq!(guess((16, 12), &[(0, 0), (15, 11), (3, 7)]), Some((16, 12)));
+        assert_eq!(guess((33, 5), &[(30, 1), (2, 4)]), Some((33, 5)));
+        // One row, or one pixel, does not tell; the scene's own size is
+        // no trap, and a log of mixed sizes has no one size.
+        assert_eq!(guess((16, 12), &[(0, 3), (9, 3)]), None);
+        assert_eq!(guess((11, 11), &[(0, 0), (10, 10)]), None);
+        let (scene, _) = raystep_engine::test_scenes::ball();
+        let mut mixed = SizeGuess::new(&scene);
+        for (size, pixel) in [((16, 12), (0, 0)), ((20, 12), (5, 5))] {
+            let traced = scene.clone().with_size(size.0, size.1).unwrap();
+            let tree = record_pixel(&traced, &traced.settings, pixel.0, pixel.1);
+            mixed.see(&rays_with_nodes(&tree)[0].0);
+        }
+        assert_eq!(mixed.traced_at(), None);
+    }
+}

@@ -29,7 +29,12 @@ pub fn text(
     if let Some(line) = traced_at_text(comparison) {
         out.push_str(&line);
     }
-    for pixel in &comparison.pixels {
+    // What matters first: the pixels whose colour differs from ours, then
+    // those whose rays differ where they add nothing, then those that
+    // match, each in the log's order (JSON keeps the log's order).
+    let mut ranked: Vec<&PixelReport> = comparison.pixels.iter().collect();
+    ranked.sort_by_key(|p| (p.matches, p.differs_where_it_adds_nothing()));
+    for pixel in ranked {
         out.push('\n');
         pixel_text(&mut out, pixel);
     }

@@ -598,6 +598,11 @@ mod tests {
         let line = r#"{"pixel": [10, 10], "path": "P/R/T/R", "color": [1.5e-300, 1e300, 123456789012345678901234567890]}"#;
         let color = read_line_of_ball(line).0.unwrap().color.unwrap();
         assert_eq!(color.to_array(), [1.5e-300, 1e300, 1.2345678901234568e29]);
+        // A miss's t as some JSON printers write infinity: no t, marked
+        // (issue 39); `null` elsewhere is still refused (BAD_LINES).
+        let line = r#"{"pixel": [5, 5], "path": "P/R", "hit": null, "t": null}"#;
+        let ray = read_line_of_ball(line).0.unwrap();
+        assert_eq!((ray.hit, ray.t, ray.t_null), (Some(Hit::Miss), None, true));
     }
 
     #[test]
