@@ -136,7 +136,12 @@ pub(crate) fn classify(scene: &Scene, ours: &OurRays, ray: usize, check: &Check)
         } else {
             Kind::Infinite
         };
-        return (kind, format!("yours is {what}; ours is finite"));
+        let ours = if check.ours.is_some() {
+            "ours is finite".to_string()
+        } else {
+            format!("ours has no {}", check.field)
+        };
+        return (kind, format!("yours is {what}; {ours}"));
     }
     let Some(our_value) = check.ours else {
         return match check.yours {
@@ -485,6 +490,24 @@ mod tests {
             words.contains("the surface the ray starts on; ours hit nothing"),
             "{words}"
         );
+    }
+
+    #[test]
+    fn an_infinite_t_where_ours_has_none_is_not_said_to_be_finite() {
+        // The mirror floor's P/R misses: ours has no t (issue 39 found
+        // "yours is infinity; ours is finite" here).
+        let scene = raystep_engine::scene::parse(Path::new("x.toml"), MIRROR_FLOOR).unwrap();
+        let ours = OurRays::record(&scene, &scene.settings, (0, 0));
+        let ray = ours.find(&RayPath::parse("P/R", 0).unwrap()).unwrap();
+        let check = Check {
+            field: Field::T,
+            yours: Value::Number(f64::INFINITY),
+            ours: None,
+            agrees: false,
+        };
+        let (kind, words) = classify(&scene, &ours, ray, &check);
+        assert_eq!(kind, Kind::Infinite);
+        assert_eq!(words, "yours is infinity; ours has no t");
     }
 
     /// A chalk ball (k_d = 0.5, white) at the origin seen from (0, 0, 5),
