@@ -81,6 +81,11 @@ pub(crate) struct DebugArgs {
     /// the first.
     #[arg(long, value_name = "LOG.jsonl")]
     pub(crate) rays: Option<PathBuf>,
+    /// Trace the scene at WIDTHxHEIGHT (the field of view is kept), and
+    /// read the log's pixels at it: a log traced at another size than the
+    /// scene's. With --compare, it must be the image's size.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub(crate) size: Option<(u32, u32)>,
 }
 
 #[derive(Subcommand, Debug)]

@@ -57,6 +57,7 @@ fn debug(args: &DebugArgs) -> Result<ExitCode> {
         compare: args.compare.as_deref(),
         pixel: args.pixel,
         rays: args.rays.as_deref(),
+        size: args.size,
     })
 }
 

@@ -184,6 +184,8 @@ pub(crate) struct Opening<'a> {
     pub(crate) compare: Option<&'a Path>,
     pub(crate) pixel: Option<(u32, u32)>,
     pub(crate) rays: Option<&'a Path>,
+    /// `--size WxH`: the image size traced (and the log's pixels read at).
+    pub(crate) size: Option<(u32, u32)>,
 }
 
 /// `raystep [debug] [SCENE] [--compare IMAGE.png] [--pixel X,Y] [--rays
@@ -196,16 +198,26 @@ pub(crate) fn run(opening: Opening) -> Result<ExitCode> {
         compare,
         pixel,
         rays,
+        size,
     } = opening;
     let student = compare
         .map(raystep_tools::compare::student::load)
         .transpose()?;
+    if let (Some(student), Some((w, h))) = (&student, size)
+        && student.image.dimensions() != (w, h)
+    {
+        let (iw, ih) = student.image.dimensions();
+        bail!(
+            "--size {w}x{h} is not the size of the image compared, {iw}x{ih}: give one or the other"
+        );
+    }
+    let size = student.as_ref().map(|s| s.image.dimensions()).or(size);
     let mut ray_log = None;
     if pixel.is_some() || rays.is_some() {
         // Traced at the image's size with --compare, and the log's pixels with it.
         let source = source::SceneSource {
             path: path.map(Path::to_path_buf),
-            size: student.as_ref().map(|s| s.image.dimensions()),
+            size,
         };
         let scene = source.load()?;
         let size = (scene.width, scene.height);
@@ -232,7 +244,12 @@ pub(crate) fn run(opening: Opening) -> Result<ExitCode> {
             raystep_engine::printable::printable_text(&shown)
         );
     }
-    let mut app = App::open_with(path.map(Path::to_path_buf), student, false)?.watching();
+    let path = path.map(Path::to_path_buf);
+    let mut app = match student {
+        Some(student) => App::open_with(path, Some(student), false)?,
+        None => App::open_sized(path, size, false)?,
+    }
+    .watching();
     if let Some(log) = ray_log {
         app = app.with_ray_log(log);
     }

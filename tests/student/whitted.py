@@ -11,7 +11,8 @@ or renders the whole image to a PNG, for `raystep compare SCENE IMAGE.png`:
 
 With X, Y, --size WxH traces the W x H pixels whose top-left one is X, Y.
 With -o, --size WxH is the image's size (the scene's own without it; the
-field of view stays, as with `raystep render --size`).
+field of view stays, as with `raystep render --size`); with X, Y, --image
+WxH traces them as pixels of a W x H image (the size trap of issue 39).
 --mistake NAME switches on one of the slips students make (see MISTAKES);
 each is a one-line change at the place marked `if "NAME" in mistakes`.
 Python 3.11, standard library only.
@@ -41,6 +42,20 @@ MISTAKES = {
     "no-clamp": "byte = int(255 c + 0.5) & 0xff, not clamped first",
     "gamma": "bytes gamma-corrected: 255 c^(1/2.2)",
     "rows-bottom-up": "the PNG's rows written bottom row first",
+    # Slips whose log raystep must word right, or not call bugs (issue 39).
+    "pixel-span": "px = 2 x / (W - 1) - 1: the pixels span the image edge to edge",
+    "shadow-behind": "a shadow ray cast to a light behind the surface (it adds nothing)",
+    "no-min-weight": "secondary rays cast below min_weight",
+    "miss-t-infinity": "a miss logs t = Infinity",
+    "miss-t-minus-one": "a miss logs t = -1",
+    "miss-t-null": "a miss logs t = null",
+    "reflect-plus": "R = d + 2 (d.N) N",
+    "unweighted-reflection": "the reflected colour added without its weight k_s",
+    "unweighted-transmission": "the transmitted colour added without its weight k_t",
+    "specular-times-od": "the specular term multiplied by the object colour O_d",
+    "fatt-ambient": "the ambient term multiplied by f_att of the first light",
+    "h-unnormalised": "H = L + V, not normalised",
+    "shadow-past-light": "shadow rays blocked past the light too (t < inf, not t < d_L)",
 }
 mistakes = set()
 
@@ -230,7 +245,7 @@ def shadow(scene, p, L, d_l):
     s_factor = 1.0
     for s in scene["objects"]:
         for t in hits(s, p, L):
-            if eps < t < d_l:
+            if eps < t < (math.inf if "shadow-past-light" in mistakes else d_l):
                 s_factor *= s["material"]["kt"]
                 if "any-hit-shadows" in mistakes:
                     s_factor = 0.0
@@ -254,7 +269,11 @@ class Pixel:
         self.rays += 1
         i, t = nearest_hit(scene, o, d)
         if i is None:
-            self.log(path, origin=o, dir=d, hit=None, color=scene["background"], weight=weight)
+            miss_t = {}
+            for slip, t_logged in (("miss-t-infinity", math.inf), ("miss-t-minus-one", -1.0), ("miss-t-null", None)):
+                if slip in mistakes:
+                    miss_t = {"t": t_logged}
+            self.log(path, origin=o, dir=d, hit=None, color=scene["background"], weight=weight, **miss_t)
             return scene["background"], None
         obj = scene["objects"][i]
         m = obj["material"]
@@ -268,6 +287,8 @@ class Pixel:
         ambient = mul(vmul(scene["ambient"], m["color"]), m["ka"])
         if "no-ambient" in mistakes:
             ambient = (0.0, 0.0, 0.0)
+        if "fatt-ambient" in mistakes and scene["lights"]:
+            ambient = mul(ambient, attenuation(scene["light_att"], length(sub(scene["lights"][0][0], p))))
         color = ambient
         diffuse, specular = [], []
         for li, (pos, intensity) in enumerate(scene["lights"]):
@@ -280,6 +301,8 @@ class Pixel:
             if "abs-ndotl" in mistakes:
                 ndotl = abs(ndotl)
             if d_l < EPS or ndotl <= 0:
+                if "shadow-behind" in mistakes and d_l >= EPS:
+                    self.log(f"{path}/S{li}", origin=p, dir=l, S=shadow(scene, p, l, d_l))
                 diffuse.append((0.0, 0.0, 0.0))
                 specular.append((0.0, 0.0, 0.0))
                 continue
@@ -292,8 +315,12 @@ class Pixel:
                 cosine = dot(sub(mul(n, 2 * ndotl), l), v)
             else:
                 cosine = dot(n, normalize(add(l, v)))
+                if "h-unnormalised" in mistakes:
+                    cosine = dot(n, add(l, v))
             diffuse.append(mul(vmul(light, m["color"]), m["kd"] * ndotl))
             specular.append(mul(light, m["ks"] * max(cosine, 0.0) ** m["n"]))
+            if "specular-times-od" in mistakes:
+                specular[-1] = vmul(specular[-1], m["color"])
             color = add(color, add(diffuse[-1], specular[-1]))
 
         max_depth = scene["max_depth"] + (1 if "past-max-depth" in mistakes else 0)
@@ -314,14 +341,19 @@ class Pixel:
                 r = sub(d, mul(n, 2 * dot(d, n)))
                 if "reflect-sign" in mistakes:
                     r = sub(mul(n, 2 * dot(n, d)), d)
+                if "reflect-plus" in mistakes:
+                    r = add(d, mul(n, 2 * dot(d, n)))
                 children.append(("R", r, m["ks"] + (m["kt"] if tir else 0)))
             if transmitted is not None:
                 children.append(("T", transmitted, m["kt"]))
             for step, direction, w in children:
-                if weight * w < scene["min_weight"] or self.rays >= scene["max_rays"]:
+                below = weight * w < scene["min_weight"] and "no-min-weight" not in mistakes
+                if below or self.rays >= scene["max_rays"]:
                     continue
                 child, child_t = self.trace(p, direction, depth + 1, weight * w, f"{path}/{step}")
                 att = 1.0 if child_t is None else attenuation(scene["ray_att"], child_t)
+                if f"unweighted-{'reflection' if step == 'R' else 'transmission'}" in mistakes:
+                    w = 1.0
                 color = add(color, mul(child, w * att))
         self.log(path, origin=o, dir=d, hit=i, t=t, point=p, normal=n, color=color,
                  ambient=ambient, diffuse=diffuse, specular=specular, weight=weight)
@@ -338,6 +370,8 @@ def primary_ray(scene, x, y):
     cx, cy = (x, y) if "pixel-corner" in mistakes else (x + 0.5, y + 0.5)
     px = (2 * cx / w - 1) * s * (w / h)
     py = (1 - 2 * cy / h) * s
+    if "pixel-span" in mistakes:
+        px, py = (2 * x / (w - 1) - 1) * s * (w / h), (1 - 2 * y / (h - 1)) * s
     if "fov-horizontal" in mistakes:
         px, py = px * h / w, py * h / w
     return normalize(add(f, add(mul(r, px), mul(u, py))))
@@ -385,6 +419,7 @@ def main():
     ap.add_argument("y", type=int, nargs="?")
     ap.add_argument("-o", dest="png", help="render the whole image to this PNG")
     ap.add_argument("--size", help="WxH pixels from X, Y (default 1x1); with -o, the image's size")
+    ap.add_argument("--image", help="WxH: trace the log's pixels as if the image were this size")
     ap.add_argument("--mistake", action="append", default=[], choices=sorted(MISTAKES))
     args = ap.parse_args()
     mistakes.update(args.mistake)
@@ -398,6 +433,8 @@ def main():
         return
     if args.y is None:
         ap.error("give a pixel X Y, or -o IMAGE.png")
+    if args.image:
+        scene["width"], scene["height"] = (int(v) for v in args.image.split("x"))
     w, h = (int(v) for v in (args.size or "1x1").split("x"))
     for y in range(args.y, args.y + h):
         for x in range(args.x, args.x + w):

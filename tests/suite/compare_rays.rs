@@ -109,10 +109,12 @@ fn the_text_names_the_first_divergence_its_kind_and_the_catalogue_mistake() {
     // with 1/eta: the kind is eta_swapped.
     let dir = tempfile::tempdir().unwrap();
     let scene = scene_at(&root().join(GLASS), None);
+    // Two pixels through the ball: a name needs the mistake's tree to be
+    // the log at every logged pixel and to change the colour at two.
     let log = write(
         dir.path(),
         "eta.jsonl",
-        &log_of(&scene, &[Mistake::EtaInverted], &[(72, 45)]),
+        &log_of(&scene, &[Mistake::EtaInverted], &[(72, 45), (73, 45)]),
     );
     let output = raystep(&["compare", GLASS, "--rays", path(&log)]);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
@@ -123,10 +125,26 @@ fn the_text_names_the_first_divergence_its_kind_and_the_catalogue_mistake() {
         "eta_swapped: yours is refracted with η = 1.5, ours with η = 0.6667 (entering, ior 1.5)",
         "η = 1 / ior = 1 / 1.5 = 0.666667 (entering)",
         "Your rays are raystep's under the catalogue's mistake: eta-inverted.",
-        "1 pixel logged (16 rays), 0 matching ours.",
+        "2 pixels logged",
     ] {
         assert!(text.contains(words), "{words:?} in\n{text}");
     }
+    // One pixel alone names nothing: the mistake is consistent with it,
+    // and another pixel would tell (issue 39).
+    let log = write(
+        dir.path(),
+        "one.jsonl",
+        &log_of(&scene, &[Mistake::EtaInverted], &[(72, 45)]),
+    );
+    let text = stdout(&raystep(&["compare", GLASS, "--rays", path(&log)]));
+    assert!(
+        !text.contains("Your rays are raystep's under the catalogue's mistake"),
+        "{text}"
+    );
+    assert!(
+        text.contains("Consistent with eta-inverted here; log pixel "),
+        "{text}"
+    );
 }
 
 #[test]
@@ -136,8 +154,11 @@ fn the_json_is_pinned() {
     // docs/RAYLOG.md's keys: pixels[] with pixel, matches,
     // first_divergence {path, field, yours, ours, kind, words, meaning},
     // later_differences, only_yours, only_ours, unpaired, mistakes[{name}],
-    // rays_yours, rays_ours; then pixel_count, matching_pixels, rays_read,
-    // tolerance and unknown_keys.
+    // consistent_with[{name, tell}], colour_agrees, notes, rays_yours,
+    // rays_ours; then pixel_count, matching_pixels, colour_agreeing_pixels,
+    // rays_read, tolerance, traced_at and unknown_keys. One pixel where
+    // eta-inverted acts names nothing: it is consistent with it, and pixel
+    // 72,44 (where eta-inverted's colour differs from ours) would tell.
     let dir = tempfile::tempdir().unwrap();
     let scene = scene_at(&root().join(GLASS), None);
     let mut text = log_of(&scene, &[Mistake::EtaInverted], &[(72, 45)]);

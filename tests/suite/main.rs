@@ -38,6 +38,7 @@ mod scene_props;
 mod shading;
 mod snapshots;
 mod student_tracer;
+mod student_tracer_slips;
 mod term_images;
 mod text_files;
 mod toml_sections;

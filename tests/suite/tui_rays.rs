@@ -322,9 +322,10 @@ fn turning_on_the_mistake_of_the_log_makes_every_ray_match() {
         report.first_divergence.as_ref().map(|d| d.path.to_string()),
         Some("P/T".into())
     );
-    chars(&mut app, "M");
-    // eta-inverted is the menu's third row.
-    chars(&mut app, "jj ");
+    // M opens on eta-inverted, the mistake the log is consistent with (as
+    // --compare's menu opens on the ranking's first, issue 39): space
+    // turns it on.
+    chars(&mut app, "M ");
     assert_eq!(
         app.message(),
         Some("mistake eta-inverted on · your rays of this pixel match ours")
@@ -410,4 +411,66 @@ fn snapshot_first_divergence() {
     let mut app = debugger_with(&path);
     chars(&mut app, "D");
     snapshot!("first_divergence", screen(&mut app, 120, 40).backend());
+}
+
+#[test]
+fn the_details_say_no_line_twice_and_the_tree_counts_rays_as_compare_does() {
+    // Pixel (72, 45) logged without P/S0: the first divergence is a ray
+    // only ours casts, whose rule is what ours is. Before issue 39 the
+    // details printed that rule twice, and the tree's title counted 8
+    // rays where compare counts 16 (it counts the shadow rays).
+    let log: String = (our_log((72, 45)).lines())
+        .filter(|l| !l.contains("\"path\": \"P/S0\""))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let path = log_file(&log);
+    let mut app = debugger_with(&path);
+    chars(&mut app, "D");
+    let report = app.ray_log().and_then(RayLog::report).unwrap();
+    let first = report.first_divergence.as_ref().unwrap();
+    assert_eq!(format!("{} {}", first.path, first.field), "P/S0 ray");
+    let details = pane_text(&mut app, Pane::Details, 160, 80);
+    // The log's part of the details, down to the blank line before the
+    // ray's own story (whose formulas repeat per light, rightly).
+    let mut seen = std::collections::HashSet::new();
+    for line in details.iter().take_while(|l| !l.trim().is_empty()) {
+        assert!(seen.insert(line), "{line:?} twice in {details:#?}");
+    }
+    assert!(
+        details
+            .iter()
+            .any(|l| l.contains("a shadow ray to each light in front")),
+        "{details:#?}"
+    );
+    let terminal = screen(&mut app, 160, 80);
+    let rect = app.panes().rect(Pane::Tree);
+    let top: String = (rect.x..rect.x + rect.width)
+        .map(|x| {
+            terminal.backend().buffer()[(x, rect.y)]
+                .symbol()
+                .to_string()
+        })
+        .collect();
+    assert!(
+        top.contains("· 16 rays (8 shadow) · your log differs"),
+        "{top}"
+    );
+}
+
+#[test]
+fn the_debugger_takes_size_for_a_log_traced_at_another_size() {
+    // A log of pixel (300, 200) is outside glass.toml's 160x120: with
+    // --size 320x240 it reads, and only the missing terminal stops the
+    // debugger (before issue 39 the debugger had no --size).
+    let path = log_file("{\"pixel\": [300, 200], \"path\": \"P\"}\n");
+    let name = path.to_str().unwrap();
+    let output = raystep(&[GLASS, "--rays", name]);
+    assert!(stderr(&output).contains("outside the image"), "{output:?}");
+    let output = raystep(&[GLASS, "--rays", name, "--size", "320x240"]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("the debugger needs a terminal"),
+        "{}",
+        stderr(&output)
+    );
 }

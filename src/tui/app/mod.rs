@@ -93,7 +93,17 @@ impl App {
     /// Opens a scene (`None`: the built-in one). With `sync`, renders finish
     /// before `update` returns, so tests see deterministic screens.
     pub fn open(path: Option<PathBuf>, sync: bool) -> Result<App, SceneError> {
-        let source = SceneSource { path, size: None };
+        App::open_sized(path, None, sync)
+    }
+
+    /// Opens a scene as `open` does, traced at `size` (`--size WxH`, the
+    /// field of view kept) from then on, reloads too.
+    pub fn open_sized(
+        path: Option<PathBuf>,
+        size: Option<(u32, u32)>,
+        sync: bool,
+    ) -> Result<App, SceneError> {
+        let source = SceneSource { path, size };
         let scene = source.load()?;
         Ok(App::new(source, scene, None, sync))
     }
@@ -259,6 +269,15 @@ impl App {
                 self.find(what);
             }
             Action::Reload => self.reload(),
+            Action::ToggleMistakeMenu if self.overlay.menu_row().is_none() => {
+                // With --rays, M opens on the mistake the pixel's rays are
+                // named with (or consistent with), as --compare opens on
+                // the ranking's first.
+                if let Some(mistake) = self.ray_log.as_ref().and_then(RayLog::mistake_shown) {
+                    self.overlay.select(mistake);
+                }
+                self.message = self.overlay.update(action, height);
+            }
             Action::ToggleHelp
             | Action::CloseHelp
             | Action::ScrollHelp(_)

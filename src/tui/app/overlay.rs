@@ -109,6 +109,13 @@ impl Overlays {
         }
     }
 
+    /// Selects `mistake`'s row of the menu (where it opens next).
+    pub(super) fn select(&mut self, mistake: Mistake) {
+        if let Some(row) = self.menu.iter().position(|&m| m == mistake) {
+            self.menu_row = row;
+        }
+    }
+
     /// The mistakes menu's selected mistake, open or not.
     pub(crate) fn menu_mistake(&self) -> Mistake {
         self.menu[self.menu_row]

@@ -12,8 +12,9 @@ use anyhow::{Result, bail};
 
 use raystep_engine::record::{RayTree, count};
 use raystep_engine::scene::Scene;
+use raystep_model::mistakes::{Mistake, Mistakes};
 use raystep_tools::divergence::{
-    LogComparison, OurRays, PixelReport, Tolerance, compare_log, compare_pixel,
+    Consistent, LogComparison, OurRays, PixelReport, Tolerance, compare_log, compare_pixel,
 };
 use raystep_tools::raylog::{LoggedRay, RaylogReader};
 
@@ -23,6 +24,9 @@ pub struct RayLog {
     /// The pixels kept whole, in the order they first appear in the log,
     /// each with your rays.
     pixels: Vec<((u32, u32), Vec<LoggedRay>)>,
+    /// The log's verdict on each of those pixels, as `compare --rays`
+    /// gives it: the mistakes named, and those it is only consistent with.
+    verdicts: Vec<(Vec<Mistake>, Vec<Consistent>)>,
     /// Every pixel of the log, those kept whole and those only counted.
     pixel_count: usize,
     rays_read: usize,
@@ -50,8 +54,12 @@ impl RayLog {
     }
 
     fn of(name: String, comparison: LogComparison) -> RayLog {
+        let verdicts = (comparison.pixels.iter())
+            .map(|p| (p.mistakes.clone(), p.consistent.clone()))
+            .collect();
         RayLog {
             name,
+            verdicts,
             pixels: (comparison.pixels.into_iter())
                 .map(|p| (p.pixel, p.yours))
                 .collect(),
@@ -63,6 +71,13 @@ impl RayLog {
         }
     }
 
+    /// The mistake the pixel shown is named with, or else consistent
+    /// with: where `M` opens.
+    pub fn mistake_shown(&self) -> Option<Mistake> {
+        let report = self.report.as_ref()?;
+        (report.mistakes.first().copied()).or(report.consistent.first().map(|c| c.mistake))
+    }
+
     /// The pixel traced beside your rays of it, when it is in the log.
     pub fn report(&self) -> Option<&PixelReport> {
         self.report.as_ref()
@@ -70,10 +85,20 @@ impl RayLog {
 
     /// Compares `tree`, the pixel as traced now, with your rays of it.
     pub(super) fn follow(&mut self, tree: &RayTree, scene: &Scene) {
-        let logged = self.pixels.iter().find(|(pixel, _)| *pixel == tree.pixel);
-        self.report = logged.map(|(_, yours)| {
+        let logged = self
+            .pixels
+            .iter()
+            .position(|(pixel, _)| *pixel == tree.pixel);
+        self.report = logged.map(|at| {
             let ours = OurRays::of(tree.clone());
-            compare_pixel(scene, yours.clone(), &ours, &self.tolerance)
+            let mut report =
+                compare_pixel(scene, self.pixels[at].1.clone(), &ours, &self.tolerance);
+            // Traced as the scene says (no mistake turned on), the pixel
+            // has the whole log's verdict: a name needs every logged pixel.
+            if tree.mistakes == Mistakes::NONE && !report.matches {
+                (report.mistakes, report.consistent) = self.verdicts[at].clone();
+            }
+            report
         });
     }
 

@@ -18,7 +18,7 @@ use crate::tui::view::tree::{
 };
 use crate::tui::view::your_rays::{RowMarks, legend, mark, only_yours_lines};
 use crate::tui::{App, Pane};
-use raystep_engine::record::{NodeId, RayTree};
+use raystep_engine::record::{NodeId, RayTree, count};
 use raystep_tools::divergence::RayStatus;
 
 pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
@@ -33,11 +33,19 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
         (Some(_), Some(r)) if r.matches => " · your log matches".into(),
         (Some(_), Some(_)) => " · your log differs".into(),
     };
+    // Beside a log, the rays counted as `compare --rays` counts them: the
+    // shadow rays too, and it says so.
+    let rays = match report {
+        Some(r) => format!(
+            "{} ({} shadow)",
+            count(r.rays_ours as u64, "ray", "rays"),
+            r.rays_ours - rays
+        ),
+        None => count(rays as u64, "ray", "rays"),
+    };
     let title = format!(
-        " Ray tree · pixel ({}, {}) · {rays} ray{}{against} ",
-        tree.pixel.0,
-        tree.pixel.1,
-        if rays == 1 { "" } else { "s" }
+        " Ray tree · pixel ({}, {}) · {rays}{against} ",
+        tree.pixel.0, tree.pixel.1,
     );
     let mut block = pane_block(app, Pane::Tree, title);
     if report.is_some() {

@@ -361,12 +361,17 @@ pub(crate) fn detail_lines(
             Line::from(vec![head, Span::styled(row.text(), bold())])
         })
         .collect();
+    let mut told = false;
     if let Some(first) = &report.first_divergence
         && anchor(tree, &first.path).is_some_and(|(p, _, _)| &p == path)
     {
         out.extend(divergence_lines(report, first, path, width));
+        told = &first.path == path;
     }
+    // The first divergence's "what ours is" already gave the rule that
+    // casts a ray only ours has: no line twice.
     if status == RayStatus::OnlyOurs
+        && !told
         && let Some(rule) = report.only_ours.iter().find(|u| &u.path == path)
     {
         out.extend(wrapped(&rule.rule, 2, width, Style::new()));
@@ -445,6 +450,9 @@ fn divergence_lines(
             width,
             Style::new(),
         ));
+    }
+    for line in raystep_tools::divergence::consistent_lines(report) {
+        out.extend(wrapped(&format!("{line} M opens on it."), 0, width, bold()));
     }
     if !report.mistakes.is_empty() {
         let names: Vec<&str> = report.mistakes.iter().map(|m| m.name()).collect();

@@ -90,12 +90,16 @@ fn each_check(
     check(Field::Origin, vector(yours.origin), vector(ours.origin));
     check(Field::Dir, vector(yours.dir), vector(ours.dir));
     check(Field::Weight, number(yours.weight), number(ours.weight));
+    // A miss that logs t = Infinity, -1 or null is a miss without a t.
+    let miss = super::miss_t::reads_as_miss(yours);
+    let your_hit = if miss { Some(Hit::Miss) } else { yours.hit };
     check(
         Field::Hit,
-        yours.hit.map(Value::Hit),
+        your_hit.map(Value::Hit),
         ours.hit.map(Value::Hit),
     );
-    check(Field::T, number(yours.t), number(ours.t));
+    let your_t = if miss { None } else { yours.t };
+    check(Field::T, number(your_t), number(ours.t));
     check(Field::Point, vector(yours.point), vector(ours.point));
     check(Field::Normal, vector(yours.normal), vector(ours.normal));
     check(Field::S, number(yours.s), number(ours.s));

@@ -8,10 +8,13 @@ mod absence;
 mod checks;
 mod kind;
 mod meaning;
+mod miss_t;
 mod moment;
 mod ours;
 mod pixel_report;
+mod size_guess;
 mod tolerance;
+mod verdict;
 mod words;
 
 use std::collections::HashMap;
@@ -22,10 +25,10 @@ pub use kind::Kind;
 pub use moment::Field;
 pub use ours::OurRays;
 pub use pixel_report::compare_pixel;
-pub use pixel_report::{AlignedRay, Divergence, PixelReport, RayStatus, Unpaired};
+pub use pixel_report::{AlignedRay, Consistent, Divergence, PixelReport, RayStatus, Unpaired};
 pub use tolerance::Tolerance;
 pub use words::value_text;
-pub use words::{json, text};
+pub use words::{consistent_lines, json, text};
 
 use crate::raylog::{LoggedRay, RaylogError, RaylogReader};
 use raystep_engine::scene::Scene;
@@ -45,6 +48,12 @@ pub struct LogComparison {
     /// Every pixel of the log, and those whose rays all match ours.
     pub pixel_count: usize,
     pub matching: usize,
+    /// The pixels whose rays differ from ours but whose colour agrees:
+    /// their rays differ where they add nothing.
+    pub colour_agreeing: usize,
+    /// The image size every primary ray of the log fits, when it is not
+    /// the size the log was read at: "pass --size WxH".
+    pub traced_at: Option<(u32, u32)>,
     pub rays_read: usize,
     pub unknown_keys: Vec<String>,
     pub tolerance: Tolerance,
@@ -57,6 +66,8 @@ struct Tally {
     ours: usize,
     logged: usize,
     differs: bool,
+    /// Whether the primary ray's logged colour agrees with ours.
+    colour_agrees: Option<bool>,
 }
 
 /// The pixels past the first `PIXELS_SHOWN`, compared ray by ray as they
@@ -88,7 +99,13 @@ impl Counter<'_> {
         match ours.find(&ray.path) {
             Some(found) => {
                 tally.logged += 1;
-                tally.differs |= !checks::all_agree(ray, &ours.rays()[found], &self.tolerance);
+                let our_ray = &ours.rays()[found];
+                tally.differs |= !checks::all_agree(ray, our_ray, &self.tolerance);
+                if ray.path.steps.is_empty()
+                    && let (Some(yours), Some(theirs)) = (ray.color, our_ray.color)
+                {
+                    tally.colour_agrees = Some(self.tolerance.colours(yours, theirs));
+                }
             }
             None => tally.differs = true,
         }
@@ -98,6 +115,13 @@ impl Counter<'_> {
         self.tallies
             .values()
             .filter(|t| !t.differs && t.logged == t.ours)
+            .count()
+    }
+
+    fn colour_agreeing(&self) -> usize {
+        self.tallies
+            .values()
+            .filter(|t| (t.differs || t.logged != t.ours) && t.colour_agrees == Some(true))
             .count()
     }
 }
@@ -116,6 +140,7 @@ pub fn compare_log<R: BufRead>(
     let mut shown: Vec<((u32, u32), Vec<LoggedRay>)> = Vec::new();
     let mut shown_at: HashMap<(u32, u32), usize> = HashMap::new();
     let mut rays_read = 0;
+    let mut size = size_guess::SizeGuess::new(scene);
     let new_counter = || Counter {
         scene,
         tolerance,
@@ -146,6 +171,7 @@ pub fn compare_log<R: BufRead>(
             for item in reader.by_ref() {
                 let (_, ray) = item?;
                 rays_read += 1;
+                size.see(&ray);
                 if let Some(&at) = shown_at.get(&ray.pixel) {
                     shown[at].1.push(ray);
                 } else if shown.len() < PIXELS_SHOWN {
@@ -173,15 +199,23 @@ pub fn compare_log<R: BufRead>(
     });
     read?;
     let unknown_keys = reader.unknown_keys().iter().cloned().collect();
-    let pixels: Vec<PixelReport> = shown
+    let mut pixels: Vec<PixelReport> = shown
         .into_iter()
         .map(|(pixel, yours)| {
             let ours = OurRays::record(scene, &scene.settings, pixel);
             compare_pixel(scene, yours, &ours, &tolerance)
         })
         .collect();
+    verdict::decide(scene, &mut pixels, &tolerance);
     let matching = pixels.iter().filter(|p| p.matches).count() + counter.matching();
+    let colour_agreeing = pixels
+        .iter()
+        .filter(|p| p.differs_where_it_adds_nothing())
+        .count()
+        + counter.colour_agreeing();
     Ok(LogComparison {
+        colour_agreeing,
+        traced_at: size.traced_at(),
         pixel_count: pixels.len() + counter.tallies.len(),
         pixels,
         matching,

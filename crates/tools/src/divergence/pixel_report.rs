@@ -110,16 +110,45 @@ pub struct PixelReport {
     pub later_differences: usize,
     pub only_yours: Vec<Unpaired>,
     pub only_ours: Vec<Unpaired>,
-    /// The catalogue mistakes whose tree is your log, within the tolerance.
+    /// The catalogue mistakes named: each one's tree is your log at this
+    /// pixel and at every other pixel of the log, and at least two of the
+    /// log's pixels differ from ours in colour where it does.
     pub mistakes: Vec<Mistake>,
+    /// The catalogue mistakes whose tree is your log here, where the log
+    /// cannot tell them from a coincidence (one pixel alone, or only where
+    /// your colour agrees with ours): "consistent with X here; log pixel
+    /// A,B to tell".
+    pub consistent: Vec<Consistent>,
+    /// Whether your primary ray's colour agrees with ours within the
+    /// tolerance; `None` when your log has no colour for it.
+    pub colour_agrees: Option<bool>,
+    /// What the comparison read differently from the log as written (a
+    /// miss that logs a t), in words.
+    pub notes: Vec<String>,
     /// Your rays as logged, and both trees aligned.
     pub yours: Vec<LoggedRay>,
     pub aligned: Vec<AlignedRay>,
     pub rays_ours: usize,
 }
 
+/// A mistake of the catalogue whose tree is your log at a pixel, and a
+/// pixel to log that would tell it from the others and from ours.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Consistent {
+    pub mistake: Mistake,
+    pub tell: Option<(u32, u32)>,
+}
+
+impl PixelReport {
+    /// Your colour agrees with ours though your rays differ: they differ
+    /// where they add nothing (within the colour tolerance).
+    pub fn differs_where_it_adds_nothing(&self) -> bool {
+        !self.matches && self.colour_agrees == Some(true)
+    }
+}
+
 /// A difference's place: the ray (aligned) and the field.
-struct Difference<'a> {
+pub(crate) struct Difference<'a> {
     ray: &'a AlignedRay,
     check: Option<&'a Check>,
 }
@@ -130,7 +159,7 @@ impl Difference<'_> {
     }
 }
 
-fn differences(aligned: &[AlignedRay]) -> Vec<Difference<'_>> {
+pub(crate) fn differences(aligned: &[AlignedRay]) -> Vec<Difference<'_>> {
     let mut found: Vec<Difference> = Vec::new();
     for ray in aligned {
         match ray.status() {
@@ -160,8 +189,14 @@ pub fn compare_pixel(
     ours: &OurRays,
     tolerance: &Tolerance,
 ) -> PixelReport {
+    let notes = super::miss_t::notes(&yours);
     let aligned = align(&yours, ours, tolerance);
     let found = differences(&aligned);
+    let colour_agrees = aligned
+        .iter()
+        .find(|a| a.path.steps.is_empty())
+        .and_then(|a| a.checks.iter().find(|c| c.field == Field::Color))
+        .map(|c| c.agrees);
     let first_divergence = found.first().map(|d| divergence(scene, ours, d));
     let unpaired = |status: RayStatus, rule: &dyn Fn(&AlignedRay) -> String| -> Vec<Unpaired> {
         aligned
@@ -181,11 +216,19 @@ pub fn compare_pixel(
     });
     let matches = found.is_empty();
     let later_differences = found.len().saturating_sub(1);
-    let mistakes = if matches {
+    let candidates = if matches {
         Vec::new()
     } else {
         catalogue(scene, ours.tree.pixel, &yours, tolerance)
     };
+    // Which pixel would tell is the log's question (`verdict::decide`).
+    let consistent = candidates
+        .into_iter()
+        .map(|mistake| Consistent {
+            mistake,
+            tell: None,
+        })
+        .collect();
     PixelReport {
         pixel: ours.tree.pixel,
         matches,
@@ -193,7 +236,10 @@ pub fn compare_pixel(
         later_differences,
         only_yours,
         only_ours,
-        mistakes,
+        mistakes: Vec::new(),
+        consistent,
+        colour_agrees,
+        notes,
         rays_ours: ours.rays().len(),
         yours,
         aligned,
@@ -242,6 +288,22 @@ pub(crate) fn traceable_mistakes() -> impl Iterator<Item = Mistake> {
     Mistake::ALL.into_iter().filter(|m| !m.acts_only_on_bytes())
 }
 
+/// Whether our tree of `pixel` under `mistake` is your log of it.
+pub(crate) fn fits(
+    scene: &Scene,
+    mistake: Mistake,
+    pixel: (u32, u32),
+    yours: &[LoggedRay],
+    tolerance: &Tolerance,
+) -> bool {
+    let settings = Settings {
+        mistakes: Mistakes::from_iter([mistake]),
+        ..scene.settings
+    };
+    let ours = OurRays::record(scene, &settings, pixel);
+    differences(&align(yours, &ours, tolerance)).is_empty()
+}
+
 /// The mistakes under which our tree of `pixel` is your log.
 fn catalogue(
     scene: &Scene,
@@ -250,13 +312,6 @@ fn catalogue(
     tolerance: &Tolerance,
 ) -> Vec<Mistake> {
     traceable_mistakes()
-        .filter(|&mistake| {
-            let settings = Settings {
-                mistakes: Mistakes::from_iter([mistake]),
-                ..scene.settings
-            };
-            let ours = OurRays::record(scene, &settings, pixel);
-            differences(&align(yours, &ours, tolerance)).is_empty()
-        })
+        .filter(|&mistake| fits(scene, mistake, pixel, yours, tolerance))
         .collect()
 }

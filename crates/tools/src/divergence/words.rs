@@ -26,7 +26,15 @@ pub fn text(
         "Your rays ({log}) beside raystep's ({scene}); tolerance: {}.",
         comparison.tolerance
     );
-    for pixel in &comparison.pixels {
+    if let Some(line) = traced_at_text(comparison) {
+        out.push_str(&line);
+    }
+    // What matters first: the pixels whose colour differs from ours, then
+    // those whose rays differ where they add nothing, then those that
+    // match, each in the log's order (JSON keeps the log's order).
+    let mut ranked: Vec<&PixelReport> = comparison.pixels.iter().collect();
+    ranked.sort_by_key(|p| (p.matches, p.differs_where_it_adds_nothing()));
+    for pixel in ranked {
         out.push('\n');
         pixel_text(&mut out, pixel);
     }
@@ -39,6 +47,13 @@ pub fn text(
         count(comparison.rays_read as u64, "ray", "rays"),
         comparison.matching
     );
+    if comparison.colour_agreeing > 0 {
+        let _ = write!(
+            out,
+            ", {} more whose colour agrees with ours (their rays differ where they add nothing)",
+            comparison.colour_agreeing
+        );
+    }
     if more > 0 {
         let _ = write!(
             out,
@@ -70,18 +85,46 @@ pub fn text(
     out
 }
 
+/// The size trap named: every primary ray is the centre ray of its pixel
+/// in an image of another size.
+fn traced_at_text(comparison: &LogComparison) -> Option<String> {
+    let (w, h) = comparison.traced_at?;
+    Some(format!(
+        "Your log looks traced at {w}x{h}: pass --size {w}x{h}. Every primary ray in it is the \
+         centre ray of its pixel in a {w}x{h} image (the field of view kept), none in the size \
+         it was read at.\n"
+    ))
+}
+
 fn pixel_text(out: &mut String, pixel: &PixelReport) {
     let (x, y) = pixel.pixel;
     let rays = format!(
-        "{} logged, {} in ours",
+        "{} logged, {} in ours, shadow rays included",
         count(pixel.yours.len() as u64, "ray", "rays"),
         pixel.rays_ours
     );
     let Some(first) = &pixel.first_divergence else {
         let _ = writeln!(out, "Pixel ({x}, {y}): matches ours ({rays}).");
+        for note in &pixel.notes {
+            let _ = writeln!(out, "  Note: {note}.");
+        }
         return;
     };
-    let _ = writeln!(out, "Pixel ({x}, {y}): differs ({rays}).");
+    if pixel.differs_where_it_adds_nothing() {
+        let _ = writeln!(
+            out,
+            "Pixel ({x}, {y}): your colour agrees; your rays differ where they add nothing: \
+             first at {} {} ({}) ({rays}).",
+            first.path,
+            first.field,
+            first.kind.name()
+        );
+    } else {
+        let _ = writeln!(out, "Pixel ({x}, {y}): differs ({rays}).");
+    }
+    for note in &pixel.notes {
+        let _ = writeln!(out, "  Note: {note}.");
+    }
     let _ = writeln!(out, "  First divergence: {} {}", first.path, first.field);
     let _ = writeln!(out, "    yours  {}", value_text(Some(first.yours)));
     let _ = writeln!(out, "    ours   {}", value_text(first.ours));
@@ -109,9 +152,16 @@ fn pixel_text(out: &mut String, pixel: &PixelReport) {
     }
     unpaired_text(out, "Only in yours", &pixel.only_yours);
     unpaired_text(out, "Only in ours", &pixel.only_ours);
-    if pixel.mistakes.is_empty() {
+    for line in consistent_lines(pixel) {
+        let _ = writeln!(
+            out,
+            "  {line} A mistake is named only where its tree is your log at every logged \
+             pixel and changes the colour at two of them."
+        );
+    }
+    if pixel.mistakes.is_empty() && pixel.consistent.is_empty() {
         out.push_str("  No mistake of raystep's catalogue gives your rays: the first divergence is where to look.\n");
-    } else {
+    } else if !pixel.mistakes.is_empty() {
         let names: Vec<&str> = pixel.mistakes.iter().map(|m| m.name()).collect();
         let _ = writeln!(
             out,
@@ -119,6 +169,23 @@ fn pixel_text(out: &mut String, pixel: &PixelReport) {
             names.join(", ")
         );
     }
+}
+
+/// "Consistent with X here; log pixel A,B to tell", one line for the
+/// mistakes a pixel alone cannot tell from a coincidence.
+pub fn consistent_lines(pixel: &PixelReport) -> Vec<String> {
+    if pixel.consistent.is_empty() {
+        return Vec::new();
+    }
+    let names: Vec<&str> = pixel.consistent.iter().map(|c| c.mistake.name()).collect();
+    let tell = match pixel.consistent[0].tell {
+        Some((x, y)) => format!("log pixel {x},{y} to tell"),
+        None => "log more pixels to tell".to_string(),
+    };
+    vec![format!(
+        "Consistent with {} here; {tell}.",
+        names.join(" or ")
+    )]
 }
 
 /// At most this many rays in one tree only are listed per pixel.
@@ -181,6 +248,8 @@ pub fn json(comparison: &LogComparison) -> Json {
         "pixels": pixels,
         "pixel_count": comparison.pixel_count,
         "matching_pixels": comparison.matching,
+        "colour_agreeing_pixels": comparison.colour_agreeing,
+        "traced_at": comparison.traced_at.map(|(w, h)| object!([w, h])),
         "rays_read": comparison.rays_read,
         "tolerance": {
             "geometry": comparison.tolerance.geometry,
@@ -214,6 +283,11 @@ fn pixel_json(pixel: &PixelReport) -> Json {
         .iter()
         .map(|m| object!({"name": m.name()}))
         .collect();
+    let consistent: Vec<Json> = pixel
+        .consistent
+        .iter()
+        .map(|c| object!({"name": c.mistake.name(), "tell": c.tell.map(|(x, y)| object!([x, y]))}))
+        .collect();
     let mut unpaired = rules(&pixel.only_yours, "yours");
     unpaired.extend(rules(&pixel.only_ours, "ours"));
     object!({
@@ -225,6 +299,9 @@ fn pixel_json(pixel: &PixelReport) -> Json {
         "only_ours": paths(&pixel.only_ours),
         "unpaired": unpaired,
         "mistakes": mistakes,
+        "consistent_with": consistent,
+        "colour_agrees": pixel.colour_agrees,
+        "notes": pixel.notes,
         "rays_yours": pixel.yours.len(),
         "rays_ours": pixel.rays_ours,
     })

@@ -37,6 +37,9 @@ pub struct LoggedRay {
     /// The ray's accumulated weight: the product of the weights from the
     /// primary ray (1) down to it.
     pub weight: Option<f64>,
+    /// `t` was logged as `null`: what a tracer prints for a miss's t when
+    /// its JSON printer writes infinity so (read as a miss, docs/RAYLOG.md).
+    pub t_null: bool,
 }
 
 impl LoggedRay {
@@ -57,6 +60,7 @@ impl LoggedRay {
             specular: None,
             s: None,
             weight: None,
+            t_null: false,
         }
     }
 }

@@ -158,11 +158,19 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
                 ),
             ));
         }
+        // `t: null` is how some JSON printers write a miss's infinite t:
+        // read as no t, marked, never refused (docs/RAYLOG.md).
+        let t_null = line
+            .t
+            .as_ref()
+            .is_some_and(|f| f.value.is_err() && text[f.at..].starts_with("null"));
+        let t = if t_null { None } else { line.t };
         let ray = LoggedRay {
             origin: optional(line.origin, text)?,
             dir: optional(line.dir, text)?,
             hit: self.hit(line.hit, text)?,
-            t: optional(line.t, text)?,
+            t: optional(t, text)?,
+            t_null,
             point: optional(line.point, text)?,
             normal: optional(line.normal, text)?,
             color: optional(line.color, text)?,
@@ -472,9 +480,9 @@ mod tests {
             "specular[0] has 2 numbers, not 3: [1, 2]",
         ),
         (
-            r#"{"pixel": [5, 5], "path": "P", "t": null}"#,
+            r#"{"pixel": [5, 5], "path": "P", "S": null}"#,
             "null",
-            "t is not a number: null",
+            "S is not a number: null",
         ),
         (
             r#"{"pixel": [5, 5], "path": "P", "S": "NaN"}"#,
@@ -590,6 +598,11 @@ mod tests {
         let line = r#"{"pixel": [10, 10], "path": "P/R/T/R", "color": [1.5e-300, 1e300, 123456789012345678901234567890]}"#;
         let color = read_line_of_ball(line).0.unwrap().color.unwrap();
         assert_eq!(color.to_array(), [1.5e-300, 1e300, 1.2345678901234568e29]);
+        // A miss's t as some JSON printers write infinity: no t, marked
+        // (issue 39); `null` elsewhere is still refused (BAD_LINES).
+        let line = r#"{"pixel": [5, 5], "path": "P/R", "hit": null, "t": null}"#;
+        let ray = read_line_of_ball(line).0.unwrap();
+        assert_eq!((ray.hit, ray.t, ray.t_null), (Some(Hit::Miss), None, true));
     }
 
     #[test]

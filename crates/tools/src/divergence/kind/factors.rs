@@ -30,6 +30,20 @@ pub(super) fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(Strin
                 if let Some(shadow) = &light.shadow {
                     named.push((format!("1/S (S = {})", num(shadow.s)), 1.0 / shadow.s));
                 }
+                // N·(L + V) = |L + V| N·H: H left unnormalised, to the n.
+                if let (Field::Specular(_), Some(hit)) = (field, hit) {
+                    let sum = light.to_light + (-node.direction).normalize_or_zero();
+                    let n = hit.factors.n;
+                    named.push((
+                        format!(
+                            "H not normalised (×|L+V|^n: |L+V| = {}, n = {}): H = normalize(L + V) \
+                             (MODEL §4)",
+                            num(sum.length()),
+                            num(n)
+                        ),
+                        sum.length().powf(n),
+                    ));
+                }
                 // N·L with L = P_L − p is d_L times N·L with L normalised.
                 if matches!(field, Field::Diffuse(_)) {
                     named.push((format!("d_L = {}: L = P_L − p not normalised", num(d)), d));
@@ -59,6 +73,17 @@ pub(super) fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(Strin
                 named.push((
                     format!("1/k_a (k_a = {}): k_a left out", num(f.ka)),
                     1.0 / f.ka,
+                ));
+            }
+            for light in &node.lights {
+                named.push((
+                    format!(
+                        "f_att applied to the ambient (f_att = {} for light {}): MODEL §4's \
+                         ambient term I_a O_d takes no f_att",
+                        num(light.f_att),
+                        light.light_index
+                    ),
+                    light.f_att,
                 ));
             }
         }

@@ -9,6 +9,7 @@ use serde::Serialize;
 mod colour;
 mod direction;
 mod factors;
+mod slips;
 
 use colour::clamped_before_adding;
 use direction::direction_kind;
@@ -62,6 +63,14 @@ pub enum Kind {
     /// A colour whose local part (ambient and the lights' terms) was
     /// clamped to 1 before the reflected and transmitted terms were added.
     Clamped,
+    /// A reflected direction d + 2 (d·N) N: the formula's sign changed.
+    ReflectionFormula,
+    /// A reflected or transmitted colour added without its weight.
+    WeightMissing,
+    /// A specular term multiplied by the object colour O_d.
+    ObjectColour,
+    /// A shadow ray blocked by something past the light.
+    PastLight,
     Other,
 }
 
@@ -88,6 +97,10 @@ impl Kind {
             Kind::Zero => "zero",
             Kind::OtherPixel => "other_pixel",
             Kind::Clamped => "clamped",
+            Kind::ReflectionFormula => "reflection_formula",
+            Kind::WeightMissing => "weight_missing",
+            Kind::ObjectColour => "object_colour",
+            Kind::PastLight => "past_light",
             Kind::Other => "other",
         }
     }
@@ -123,7 +136,12 @@ pub(crate) fn classify(scene: &Scene, ours: &OurRays, ray: usize, check: &Check)
         } else {
             Kind::Infinite
         };
-        return (kind, format!("yours is {what}; ours is finite"));
+        let ours = if check.ours.is_some() {
+            "ours is finite".to_string()
+        } else {
+            format!("ours has no {}", check.field)
+        };
+        return (kind, format!("yours is {what}; {ours}"));
     }
     let Some(our_value) = check.ours else {
         return match check.yours {
@@ -137,7 +155,7 @@ pub(crate) fn classify(scene: &Scene, ours: &OurRays, ray: usize, check: &Check)
     match (check.yours, our_value) {
         (Value::Hit(yours), Value::Hit(theirs)) => hit(scene, ours, ray, yours, theirs),
         (Value::Number(yours), Value::Number(theirs)) => {
-            number(ours, ray, check.field, yours, theirs)
+            number(scene, ours, ray, check.field, yours, theirs)
         }
         (Value::Vector(yours), Value::Vector(theirs)) => {
             vector(scene, ours, ray, check.field, yours, theirs)
@@ -190,7 +208,14 @@ fn hit(scene: &Scene, ours: &OurRays, ray: usize, yours: Hit, theirs: Hit) -> (K
     }
 }
 
-fn number(ours: &OurRays, ray: usize, field: Field, yours: f64, theirs: f64) -> (Kind, String) {
+fn number(
+    scene: &Scene,
+    ours: &OurRays,
+    ray: usize,
+    field: Field,
+    yours: f64,
+    theirs: f64,
+) -> (Kind, String) {
     if field == Field::T {
         if yours.abs() < SELF_HIT_T {
             return (
@@ -229,18 +254,22 @@ fn number(ours: &OurRays, ray: usize, field: Field, yours: f64, theirs: f64) -> 
             1.0 => "unblocked".to_string(),
             s => format!("partly blocked, S = {}", num(s)),
         };
-        return (
-            if yours == 0.0 {
-                Kind::Zero
-            } else {
-                Kind::Other
-            },
-            format!(
-                "your shadow ray to light {light} is {}; ours is {}",
-                seen(yours),
-                seen(theirs)
-            ),
+        let words = format!(
+            "your shadow ray to light {light} is {}; ours is {}",
+            seen(yours),
+            seen(theirs)
         );
+        if yours < theirs
+            && let Some((kind, cause)) = slips::shadow_segment(scene, ours, ray, yours)
+        {
+            return (kind, format!("{words}: {cause}"));
+        }
+        let kind = if yours == 0.0 {
+            Kind::Zero
+        } else {
+            Kind::Other
+        };
+        return (kind, words);
     }
     if theirs != 0.0 && yours == 0.0 {
         return (
@@ -279,6 +308,21 @@ fn vector(
     {
         return found;
     }
+    if field == Field::Color
+        && let Some(found) = slips::weight_missing(ours, ray, yours)
+    {
+        return found;
+    }
+    if field == Field::Dir
+        && let Some(found) = slips::reflection_formula(ours, ray, yours)
+    {
+        return found;
+    }
+    if matches!(field, Field::Specular(_))
+        && let Some(found) = slips::object_colour(ours, ray, yours, theirs)
+    {
+        return found;
+    }
     let direction = matches!(field, Field::Dir | Field::Normal);
     if direction && yours.length() > 0.0 && theirs.length() > 0.0 {
         let (unit_yours, unit_ours) = (yours.normalize(), theirs.normalize());
@@ -300,7 +344,15 @@ fn vector(
         );
     }
     if theirs != DVec3::ZERO && close(yours, -theirs) {
-        return (Kind::Negated, "yours is −1 × ours".into());
+        let words = if field == Field::Dir
+            && ours.rays()[ray].path.steps.last() == Some(&crate::raylog::Step::Reflected)
+        {
+            "yours is −1 × ours: 2 (d·N) N − d, MODEL §5's R = d − 2 (d·N) N with both signs \
+             changed"
+        } else {
+            "yours is −1 × ours"
+        };
+        return (Kind::Negated, words.into());
     }
     if theirs == DVec3::ZERO
         && yours != DVec3::ZERO
@@ -438,6 +490,24 @@ mod tests {
             words.contains("the surface the ray starts on; ours hit nothing"),
             "{words}"
         );
+    }
+
+    #[test]
+    fn an_infinite_t_where_ours_has_none_is_not_said_to_be_finite() {
+        // The mirror floor's P/R misses: ours has no t (issue 39 found
+        // "yours is infinity; ours is finite" here).
+        let scene = raystep_engine::scene::parse(Path::new("x.toml"), MIRROR_FLOOR).unwrap();
+        let ours = OurRays::record(&scene, &scene.settings, (0, 0));
+        let ray = ours.find(&RayPath::parse("P/R", 0).unwrap()).unwrap();
+        let check = Check {
+            field: Field::T,
+            yours: Value::Number(f64::INFINITY),
+            ours: None,
+            agrees: false,
+        };
+        let (kind, words) = classify(&scene, &ours, ray, &check);
+        assert_eq!(kind, Kind::Infinite);
+        assert_eq!(words, "yours is infinity; ours has no t");
     }
 
     /// A chalk ball (k_d = 0.5, white) at the origin seen from (0, 0, 5),
