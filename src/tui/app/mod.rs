@@ -98,7 +98,7 @@ impl App {
 
     /// Opens a scene as `open` does, traced at `size` (`--size WxH`, the
     /// field of view kept) from then on, reloads too.
-    pub fn open_sized(
+    pub(crate) fn open_sized(
         path: Option<PathBuf>,
         size: Option<(u32, u32)>,
         sync: bool,

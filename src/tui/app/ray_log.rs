@@ -73,7 +73,7 @@ impl RayLog {
 
     /// The mistake the pixel shown is named with, or else consistent
     /// with: where `M` opens.
-    pub fn mistake_shown(&self) -> Option<Mistake> {
+    pub(crate) fn mistake_shown(&self) -> Option<Mistake> {
         let report = self.report.as_ref()?;
         (report.mistakes.first().copied()).or(report.consistent.first().map(|c| c.mistake))
     }

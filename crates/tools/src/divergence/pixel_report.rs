@@ -142,7 +142,7 @@ pub struct Consistent {
 impl PixelReport {
     /// Your colour agrees with ours though your rays differ: they differ
     /// where they add nothing (within the colour tolerance).
-    pub fn differs_where_it_adds_nothing(&self) -> bool {
+    pub(crate) fn differs_where_it_adds_nothing(&self) -> bool {
         !self.matches && self.colour_agrees == Some(true)
     }
 }
