@@ -457,6 +457,22 @@ fn two_sided_diffuse_lights_a_wall_from_behind() {
     assert!(close(r.n_dot_l, -0.8));
     assert!(!w.faces_away && close(w.n_dot_l, 0.8) && close(w.diffuse.x, 0.4));
     assert_eq!(w.shadow.as_ref().map(|s| s.s), Some(1.0));
+    // The inspect lines name the cosine the mistake used: |N·L|, not N·L
+    // (which is -0.8 here).
+    let inspect: String = node_lines(&wrong, 0, Children::Listed)
+        .iter()
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(inspect.contains("light 0: |N·L| = 0.8, S = 1"), "{inspect}");
+    assert!(
+        inspect.contains("diffuse = S · f_att · I_p · k_d · O_d · (|N·L|)"),
+        "{inspect}"
+    );
+    let right_lines: String = node_lines(&right, 0, Children::Listed)
+        .iter()
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(!right_lines.contains("|N·L|"), "{right_lines}");
 }
 
 #[test]

@@ -14,7 +14,7 @@ use super::ray_tree::{
 use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
 use crate::trace::RayKind;
 use raystep_model::math::EPS;
-use raystep_model::mistakes::Mistake;
+use raystep_model::mistakes::{Mistake, Mistakes};
 use raystep_model::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};
 
 /// The intersection worked as in the course notes, a line per step.
@@ -214,7 +214,17 @@ fn cone_lines(w: &ConeWorking) -> Vec<String> {
 
 /// What one light did at a hit: its fate, then each term with its factors
 /// (MODEL §4), so that a student can check the formula by hand.
-pub(crate) fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec<Line> {
+pub(crate) fn light_lines(
+    light: &LightRecord,
+    factors: &MaterialFactors,
+    mistakes: Mistakes,
+) -> Vec<Line> {
+    // Under two-sided-diffuse the recorded cosine is |N·L| (MODEL §8): say so.
+    let n_dot_l = if mistakes.contains(Mistake::TwoSidedDiffuse) {
+        "|N·L|"
+    } else {
+        "N·L"
+    };
     let about = Some(About::Light(light.light_index));
     let crossings = |s: &ShadowRecord, how: &str| {
         let names: Vec<String> = s
@@ -258,7 +268,11 @@ pub(crate) fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec
     let lead = format!("    = {} · {} · ", num(s), precise(light.f_att));
     let mut lines = vec![Line::text(
         about,
-        format!("{}: N·L = {}, {shadow}", light.light, num(light.n_dot_l)),
+        format!(
+            "{}: {n_dot_l} = {}, {shadow}",
+            light.light,
+            num(light.n_dot_l)
+        ),
     )];
     // Each blocking object once, with all its crossings (a ball twice).
     let blockers: &[BlockerRecord] = light.shadow.as_ref().map_or(&[], |s| &s.blockers);
@@ -292,7 +306,10 @@ pub(crate) fn light_lines(light: &LightRecord, factors: &MaterialFactors) -> Vec
                 num(light.specular_cosine)
             ),
         ),
-        Line::text(about, "  diffuse = S · f_att · I_p · k_d · O_d · (N·L)"),
+        Line::text(
+            about,
+            format!("  diffuse = S · f_att · I_p · k_d · O_d · ({n_dot_l})"),
+        ),
         Line::text(about, lead.clone())
             .color(light.i_p)
             .then(format!(" · {} · ", num(factors.kd)))
@@ -404,7 +421,7 @@ pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
     lines.extend(hit_lines(node, hit));
     lines.push(ambient_line(tree, node, hit));
     for light in &node.lights {
-        lines.extend(light_lines(light, &hit.factors));
+        lines.extend(light_lines(light, &hit.factors, tree.mistakes));
     }
     lines.extend(secondary_lines(tree, id));
     if children == Children::Listed {
