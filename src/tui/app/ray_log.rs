@@ -32,6 +32,9 @@ pub struct RayLog {
     /// The pixel traced beside your rays of it; `None` when it is not in
     /// the log.
     report: Option<PixelReport>,
+    /// The log's verdict (the mistakes it is traced as, and in words), when
+    /// a logged pixel differs: it overrides the image's (issue 39).
+    verdict: Option<(Vec<raystep_model::mistakes::Mistake>, String)>,
 }
 
 impl RayLog {
@@ -50,7 +53,9 @@ impl RayLog {
     }
 
     fn of(name: String, comparison: LogComparison) -> RayLog {
+        let verdict = raystep_tools::compare::log_verdict(&comparison);
         RayLog {
+            verdict,
             name,
             pixels: (comparison.pixels.into_iter())
                 .map(|p| (p.pixel, p.yours))
@@ -61,6 +66,11 @@ impl RayLog {
             at: None,
             report: None,
         }
+    }
+
+    /// The log's verdict, when a logged pixel differs.
+    pub(super) fn verdict(&self) -> Option<&(Vec<raystep_model::mistakes::Mistake>, String)> {
+        self.verdict.as_ref()
     }
 
     /// The pixel traced beside your rays of it, when it is in the log.
