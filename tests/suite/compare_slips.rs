@@ -46,10 +46,20 @@ const SLIPS: [&str; 8] = [
 /// The student's render of `scene` with `slip`, compared: `compare`'s JSON
 /// (and with `rays`, the log's JSON with the image's under "image").
 fn compared(scene: &str, slip: &str, rays: Option<(u32, u32)>) -> Value {
+    compared_at(scene, slip, rays, None)
+}
+
+/// `compared` with the image rendered at `size` ("WxH"; the scene's own
+/// when `None`).
+fn compared_at(scene: &str, slip: &str, rays: Option<(u32, u32)>, size: Option<&str>) -> Value {
     let dir = tempfile::tempdir().unwrap();
     let image = dir.path().join("student.png");
     let image = image.to_str().unwrap();
-    run_tracer(&[TRACER, scene, "-o", image, "--mistake", slip]);
+    let mut tracer = vec![TRACER, scene, "-o", image, "--mistake", slip];
+    if let Some(size) = size {
+        tracer.extend(["--size", size]);
+    }
+    run_tracer(&tracer);
     let mut args = vec!["compare", scene, image, "--format", "json"];
     let log = dir.path().join("student.jsonl");
     let log = log.to_str().unwrap();
@@ -106,9 +116,12 @@ fn no_slip_outside_the_catalogue_is_named_on_any_teaching_scene() {
     if program_or_skip("python3").is_none() {
         return;
     }
+    // At 80 x 60, a quarter of the pixels: the verdicts are those of the
+    // scenes' own 160 x 120 (checked by hand, issue 39), in a quarter of
+    // the time.
     for scene in SCENES {
         for slip in SLIPS {
-            let report = compared(scene, slip, None);
+            let report = compared_at(scene, slip, None, Some("80x60"));
             for (name, verdict) in named(&report) {
                 // Half a turn of a scene symmetric left to right is exactly
                 // the image upside down: flipped-y's render reproduces it.

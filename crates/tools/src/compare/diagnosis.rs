@@ -135,7 +135,7 @@ fn misses(tree: &RayTree, background: Color) -> Vec<(String, Color)> {
         let mut change = background * node.weight - node.contribution;
         let mut up = Some(parent);
         while let Some(a) = up {
-            change = change * (tree.nodes[a].weight * tree.nodes[a].attenuation);
+            change *= tree.nodes[a].weight * tree.nodes[a].attenuation;
             up = tree.nodes[a].parent;
         }
         let label = if tree.nodes[parent].tir() {
