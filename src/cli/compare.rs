@@ -55,9 +55,13 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
         .as_deref()
         .map(|log| read_log(&scene, log, args.tolerance.unwrap_or_default()))
         .transpose()?;
-    let comparison = student
+    let mut comparison = student
         .map(|student| raystep_tools::compare::compare(&scene, student))
         .transpose()?;
+    // With a log beside the image, the log's verdict is the one shown.
+    if let (Some(comparison), Some(rays)) = (comparison.as_mut(), rays.as_ref()) {
+        raystep_tools::compare::supersede_by_log(comparison, rays);
+    }
     if let (Some(diff), Some(comparison)) = (diff, &comparison) {
         let map = (comparison.error_map.clone()).context("this build has no FLIP for --diff")?;
         output::write_all(None, std::iter::once((&diff, map)))?;

@@ -57,6 +57,17 @@ MISTAKES = {
     "h-unnormalised": "H = L + V, not normalised",
     "shadow-past-light": "shadow rays blocked past the light too (t < inf, not t < d_L)",
 }
+# Slips outside raystep's catalogue that change the image (issue 39): compare
+# must not name a catalogued mistake the slip does not make.
+MISTAKES |= {
+    "no-tir": "no total internal reflection test: sqrt(k < 0) is NaN, the ray misses",
+    "polygon-miss": "the crossing test drops the smallest normal axis, not the largest",
+    "turn-180": "the image written turned half a turn",
+    "channels-swapped": "the PNG's bytes written B, G, R",
+    "dim": "every colour multiplied by 0.8 before the bytes",
+    "antialias": "2 x 2 rays a pixel, averaged (anti-aliasing)",
+    "jpeg-noise": "the bytes saved through a lossy codec: up to 6 steps of noise",
+}
 mistakes = set()
 
 
@@ -106,6 +117,8 @@ def inside(s, p):
     """Jordan curve test: drop the largest normal axis, count edges crossing +U."""
     n = [abs(c) for c in s["normal"]]
     drop = n.index(max(n))
+    if "polygon-miss" in mistakes:
+        drop = n.index(min(n))  # the plane seen edge-on: no crossing counted
     u, v = [i for i in range(3) if i != drop]
     pts = [(q[u] - p[u], q[v] - p[v]) for q in s["vertices"]]
     crossings = 0
@@ -330,8 +343,10 @@ class Pixel:
                 cos_i = -dot(d, n)
                 eta = 1 / m["ior"] if entering else m["ior"]
                 k = 1 - eta * eta * (1 - cos_i * cos_i)
-                if k < 0:
+                if k < 0 and "no-tir" not in mistakes:
                     tir = True
+                elif k < 0:  # sqrt of a negative: NaN in C, the ray then meets nothing
+                    transmitted = (math.nan, math.nan, math.nan)
                 else:
                     n_t = n_g if "outward-normal" in mistakes and not entering else n
                     cos_t = -dot(d, n_t)
@@ -360,14 +375,14 @@ class Pixel:
         return color, t
 
 
-def primary_ray(scene, x, y):
+def primary_ray(scene, x, y, dx=0.5, dy=0.5):
     w, h = scene["width"], scene["height"]
     f = normalize(sub(scene["look_at"], scene["eye"]))
     r = normalize(cross(f, scene["up"]))
     u = cross(r, f)
     fov = scene["fov"] if "fov-radians" in mistakes else math.radians(scene["fov"])
     s = math.tan(fov / 2)
-    cx, cy = (x, y) if "pixel-corner" in mistakes else (x + 0.5, y + 0.5)
+    cx, cy = (x, y) if "pixel-corner" in mistakes else (x + dx, y + dy)
     px = (2 * cx / w - 1) * s * (w / h)
     py = (1 - 2 * cy / h) * s
     if "pixel-span" in mistakes:
@@ -379,6 +394,8 @@ def primary_ray(scene, x, y):
 
 # --- the image ------------------------------------------------------------------
 def to_byte(c):
+    if "dim" in mistakes:
+        c *= 0.8
     if "gamma" in mistakes:
         c = max(c, 0.0) ** (1 / 2.2)
     if "no-clamp" in mistakes:
@@ -392,11 +409,31 @@ def render(scene):
     for y in range(scene["height"]):
         row = bytearray()
         for x in range(scene["width"]):
-            color, _ = Pixel(scene, x, y, logging=False).trace(scene["eye"], primary_ray(scene, x, y), 1, 1.0, "P")
+            if "antialias" in mistakes:
+                color = (0.0, 0.0, 0.0)
+                for dx, dy in ((0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75)):
+                    c, _ = Pixel(scene, x, y, logging=False).trace(scene["eye"], primary_ray(scene, x, y, dx, dy), 1, 1.0, "P")
+                    color = add(color, mul(tuple(max(0.0, min(1.0, v)) for v in c), 0.25))
+            else:
+                color, _ = Pixel(scene, x, y, logging=False).trace(scene["eye"], primary_ray(scene, x, y), 1, 1.0, "P")
             row.extend(to_byte(c) for c in color)
         rows.append(bytes(row))
     if "rows-bottom-up" in mistakes:
         rows.reverse()
+    if "turn-180" in mistakes:
+        rows = [bytes(b for px in reversed(range(len(r) // 3)) for b in r[3 * px:3 * px + 3]) for r in reversed(rows)]
+    if "channels-swapped" in mistakes:
+        rows = [bytes(b for px in range(len(r) // 3) for b in reversed(r[3 * px:3 * px + 3])) for r in rows]
+    if "jpeg-noise" in mistakes:
+        seed = 12345  # a fixed linear congruential sequence: the same bytes every run
+        noisy = []
+        for r in rows:
+            out = bytearray()
+            for b in r:
+                seed = (seed * 1103515245 + 12345) % 2**31
+                out.append(max(0, min(255, b + seed % 13 - 6)))
+            noisy.append(bytes(out))
+        rows = noisy
     return rows
 
 

@@ -502,6 +502,7 @@ fn the_json_report_has_the_documented_keys() {
             "notes",
             "region_count",
             "regions",
+            "shows",
             "width"
         ]
     );

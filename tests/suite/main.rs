@@ -16,6 +16,7 @@ mod cli_outputs;
 mod compare;
 mod compare_rays;
 mod compare_rays_mistakes;
+mod compare_slips;
 mod crossing;
 mod details_pane;
 mod explain_story;

@@ -549,3 +549,44 @@ fn a_regions_pixel_lies_on_the_object_most_of_it_covers() {
     assert!(box_pixels.contains(&(cx, cy)));
     assert_eq!(object_at(&scene, cx, cy), most, "({cx}, {cy})");
 }
+
+#[test]
+fn with_a_ray_log_the_footer_shows_the_logs_verdict_over_the_images() {
+    // Issue 39: with --compare and --rays the footer said "compare:
+    // eta-inverted 99%" while the details pane showed the log's own
+    // verdict, and nothing said which to believe. Here the image is
+    // raystep's render under eta-inverted and the log a pixel traced under
+    // no-ambient: the log's verdict is the one shown, the image's name
+    // superseded by it, in words.
+    let (png, _) = students_png(Mistake::EtaInverted);
+    let app = comparing(&png);
+    assert_eq!(
+        app.comparison().unwrap().findings().mistakes[0].mistake,
+        Mistake::EtaInverted
+    );
+    let scene = builtin_scene();
+    let (x, y) = (scene.width / 2, scene.height / 2);
+    let tree = record_pixel(&scene, &with(Mistake::NoAmbient), x, y);
+    let log = tempfile::Builder::new()
+        .suffix(".jsonl")
+        .tempfile()
+        .unwrap()
+        .into_temp_path();
+    std::fs::write(&log, raystep_tools::raylog::raylog(&tree)).unwrap();
+    let rays = raystep::tui::app::RayLog::read(app.session().scene(), &log).unwrap();
+    let mut app = app.with_ray_log(rays);
+    let ranked = &app.comparison().unwrap().findings().mistakes[0];
+    assert_eq!(ranked.verdict, raystep_tools::compare::Verdict::Superseded);
+    let by = ranked.superseded_by.as_deref().unwrap();
+    assert!(
+        by.starts_with(&format!(
+            "your ray log: pixel ({x}, {y}) is traced as under no-ambient"
+        )),
+        "{by}"
+    );
+    let screen = screen_text(&mut app, 160, 40);
+    assert!(
+        screen.contains("compare: eta-inverted 100%, superseded: your ray log"),
+        "{screen}"
+    );
+}

@@ -28,6 +28,16 @@ impl StudentComparison {
         &self.yours
     }
 
+    /// The log's verdict overrides the image's: each ranked mistake the log
+    /// is not traced as is shown superseded by it.
+    pub(super) fn supersede_by_log(
+        &mut self,
+        traced: &[raystep_model::mistakes::Mistake],
+        words: &str,
+    ) {
+        raystep_tools::compare::supersede_untraced(&mut self.comparison.mistakes, traced, words);
+    }
+
     /// What `compare` found: the ranked mistakes, the regions, the error map.
     pub fn findings(&self) -> &Comparison {
         &self.comparison

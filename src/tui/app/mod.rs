@@ -191,6 +191,9 @@ impl App {
     /// app's scene), on the log's first pixel.
     pub fn with_ray_log(mut self, mut log: RayLog) -> App {
         let first = log.first_pixel();
+        if let (Some(comparison), Some((traced, words))) = (&mut self.comparison, log.verdict()) {
+            comparison.supersede_by_log(traced, words);
+        }
         self.ray_log = Some(log);
         if let Some((x, y)) = first {
             self.pick(x, y);

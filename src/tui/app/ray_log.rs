@@ -36,6 +36,9 @@ pub struct RayLog {
     /// The pixel traced beside your rays of it; `None` when it is not in
     /// the log.
     report: Option<PixelReport>,
+    /// The log's verdict (the mistakes it is traced as, and in words), when
+    /// a logged pixel differs: it overrides the image's (issue 39).
+    verdict: Option<(Vec<raystep_model::mistakes::Mistake>, String)>,
 }
 
 impl RayLog {
@@ -57,7 +60,9 @@ impl RayLog {
         let verdicts = (comparison.pixels.iter())
             .map(|p| (p.mistakes.clone(), p.consistent.clone()))
             .collect();
+        let verdict = raystep_tools::compare::log_verdict(&comparison);
         RayLog {
+            verdict,
             name,
             verdicts,
             pixels: (comparison.pixels.into_iter())
@@ -76,6 +81,11 @@ impl RayLog {
     pub(crate) fn mistake_shown(&self) -> Option<Mistake> {
         let report = self.report.as_ref()?;
         (report.mistakes.first().copied()).or(report.consistent.first().map(|c| c.mistake))
+    }
+
+    /// The log's verdict, when a logged pixel differs.
+    pub(super) fn verdict(&self) -> Option<&(Vec<Mistake>, String)> {
+        self.verdict.as_ref()
     }
 
     /// The pixel traced beside your rays of it, when it is in the log.

@@ -6,7 +6,7 @@ use ratatui::style::{Modifier, Style, Stylize};
 use ratatui::text::{Line, Span};
 
 use raystep_model::mistakes::{Mistake, Mistakes};
-use raystep_tools::compare::Ranked;
+use raystep_tools::compare::{Ranked, Verdict};
 
 /// "#1 explains 100%": where the comparison ranks `mistake`, if it does.
 pub(crate) fn rank_label(ranked: &[Ranked], mistake: Mistake) -> Option<String> {
@@ -36,9 +36,21 @@ pub(crate) fn ranking(ranked: &[Ranked], matches: bool) -> String {
     parts.join(" · ")
 }
 
-/// "no-ambient 100%": one ranked mistake and its share.
+/// "no-ambient 100%": one ranked mistake and its share; "looks like
+/// eta-inverted 99%" when its render does not reproduce the image;
+/// "eta-inverted 99%, superseded: your ray log" when something overrides
+/// it (issue 39: the footer and the details pane disagreed).
 fn item(ranked: &Ranked) -> String {
-    format!("{} {}", ranked.mistake, percent(ranked.explains))
+    let share = percent(ranked.explains);
+    match ranked.verdict {
+        Verdict::Is => format!("{} {share}", ranked.mistake),
+        Verdict::LooksLike => format!("looks like {} {share}", ranked.mistake),
+        Verdict::Superseded => {
+            let by = ranked.superseded_by.as_deref().unwrap_or("");
+            let by = by.split(':').next().unwrap_or(by);
+            format!("{} {share}, superseded: {by}", ranked.mistake)
+        }
+    }
 }
 
 /// The image pane's " compare: no-ambient 100% · shadow-acne 17% " in at
@@ -128,6 +140,8 @@ mod tests {
     fn ranked(mistake: Mistake, explains: f64) -> Ranked {
         Ranked {
             mistake,
+            verdict: Verdict::Is,
+            superseded_by: None,
             explains,
             fits: 1.0,
             pixel: None,

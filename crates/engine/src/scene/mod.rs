@@ -237,6 +237,16 @@ impl Scene {
         Ok(self)
     }
 
+    /// The same scene without one object (the others keep their order, one
+    /// place lower past it): what a ray that misses the object meets.
+    pub fn without(&self, object: usize) -> Scene {
+        let mut objects = self.objects.clone();
+        objects.remove(object);
+        let size = (self.width, self.height);
+        let (materials, lights) = (self.materials.clone(), self.lights.clone());
+        Scene::new(self.camera, size, self.settings, materials, lights, objects)
+    }
+
     pub fn material_of(&self, object: usize) -> &Material {
         &self.materials[self.tables.material(object)]
     }

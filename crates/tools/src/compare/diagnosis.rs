@@ -8,6 +8,7 @@
 
 use super::metrics::{TOLERANCE_STEPS, channel_gap};
 use raystep_engine::record::{RayTree, count};
+use raystep_engine::trace::RayKind;
 use raystep_model::math::{Color, to_rgb8};
 
 /// A region needs this many pixels for a term diagnosis: on fewer, an
@@ -77,6 +78,77 @@ pub(crate) fn diagnose(
         "yours ≈ {label} (fits {fits} of {})",
         count(samples.len() as u64, "sampled pixel", "sampled pixels")
     ))
+}
+
+/// How a secondary ray's miss ends.
+pub(crate) const SECONDARY_MISSED: &str = ": a ray missed, not a term";
+
+/// Whether a secondary ray of the student's tracer missed where raystep's
+/// hits: the reference with one secondary ray's colour replaced by the
+/// background fits at least two thirds of the sampled pixels. Checked
+/// before any term: a ray that meets nothing is not a wrong term (issue
+/// 39: without a TIR test the NaN direction misses, and prism.toml was
+/// named `eta-inverted`).
+pub(crate) fn missed_secondary(
+    samples: &[(RayTree, [u8; 3])],
+    background: Color,
+) -> Option<String> {
+    let mut tally: Vec<(String, usize)> = Vec::new();
+    for (tree, yours) in samples {
+        let apart = channel_gap(to_rgb8(tree.color()), *yours);
+        if apart <= TOLERANCE_STEPS {
+            continue;
+        }
+        let mut labels: Vec<String> = misses(tree, background)
+            .into_iter()
+            .filter(|(_, c)| channel_gap(to_rgb8(*c), *yours) <= TOLERANCE_STEPS.max(apart / 4))
+            .map(|(label, _)| label)
+            .collect();
+        labels.dedup();
+        for label in labels {
+            match tally.iter_mut().find(|(l, _)| *l == label) {
+                Some((_, n)) => *n += 1,
+                None => tally.push((label, 1)),
+            }
+        }
+    }
+    let (label, fits) = tally.into_iter().rev().max_by_key(|(_, n)| *n)?;
+    (3 * fits >= 2 * samples.len()).then(|| {
+        format!(
+            "{label} (fits {fits} of {}){SECONDARY_MISSED}",
+            count(samples.len() as u64, "sampled pixel", "sampled pixels")
+        )
+    })
+}
+
+/// The pixel's colour were one secondary ray that hits something to miss
+/// instead (its colour the background, no distance attenuation), for each
+/// such ray, by what it is.
+fn misses(tree: &RayTree, background: Color) -> Vec<(String, Color)> {
+    let mut out: Vec<(String, Color)> = Vec::new();
+    for node in &tree.nodes {
+        let Some(parent) = node.parent else { continue };
+        if node.hit.is_none() {
+            continue;
+        }
+        // What the change adds at the parent, then weighed on the way up.
+        let mut change = background * node.weight - node.contribution;
+        let mut up = Some(parent);
+        while let Some(a) = up {
+            change *= tree.nodes[a].weight * tree.nodes[a].attenuation;
+            up = tree.nodes[a].parent;
+        }
+        let label = if tree.nodes[parent].tir() {
+            "yours shows the background where raystep's totally internally reflected ray hits something (no TIR test? its NaN direction meets nothing)"
+        } else if node.kind == RayKind::Transmitted {
+            "yours shows the background where raystep's transmitted ray hits something: your transmitted ray missed"
+        } else {
+            "yours shows the background where raystep's reflected ray hits something: your reflected ray missed"
+        };
+        out.push((label.to_string(), tree.root().color + change));
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
 }
 
 /// Whether at least `AGREEING_AGAINST` of the agreeing pixels `around`

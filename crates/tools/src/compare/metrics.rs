@@ -62,6 +62,21 @@ impl Metrics {
     }
 }
 
+/// Whether `other` reproduces `yours` by the match rule: at most
+/// `MATCH_SHARE` of the pixels past the tolerance and none past
+/// `MATCH_GAP` (what `matches` says of the reference, said of any image).
+pub(crate) fn reproduces(yours: &RgbImage, other: &RgbImage) -> bool {
+    let mut over = 0u64;
+    for (a, b) in yours.pixels().zip(other.pixels()) {
+        let gap = channel_gap(a.0, b.0);
+        if gap > MATCH_GAP {
+            return false;
+        }
+        over += u64::from(gap > TOLERANCE_STEPS);
+    }
+    over as f64 <= MATCH_SHARE * (yours.width() as u64 * yours.height() as u64) as f64
+}
+
 /// The largest difference of one channel between the two pixels.
 pub(crate) fn channel_gap(a: [u8; 3], b: [u8; 3]) -> u8 {
     (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0)

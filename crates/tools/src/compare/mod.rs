@@ -8,6 +8,7 @@ mod diagnosis;
 #[cfg(feature = "flip")]
 mod flip;
 mod geometry;
+mod hits;
 pub(crate) mod metrics;
 mod png_chunks;
 mod ranking;
@@ -15,6 +16,7 @@ mod reference;
 pub(crate) mod regions;
 mod report;
 mod scene_renders;
+mod shows;
 pub mod student;
 
 use std::sync::Arc;
@@ -23,7 +25,7 @@ use image::{GrayImage, RgbImage};
 use serde::Serialize;
 
 pub(crate) use metrics::{MATCH_GAP, MATCH_SHARE, Metrics, TOLERANCE_STEPS};
-pub use ranking::Ranked;
+pub use ranking::{Ranked, Verdict};
 pub use report::text;
 pub(crate) use scene_renders::SceneRenders;
 pub use student::StudentImage;
@@ -66,6 +68,9 @@ pub struct Comparison {
     /// The change of camera (a shift, a scale, a flip) that explains most
     /// of the difference, when one does; none when the images match.
     pub(crate) geometry: Option<geometry::Geometry>,
+    /// What the image shows outside the catalogue (channels swapped, a
+    /// constant factor, differences only along edges, noise), when it does.
+    pub(crate) shows: Option<shows::Shows>,
     /// FLIP's error map in magma colours, where the build has FLIP.
     #[serde(skip)]
     pub error_map: Option<RgbImage>,
@@ -131,7 +136,7 @@ pub(crate) fn compare_with(
     let matches = metrics.matches();
     let differs = metrics::over_tolerance(&yours, &reference.image);
     let found = regions::regions(&differs);
-    let (mistakes, geometry) = if matches {
+    let (mut mistakes, geometry) = if matches {
         (Vec::new(), None)
     } else {
         (
@@ -139,22 +144,53 @@ pub(crate) fn compare_with(
             geometry::estimate(&yours, &reference.image, scene.camera.fov),
         )
     };
+    // What the image shows is looked for only when no mistake is the cause.
+    let caused = mistakes.iter().any(|m| m.verdict == Verdict::Is);
+    let shows = (!matches && !caused)
+        .then(|| shows::shows(&yours, reference, geometry.is_some()))
+        .flatten();
+    let overriding = overriding(&mistakes, geometry.as_ref(), shows.as_ref());
+    if let Some(words) = &overriding {
+        supersede(&mut mistakes, words);
+    }
     // Each ranked mistake's own render, to name a region it explains.
-    let renders: Vec<(Mistake, Arc<RgbImage>)> = mistakes
+    let renders: Vec<(Mistake, Verdict, Arc<RgbImage>)> = mistakes
         .iter()
-        .map(|r| (r.mistake, shared.mistaken(Mistakes::NONE.with(r.mistake))))
+        .map(|r| {
+            let image = shared.mistaken(Mistakes::NONE.with(r.mistake));
+            (r.mistake, r.verdict, image)
+        })
         .collect();
+    // A region not named by a mistake that is the cause is told what the
+    // image shows, else that the geometry differs, when either was found.
+    let region_words = shows
+        .as_ref()
+        .map(|s| format!("the image shows {}", s.words))
+        .or_else(|| {
+            geometry
+                .as_ref()
+                .map(|g| format!("the geometry differs: camera or projection ({})", g.words))
+        });
     let seen = Seen {
         reference,
         yours: &yours,
         differs: &differs,
-        geometry: geometry.as_ref(),
+        overriding: region_words.as_deref(),
     };
-    let regions = found
+    let regions: Vec<RegionReport> = found
         .iter()
         .take(REGIONS_SHOWN)
         .map(|region| describe(scene, &seen, region, &renders))
         .collect();
+    // A ray that missed, in the largest region, overrides a mistake that
+    // only looks like the image: the hit is checked before any term.
+    if let Some(missed) = regions
+        .first()
+        .and_then(|r| r.diagnosis.as_deref())
+        .filter(|d| hits::is_missed_ray(d))
+    {
+        supersede(&mut mistakes, &format!("the largest region: {missed}"));
+    }
     Ok(Comparison {
         width: yours.width(),
         height: yours.height(),
@@ -165,24 +201,98 @@ pub(crate) fn compare_with(
         regions,
         mistakes,
         geometry,
+        shows,
         error_map,
     })
 }
 
+/// What overrides the mistakes that do not reproduce the image, in words:
+/// what the image shows (channels swapped, a constant factor, ...), else
+/// the geometry when it explains more than the best mistake.
+fn overriding(
+    mistakes: &[Ranked],
+    geometry: Option<&geometry::Geometry>,
+    shows: Option<&shows::Shows>,
+) -> Option<String> {
+    if let Some(shows) = shows {
+        return Some(format!("the image shows {}", shows.words));
+    }
+    let best = mistakes.first().map_or(0.0, |m| m.explains);
+    geometry.filter(|g| mistakes.is_empty() || g.explains > best).map(|g| {
+        format!(
+            "the geometry differs: camera or projection ({}, which explains {:.1}% of the difference)",
+            g.words,
+            g.explains * 100.0
+        )
+    })
+}
+
+/// The ray log's verdict, in words, when a logged pixel differs: the
+/// catalogued mistakes whose tree is the log, or the first divergence.
+/// None when every logged pixel matches (the log then says nothing of the
+/// pixels the image differs at).
+pub fn log_verdict(log: &crate::divergence::LogComparison) -> Option<(Vec<Mistake>, String)> {
+    let pixel = log.pixels.iter().find(|p| !p.matches)?;
+    let (x, y) = pixel.pixel;
+    let words = if !pixel.mistakes.is_empty() {
+        let names: Vec<&str> = pixel.mistakes.iter().map(|m| m.name()).collect();
+        format!(
+            "your ray log: pixel ({x}, {y}) is traced as under {}",
+            names.join(", ")
+        )
+    } else if let Some(d) = &pixel.first_divergence {
+        format!(
+            "your ray log: pixel ({x}, {y}) first differs at {} {}: {}",
+            d.path, d.field, d.words
+        )
+    } else {
+        format!("your ray log: pixel ({x}, {y}) has rays raystep's tree has not, or lacks some")
+    };
+    Some((pixel.mistakes.clone(), words))
+}
+
+/// With a ray log beside the image, the log's verdict is the one shown:
+/// each listed mistake the log does not trace is superseded by it, in
+/// words (issue 39: the footer said "eta-inverted 99%" while the log's
+/// details showed a missing total internal reflection).
+pub fn supersede_by_log(comparison: &mut Comparison, log: &crate::divergence::LogComparison) {
+    if let Some((traced, words)) = log_verdict(log) {
+        supersede_untraced(&mut comparison.mistakes, &traced, &words);
+    }
+}
+
+/// Marks each listed mistake not in `traced` as superseded by the log's
+/// verdict, `words`.
+pub fn supersede_untraced(mistakes: &mut [Ranked], traced: &[Mistake], words: &str) {
+    for m in mistakes.iter_mut().filter(|m| !traced.contains(&m.mistake)) {
+        m.verdict = Verdict::Superseded;
+        m.superseded_by = Some(words.to_string());
+    }
+}
+
+/// Marks every listed mistake whose render does not reproduce the image as
+/// superseded by `words`.
+pub fn supersede(mistakes: &mut [Ranked], words: &str) {
+    for m in mistakes.iter_mut().filter(|m| m.verdict != Verdict::Is) {
+        m.verdict = Verdict::Superseded;
+        m.superseded_by = Some(words.to_string());
+    }
+}
+
 /// What a region is told against: the two images, which pixels differ,
-/// and the change of camera found, if any.
+/// and what overrides the mistakes (the geometry, what the image shows).
 struct Seen<'a> {
     reference: &'a reference::Reference,
     yours: &'a RgbImage,
     differs: &'a GrayImage,
-    geometry: Option<&'a geometry::Geometry>,
+    overriding: Option<&'a str>,
 }
 
 fn describe(
     scene: &Scene,
     seen: &Seen,
     region: &regions::Region,
-    renders: &[(Mistake, Arc<RgbImage>)],
+    renders: &[(Mistake, Verdict, Arc<RgbImage>)],
 ) -> RegionReport {
     let (reference, yours) = (seen.reference, seen.yours);
     let gap = |&(x, y): &(u32, u32)| {
@@ -218,27 +328,74 @@ fn describe(
         yours: yours.get_pixel(x, y).0,
         reference: reference.image.get_pixel(x, y).0,
         explain: brief(&explain_lines(&tree)),
-        diagnosis: if let Some(mistake) = explaining(yours, &reference.image, region, renders) {
-            Some(format!(
-                "{} (its render explains at least {}% of the difference here)",
-                mistake.name(),
-                (NAMED_SHARE * 100.0) as u32
-            ))
-        } else if let Some(geometry) = seen.geometry {
-            // A moved image differs at every edge, and pixel by pixel an
-            // edge moved onto another object can look like a term.
-            Some(format!(
-                "the geometry differs: camera or projection ({})",
-                geometry.words
-            ))
-        } else if region.pixels.len() < diagnosis::MIN_PIXELS {
-            Some(diagnosis::too_small(region.pixels.len()))
-        } else {
-            diagnosis::diagnose(&samples(scene, yours, region), || {
-                nearby(scene, seen.differs, region)
-            })
-        },
+        diagnosis: diagnose_region(scene, seen, region, renders),
     }
+}
+
+/// A region's diagnosis, the first that holds: a mistake that is the
+/// cause (its render reproduces the image) and explains the region; what
+/// overrides the mistakes; the primary ray missed or hit what lies behind;
+/// a secondary ray missed; a mistake the region looks like; too small to
+/// tell; a term. A hit is checked before any term: where the student's
+/// pixel is the background, no term is the cause.
+fn diagnose_region(
+    scene: &Scene,
+    seen: &Seen,
+    region: &regions::Region,
+    renders: &[(Mistake, Verdict, Arc<RgbImage>)],
+) -> Option<String> {
+    let (reference, yours) = (&seen.reference.image, seen.yours);
+    let of = |verdict: Verdict| -> Vec<(Mistake, Arc<RgbImage>)> {
+        renders
+            .iter()
+            .filter(|r| r.1 == verdict)
+            .map(|r| (r.0, r.2.clone()))
+            .collect()
+    };
+    let share = (NAMED_SHARE * 100.0) as u32;
+    if let Some(mistake) = explaining(yours, reference, region, &of(Verdict::Is)) {
+        return Some(format!(
+            "{} (its render explains at least {share}% of the difference here)",
+            mistake.name()
+        ));
+    }
+    if let Some(words) = seen.overriding {
+        // A moved image differs at every edge, and pixel by pixel an
+        // edge moved onto another object can look like a term.
+        return Some(words.to_string());
+    }
+    let big = region.pixels.len() >= diagnosis::MIN_PIXELS;
+    let samples = if big {
+        samples(scene, yours, region)
+    } else {
+        Vec::new()
+    };
+    // A line one or two pixels thick is an edge, where averaged or moved
+    // rays fit what lies behind by chance.
+    let (x0, y0, x1, y1) = region.bounds();
+    let thick = x1 - x0 >= 2 && y1 - y0 >= 2;
+    if big {
+        if let Some(words) = thick
+            .then(|| hits::primary_missed(scene, &samples))
+            .flatten()
+        {
+            return Some(words);
+        }
+        let background = scene.settings.background;
+        if let Some(words) = diagnosis::missed_secondary(&samples, background) {
+            return Some(words);
+        }
+    }
+    if let Some(mistake) = explaining(yours, reference, region, &of(Verdict::LooksLike)) {
+        return Some(format!(
+            "looks like {} (its render explains at least {share}% of the difference here, but does not reproduce your image: other bugs give nearly this picture)",
+            mistake.name()
+        ));
+    }
+    if !big {
+        return Some(diagnosis::too_small(region.pixels.len()));
+    }
+    diagnosis::diagnose(&samples, || nearby(scene, seen.differs, region))
 }
 
 /// The ranked mistake whose render explains at least `NAMED_SHARE` of the
@@ -434,11 +591,14 @@ mod tests {
         let yours = render::<NoRecorder>(&scene, &mistaken, &|| {}).0;
         let differs = metrics::over_tolerance(&yours, &reference.image);
         let geometry = geometry::estimate(&yours, &reference.image, scene.camera.fov);
+        let words = geometry
+            .as_ref()
+            .map(|g| format!("the geometry differs: camera or projection ({})", g.words));
         let seen = Seen {
             reference: &reference,
             yours: &yours,
             differs: &differs,
-            geometry: geometry.as_ref(),
+            overriding: words.as_deref(),
         };
         regions::regions(&differs)
             .iter()

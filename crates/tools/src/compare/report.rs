@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use super::{Comparison, MATCH_GAP, MATCH_SHARE, RegionReport};
+use super::{Comparison, MATCH_GAP, MATCH_SHARE, RegionReport, Verdict};
 use raystep_engine::record::count;
 
 pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
@@ -63,7 +63,10 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
             w.pixel[0], w.pixel[1], w.yours, w.reference
         );
     }
-    write_mistakes(&mut out, c);
+    write_mistakes(&mut out, c, scene);
+    if let Some(s) = &c.shows {
+        let _ = writeln!(out, "The image shows {}.", s.words);
+    }
     if let Some(g) = &c.geometry {
         let _ = writeln!(
             out,
@@ -85,7 +88,7 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
     out
 }
 
-fn write_mistakes(out: &mut String, c: &Comparison) {
+fn write_mistakes(out: &mut String, c: &Comparison, scene: &str) {
     if c.matches {
         return;
     }
@@ -107,16 +110,37 @@ fn write_mistakes(out: &mut String, c: &Comparison) {
             .pixel
             .map(|[x, y]| format!("; see pixel {x},{y}"))
             .unwrap_or_default();
+        let name = match ranked.verdict {
+            Verdict::Is => ranked.mistake.name().to_string(),
+            Verdict::LooksLike => format!("looks like {}", ranked.mistake.name()),
+            Verdict::Superseded => format!("({})", ranked.mistake.name()),
+        };
         let _ = writeln!(
             out,
-            "  {:<20} {:>6}  ({fits}{with})  {}{at}",
-            ranked.mistake.name(),
+            "  {name:<20} {:>6}  ({fits}{with})  {}{at}",
             percent(ranked.explains),
             match ranked.exponent {
                 Some(exponent) => format!("a gamma of {exponent:.1} applied to the bytes"),
                 None => ranked.mistake.summary().to_string(),
             }
         );
+        match (ranked.verdict, &ranked.superseded_by) {
+            (Verdict::LooksLike, _) => {
+                let pixel = ranked
+                    .pixel
+                    .map_or("a pixel of a region below".into(), |[x, y]| {
+                        format!("pixel {x},{y}")
+                    });
+                let _ = writeln!(
+                    out,
+                    "     not the cause for sure: its render does not reproduce yours, and other bugs give nearly this picture; to tell them apart, log your tracer's rays for {pixel} and run `raystep compare {scene} --rays LOG`"
+                );
+            }
+            (Verdict::Superseded, Some(by)) => {
+                let _ = writeln!(out, "     superseded: {by}");
+            }
+            _ => {}
+        }
     }
 }
 
