@@ -580,7 +580,7 @@ fn with_a_ray_log_the_footer_shows_the_logs_verdict_over_the_images() {
     let by = ranked.superseded_by.as_deref().unwrap();
     assert!(
         by.starts_with(&format!(
-            "your ray log: pixel ({x}, {y}) is traced as under no-ambient"
+            "your ray log: pixel ({x}, {y}) is consistent with no-ambient"
         )),
         "{by}"
     );

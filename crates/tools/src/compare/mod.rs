@@ -228,17 +228,40 @@ fn overriding(
 }
 
 /// The ray log's verdict, in words, when a logged pixel differs: the
-/// catalogued mistakes whose tree is the log, or the first divergence.
+/// catalogued mistakes whose tree is the log (or, from one pixel, that it
+/// is consistent with), or the first divergence; with the mistakes it
+/// does not rule out.
 /// None when every logged pixel matches (the log then says nothing of the
 /// pixels the image differs at).
 pub fn log_verdict(log: &crate::divergence::LogComparison) -> Option<(Vec<Mistake>, String)> {
-    let pixel = log.pixels.iter().find(|p| !p.matches)?;
+    // A pixel whose colour differs speaks first; one whose rays differ
+    // only where they add nothing says less about the image.
+    let differs = |p: &&crate::divergence::PixelReport| !p.matches;
+    let pixel = (log.pixels.iter())
+        .filter(differs)
+        .find(|p| !p.differs_where_it_adds_nothing())
+        .or_else(|| log.pixels.iter().find(differs))?;
     let (x, y) = pixel.pixel;
+    let names = |mistakes: &mut dyn Iterator<Item = Mistake>| {
+        mistakes.map(|m| m.name()).collect::<Vec<_>>().join(", ")
+    };
+    let mut traced = pixel.mistakes.clone();
     let words = if !pixel.mistakes.is_empty() {
-        let names: Vec<&str> = pixel.mistakes.iter().map(|m| m.name()).collect();
         format!(
             "your ray log: pixel ({x}, {y}) is traced as under {}",
-            names.join(", ")
+            names(&mut pixel.mistakes.iter().copied())
+        )
+    } else if !pixel.consistent.is_empty() {
+        // Consistent with a mistake at one pixel is not the mistake: the
+        // image's name for it is not superseded, the others are.
+        traced.extend(pixel.consistent.iter().map(|c| c.mistake));
+        let tell = (pixel.consistent.iter())
+            .find_map(|c| c.tell)
+            .map(|(tx, ty)| format!(" (log pixel {tx},{ty} to tell)"))
+            .unwrap_or_default();
+        format!(
+            "your ray log: pixel ({x}, {y}) is consistent with {}{tell}",
+            names(&mut pixel.consistent.iter().map(|c| c.mistake))
         )
     } else if let Some(d) = &pixel.first_divergence {
         format!(
@@ -248,7 +271,7 @@ pub fn log_verdict(log: &crate::divergence::LogComparison) -> Option<(Vec<Mistak
     } else {
         format!("your ray log: pixel ({x}, {y}) has rays raystep's tree has not, or lacks some")
     };
-    Some((pixel.mistakes.clone(), words))
+    Some((traced, words))
 }
 
 /// With a ray log beside the image, the log's verdict is the one shown:
