@@ -161,6 +161,26 @@ fn a_missing_tir_test_is_a_ray_that_missed_not_eta_inverted() {
 }
 
 #[test]
+fn an_anti_aliased_edge_is_too_thin_to_tell_not_a_missed_ray() {
+    if program_or_skip("python3").is_none() {
+        return;
+    }
+    // The student's 2 x 2 supersampling of prism.toml softens the prism's
+    // left and right silhouettes: columns x = 35 and x = 124, one pixel
+    // wide and 25 tall. Seen as a region they fit "your transmitted ray
+    // missed" at 12 of 13 samples, which would send the student to correct
+    // refraction code; a line at most 2 pixels wide is too thin to tell.
+    let report = compared("scenes/prism.toml", "antialias", None);
+    let all = diagnoses(&report);
+    assert!(all.iter().all(|d| !d.contains("missed")), "{all:#?}");
+    let thin = all
+        .iter()
+        .filter(|d| d.starts_with("too thin to tell"))
+        .count();
+    assert!(thin >= 2, "{all:#?}");
+}
+
+#[test]
 fn a_missed_polygon_is_a_primary_ray_that_missed_not_a_term() {
     if program_or_skip("python3").is_none() {
         return;

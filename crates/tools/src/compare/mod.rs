@@ -404,6 +404,9 @@ fn diagnose_region(
         {
             return Some(words);
         }
+        if !thick {
+            return Some(diagnosis::too_thin(region.pixels.len()));
+        }
         let background = scene.settings.background;
         if let Some(words) = diagnosis::missed_secondary(&samples, background) {
             return Some(words);
