@@ -18,6 +18,7 @@ mod compare_rays;
 mod compare_rays_mistakes;
 mod crossing;
 mod details_pane;
+mod docs_contract;
 mod explain_story;
 mod figure;
 mod five_questions;
