@@ -19,6 +19,7 @@ mod compare_rays_mistakes;
 mod compare_slips;
 mod crossing;
 mod details_pane;
+mod docs_contract;
 mod explain_story;
 mod figure;
 mod five_questions;
