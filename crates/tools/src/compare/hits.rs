@@ -86,7 +86,7 @@ pub(crate) fn primary_missed(scene: &Scene, samples: &[(RayTree, [u8; 3])]) -> O
         "fits {fits} of {}",
         count(n as u64, "sampled pixel", "sampled pixels")
     );
-    let missed = missed.join(", ");
+    let missed = at_most_three(&missed);
     Some(if on_background == fits {
         format!(
             "{PRIMARY_MISSED}{missed}: yours shows the background where raystep's primary ray hits it ({of}); check its intersection test, not a term"
@@ -94,7 +94,34 @@ pub(crate) fn primary_missed(scene: &Scene, samples: &[(RayTree, [u8; 3])]) -> O
     } else {
         format!(
             "{PRIMARY_MISSED}{missed}: yours shows what lies behind, {} ({of}); check its intersection test, not a term",
-            behind.join(", ")
+            at_most_three(&behind)
         )
     })
+}
+
+/// Names listed in full up to three; a mesh's many triangles as the first
+/// three and how many more (a hole in a teapot listed 24 patches).
+fn at_most_three(names: &[String]) -> String {
+    if names.len() <= 3 {
+        names.join(", ")
+    } else {
+        format!("{} and {} more", names[..3].join(", "), names.len() - 3)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::at_most_three;
+
+    #[test]
+    fn names_past_three_are_counted_not_listed() {
+        let names = |n: usize| (1..=n).map(|i| format!("patch {i}")).collect::<Vec<_>>();
+        assert_eq!(at_most_three(&names(1)), "patch 1");
+        assert_eq!(at_most_three(&names(3)), "patch 1, patch 2, patch 3");
+        // 24 patches: three named, 24 - 3 = 21 counted.
+        assert_eq!(
+            at_most_three(&names(24)),
+            "patch 1, patch 2, patch 3 and 21 more"
+        );
+    }
 }
