@@ -116,7 +116,7 @@ pub fn trace_rows<T: Send, R: RowRecorder>(
     pixels: &mut [T],
     row_done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
-    pixel: impl Fn(&Ray, Nearest, &mut ShadowCache, &mut R, &mut T) + Sync,
+    pixel: impl Fn(&Ray, Nearest<'_>, &mut ShadowCache, &mut R, &mut T) + Sync,
 ) -> Option<R> {
     // A primary ray's hit range is (EPS, inf) whatever the mistakes
     // (`Rules::hit_range`).
@@ -129,7 +129,7 @@ pub fn trace_rows<T: Send, R: RowRecorder>(
                     .accel
                     .closest_each(&scene.objects, rays, range, &mut found[..rays.len()]);
             }
-            for ((ray, &found), out) in rays.iter().zip(&found).zip(row) {
+            for ((ray, found), out) in rays.iter().zip(&found).zip(row) {
                 let nearest = match walk {
                     PrimaryWalk::Packets => Nearest::Found(found),
                     PrimaryWalk::OneByOne => Nearest::ToFind,

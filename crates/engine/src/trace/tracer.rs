@@ -34,10 +34,13 @@ pub fn trace<R: Recorder>(scene: &Scene, settings: &Settings, ray: &Ray, rec: &m
 /// found by the scene's query, or already found by a walk over a row's
 /// rays together (`Accel::closest_each`, which gives what `closest` gives
 /// over `hit_range(RayKind::Primary)`, without counting its cost).
+///
+/// `Found` borrows the walk's answer: one pointer to hand over per pixel
+/// rather than a candidate copied in and out (tetra's misses notice).
 #[derive(Clone, Copy, Debug)]
-pub enum Nearest {
+pub enum Nearest<'a> {
     ToFind,
-    Found(Option<Candidate>),
+    Found(&'a Option<Candidate>),
 }
 
 /// `trace` for a render that goes along a row with one shadow cache and
@@ -47,7 +50,7 @@ pub fn trace_in_row<R: Recorder>(
     scene: &Scene,
     settings: &Settings,
     ray: &Ray,
-    nearest: Nearest,
+    nearest: Nearest<'_>,
     cache: &mut ShadowCache,
     rec: &mut R,
 ) -> Color {
@@ -89,7 +92,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         }
     }
 
-    fn primary(&mut self, ray: &Ray, nearest: Nearest) -> Color {
+    fn primary(&mut self, ray: &Ray, nearest: Nearest<'_>) -> Color {
         self.trace(ray, RayKind::Primary, nearest, 1, 1.0, 1.0)
             .color
     }
@@ -103,7 +106,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         &mut self,
         ray: &Ray,
         kind: RayKind,
-        nearest: Nearest,
+        nearest: Nearest<'_>,
         depth: u32,
         weight: f64,
         path_weight: f64,
@@ -113,7 +116,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         self.rec.ray_cast(kind, depth, ray, weight);
         let mut cost = Cost::default();
         let found = match nearest {
-            Nearest::Found(found) => found,
+            Nearest::Found(found) => *found,
             Nearest::ToFind => {
                 let range = self.rules.hit_range(kind);
                 scene.accel.closest(&scene.objects, ray, range, &mut cost)
