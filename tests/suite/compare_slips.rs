@@ -10,13 +10,10 @@
 //! `phong-not-blinn 41.7%`, half a turn `flipped-y 94%`, colours times 0.8
 //! `no-ambient 49.9%` on highlights.toml.
 
-use std::process::Command;
-
 use serde_json::Value;
 
+use crate::support::student::{TRACER, run_tracer};
 use crate::support::{program_or_skip, raystep, stdout};
-
-const TRACER: &str = "tests/student/whitted.py";
 
 /// The teaching scenes.
 const SCENES: [&str; 9] = [
@@ -72,20 +69,6 @@ fn compared_at(scene: &str, slip: &str, rays: Option<(u32, u32)>, size: Option<&
     let output = raystep(&args);
     assert!(output.status.success(), "compare {scene}: {output:?}");
     serde_json::from_str(&stdout(&output)).unwrap()
-}
-
-fn run_tracer(args: &[&str]) -> std::process::Output {
-    let output = Command::new("python3")
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("python3 runs");
-    assert!(
-        output.status.success(),
-        "whitted.py {args:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
 }
 
 /// The listed mistakes as (name, verdict).

@@ -11,13 +11,10 @@
 //! the tracer needs python3: without it the test is skipped with a note, and
 //! with CI set it fails (`program_or_skip`), so CI cannot pass untested.
 
-use std::process::Command;
-
 use serde_json::Value;
 
+use crate::support::student::{TRACER, run_tracer};
 use crate::support::{program_or_skip, raystep, stdout};
-
-const TRACER: &str = "tests/student/whitted.py";
 
 /// The student's log for pixel (x, y) of `scene`, or a `w`x`h` rectangle
 /// from it, with `mistakes` switched on.
@@ -32,21 +29,6 @@ fn student_log(scene: &str, (x, y): (u32, u32), size: (u32, u32), mistakes: &[&s
         args.extend(["--mistake", mistake]);
     }
     String::from_utf8(run_tracer(&args).stdout).unwrap()
-}
-
-/// Runs the student's tracer with `args`; its output once it succeeded.
-fn run_tracer(args: &[&str]) -> std::process::Output {
-    let output = Command::new("python3")
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("python3 runs");
-    assert!(
-        output.status.success(),
-        "whitted.py {args:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    output
 }
 
 /// The student's render of `scene` with `mistakes` switched on, at `size`

@@ -7,9 +7,8 @@
 
 use serde_json::Value;
 
+use crate::support::student::{TRACER, run_tracer};
 use crate::support::{program_or_skip, raystep, stdout};
-
-const TRACER: &str = "tests/student/whitted.py";
 
 /// The student's log of the `w`x`h` pixels from (x, y), with `slips` on
 /// and `extra` arguments for the tracer.
@@ -26,17 +25,7 @@ fn log(
         args.extend(["--mistake", slip]);
     }
     args.extend(extra);
-    let output = std::process::Command::new("python3")
-        .args(&args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("python3 runs");
-    assert!(
-        output.status.success(),
-        "whitted.py {args:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout).unwrap()
+    String::from_utf8(run_tracer(&args).stdout).unwrap()
 }
 
 /// `raystep compare SCENE --rays LOG` in `format`, with `args` after.

@@ -242,26 +242,31 @@ pub fn log_verdict(log: &crate::divergence::LogComparison) -> Option<(Vec<Mistak
         .find(|p| !p.differs_where_it_adds_nothing())
         .or_else(|| log.pixels.iter().find(differs))?;
     let (x, y) = pixel.pixel;
-    let names = |mistakes: &mut dyn Iterator<Item = Mistake>| {
-        mistakes.map(|m| m.name()).collect::<Vec<_>>().join(", ")
+    let names = |mistakes: &[Mistake]| {
+        mistakes
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+            .join(", ")
     };
+    let consistent: Vec<Mistake> = pixel.consistent.iter().map(|c| c.mistake).collect();
     let mut traced = pixel.mistakes.clone();
     let words = if !pixel.mistakes.is_empty() {
         format!(
             "your ray log: pixel ({x}, {y}) is traced as under {}",
-            names(&mut pixel.mistakes.iter().copied())
+            names(&pixel.mistakes)
         )
-    } else if !pixel.consistent.is_empty() {
+    } else if !consistent.is_empty() {
         // Consistent with a mistake at one pixel is not the mistake: the
         // image's name for it is not superseded, the others are.
-        traced.extend(pixel.consistent.iter().map(|c| c.mistake));
+        traced.extend(&consistent);
         let tell = (pixel.consistent.iter())
             .find_map(|c| c.tell)
             .map(|(tx, ty)| format!(" (log pixel {tx},{ty} to tell)"))
             .unwrap_or_default();
         format!(
             "your ray log: pixel ({x}, {y}) is consistent with {}{tell}",
-            names(&mut pixel.consistent.iter().map(|c| c.mistake))
+            names(&consistent)
         )
     } else if let Some(d) = &pixel.first_divergence {
         format!(
