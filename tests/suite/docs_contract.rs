@@ -265,6 +265,22 @@ fn model_keeps_where_in_the_code_and_the_recording_in_an_appendix() {
     assert!(!rules.contains("Where in the code"));
     assert!(!rules.contains("Near misses (recorded"));
     assert!(!rules.contains("The crossing test laid out"));
+    // How lights, blockers and rays not cast are recorded is not a rule of
+    // the tracer either (issue 39 found these three inside §4 and §5).
+    for recording in [
+        "`at_point`",
+        "recorded tree lists every",
+        "the recording lists it",
+    ] {
+        assert!(!rules.contains(recording), "{recording} in §1-§10");
+    }
+    for recording in [
+        "`at_point`",
+        "the recorded\n  tree lists every",
+        "listed on its parent",
+    ] {
+        assert!(notes.contains(recording), "{recording} in the appendix");
+    }
     assert!(notes.contains("### Where in the code"));
     // The numbered sections stay as other pages cite them, in order.
     let mut at = 0;
