@@ -344,6 +344,16 @@ fn each_common_slip_gets_its_words_from_the_numbers() {
     assert_eq!(found, ["P/S0", "S", "self_hit"], "{text}");
     assert!(text.contains("the surface it starts on"), "{text}");
     assert!(text.contains("EPS = 1e-4"), "{text}");
+    // Pixel 63,55: the pillar's shadow ray meets the pillar at t ≈ -6e-14
+    // from our point, so ours, traced again with no EPS, is not blocked;
+    // yours (its root a rounding the other side of 0) is. Still its own
+    // surface, not a bare "fully blocked".
+    let (found, text) = first("scenes/attenuation.toml", (63, 55), "no-epsilon");
+    assert_eq!(found, ["P/S0", "S", "self_hit"], "{text}");
+    assert!(
+        text.contains("the surface it starts on, object 4 (left pillar 4)"),
+        "{text}"
+    );
 }
 
 #[test]

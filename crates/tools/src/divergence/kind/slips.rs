@@ -11,6 +11,7 @@ use crate::divergence::ours::OurRays;
 use crate::raylog::Step;
 use raystep_engine::record::num;
 use raystep_engine::scene::{Scene, Settings};
+use raystep_model::math::{EPS, Interval, Ray};
 use raystep_model::mistakes::Mistake;
 
 /// A reflected direction d + 2 (d·N) N: MODEL §5's R = d − 2 (d·N) N
@@ -124,13 +125,18 @@ pub(super) fn object_colour(
 /// A shadow ray of yours blocked where ours is not: by the surface it
 /// starts on at t ≈ 0 (no EPS), or by something past the light (no d_L).
 /// Told by tracing ours again with the shadow segment (0, d_L), then
-/// (EPS, ∞), and finding your S there.
+/// (EPS, ∞), and finding your S there; failing that, a fully blocked ray
+/// is told by its own surface's root within EPS of its start.
 pub(super) fn shadow_segment(
     scene: &Scene,
     ours: &OurRays,
     ray: usize,
     yours: f64,
 ) -> Option<(Kind, String)> {
+    retraced(scene, ours, ray, yours).or_else(|| own_surface(scene, ours, ray, yours))
+}
+
+fn retraced(scene: &Scene, ours: &OurRays, ray: usize, yours: f64) -> Option<(Kind, String)> {
     let path = &ours.rays()[ray].path;
     let d_l = ours.light(ray)?.distance;
     for mistake in [Mistake::ShadowAcne, Mistake::ShadowsPastLight] {
@@ -179,4 +185,34 @@ pub(super) fn shadow_segment(
         return Some(words);
     }
     None
+}
+
+/// Whether a ray finds the surface it leaves, under a segment from 0, is a
+/// coin toss of rounding (its root there is ±1e-15), and our point lies a
+/// rounding away from yours: where ours traced again is not blocked, a
+/// fully blocked ray whose own surface meets it within EPS of its start is
+/// told by that root, which is what a missing EPS lets through.
+fn own_surface(scene: &Scene, ours: &OurRays, ray: usize, yours: f64) -> Option<(Kind, String)> {
+    if yours != 0.0 {
+        return None;
+    }
+    let logged = &ours.rays()[ray];
+    let shadow = Ray::new(logged.origin?, logged.dir?);
+    let object = ours.source(ray)?.hit.as_ref()?.object_index;
+    let t = (scene.objects.get(object)?.shape)
+        .roots(&shadow, Interval::new(-EPS, EPS))
+        .as_slice()
+        .iter()
+        .copied()
+        .min_by(|a, b| a.abs().total_cmp(&b.abs()))?;
+    Some((
+        Kind::SelfHit,
+        format!(
+            "the surface it starts on, object {object} ({}), meets it at t = {t:e}, within \
+             EPS of its start (on our point; on yours the sign of so small a root is \
+             rounding): a shadow ray looks for blockers over (EPS, d_L), EPS = 1e-4 \
+             (MODEL §4), or it finds its own surface",
+            scene.object_name(object)
+        ),
+    ))
 }
