@@ -7,3 +7,4 @@ mod compare_input;
 mod files;
 mod linear;
 mod names;
+mod results;

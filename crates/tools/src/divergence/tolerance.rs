@@ -52,14 +52,27 @@ impl Tolerance {
         }
     }
 
-    /// Two lengths or distances.
+    /// Two lengths or distances (infinite ones agree with nothing: the
+    /// gap is then infinite or NaN).
     pub(crate) fn lengths(&self, yours: f64, ours: f64) -> bool {
-        (yours - ours).abs() <= self.geometry * yours.abs().max(ours.abs()).max(1.0)
+        let gap = (yours - ours).abs();
+        gap.is_finite() && gap <= self.geometry * yours.abs().max(ours.abs()).max(1.0)
     }
 
-    /// Two positions or directions.
+    /// Two positions or directions. Both are first divided by their largest
+    /// component, so that no square overflows: (1e200, 1e200, -1e200) once
+    /// gave a gap and a bound both infinite, and inf <= inf "agreed".
     pub(crate) fn vectors(&self, yours: DVec3, ours: DVec3) -> bool {
-        (yours - ours).length() <= self.geometry * yours.length().max(ours.length()).max(1.0)
+        let scale = (yours.abs().max_element())
+            .max(ours.abs().max_element())
+            .max(1.0);
+        if !scale.is_finite() {
+            // An infinite component agrees with nothing (a NaN fails below).
+            return false;
+        }
+        let (yours, ours) = (yours / scale, ours / scale);
+        (yours - ours).length()
+            <= self.geometry * yours.length().max(ours.length()).max(1.0 / scale)
     }
 
     /// Two colours, channel by channel.
@@ -86,6 +99,29 @@ impl fmt::Display for Tolerance {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn huge_numbers_agree_only_when_they_are_close() {
+        let t = Tolerance::default();
+        let huge = DVec3::new(1e200, 1e200, -1e200);
+        // |huge − (0, 0, 1)| ≈ 1.7e200: apart by every measure (its square,
+        // 3e400, overflowed, and inf <= 1e-4 × inf held).
+        assert!(!t.vectors(huge, DVec3::Z));
+        assert!(!t.vectors(DVec3::Z, huge));
+        // Equal, and 1e-6 apart relatively (under 1e-4): they agree.
+        assert!(t.vectors(huge, huge));
+        assert!(t.vectors(huge, huge * (1.0 + 1e-6)));
+        // 1e-3 apart relatively: past 1e-4.
+        assert!(!t.vectors(huge, huge * (1.0 + 1e-3)));
+        // Infinite or NaN components agree with nothing, themselves included.
+        let inf = DVec3::new(f64::INFINITY, 0.0, 0.0);
+        assert!(!t.vectors(inf, inf));
+        assert!(!t.vectors(DVec3::NAN, DVec3::NAN));
+        // 1e308 and −1e308 are 2e308 apart, which overflows: not agreeing.
+        assert!(!t.lengths(1e308, -1e308));
+        assert!(!t.lengths(f64::INFINITY, f64::INFINITY));
+        assert!(t.lengths(1e300, 1e300 * (1.0 + 1e-6)));
+    }
 
     #[test]
     fn a_tolerance_reads_one_or_two_numbers() {
