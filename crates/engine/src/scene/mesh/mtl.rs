@@ -29,6 +29,9 @@ pub(crate) struct Read {
     pub(crate) illum: Option<u8>,
     /// The `map_*`, `bump`, `disp`, `decal` and `refl` statements, by keyword.
     pub(crate) maps: Vec<String>,
+    /// What reading kept from the file's own numbers, as `to_model` words
+    /// its warnings (an emission clamped).
+    pub(crate) warnings: Vec<String>,
 }
 
 impl Read {
@@ -39,6 +42,7 @@ impl Read {
                 .get(key)
                 .and_then(|t| t.split_whitespace().next()?.parse::<f64>().ok())
         };
+        let (emission, warnings) = emission(v(m.emissive));
         let filter = m.unknown_param.get("Tf").and_then(|t| {
             let mut it = t.split_whitespace().map(|w| w.parse::<f64>().ok());
             let r = it.next()??;
@@ -75,7 +79,7 @@ impl Read {
             diffuse: v(m.diffuse),
             ambient: v(m.ambient),
             specular: v(m.specular),
-            emission: v(m.emissive).filter(|e| e.max_element() > 0.0),
+            emission,
             shininess: m.shininess,
             ior: m.optical_density,
             dissolve: m.dissolve,
@@ -83,8 +87,35 @@ impl Read {
             filter,
             illum: m.illumination_model,
             maps,
+            warnings,
         }
     }
+}
+
+/// `Ke` within the range of a colour, channel by channel (an infinite Ke
+/// gave NaN pixels, a Ke of -1e308 a light that darkens), with a warning;
+/// `None` when no channel is above 0 (no emitter).
+fn emission(ke: Option<DVec3>) -> (Option<DVec3>, Vec<String>) {
+    let Some(ke) = ke else {
+        return (None, Vec::new());
+    };
+    let channel = |c: f64| {
+        if c.is_nan() {
+            COLOR.min
+        } else {
+            c.clamp(COLOR.min, COLOR.max)
+        }
+    };
+    let kept = DVec3::new(channel(ke.x), channel(ke.y), channel(ke.z));
+    let warnings = if kept == ke {
+        Vec::new()
+    } else {
+        vec![format!(
+            "Ke {ke} is outside {}..{}: {kept} is used",
+            COLOR.min, COLOR.max
+        )]
+    };
+    (Some(kept).filter(|e| e.max_element() > 0.0), warnings)
 }
 
 /// Which of the model's secondary rays an `illum` level asks for.
@@ -122,7 +153,7 @@ fn is_grey(c: DVec3) -> bool {
 /// The model's material for an MTL material, and a warning for each rule
 /// that could not keep what the MTL says.
 pub(crate) fn to_model(m: &Read) -> (Material, Vec<String>) {
-    let mut warnings = Vec::new();
+    let mut warnings = m.warnings.clone();
     let mut clamp = |what: &str, value: f64, min: f64, max: f64| -> f64 {
         if value.is_finite() && (min..=max).contains(&value) {
             value
