@@ -378,7 +378,7 @@ fn nan_and_infinities_read_as_such_and_unknown_keys_are_listed() {
     assert_eq!(shadow.s, Some(f64::NEG_INFINITY));
     // The smallest subnormal, exactly.
     assert_eq!(shadow.weight.map(f64::to_bits), Some(1));
-    let unknown: Vec<_> = reader.unknown_keys().iter().cloned().collect();
+    let unknown: Vec<_> = reader.unknown_keys().listed().collect();
     assert_eq!(unknown, ["depth", "note"]);
 }
 

@@ -106,3 +106,35 @@ fn an_infinite_or_negative_ke_is_clamped_with_a_warning() {
         scene.warnings
     );
 }
+
+#[test]
+fn an_unknown_key_cannot_forge_a_line_of_the_report() {
+    // Pixel 0,0 of glass.toml with a wrong origin, so the report says it
+    // differs; its unknown key holds a line break and a verdict of its own.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("forged.jsonl");
+    std::fs::write(
+        &path,
+        r#"{"pixel": [0, 0], "path": "P", "origin": [9, 9, 9], "x\nEvery logged ray matches.": 1}
+"#,
+    )
+    .unwrap();
+    let output = raystep(&[
+        "compare",
+        "scenes/glass.toml",
+        "--rays",
+        path.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let text = stdout(&output);
+    assert!(
+        !text
+            .lines()
+            .any(|l| l.starts_with("Every logged ray matches")),
+        "{text}"
+    );
+    assert!(
+        text.contains("ignored: x\\u{a}Every logged ray matches.."),
+        "{text}"
+    );
+}

@@ -55,7 +55,10 @@ pub struct LogComparison {
     /// the size the log was read at: "pass --size WxH".
     pub traced_at: Option<(u32, u32)>,
     pub rays_read: usize,
+    /// The first few unknown keys, printable and cut short (`UnknownKeys`).
     pub unknown_keys: Vec<String>,
+    /// How many distinct unknown keys, and whether only at least that many.
+    pub unknown_key_count: (usize, bool),
     pub tolerance: Tolerance,
 }
 
@@ -198,7 +201,8 @@ pub fn compare_log<R: BufRead>(
         (read, counter)
     });
     read?;
-    let unknown_keys = reader.unknown_keys().iter().cloned().collect();
+    let unknown_keys = reader.unknown_keys().listed().map(String::from).collect();
+    let unknown_key_count = reader.unknown_keys().count();
     let mut pixels: Vec<PixelReport> = shown
         .into_iter()
         .map(|(pixel, yours)| {
@@ -221,6 +225,7 @@ pub fn compare_log<R: BufRead>(
         matching,
         rays_read,
         unknown_keys,
+        unknown_key_count,
         tolerance,
     })
 }

@@ -76,9 +76,16 @@ pub fn text(
         });
     }
     if !comparison.unknown_keys.is_empty() {
+        let (count, at_least) = comparison.unknown_key_count;
+        let more = count.saturating_sub(comparison.unknown_keys.len());
+        let more = match (more, at_least) {
+            (0, _) => String::new(),
+            (n, false) => format!(" and {n} more"),
+            (n, true) => format!(" and at least {n} more"),
+        };
         let _ = writeln!(
             out,
-            "Keys raystep doesn't know, ignored: {}.",
+            "Keys raystep doesn't know, ignored: {}{more}.",
             comparison.unknown_keys.join(", ")
         );
     }
@@ -256,6 +263,7 @@ pub fn json(comparison: &LogComparison) -> Json {
             "colour": comparison.tolerance.colour,
         },
         "unknown_keys": comparison.unknown_keys,
+        "unknown_key_count": comparison.unknown_key_count.0,
     })
 }
 

@@ -50,13 +50,67 @@ pub struct RaylogReader<'a, R> {
     line: usize,
     /// Each pixel and path read, with its line, to name a repeat.
     seen: SeenRays,
-    unknown_keys: BTreeSet<String>,
+    unknown_keys: UnknownKeys,
     finished: bool,
     buffer: Vec<u8>,
 }
 
 /// Where a problem is in a line (a column from 1) and what it is.
 type Problem = (usize, String);
+
+/// At most this many unknown keys are listed ...
+const UNKNOWN_LISTED: usize = 8;
+/// ... each cut to this many characters: a log whose every line held
+/// another 1000-character key once kept and printed them all (495 MB, and
+/// 115 MB on one line).
+const UNKNOWN_CHARS: usize = 40;
+/// Distinct keys are counted up to this many (8 bytes each); past it the
+/// count says "at least".
+const UNKNOWN_COUNTED: usize = 1 << 16;
+
+/// The keys a log holds that raystep doesn't know: the first few, sorted,
+/// printable (a line break in a key once forged a line of the report) and
+/// cut short, and how many distinct keys there are. Bounded whatever the
+/// log.
+#[derive(Debug, Default)]
+pub struct UnknownKeys {
+    listed: BTreeSet<String>,
+    seen: std::collections::HashSet<u64>,
+}
+
+impl UnknownKeys {
+    fn add(&mut self, key: &str) {
+        use std::hash::{BuildHasher, BuildHasherDefault, DefaultHasher};
+        if self.seen.len() >= UNKNOWN_COUNTED {
+            return;
+        }
+        // A fixed hasher: the count is the same on every run.
+        let hash = BuildHasherDefault::<DefaultHasher>::default().hash_one(key);
+        if self.seen.insert(hash) && self.listed.len() < UNKNOWN_LISTED {
+            self.listed.insert(shown(key));
+        }
+    }
+
+    /// The keys listed, at most `UNKNOWN_LISTED`, sorted.
+    pub fn listed(&self) -> impl Iterator<Item = &str> {
+        self.listed.iter().map(String::as_str)
+    }
+
+    /// How many distinct keys, and whether that is only a lower bound.
+    pub fn count(&self) -> (usize, bool) {
+        (self.seen.len(), self.seen.len() >= UNKNOWN_COUNTED)
+    }
+}
+
+/// A key as listed: control characters spelled out, at most
+/// `UNKNOWN_CHARS` characters, then "…".
+fn shown(key: &str) -> String {
+    let printable = raystep_engine::printable::printable(key);
+    match printable.char_indices().nth(UNKNOWN_CHARS) {
+        Some((end, _)) => format!("{}…", &printable[..end]),
+        None => printable.into_owned(),
+    }
+}
 
 impl<'a, R: BufRead> RaylogReader<'a, R> {
     /// Reads `input`, named `log` in errors.
@@ -67,14 +121,15 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
             scene,
             line: 0,
             seen: SeenRays::new(scene.width, scene.height, scene.lights.len()),
-            unknown_keys: BTreeSet::new(),
+            unknown_keys: UnknownKeys::default(),
             finished: false,
             buffer: Vec::new(),
         }
     }
 
-    /// The keys raystep doesn't know, in the lines read so far.
-    pub fn unknown_keys(&self) -> &BTreeSet<String> {
+    /// The keys raystep doesn't know, in the lines read so far: a few,
+    /// printable and cut short, and how many there are.
+    pub fn unknown_keys(&self) -> &UnknownKeys {
         &self.unknown_keys
     }
 
@@ -139,9 +194,7 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
             Err(e) => return Err((column(e.at), format!("not JSON: {}", e.words))),
         };
         for key in &line.unknown {
-            if !self.unknown_keys.contains(key.as_ref()) {
-                self.unknown_keys.insert(key.to_string());
-            }
+            self.unknown_keys.add(key);
         }
         let pixel = self.pixel(line.pixel, text)?;
         let Field { at: path_at, value } = required(line.path, "path")?;
@@ -391,13 +444,41 @@ mod tests {
         );
     }
 
+    #[test]
+    fn unknown_keys_are_few_printable_short_and_counted() {
+        let (scene, _) = raystep_engine::test_scenes::ball();
+        // 100 lines, each with its own 1000-character key holding a line
+        // break: 8 listed (the sorted first 8 met), 40 characters each and
+        // "…", the break spelled out; 100 counted.
+        let log: String = (0..100)
+            .map(|i| {
+                let key = format!("k{i:03}\\n{}", "x".repeat(1000));
+                format!(
+                    "{{\"pixel\": [{}, {}], \"path\": \"P\", \"{key}\": 1}}\n",
+                    i % 11,
+                    i / 11
+                )
+            })
+            .collect();
+        let mut reader = RaylogReader::new("LOG", log.as_bytes(), &scene);
+        assert!(reader.by_ref().all(|read| read.is_ok()));
+        let keys = reader.unknown_keys();
+        assert_eq!(keys.count(), (100, false));
+        let listed: Vec<&str> = keys.listed().collect();
+        assert_eq!(listed.len(), 8);
+        // "k000" + "\u{a}" (5 characters) + 31 x's = 40, then "…".
+        assert_eq!(listed[0], format!("k000\\u{{a}}{}…", "x".repeat(31)));
+        assert_eq!(listed[7], format!("k007\\u{{a}}{}…", "x".repeat(31)));
+    }
+
     /// The first ray of `line` for the ball (11x11, one light, one object
     /// "ball"), or its error; and the unknown keys the line named.
     fn read_line_of_ball(line: &str) -> (Result<LoggedRay, RaylogError>, BTreeSet<String>) {
         let (scene, _) = raystep_engine::test_scenes::ball();
         let mut reader = RaylogReader::new("LOG", line.as_bytes(), &scene);
         let ray = reader.next().unwrap().map(|(_, ray)| ray);
-        (ray, reader.unknown_keys().clone())
+        let unknown = reader.unknown_keys().listed().map(String::from).collect();
+        (ray, unknown)
     }
 
     /// Lines that read, for the ball: raystep's own, and others as a
