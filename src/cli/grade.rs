@@ -13,14 +13,14 @@ use anyhow::{Context, Result};
 
 use super::{GradeArgs, emit};
 use raystep_engine::render::with_threads;
-use raystep_tools::grade::{self, Assignment, Graded, ReportDir, Student};
+use raystep_tools::grade::{self, Assignment, Graded, ReportDir, Submissions};
 use raystep_tools::output::{self, Target};
 
 pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
     let assignment = grade::assignment::load(&args.assignment)?;
     let class = match (&args.submissions, &args.submission) {
         (Some(folder), _) => grade::student_folders(folder)?,
-        (None, Some(folder)) => vec![Student::alone(folder)?],
+        (None, Some(folder)) => Submissions::alone(folder)?,
         (None, None) => unreachable!("clap requires SUBMISSIONS or --submission"),
     };
     let folders = args.submissions.as_ref().or(args.submission.as_ref());
@@ -30,7 +30,7 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
         .map(|dir| ReportDir::check(dir, &inputs(args, &assignment, folders)))
         .transpose()?;
     let results = ResultsFiles::check(args, &assignment, &class)?;
-    let progress = progress_bar(class.len() * assignment.scenes.len());
+    let progress = progress_bar(class.students.len() * assignment.scenes.len());
     let tick = || progress.inc(1);
     let graded = with_threads(args.jobs.map(usize::from), || {
         grade::grade(&assignment, &class, &tick)
@@ -77,7 +77,7 @@ struct ResultsFiles {
 }
 
 impl ResultsFiles {
-    fn check(args: &GradeArgs, assignment: &Assignment, class: &[Student]) -> Result<Self> {
+    fn check(args: &GradeArgs, assignment: &Assignment, class: &Submissions) -> Result<Self> {
         let target = |path: &Option<PathBuf>| -> Result<Option<Target>> {
             let Some(path) = path else { return Ok(None) };
             // An autograder's results folder may not exist yet (PrairieLearn
@@ -104,9 +104,13 @@ impl ResultsFiles {
         let mut inputs = output::Inputs::default().with(&args.assignment, "the assignment");
         for scene in &assignment.scenes {
             inputs = inputs.with_scene(&scene.scene);
-            for student in class {
-                inputs = inputs.with(&student.folder.join(&scene.submit), "the submission");
-            }
+        }
+        // The files as named, and those taken for them (`Shadows.PNG`).
+        let submitted: Vec<_> = (class.students.iter())
+            .flat_map(|student| student.submitted_files(assignment))
+            .collect();
+        for file in &submitted {
+            inputs = inputs.with(file, "the submission");
         }
         output::refuse_clashes(&inputs, &named)?;
         Ok(files)
@@ -165,6 +169,11 @@ fn one_summary(graded: &Graded) -> String {
                 grade::points_text(scene.points),
                 grade::points_text(scene.max_points),
             );
+        }
+        // How the files were found, when not as named.
+        let scene_notes = student.scenes.iter().filter_map(|s| s.note.as_ref());
+        for note in student.notes.iter().chain(scene_notes) {
+            let _ = writeln!(out, "  note: {note}");
         }
     }
     out

@@ -25,6 +25,7 @@ mod figure;
 mod five_questions;
 mod fuzz_regressions;
 mod grade;
+mod grade_download;
 mod grade_report;
 mod hostile;
 mod layout;

@@ -15,6 +15,17 @@
 //! partial = true        # optional: partial credit from FLIP (default false)
 //! max_flip = 0.2        # optional, with partial: the FLIP mean that scores 0
 //! ```
+//!
+//! How students hand in, and what Gradescope shows them (each optional):
+//!
+//! ```toml
+//! strict_names = true         # take only files named exactly as `submit` says
+//! visibility = "after_due_date"   # Gradescope's, for every scene's test
+//!
+//! [[scene]]
+//! # ...
+//! visibility = "hidden"       # this scene's test alone
+//! ```
 
 use std::collections::HashSet;
 use std::ops::Range;
@@ -23,6 +34,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use super::gradescope::Visibility;
 use crate::compare::student::check_compared_size;
 use raystep_engine::input_file::{self, Cap};
 use raystep_engine::scene::{self, Scene, SceneError, check_image_size};
@@ -42,6 +54,19 @@ pub(crate) const ASSIGNMENT_CAP: Cap = Cap {
 pub struct Assignment {
     pub(crate) title: String,
     pub scenes: Vec<AssignedScene>,
+    /// How students hand in, and what Gradescope shows them.
+    pub(crate) handing_in: HandingIn,
+}
+
+/// The assignment's top-level keys on handing in and the autograders.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct HandingIn {
+    /// Take only files named exactly as `submit` says: a near miss
+    /// (`Shadows.PNG`) is refused, naming it.
+    pub strict_names: bool,
+    /// Gradescope's visibility of the results, and of every scene's test
+    /// that does not set its own.
+    pub visibility: Visibility,
 }
 
 /// One scene of the assignment.
@@ -57,6 +82,8 @@ pub struct AssignedScene {
     pub(crate) max_flip: Option<f64>,
     /// Loaded at the size every submission must have.
     pub scene: Scene,
+    /// Gradescope's visibility of this scene's test.
+    pub(crate) visibility: Visibility,
 }
 
 #[derive(Deserialize)]
@@ -65,6 +92,10 @@ struct FileDef {
     title: Option<String>,
     #[serde(default)]
     scene: Vec<SceneDef>,
+    // Handing in and the autograders.
+    #[serde(default)]
+    strict_names: bool,
+    visibility: Option<Visibility>,
 }
 
 #[derive(Deserialize)]
@@ -77,6 +108,8 @@ struct SceneDef {
     #[serde(default)]
     partial: bool,
     max_flip: Option<Spanned<f64>>,
+    // Handing in and the autograders.
+    visibility: Option<Visibility>,
 }
 
 /// Reads the assignment at `path` and loads its scenes.
@@ -111,6 +144,10 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
             path.display()
         )));
     }
+    let handing_in = HandingIn {
+        strict_names: file.strict_names,
+        visibility: file.visibility.unwrap_or_default(),
+    };
     let folder = path.parent().unwrap_or(Path::new(""));
     let mut submits = HashSet::new();
     let mut scenes = Vec::with_capacity(file.scene.len());
@@ -185,13 +222,18 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
             points,
             max_flip,
             scene,
+            visibility: def.visibility.unwrap_or(handing_in.visibility),
         });
     }
     let title = file.title.unwrap_or_else(|| {
         path.file_stem()
             .map_or("assignment".into(), |s| s.to_string_lossy().into_owned())
     });
-    Ok(Assignment { title, scenes })
+    Ok(Assignment {
+        title,
+        scenes,
+        handing_in,
+    })
 }
 
 /// A file name each student's folder can hold: one name, no folders.
@@ -293,6 +335,50 @@ mod tests {
         assert!(message.contains("no scene file"), "{message}");
         let message = error("title = \"empty\"\n");
         assert!(message.contains("at least one [[scene]]"), "{message}");
+    }
+
+    #[test]
+    fn handing_in_and_gradescopes_visibility_are_read_and_checked() {
+        let scene = |extra: &str| {
+            format!("[[scene]]\nfile = \"glass.toml\"\nsubmit = \"glass.png\"\npoints = 1\n{extra}")
+        };
+        // The defaults: names near the one asked for are taken; visible.
+        let plain = parse_here(&scene("")).unwrap();
+        assert!(!plain.handing_in.strict_names);
+        assert_eq!(plain.handing_in.visibility, Visibility::Visible);
+        assert_eq!(plain.scenes[0].visibility, Visibility::Visible);
+        // A scene's own visibility wins over the assignment's.
+        let set = parse_here(&format!(
+            "strict_names = true\nvisibility = \"after_due_date\"\n{}{}",
+            scene(""),
+            scene("visibility = \"hidden\"\n").replace("glass.png", "g2.png")
+        ))
+        .unwrap();
+        assert!(set.handing_in.strict_names);
+        assert_eq!(set.handing_in.visibility, Visibility::AfterDueDate);
+        let scenes: Vec<Visibility> = set.scenes.iter().map(|s| s.visibility).collect();
+        assert_eq!(scenes, [Visibility::AfterDueDate, Visibility::Hidden]);
+        let published = parse_here(&scene("visibility = \"after_published\"\n")).unwrap();
+        assert_eq!(published.scenes[0].visibility, Visibility::AfterPublished);
+        // A value Gradescope does not know, at its line and column: 1:14,
+        // and in a scene 5:14; strict_names must be true or false (1:16).
+        let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join("scenes/a.toml");
+        let at = |line_col: &str| format!("{}:{line_col}: ", file.display());
+        let message = error(&format!("visibility = \"later\"\n{}", scene("")));
+        assert!(message.starts_with(&at("1:14")), "{message}");
+        assert!(
+            message.contains(
+                "unknown variant `later`, expected one of `visible`, `hidden`, \
+                 `after_due_date`, `after_published`"
+            ),
+            "{message}"
+        );
+        let message = error(&scene("visibility = \"Visible\"\n"));
+        assert!(message.starts_with(&at("5:14")), "{message}");
+        let message = error(&format!("strict_names = \"yes\"\n{}", scene("")));
+        assert!(message.starts_with(&at("1:16")), "{message}");
     }
 
     #[test]

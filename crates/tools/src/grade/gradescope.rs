@@ -1,13 +1,41 @@
 //! Gradescope's results.json for one submission, as its autograder
-//! specification defines it (gradescope-autograders.readthedocs.io,
-//! "Autograder Specifications", "Output format"): the submission's `score`
-//! and `output`, and one entry of `tests` per scene with its `name`,
-//! `score`, `max_score`, `output` and `visibility`. The container's
-//! `run_autograder` writes it to /autograder/results/results.json.
+//! specification defines it
+//! (<https://gradescope-autograders.readthedocs.io/en/latest/specs/>,
+//! "Output format"): the submission's `score`, `output`, `output_format` and
+//! `visibility`, and one entry of `tests` per scene with its `name`,
+//! `score`, `max_score`, `output`, `output_format` and `visibility`. The
+//! container's `run_autograder` writes it to
+//! /autograder/results/results.json.
+//!
+//! Every `output` is plain text: its `output_format` is `"text"` ("Output
+//! String Formatting": `text`, `simple_format`, `html`, `md` or `ansi`; the
+//! top-level output's default, `simple_format`, renders HTML, so a title
+//! holding `<meshes>` would lose it). `visibility` is one of `visible` (the
+//! default), `hidden`, `after_due_date` and `after_published`
+//! ("Controlling Test Case Visibility"), set in the assignment file.
 
+use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
 use super::model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
+
+/// How every `output` is rendered: as written, no markup.
+const OUTPUT_FORMAT: &str = "text";
+
+/// When Gradescope shows students a test (or the whole results).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Visibility {
+    /// Always.
+    #[default]
+    Visible,
+    /// Never.
+    Hidden,
+    /// Once the due date (the late due date, if any) has passed.
+    AfterDueDate,
+    /// Once the grades are published.
+    AfterPublished,
+}
 
 /// The results of `student` (one of `grades`' students).
 pub fn results(grades: &ClassGrades, student: &StudentGrades) -> Value {
@@ -21,32 +49,44 @@ pub fn results(grades: &ClassGrades, student: &StudentGrades) -> Value {
                 "score": grade.points,
                 "max_score": grade.max_points,
                 "output": output(sheet, grade),
-                "visibility": "visible",
+                "output_format": OUTPUT_FORMAT,
+                "visibility": sheet.visibility,
             })
         })
         .collect();
+    let mut output = format!(
+        "{}: {} of {} points.",
+        grades.title,
+        super::csv_table::number(student.total),
+        super::csv_table::number(grades.max_total)
+    );
+    for note in &student.notes {
+        output.push_str(&format!("\nNote: {note}."));
+    }
     json!({
         "score": student.total,
-        "output": format!(
-            "{}: {} of {} points.",
-            grades.title,
-            super::csv_table::number(student.total),
-            super::csv_table::number(grades.max_total)
-        ),
+        "output": output,
+        "output_format": OUTPUT_FORMAT,
+        "visibility": grades.visibility,
         "tests": tests,
     })
 }
 
-/// What a scene's test says: the verdict and how it scored, then
-/// `compare`'s report (or why the file was refused).
+/// What a scene's test says: the verdict and how it scored, which file was
+/// taken when it is not the name asked for, then `compare`'s report (or why
+/// the file was refused).
 pub(crate) fn output(sheet: &SceneSheet, grade: &SceneGrade) -> String {
     let points = format!(
         "{} of {} points",
         super::csv_table::number(grade.points),
         super::csv_table::number(grade.max_points)
     );
+    let note = grade
+        .note
+        .as_ref()
+        .map_or(String::new(), |note| format!("Note: {note}.\n"));
     if let Some(reason) = &grade.refused {
-        return format!("{points}: not graded, {reason}.\n");
+        return format!("{points}: not graded, {reason}.\n{note}");
     }
     let how = match (grade.matches, sheet.max_flip, grade.flip_mean) {
         (true, _, _) => "your image matches raystep's".to_string(),
@@ -56,5 +96,5 @@ pub(crate) fn output(sheet: &SceneSheet, grade: &SceneGrade) -> String {
         _ => "your image differs (a match scores the points, a difference 0)".to_string(),
     };
     let report = grade.report_text.as_deref().unwrap_or_default();
-    format!("{points}: {how}.\n\n{report}")
+    format!("{points}: {how}.\n{note}\n{report}")
 }

@@ -14,6 +14,7 @@ pub mod assignment;
 mod csv_table;
 mod gradescope;
 pub(crate) mod html;
+mod locate;
 pub mod model;
 mod prairielearn;
 mod report_dir;
@@ -33,7 +34,7 @@ use rayon::prelude::*;
 pub use assignment::Assignment;
 pub(crate) use csv_table::csv;
 pub use csv_table::number as points_text;
-pub use gradescope::results as gradescope_results;
+pub use gradescope::{Visibility, results as gradescope_results};
 pub use model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
 pub use prairielearn::results as prairielearn_results;
 pub use report_dir::ReportDir;
@@ -48,8 +49,38 @@ pub struct Student {
 }
 
 impl Student {
+    /// The files this student hands in for `assignment`, where they are
+    /// found (the names asked for, and the near misses taken for them).
+    pub fn submitted_files(&self, assignment: &Assignment) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = assignment
+            .scenes
+            .iter()
+            .map(|s| self.folder.join(&s.submit))
+            .collect();
+        if let Ok(root) = fs::canonicalize(&self.folder)
+            && let Ok(found) = locate::locate(
+                &root,
+                &submits(assignment),
+                assignment.handing_in.strict_names,
+            )
+        {
+            files
+                .extend((found.files.iter().flatten()).map(|taken| found.folder.join(&taken.name)));
+        }
+        files
+    }
+}
+
+/// The students to grade, and what lay beside them.
+pub struct Submissions {
+    pub students: Vec<Student>,
+    /// What SUBMISSIONS/ holds that is not a student (`ClassGrades::ignored`).
+    pub ignored: Vec<String>,
+}
+
+impl Submissions {
     /// A folder given by itself (`--submission DIR`), named after its last part.
-    pub fn alone(folder: &Path) -> Result<Student> {
+    pub fn alone(folder: &Path) -> Result<Submissions> {
         let meta = fs::metadata(folder)
             .with_context(|| format!("cannot read the submission folder {}", folder.display()))?;
         if !meta.is_dir() {
@@ -63,29 +94,36 @@ impl Student {
         let name = real
             .file_name()
             .map_or("submission".into(), |n| n.to_string_lossy().into_owned());
-        Ok(Student {
-            name,
-            folder: folder.to_owned(),
+        Ok(Submissions {
+            students: vec![Student {
+                name,
+                folder: folder.to_owned(),
+            }],
+            ignored: Vec::new(),
         })
     }
 }
 
 /// The student folders in `submissions`, sorted by their names' bytes
-/// (as `StudentGrades::student` holds them).
-/// Files beside them (a platform's metadata file) and hidden entries are
-/// not students; a folder that holds none is refused.
-pub fn student_folders(submissions: &Path) -> Result<Vec<Student>> {
+/// (as `StudentGrades::student` holds them), and what lies beside them.
+/// What a system or an archiver leaves (`locate::is_junk`: `__MACOSX`, dot
+/// names, `Thumbs.db`, `desktop.ini`) and files beside the folders (a
+/// platform's metadata file) are not students; a folder that holds none is
+/// refused.
+pub fn student_folders(submissions: &Path) -> Result<Submissions> {
     let shown = submissions.display();
     let entries = fs::read_dir(submissions)
         .with_context(|| format!("cannot read the submissions folder {shown}"))?;
     let mut found: Vec<(OsString, PathBuf)> = Vec::new();
+    let mut ignored = Vec::new();
     for entry in entries {
         let entry = entry.with_context(|| format!("cannot read the submissions folder {shown}"))?;
         let name = entry.file_name();
-        let hidden = name.as_encoded_bytes().first() == Some(&b'.');
         // A link to a folder counts as that folder.
-        if !hidden && fs::metadata(entry.path()).is_ok_and(|m| m.is_dir()) {
+        if !locate::is_junk(&name) && fs::metadata(entry.path()).is_ok_and(|m| m.is_dir()) {
             found.push((name, entry.path()));
+        } else {
+            ignored.push(name.to_string_lossy().into_owned());
         }
     }
     if found.is_empty() {
@@ -94,6 +132,7 @@ pub fn student_folders(submissions: &Path) -> Result<Vec<Student>> {
              the files the assignment names ({shown}/<student>/<file>.png)"
         );
     }
+    ignored.sort();
     let mut students: Vec<(Student, OsString)> = found
         .into_iter()
         .map(|(raw, folder)| {
@@ -107,7 +146,19 @@ pub fn student_folders(submissions: &Path) -> Result<Vec<Student>> {
         (a.name.as_bytes(), a_raw.as_encoded_bytes())
             .cmp(&(b.name.as_bytes(), b_raw.as_encoded_bytes()))
     });
-    Ok(students.into_iter().map(|(student, _)| student).collect())
+    Ok(Submissions {
+        students: students.into_iter().map(|(student, _)| student).collect(),
+        ignored,
+    })
+}
+
+/// The file names `assignment` asks for, in its order.
+fn submits(assignment: &Assignment) -> Vec<&str> {
+    assignment
+        .scenes
+        .iter()
+        .map(|s| s.submit.as_str())
+        .collect()
 }
 
 /// Files of REPORT/: each one's path in it (with `/`) and its bytes.
@@ -150,7 +201,12 @@ impl Graded {
 
 /// Grades every student of `students` on every scene of `assignment`;
 /// `done` is called once per student and scene graded (from any thread).
-pub fn grade(assignment: &Assignment, students: &[Student], done: &(dyn Fn() + Sync)) -> Graded {
+pub fn grade(
+    assignment: &Assignment,
+    submissions: &Submissions,
+    done: &(dyn Fn() + Sync),
+) -> Graded {
+    let students = &submissions.students;
     let scene_slugs = slug::slugs(assignment.scenes.iter().map(|s| stem(&s.submit)), "scene");
     let shared: Vec<SceneRenders> = assignment
         .scenes
@@ -175,6 +231,7 @@ pub fn grade(assignment: &Assignment, students: &[Student], done: &(dyn Fn() + S
             partial: s.max_flip.is_some(),
             max_flip: s.max_flip,
             reference_image: format!("reference/{slug}.png"),
+            visibility: s.visibility,
         })
         .collect();
     let mut images: Files = sheets
@@ -212,6 +269,8 @@ pub fn grade(assignment: &Assignment, students: &[Student], done: &(dyn Fn() + S
             max_total: scoring::total(assignment.scenes.iter().map(|s| s.points)),
             scenes: sheets,
             students: grades,
+            ignored: submissions.ignored.clone(),
+            visibility: assignment.handing_in.visibility,
         },
         images,
     }
@@ -229,16 +288,25 @@ impl Work<'_> {
     /// One student's grades, and the PNGs they name.
     fn student(&self, student: &Student, slug: &str) -> (StudentGrades, Files) {
         // Every file must lie in the folder as it really is.
-        let folder = fs::canonicalize(&student.folder)
-            .map_err(|e| format!("cannot read the student's folder: {e}"));
+        let found = fs::canonicalize(&student.folder)
+            .map_err(|e| format!("cannot read the student's folder: {e}"))
+            .and_then(|root| {
+                let submits = submits(self.assignment);
+                let strict = self.assignment.handing_in.strict_names;
+                locate::locate(&root, &submits, strict).map(|found| (root, found))
+            });
         let mut images = Vec::new();
         let mut scenes = Vec::with_capacity(self.assignment.scenes.len());
         for (i, scene) in self.assignment.scenes.iter().enumerate() {
             let size = (scene.scene.width, scene.scene.height);
-            let read = folder
+            let taken = found
                 .as_ref()
                 .map_err(Clone::clone)
-                .and_then(|folder| submission::read(folder, &scene.submit, size));
+                .and_then(|(root, found)| Ok((root, found, found.files[i].as_ref()?)));
+            let note = taken.as_ref().ok().and_then(|(_, _, t)| t.note.clone());
+            let read = taken.and_then(|(root, found, taken)| {
+                submission::read(root, &found.folder, &taken.name, size)
+            });
             let compared = read.and_then(|image| {
                 let yours_png = png(&image.image);
                 compare::compare_with(&self.shared[i], image)
@@ -278,9 +346,11 @@ impl Work<'_> {
                         report_text: Some(compare::text(&comparison, &scene.submit, &scene.file)),
                         yours_image: Some(yours),
                         error_map_image: Some(error_map),
+                        note: None,
                     }
                 }
             };
+            let grade = SceneGrade { note, ..grade };
             scenes.push(grade);
             (self.done)();
         }
@@ -290,6 +360,7 @@ impl Work<'_> {
             slug: slug.to_string(),
             scenes,
             total,
+            notes: found.map(|(_, found)| found.notes).unwrap_or_default(),
         };
         (grades, images)
     }
@@ -308,6 +379,7 @@ fn refused(max_points: f64, reason: String) -> SceneGrade {
         report_text: None,
         yours_image: None,
         error_map_image: None,
+        note: None,
     }
 }
 

@@ -6,6 +6,8 @@
 
 use serde::Serialize;
 
+use super::gradescope::Visibility;
+
 /// A whole class's grades.
 #[derive(Clone, Debug, Serialize)]
 pub struct ClassGrades {
@@ -17,6 +19,13 @@ pub struct ClassGrades {
     pub students: Vec<StudentGrades>,
     /// The points the whole assignment is worth: the sum of the scenes'.
     pub max_total: f64,
+    /// What SUBMISSIONS/ holds beside the students, not graded (as read,
+    /// sorted, a folder without `/`): what a system or an archiver leaves
+    /// (`__MACOSX`, dot names, `Thumbs.db`, `desktop.ini`) and files.
+    /// Empty for one submission. Untrusted, as `student` is.
+    pub ignored: Vec<String>,
+    /// Gradescope's visibility of the whole results (the assignment's).
+    pub visibility: Visibility,
 }
 
 /// One scene of the assignment, as it was graded.
@@ -35,6 +44,8 @@ pub struct SceneSheet {
     pub max_flip: Option<f64>,
     /// raystep's render of the scene at that size (a PNG in REPORT/).
     pub reference_image: String,
+    /// Gradescope's visibility of this scene's test.
+    pub visibility: Visibility,
 }
 
 /// One student's grades, scene by scene.
@@ -50,6 +61,9 @@ pub struct StudentGrades {
     pub scenes: Vec<SceneGrade>,
     /// The sum of the scenes' points.
     pub total: f64,
+    /// What the student should know about how their files were found (read
+    /// from the one folder in theirs); each scene's own note is its `note`.
+    pub notes: Vec<String>,
 }
 
 /// One student's submission for one scene.
@@ -75,4 +89,7 @@ pub struct SceneGrade {
     /// compared.
     pub yours_image: Option<String>,
     pub error_map_image: Option<String>,
+    /// Which file was taken when it is not the name asked for ("took
+    /// Shadows.PNG for shadows.png").
+    pub note: Option<String>,
 }

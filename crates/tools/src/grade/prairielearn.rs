@@ -1,12 +1,18 @@
 //! PrairieLearn's results.json for one submission, as its external
-//! grading documentation defines it (prairielearn.readthedocs.io,
-//! "External Grading", "Grading results"): `gradable`, `score` from 0 to
-//! 1, `message`, and `tests` with `name`, `description`, `points`,
-//! `max_points`, `message`, `output` and `images`, each image a `label`
-//! and a `url` holding a base64 data URL. The file must stay under 1 MB:
-//! when the images would take it past that, the error maps and references
-//! are dropped first, then the students' own images, and the message says
-//! so. The container writes it to /grade/results/results.json.
+//! grading documentation defines it
+//! (<https://prairielearn.readthedocs.io/en/latest/externalGrading/>,
+//! "Grading results"): `gradable`, `score` from 0 to 1, `message`, and
+//! `tests` with `name`, `description`, `points`, `max_points`, `message`,
+//! `output` and `images`, each image a `label` and a `url` holding a base64
+//! data URL. The file must stay under 1 MB: when the images would take it
+//! past that, the error maps and references are dropped first, then the
+//! students' own images, and the message says so. The container writes it
+//! to /grade/results/results.json.
+//!
+//! When not one file could be compared (each missing or refused), nothing
+//! was handed in to grade: `gradable` is false, which PrairieLearn shows as
+//! "invalid, not gradable" and does not count as an attempt, and
+//! `format_errors` says why for each file.
 
 use base64::Engine;
 use serde_json::{Value, json};
@@ -57,7 +63,7 @@ fn text(graded: &Graded, student: &StudentGrades, images: Images) -> String {
                 add("raystep's render", Some(&sheet.reference_image));
                 add("FLIP error map", grade.error_map_image.as_ref());
             }
-            let verdict = match (&grade.refused, grade.matches) {
+            let mut verdict = match (&grade.refused, grade.matches) {
                 (Some(reason), _) => format!("not graded: {reason}"),
                 (None, true) => "matches".to_string(),
                 (None, false) => match grade.mistakes.first() {
@@ -65,6 +71,9 @@ fn text(graded: &Graded, student: &StudentGrades, images: Images) -> String {
                     None => "differs".to_string(),
                 },
             };
+            if let Some(note) = &grade.note {
+                verdict.push_str(&format!(" ({note})"));
+            }
             json!({
                 "name": sheet.submit,
                 "description": format!("{} rendered at {}x{}", sheet.file, sheet.width, sheet.height),
@@ -88,6 +97,17 @@ fn text(graded: &Graded, student: &StudentGrades, images: Images) -> String {
         super::csv_table::number(student.total),
         super::csv_table::number(grades.max_total)
     );
+    for note in &student.notes {
+        message.push_str(&format!(" Note: {note}."));
+    }
+    // Nothing compared: nothing was handed in to grade.
+    let gradable = student.scenes.iter().any(|g| g.refused.is_none());
+    if !gradable {
+        message.push_str(
+            " Nothing could be graded: none of the files asked for could be read (each test \
+             says why). This submission is not counted as an attempt.",
+        );
+    }
     match images {
         Images::All => {}
         Images::YoursOnly => message.push_str(
@@ -97,12 +117,18 @@ fn text(graded: &Graded, student: &StudentGrades, images: Images) -> String {
         Images::None => message
             .push_str(" The images are left out to keep this file under PrairieLearn's 1 MB."),
     }
-    let value = json!({
-        "gradable": true,
+    let mut value = json!({
+        "gradable": gradable,
         "score": score,
         "message": message,
         "tests": tests,
     });
+    if !gradable {
+        let errors: Vec<String> = (grades.scenes.iter().zip(&student.scenes))
+            .filter_map(|(sheet, g)| Some(format!("{}: {}", sheet.submit, g.refused.as_ref()?)))
+            .collect();
+        value["format_errors"] = json!(errors);
+    }
     serde_json::to_string(&value).expect("JSON values serialise") + "\n"
 }
 
@@ -142,6 +168,7 @@ mod tests {
                 partial: false,
                 max_flip: None,
                 reference_image: reference,
+                visibility: Default::default(),
             });
             grades.push(SceneGrade {
                 points: 10.0,
@@ -154,6 +181,7 @@ mod tests {
                 report_text: Some("they match.\n".into()),
                 yours_image: Some(yours),
                 error_map_image: Some(map),
+                note: None,
             });
         }
         let student = StudentGrades {
@@ -161,6 +189,7 @@ mod tests {
             slug: "a".into(),
             scenes: grades,
             total: 10.0 * scenes as f64,
+            notes: Vec::new(),
         };
         Graded {
             grades: ClassGrades {
@@ -168,6 +197,8 @@ mod tests {
                 scenes: sheets,
                 students: vec![student],
                 max_total: 10.0 * scenes as f64,
+                ignored: Vec::new(),
+                visibility: Default::default(),
             },
             images,
         }

@@ -19,48 +19,50 @@ use raystep_engine::input_file;
 const MAX_BYTES_PER_PIXEL: u64 = 8;
 const SLACK_BYTES: u64 = 1 << 20;
 
-/// Reads `submit` in the student's `folder` (canonical), which must be a PNG
-/// of `width` x `height`; `Err` says why it was refused.
+/// Reads `name` in `folder`, which is the student's `root` folder or one
+/// inside it (both canonical); it must be a PNG of `width` x `height`. `Err`
+/// says why it was refused.
 pub(crate) fn read(
+    root: &Path,
     folder: &Path,
-    submit: &str,
+    name: &str,
     (width, height): (u32, u32),
 ) -> Result<StudentImage, String> {
-    let path = folder.join(submit);
+    let path = folder.join(name);
     match fs::symlink_metadata(&path) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            return Err(format!("missing: the folder holds no {submit}"));
+            return Err(format!("missing: the folder holds no {name}"));
         }
-        Err(e) => return Err(format!("cannot read {submit}: {e}")),
+        Err(e) => return Err(format!("cannot read {name}: {e}")),
         Ok(_) => {}
     }
     let real = fs::canonicalize(&path).map_err(|e| match fs::read_link(&path) {
         Ok(to) => format!(
-            "{submit} is a symbolic link to {}, which cannot be read ({e})",
+            "{name} is a symbolic link to {}, which cannot be read ({e})",
             to.display()
         ),
-        Err(_) => format!("cannot read {submit}: {e}"),
+        Err(_) => format!("cannot read {name}: {e}"),
     })?;
-    if !real.starts_with(folder) || real == folder {
+    if !real.starts_with(root) || real == root || real == folder {
         return Err(format!(
-            "{submit} is a symbolic link that leads out of the student's folder: refused \
+            "{name} is a symbolic link that leads out of the student's folder: refused \
              (a submission must be a file in its folder)"
         ));
     }
-    let meta = fs::metadata(&real).map_err(|e| format!("cannot read {submit}: {e}"))?;
+    let meta = fs::metadata(&real).map_err(|e| format!("cannot read {name}: {e}"))?;
     if meta.is_dir() {
-        return Err(format!("{submit} is a folder, not a PNG file"));
+        return Err(format!("{name} is a folder, not a PNG file"));
     }
     if !meta.is_file() {
         return Err(format!(
-            "{submit} is a device, pipe or socket, not a PNG file"
+            "{name} is a device, pipe or socket, not a PNG file"
         ));
     }
     let file =
-        input_file::open_regular(&real, false).map_err(|e| format!("cannot read {submit}: {e}"))?;
+        input_file::open_regular(&real, false).map_err(|e| format!("cannot read {name}: {e}"))?;
     let length = file
         .metadata()
-        .map_err(|e| format!("cannot read {submit}: {e}"))?
+        .map_err(|e| format!("cannot read {name}: {e}"))?
         .len();
     let mut reader = BufReader::new(file);
     // The size in the header first: a wrong size is told as such, before
@@ -78,13 +80,13 @@ pub(crate) fn read(
     let limit = MAX_BYTES_PER_PIXEL * u64::from(width) * u64::from(height) + SLACK_BYTES;
     if length > limit {
         return Err(format!(
-            "{submit} is too large: {length} bytes, more than a PNG of {width}x{height} takes \
+            "{name} is too large: {length} bytes, more than a PNG of {width}x{height} takes \
              (at most {limit})"
         ));
     }
     reader
         .rewind()
-        .map_err(|e| format!("cannot read {submit}: {e}"))?;
+        .map_err(|e| format!("cannot read {name}: {e}"))?;
     // compare's reader says what is wrong with anything else.
-    student::read(reader, submit).map_err(|e| format!("{e:#}"))
+    student::read(reader, name).map_err(|e| format!("{e:#}"))
 }

@@ -7,7 +7,7 @@ use std::fmt::Write;
 
 use super::escape::{escape, url};
 use super::images::{image, thumbnail_size};
-use super::{scene_anchor, student_page_path};
+use super::{notes_line, scene_anchor, student_page_path};
 use crate::grade::model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
 use crate::grade::points_text as points;
 
@@ -49,8 +49,11 @@ fn scene_heading(class: &ClassGrades, index: usize, scene: &SceneSheet) -> Strin
 fn row(class: &ClassGrades, student: &StudentGrades) -> String {
     let page = url(&student_page_path(student));
     let name = escape(&student.student);
+    let notes = notes_line(student).map_or(String::new(), |notes| {
+        format!("<div class=\"notes\" title=\"{notes}\">{notes}</div>")
+    });
     let mut html = format!(
-        "<tr><th scope=\"row\" class=\"student\"><a href=\"{page}\" title=\"{name}\"><bdi>{name}</bdi></a></th><td class=\"total\"><b>{}</b></td>",
+        "<tr><th scope=\"row\" class=\"student\"><a href=\"{page}\" title=\"{name}\"><bdi>{name}</bdi></a>{notes}</th><td class=\"total\"><b>{}</b></td>",
         points(student.total)
     );
     for (index, scene) in class.scenes.iter().enumerate() {

@@ -31,6 +31,8 @@ h2{font-size:1.1rem;margin:18px 0 6px;overflow-wrap:anywhere}\
 a{color:#0b57d0}\
 .summary{margin:2px 0 10px;color:var(--muted)}.summary b{color:var(--ink)}\
 .note{margin:4px 0 8px;color:var(--muted);font-size:13px;max-width:120ch}\
+.notes{font-size:12px;color:var(--muted);overflow-wrap:anywhere}p.notes{font-size:13px;color:var(--ink)}\
+.grades .notes{display:-webkit-box;-webkit-box-orient:vertical;-webkit-line-clamp:3;overflow:hidden}\
 .sub{display:block;font-weight:normal;font-size:12px;color:var(--muted)}\
 h2 .sub{display:inline;margin-left:8px}\
 img.px{image-rendering:pixelated;display:block;background:#e8eaed}\
@@ -78,4 +80,4 @@ padding:8px 10px;max-width:120ch;font:12px/1.35 ui-monospace,\"DejaVu Sans Mono\
 .grades thead th,.grades th.student{position:static}\
 .grades tr,section.scene,figure.card,pre.report{break-inside:avoid}\
 a{color:inherit;text-decoration:none}nav.back{display:none}\
-.reason{display:block;overflow:visible}}";
+.reason,.grades .notes{display:block;overflow:visible}}";

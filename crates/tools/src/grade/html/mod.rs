@@ -39,6 +39,16 @@ fn student_page_path(student: &StudentGrades) -> String {
     format!("students/{}.html", student.slug)
 }
 
+/// How the student's files were found, when not as named: the student's
+/// notes, then each scene's; `None` when there are none.
+fn notes_line(student: &StudentGrades) -> Option<String> {
+    let scene_notes = student.scenes.iter().filter_map(|s| s.note.as_ref());
+    let notes: Vec<&str> = (student.notes.iter().chain(scene_notes))
+        .map(String::as_str)
+        .collect();
+    (!notes.is_empty()).then(|| escape(&notes.join("; ")))
+}
+
 /// The anchor of scene `index` (from 0) on a student's page.
 fn scene_anchor(index: usize) -> String {
     format!("scene-{}", index + 1)
@@ -46,9 +56,10 @@ fn scene_anchor(index: usize) -> String {
 
 fn index(class: &ClassGrades) -> String {
     let mut body = format!(
-        "<header><h1>{}</h1>{}</header>",
+        "<header><h1>{}</h1>{}{}</header>",
         escape(&class.title),
-        summary::summary(class)
+        summary::summary(class),
+        summary::ignored(class)
     );
     body.push_str(
         "<section class=\"histograms\"><h2>Mistakes across the class</h2>\

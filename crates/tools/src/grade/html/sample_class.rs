@@ -17,6 +17,7 @@ pub(super) fn class(students: &[(&str, Vec<SceneGrade>)]) -> ClassGrades {
             partial: false,
             max_flip: None,
             reference_image: format!("reference/scene{i}.png"),
+            visibility: Default::default(),
         })
         .collect();
     let students = students
@@ -27,6 +28,7 @@ pub(super) fn class(students: &[(&str, Vec<SceneGrade>)]) -> ClassGrades {
             slug: format!("s{i}"),
             total: grades.iter().map(|g| g.points).sum(),
             scenes: grades.clone(),
+            notes: Vec::new(),
         })
         .collect();
     ClassGrades {
@@ -34,6 +36,8 @@ pub(super) fn class(students: &[(&str, Vec<SceneGrade>)]) -> ClassGrades {
         max_total: 10.0 * scene_count as f64,
         scenes,
         students,
+        ignored: Vec::new(),
+        visibility: Default::default(),
     }
 }
 
@@ -61,6 +65,7 @@ pub(super) fn compared(mistakes: &[&str]) -> SceneGrade {
         report_text: Some("yours.png against scene.toml: they differ.\n  FLIP 0.1566".into()),
         yours_image: Some("yours/x.png".into()),
         error_map_image: Some("error/x.png".into()),
+        note: None,
     }
 }
 

@@ -7,7 +7,7 @@ use std::fmt::Write;
 use super::class_table::verdict;
 use super::escape::{escape, escape_block};
 use super::images::{image, readable_size};
-use super::scene_anchor;
+use super::{notes_line, scene_anchor};
 use crate::grade::model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
 use crate::grade::points_text as points;
 
@@ -21,6 +21,9 @@ pub(super) fn body(class: &ClassGrades, student: &StudentGrades) -> String {
         points(student.total),
         points(class.max_total),
     );
+    if let Some(notes) = notes_line(student) {
+        let _ = write!(html, "<p class=\"notes\">Note: {notes}.</p>");
+    }
     html.push_str(&contents(class, student));
     for (index, scene) in class.scenes.iter().enumerate() {
         if let Some(grade) = student.scenes.get(index) {

@@ -2,6 +2,7 @@
 //! mean and median total, how many matched every scene, how many
 //! submissions were refused.
 
+use super::escape::escape;
 use crate::grade::model::ClassGrades;
 use crate::grade::points_text as points;
 
@@ -40,6 +41,24 @@ pub(super) fn summary(class: &ClassGrades) -> String {
     )
 }
 
+/// What SUBMISSIONS/ held that was not graded as a student, named once;
+/// nothing when it held only students.
+pub(super) fn ignored(class: &ClassGrades) -> String {
+    if class.ignored.is_empty() {
+        return String::new();
+    }
+    let names: Vec<String> = class
+        .ignored
+        .iter()
+        .map(|name| format!("<bdi>{}</bdi>", escape(name)))
+        .collect();
+    format!(
+        "<p class=\"note ignored\">Not students, not graded: {} (what a system or an archiver \
+         leaves, and files beside the folders).</p>",
+        names.join(", ")
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -67,6 +86,19 @@ mod tests {
             ("c", vec![matched()]),
         ]);
         assert!(summary(&three).contains("mean <b>6.67</b>, median <b>10</b>"));
+    }
+
+    #[test]
+    fn what_is_not_a_student_is_named_once() {
+        let mut class = class(&[("ada", vec![matched()])]);
+        assert_eq!(ignored(&class), "");
+        class.ignored = vec![".DS_Store".into(), "<b>".into(), "__MACOSX".into()];
+        assert_eq!(
+            ignored(&class),
+            "<p class=\"note ignored\">Not students, not graded: <bdi>.DS_Store</bdi>, \
+             <bdi>&lt;b&gt;</bdi>, <bdi>__MACOSX</bdi> (what a system or an archiver leaves, \
+             and files beside the folders).</p>"
+        );
     }
 
     #[test]
