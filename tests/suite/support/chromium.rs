@@ -38,13 +38,16 @@ impl Chromium {
 
     /// `page`'s DOM, serialised, after the browser loaded it from `file://`.
     pub fn dump_dom(&self, page: &Path) -> String {
+        self.dump_dom_at(page, "")
+    }
+
+    /// As `dump_dom`, the page opened at `fragment` (`#sort=total`, or ""),
+    /// after its scripts ran.
+    pub fn dump_dom_at(&self, page: &Path, fragment: &str) -> String {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("dom.html");
-        self.run(
-            &["--dump-dom".to_string(), file_url(page)],
-            &out,
-            dir.path(),
-        );
+        let url = format!("{}{fragment}", file_url(page));
+        self.run(&["--dump-dom".to_string(), url], &out, dir.path());
         std::fs::read_to_string(out).unwrap()
     }
 

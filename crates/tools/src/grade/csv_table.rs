@@ -4,11 +4,18 @@
 //! as RFC 4180 says, and one that a spreadsheet would run as a formula
 //! (starting with `=`, `+`, `-`, `@`, a tab or a carriage return) gets a
 //! leading `'`, as OWASP's advice on CSV injection has it: a student's
-//! folder name is data, never a formula.
+//! folder name is data, never a formula. The file opens with UTF-8's
+//! byte-order mark, without which Excel reads a CSV in the system's code
+//! page and garbles accented names (`CafÃ©`); LibreOffice and Python's
+//! `utf-8-sig` skip it.
 
 use super::model::{ClassGrades, SceneGrade};
 
-/// The whole table, header first, each line ending in CRLF (RFC 4180).
+/// UTF-8's byte-order mark, U+FEFF (EF BB BF).
+const BYTE_ORDER_MARK: char = '\u{feff}';
+
+/// The whole table after the byte-order mark, header first, each line
+/// ending in CRLF (RFC 4180).
 pub(crate) fn csv(grades: &ClassGrades) -> String {
     let mut header = vec!["student".to_string()];
     for scene in &grades.scenes {
@@ -17,7 +24,8 @@ pub(crate) fn csv(grades: &ClassGrades) -> String {
         }
     }
     header.push("total".into());
-    let mut out = line(&header);
+    let mut out = String::from(BYTE_ORDER_MARK);
+    out += &line(&header);
     for student in &grades.students {
         let mut row = vec![student.student.clone()];
         for scene in &student.scenes {
@@ -101,5 +109,28 @@ mod tests {
         assert_eq!(number(7.5), "7.5");
         assert_eq!(number(3.85), "3.85");
         assert_eq!(number(0.0), "0");
+    }
+
+    #[test]
+    fn the_file_opens_with_the_byte_order_mark_then_the_header() {
+        let class = ClassGrades {
+            title: "A5".into(),
+            scenes: Vec::new(),
+            students: vec![crate::grade::model::StudentGrades {
+                student: "Zoë".into(),
+                slug: "zoe".into(),
+                scenes: Vec::new(),
+                total: 0.0,
+                notes: Vec::new(),
+            }],
+            max_total: 0.0,
+            ignored: Vec::new(),
+            visibility: Default::default(),
+        };
+        // EF BB BF, then "student,total", then the row; ë is C3 AB.
+        assert_eq!(
+            csv(&class).as_bytes(),
+            b"\xef\xbb\xbfstudent,total\r\nZo\xc3\xab,0\r\n"
+        );
     }
 }

@@ -1,8 +1,11 @@
-//! The class report: index.html (the class summary, the mistake histogram
-//! per scene, the table of students × scenes) and one page per student.
-//! Plain HTML with its style inline: no script, no fonts or files fetched,
-//! so it opens from `file://` anywhere, and prints. Everything the model
-//! holds is escaped: student names are folder names, and untrusted.
+//! The class report: index.html (the class summary, links to grades.csv
+//! and grades.json, the mistake histogram per scene with who is in each
+//! bar, the table of students × scenes) and one page per student. HTML
+//! with its style inline, and on index.html one small inline script that
+//! sorts the table (`sorting`); no fonts or files fetched, so it opens from
+//! `file://` anywhere, and prints, and reads the same without script.
+//! Everything the model holds is escaped: student names are folder names,
+//! and untrusted.
 
 mod class_table;
 mod escape;
@@ -11,6 +14,7 @@ mod histogram;
 mod images;
 #[cfg(test)]
 mod sample_class;
+mod sorting;
 mod student_page;
 mod summary;
 
@@ -56,34 +60,41 @@ fn scene_anchor(index: usize) -> String {
 
 fn index(class: &ClassGrades) -> String {
     let mut body = format!(
-        "<header><h1>{}</h1>{}{}</header>",
+        "<header><h1>{}</h1>{}{}<p class=\"files\">The grades as files: \
+         <a href=\"grades.csv\">grades.csv</a> (a row per student, for a spreadsheet) · \
+         <a href=\"grades.json\">grades.json</a> (everything, for scripts)</p></header>",
         escape(&class.title),
         summary::summary(class),
         summary::ignored(class)
     );
     body.push_str(
         "<section class=\"histograms\"><h2>Mistakes across the class</h2>\
-         <p class=\"note\">Per scene, how many students matched, how many each mistake \
+         <p class=\"note\">Per scene, how many students matched, how many nearly \
+         (no mistake named, FLIP under 0.01: a few pixels apart), how many each mistake \
          <code>compare</code> named fits, and how many submissions were refused. \
-         A student's image may fit up to three mistakes.</p><div class=\"cards\">",
+         A student's image may fit up to three mistakes. Hover over a bar, or open \
+         the list under it, to see who.</p><div class=\"cards\">",
     );
     for (index, scene) in class.scenes.iter().enumerate() {
         let _ = write!(
             body,
-            "<figure class=\"card\"><figcaption>{}</figcaption>{}</figure>",
+            "<figure class=\"card\"><figcaption>{}</figcaption>{}{}</figure>",
             escape(&scene.file),
-            histogram::svg(class, index)
+            histogram::svg(class, index),
+            histogram::who(class, index)
         );
     }
     body.push_str(
         "</div></section><section><h2>Grades</h2>\
          <p class=\"note\">Each cell: your image, the reference and FLIP's error map \
-         (black: equal, yellow: most visible); the points; match, the first mistake \
-         <code>compare</code> names (+ how many more), or why the file was refused. \
-         A name or a cell opens the student's page.</p>",
+         (black: equal, yellow: most visible); the points; match, near match, the first \
+         mistake <code>compare</code> names (+ how many more), or why the file was refused. \
+         A name or a cell opens the student's page; a heading sorts by its column \
+         (lowest points first; again, the other way).</p>",
     );
     body.push_str(&class_table::table(class));
     body.push_str("</section>");
+    let _ = write!(body, "<script>{}</script>", sorting::SCRIPT);
     frame::page(&format!("{} · class report", class.title), &body, true)
 }
 
@@ -118,9 +129,11 @@ mod tests {
                 "{page}"
             );
         }
-        // One histogram per scene, one row per student.
+        // One histogram per scene, one row per student, the files linked.
         assert_eq!(index.matches("<svg class=\"histogram\"").count(), 2);
-        assert_eq!(index.matches("<tr><th scope=\"row\"").count(), 3);
+        assert_eq!(index.matches("<th scope=\"row\"").count(), 3);
+        assert!(index.contains("<a href=\"grades.csv\">grades.csv</a>"));
+        assert!(index.contains("<a href=\"grades.json\">grades.json</a>"));
     }
 
     #[test]
@@ -130,6 +143,8 @@ mod tests {
             "&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; &#39;co&#39; \u{2407}\u{fffd}";
         let class = class(&[(name, vec![matched()])]);
         for (path, page) in pages(&class) {
+            // The index's own script is the only one.
+            let page = page.replace(&format!("<script>{}</script>", sorting::SCRIPT), "");
             assert!(!page.contains("<script"), "{path}: {page}");
             assert!(!page.contains('\u{7}'), "{path}");
             assert!(page.contains(escaped), "{path}: {page}");
@@ -145,14 +160,73 @@ mod tests {
     }
 
     #[test]
-    fn the_pages_fetch_nothing_and_run_nothing() {
+    fn the_pages_fetch_nothing_and_only_the_index_sorts() {
         let class = class(&[("ada", vec![compared(&["gamma"])])]);
         for (path, page) in pages(&class) {
             // The SVG's namespace is a name, not a fetch.
             let page = page.replace("xmlns=\"http://www.w3.org/2000/svg\"", "");
-            for forbidden in ["<script", "http://", "https://", "@import", "<link", "url("] {
+            for forbidden in ["http://", "https://", "@import", "<link", "url("] {
                 assert!(!page.contains(forbidden), "{path} has {forbidden}");
             }
+            // One script, inline, at the end of index.html; none elsewhere.
+            let scripts = usize::from(path == "index.html");
+            assert_eq!(page.matches("<script").count(), scripts, "{path}");
+            if scripts == 1 {
+                let script = format!("<script>{}</script></body>", sorting::SCRIPT);
+                assert!(page.contains(&script), "{path}");
+            }
         }
+        // The script reads the page and its URL, and fetches nothing.
+        for forbidden in [
+            "fetch",
+            "XMLHttpRequest",
+            "import",
+            "eval",
+            "innerHTML",
+            "src",
+        ] {
+            assert!(!sorting::SCRIPT.contains(forbidden), "{forbidden}");
+        }
+    }
+
+    #[test]
+    fn the_table_comes_by_name_each_column_sortable() {
+        // Byte order would put Zed and _x first; by name: ada, bob, _x, Zed.
+        // Totals and cells carry their points for the script.
+        let class = class(&[
+            ("Zed", vec![matched(), compared(&[])]),
+            ("_x", vec![compared(&["gamma"]), matched()]),
+            ("ada", vec![refused("missing"), refused("missing")]),
+            ("bob", vec![matched(), matched()]),
+        ]);
+        let index = index(&class);
+        let rows: Vec<usize> = ["row-s2", "row-s3", "row-s1", "row-s0"]
+            .iter()
+            .map(|id| index.find(&format!("<tr id=\"{id}\">")).unwrap())
+            .collect();
+        assert!(rows.is_sorted(), "{rows:?}");
+        for key in ["name", "total", "scene-1", "scene-2"] {
+            assert!(index.contains(&format!(" data-sort=\"{key}\">")), "{key}");
+        }
+        // Zed: 10 + 0; the cells say 10 and 0.
+        let zed = &index[index.find("<tr id=\"row-s0\">").unwrap()..];
+        let zed = &zed[..zed.find("</tr>").unwrap()];
+        assert!(
+            zed.contains("<td class=\"total\" data-points=\"10\">"),
+            "{zed}"
+        );
+        assert_eq!(
+            zed.matches("<td class=\"cell\" data-points=\"").count(),
+            2,
+            "{zed}"
+        );
+        assert!(
+            zed.contains("data-points=\"10\"><a class=\"thumbs\""),
+            "{zed}"
+        );
+        assert!(
+            zed.contains("data-points=\"0\"><a class=\"thumbs\""),
+            "{zed}"
+        );
     }
 }

@@ -69,6 +69,14 @@ pub(super) fn compared(mistakes: &[&str]) -> SceneGrade {
     }
 }
 
+/// Compared, no match, no mistake named, at FLIP `flip_mean`: 0 points.
+pub(super) fn near(flip_mean: f64) -> SceneGrade {
+    SceneGrade {
+        flip_mean: Some(flip_mean),
+        ..compared(&[])
+    }
+}
+
 pub(super) fn refused(reason: &str) -> SceneGrade {
     SceneGrade {
         refused: Some(reason.into()),

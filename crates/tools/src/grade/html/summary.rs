@@ -1,6 +1,6 @@
 //! The class in one line at the top of index.html: how many students, the
-//! mean and median total, how many matched every scene, how many
-//! submissions were refused.
+//! mean and median total, how many matched every scene, how many students
+//! had a file refused (and how many files: one student may have several).
 
 use super::escape::escape;
 use crate::grade::model::ClassGrades;
@@ -24,20 +24,28 @@ pub(super) fn summary(class: &ClassGrades) -> String {
         .iter()
         .filter(|s| !s.scenes.is_empty() && s.scenes.iter().all(|g| g.matches))
         .count();
-    let refused: usize = class
+    let refused_files: Vec<usize> = class
         .students
         .iter()
         .map(|s| s.scenes.iter().filter(|g| g.refused.is_some()).count())
-        .sum();
+        .filter(|&files| files > 0)
+        .collect();
     let plural =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    let refused = match refused_files.len() {
+        0 => "no file refused".to_string(),
+        n => format!(
+            "{} had a file refused ({})",
+            plural(n, "student", "students"),
+            plural(refused_files.iter().sum(), "file", "files"),
+        ),
+    };
     format!(
-        "<p class=\"summary\"><b>{}</b> · total out of {}: mean <b>{}</b>, median <b>{}</b> · <b>{all_matched}</b> matched every scene · {} refused</p>",
+        "<p class=\"summary\"><b>{}</b> · total out of {}: mean <b>{}</b>, median <b>{}</b> · <b>{all_matched}</b> matched every scene · {refused}</p>",
         plural(students, "student", "students"),
         points(class.max_total),
         points(mean),
         points(median),
-        plural(refused, "submission", "submissions"),
     )
 }
 
@@ -67,7 +75,8 @@ mod tests {
     #[test]
     fn mean_median_and_counts_by_hand() {
         // Totals 20, 10, 0, 10: mean 40 / 4 = 10, median of 0 10 10 20 is
-        // (10 + 10) / 2 = 10. Only ada matched both scenes; one refusal.
+        // (10 + 10) / 2 = 10. Only ada matched both scenes; cy had one file
+        // refused.
         let class = class(&[
             ("ada", vec![matched(), matched()]),
             ("bob", vec![matched(), compared(&["no-ambient"])]),
@@ -76,7 +85,7 @@ mod tests {
         ]);
         assert_eq!(
             summary(&class),
-            "<p class=\"summary\"><b>4 students</b> · total out of 20: mean <b>10</b>, median <b>10</b> · <b>1</b> matched every scene · 1 submission refused</p>"
+            "<p class=\"summary\"><b>4 students</b> · total out of 20: mean <b>10</b>, median <b>10</b> · <b>1</b> matched every scene · 1 student had a file refused (1 file)</p>"
         );
         // Three students, totals 0, 10, 10: the median is the middle one, 10;
         // the mean 20 / 3 = 6.67.
@@ -86,6 +95,22 @@ mod tests {
             ("c", vec![matched()]),
         ]);
         assert!(summary(&three).contains("mean <b>6.67</b>, median <b>10</b>"));
+        assert!(summary(&three).ends_with(" · no file refused</p>"));
+    }
+
+    #[test]
+    fn refusals_are_counted_in_students_then_files() {
+        // ada had both files refused, bob one, cy none: 2 students, 3 files.
+        let class = class(&[
+            ("ada", vec![refused("missing"), refused("not a PNG")]),
+            ("bob", vec![matched(), refused("missing")]),
+            ("cy", vec![matched(), matched()]),
+        ]);
+        assert!(
+            summary(&class).ends_with(" · 2 students had a file refused (3 files)</p>"),
+            "{}",
+            summary(&class)
+        );
     }
 
     #[test]
