@@ -292,8 +292,11 @@ class Pixel:
         m = obj["material"]
         p = add(o, mul(d, t))
         n_g = geometric_normal(obj, p)
-        entering = dot(n_g, d) < 0
-        n = mul(n_g, -1) if dot(n_g, d) > 0 else n_g
+        side = n_g  # MODEL §3: a patch's side is its plane's, turned to n_g's side
+        if obj["kind"] == "patch":
+            side = obj["normal"] if dot(obj["normal"], n_g) >= 0 else mul(obj["normal"], -1)
+        entering = dot(side, d) < 0
+        n = n_g if entering else mul(n_g, -1)
         v = mul(d, -1)
         if "nan" in mistakes:
             v = normalize(sub(p, p))  # meant o - p: a zero vector, normalised to NaN

@@ -473,3 +473,86 @@ fn compare_takes_a_mesh_as_its_scene() {
     assert_eq!(dark["matches"], false, "{dark}");
     assert_eq!(dark["mistakes"][0]["name"], "no-ambient", "{dark}");
 }
+
+/// A UV sphere of radius 1 about the origin, `rings` x `segments` quads
+/// (triangles at the poles), with each vertex's normal its position (`vn`),
+/// wound counter-clockwise seen from outside.
+fn smooth_ball_obj(rings: usize, segments: usize) -> String {
+    use std::f64::consts::PI;
+    let mut obj = String::new();
+    let vertex = |ring: usize, segment: usize| -> [f64; 3] {
+        let (theta, phi) = (
+            PI * ring as f64 / rings as f64,
+            2.0 * PI * segment as f64 / segments as f64,
+        );
+        [
+            theta.sin() * phi.cos(),
+            theta.cos(),
+            -theta.sin() * phi.sin(),
+        ]
+    };
+    for ring in 0..=rings {
+        for segment in 0..segments {
+            let [x, y, z] = vertex(ring, segment);
+            obj += &format!("v {x} {y} {z}\nvn {x} {y} {z}\n");
+        }
+    }
+    let index = |ring: usize, segment: usize| ring * segments + segment % segments + 1;
+    for ring in 0..rings {
+        for segment in 0..segments {
+            let (a, b) = (index(ring, segment), index(ring, segment + 1));
+            let (c, d) = (index(ring + 1, segment + 1), index(ring + 1, segment));
+            if ring > 0 {
+                obj += &format!("f {a}//{a} {d}//{d} {b}//{b}\n");
+            }
+            if ring + 1 < rings {
+                obj += &format!("f {b}//{b} {d}//{d} {c}//{c}\n");
+            }
+        }
+    }
+    obj
+}
+
+/// Issue 41: a smooth ball's rim. Where a ray meets a triangle's front but
+/// the blended normal N_s faces away from it (N_s·d > 0, only near the
+/// silhouette), the side is the triangle's plane's: entering, "front", and
+/// N = N_s. It once read as the back side (N = −N_s, the rim shaded as if
+/// from inside; made glass, total internal reflection on the first hit).
+#[test]
+fn a_smooth_balls_rim_is_its_front_side() {
+    let dir = folder(&[("ball.obj", smooth_ball_obj(6, 8).as_bytes())]);
+    let toml = dir.path().join("ball.toml");
+    std::fs::write(
+        &toml,
+        "[camera]\neye = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 40\n\
+         [image]\nwidth = 128\nheight = 128\n\
+         [materials.glass]\ncolor = [0.9, 0.9, 0.9]\nkd = 0.2\nks = 0.1\nkt = 0.8\nior = 1.5\n\
+         [[light]]\nposition = [-4, 4, 4]\n\
+         [[object]]\nmaterial = \"glass\"\nmesh = { file = \"ball.obj\" }\n",
+    )
+    .unwrap();
+    let scene = scene_at(&toml, None);
+    let mut rim = 0;
+    for y in 0..128 {
+        for x in 0..128 {
+            let tree = record_pixel(&scene, &scene.settings, x, y);
+            let root = tree.root();
+            let Some(hit) = root.hit.as_ref() else {
+                continue;
+            };
+            // The eye is outside the ball: every first hit is on its front.
+            assert!(hit.entering, "pixel {x},{y}: {hit:?}");
+            if hit.geometric_normal.dot(root.direction) > 0.0 {
+                rim += 1;
+                assert_eq!(hit.normal, hit.geometric_normal, "pixel {x},{y}");
+                assert!(
+                    explain(&tree).contains("on its front side"),
+                    "pixel {x},{y}: {}",
+                    explain(&tree)
+                );
+            }
+        }
+    }
+    // The case the rule is for occurs (6 x 8 facets: a rim of pixels).
+    assert!(rim > 0, "no pixel meets a blended normal facing away");
+}

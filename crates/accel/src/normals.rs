@@ -34,7 +34,7 @@ pub(crate) struct SmoothTriangle {
     dropped: Axis,
     projected: [DVec2; 3],
     normals: [DVec3; 3],
-    flat: DVec3,
+    pub(crate) flat: DVec3,
 }
 
 impl NormalRecipe {

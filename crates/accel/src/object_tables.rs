@@ -8,6 +8,7 @@ use glam::DVec3;
 use super::Accel;
 use super::normals::NormalRecipe;
 use raystep_model::object::Object;
+use raystep_model::shapes::Shape;
 
 #[derive(Clone, Debug)]
 pub struct ObjectTables {
@@ -57,6 +58,20 @@ impl ObjectTables {
             NormalRecipe::Flat(index) => self.flats[*index as usize],
             NormalRecipe::SmoothTriangle(triangle) => triangle.normal_at(point),
             NormalRecipe::FromShape => from_shape(),
+        }
+    }
+
+    /// A patch's plane normal, which decides the side a ray meets it from
+    /// (MODEL §3); `None` for every other shape, whose side is its N_g's.
+    #[inline]
+    pub fn patch_plane(&self, objects: &[Object], object: usize) -> Option<DVec3> {
+        match &self.normals[object] {
+            NormalRecipe::SmoothTriangle(triangle) => Some(triangle.flat),
+            NormalRecipe::FromShape => match &objects[object].shape {
+                Shape::Patch(patch) => Some(patch.polygon.plane.normal),
+                _ => None,
+            },
+            NormalRecipe::FromLeaf | NormalRecipe::Flat(_) => None,
         }
     }
 }

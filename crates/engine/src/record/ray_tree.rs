@@ -82,7 +82,8 @@ pub struct HitRecord {
     pub point: DVec3,
     /// N_g.
     pub geometric_normal: DVec3,
-    /// N: N_g facing the ray (MODEL §3), as in the tracer's `SurfaceHit`.
+    /// N: N_g turned to the side the ray meets (MODEL §3: a patch's side is
+    /// its plane's), as in the tracer's `SurfaceHit`.
     pub normal: DVec3,
     pub entering: bool,
     /// The intersection worked the way the course notes teach it.

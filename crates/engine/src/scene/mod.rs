@@ -264,6 +264,11 @@ impl Scene {
         self.tables
             .geometric_normal(&self.objects, &self.accel, object, point)
     }
+
+    /// A patch's plane normal (its side, MODEL §3), `None` for other shapes.
+    pub(crate) fn patch_plane(&self, object: usize) -> Option<DVec3> {
+        self.tables.patch_plane(&self.objects, object)
+    }
 }
 
 /// Reads a scene file, choosing the format by extension (`.nff`, a mesh
