@@ -569,6 +569,31 @@ fn help_closes_on_any_key_and_esc_quits() {
 }
 
 #[test]
+fn the_help_says_how_to_quit_on_its_first_screen() {
+    // At 80x24 the help scrolls (the quit row of "Other" was below the
+    // fold); at 200x60 too. Its first line says how to quit, visible at
+    // both sizes: the help box is centred, so read every row.
+    for (width, height) in [(80, 24), (200, 60)] {
+        let mut app = app();
+        chars(&mut app, "?");
+        let terminal = screen(&mut app, width, height);
+        let buffer = terminal.backend().buffer();
+        let text: String = (0..height)
+            .map(|y| {
+                (0..width)
+                    .map(|x| buffer[(x, y)].symbol().to_string())
+                    .collect::<String>()
+                    + "\n"
+            })
+            .collect();
+        assert!(
+            text.contains("To quit: q or Esc"),
+            "{width}x{height}:\n{text}"
+        );
+    }
+}
+
+#[test]
 fn q_in_the_help_closes_it_and_only_then_quits() {
     let mut app = app();
     chars(&mut app, "?q");

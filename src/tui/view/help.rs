@@ -9,11 +9,11 @@ use crate::tui::keymap::KEYMAP;
 const KEY_WIDTH: usize = 22;
 
 pub(crate) fn lines() -> Vec<Line<'static>> {
-    let mut lines = Vec::new();
+    // First, on every screen: how to quit (the quit row of "Other" lay
+    // below the fold of an 80x24 terminal).
+    let mut lines = vec![Line::from(QUIT).bold()];
     for (group, rows) in KEYMAP {
-        if !lines.is_empty() {
-            lines.push(Line::raw(""));
-        }
+        lines.push(Line::raw(""));
         lines.push(Line::from(Span::raw(*group).bold().underlined()));
         for row in *rows {
             lines.push(Line::from(vec![
@@ -26,6 +26,10 @@ pub(crate) fn lines() -> Vec<Line<'static>> {
     }
     lines
 }
+
+/// The help's first line.
+pub(crate) const QUIT: &str =
+    "To quit: q or Esc once this help is closed (any key); Ctrl+C at once.";
 
 /// How many lines of the help a terminal `height` rows tall cannot show.
 pub(crate) fn hidden_lines(height: u16) -> u16 {
@@ -52,9 +56,11 @@ mod tests {
         for (group, _) in keymap::KEYMAP {
             assert!(text.iter().any(|l| l == group), "{group}");
         }
-        // 8 titles, 7 blank lines between groups, one line per row.
+        // How to quit and a blank line, 8 titles, 7 blank lines between
+        // groups, one line per row.
+        assert_eq!(text[0], QUIT);
         assert_eq!(keymap::KEYMAP.len(), 8);
-        assert_eq!(text.len(), 8 + 7 + keymap::rows().count());
+        assert_eq!(text.len(), 2 + 8 + 7 + keymap::rows().count());
     }
 
     #[test]
