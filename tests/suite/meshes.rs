@@ -556,3 +556,53 @@ fn a_smooth_balls_rim_is_its_front_side() {
     // The case the rule is for occurs (6 x 8 facets: a rim of pixels).
     assert!(rim > 0, "no pixel meets a blended normal facing away");
 }
+
+/// Issue 41: a triangle's number runs per name, however often the OBJ
+/// starts the object again (tobj starts a new model at each `usemtl`), and
+/// a mesh file alone is not named twice.
+#[test]
+fn mesh_triangles_are_numbered_once_per_name_and_named_once() {
+    let dir = folder(&[
+        (
+            "m.mtl",
+            b"newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\nnewmtl c\nKd 0 0 1\n",
+        ),
+        (
+            "crate.obj",
+            b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\no crate\n\
+              usemtl a\nf 1 2 3\nf 1 3 4\nusemtl b\nf 1 2 5\nf 2 3 5\n\
+              usemtl c\nf 3 4 5\nf 4 1 5\n",
+        ),
+        (
+            "pyramid.stl",
+            b"solid pyramid\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n\
+              vertex 0 1 0\nendloop\nendfacet\nendsolid pyramid\n",
+        ),
+    ]);
+    let names = |file: &str| -> Vec<String> {
+        let scene = scene_at(&dir.path().join(file), None);
+        scene.objects.iter().map(|o| o.name.to_string()).collect()
+    };
+    // Six triangles of one object "crate", numbered 0 to 5 in file order
+    // whatever their material (they ran 0, 1 under each of a, b and c).
+    assert_eq!(
+        names("crate.obj"),
+        [
+            "crate triangle 0 (material a)",
+            "crate triangle 1 (material a)",
+            "crate triangle 2 (material b)",
+            "crate triangle 3 (material b)",
+            "crate triangle 4 (material c)",
+            "crate triangle 5 (material c)",
+        ]
+    );
+    // A TOML object named "pyramid" whose STL's solid is "pyramid": one
+    // "pyramid", not "pyramid pyramid triangle 0".
+    std::fs::write(
+        dir.path().join("p.toml"),
+        "[camera]\neye = [0.3, 0.3, 3]\nlook_at = [0.3, 0.3, 0]\n\
+         [[object]]\nname = \"pyramid\"\nmesh = { file = \"pyramid.stl\" }\n",
+    )
+    .unwrap();
+    assert_eq!(names("p.toml"), ["pyramid triangle 0"]);
+}

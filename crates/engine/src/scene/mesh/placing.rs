@@ -32,7 +32,24 @@ pub(super) fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneEr
     };
     let mut materials = MeshMaterials::add(request, &mtl_materials, &mut placed);
     let prefix = request.name.map(|n| format!("{n} ")).unwrap_or_default();
-    placed.groups = groups.iter().map(|g| format!("{prefix}{g}")).collect();
+    // A mesh named as its own group ("pyramid" holding solid "pyramid") is
+    // not named twice.
+    placed.groups = groups
+        .iter()
+        .map(|g| match request.name {
+            Some(name) if name == g => g.clone(),
+            _ => format!("{prefix}{g}"),
+        })
+        .collect();
+    // Triangles are numbered per group name: tobj starts the same object
+    // again at each `usemtl`, and its numbers started again from 0 ("crate
+    // triangle 1" named three triangles).
+    let first_of_name: Vec<usize> = {
+        let mut first = std::collections::HashMap::new();
+        (groups.iter().enumerate())
+            .map(|(g, name)| *first.entry(name.as_str()).or_insert(g))
+            .collect()
+    };
     let transform = Transform::new(&request.placement);
     let mut naming = Naming::new(&placed.groups, &mtl_materials);
     let mut emitters = vec![EmitterSums::default(); mtl_materials.len()];
@@ -41,8 +58,8 @@ pub(super) fn place(request: &Request, loaded: Loaded) -> Result<Placed, SceneEr
     placed.objects.reserve(triangles.len());
     for t in &triangles {
         // A triangle's number in its group counts the skipped ones too.
-        let number = per_group[t.group];
-        per_group[t.group] += 1;
+        let number = per_group[first_of_name[t.group]];
+        per_group[first_of_name[t.group]] += 1;
         let vertices = t.vertices.map(|p| transform.point(p));
         check_bounds(&vertices, || {
             format!("{}: {} triangle {number}", path.display(), groups[t.group])
