@@ -278,3 +278,49 @@ fn the_debugger_answers_e_on_a_tree_of_65536_rays_well_within_a_minute() {
     assert!(current > 2 * 65536, "at the last event");
     assert_eq!(assembled, 1);
 }
+
+#[test]
+fn an_mtl_named_by_10000_mtllib_lines_is_read_once() {
+    // 10,000 `mtllib m.mtl` lines (130 KB) before two triangles, one of
+    // each of the MTL's two materials; `red` has a texture, which warns
+    // (MODEL §4: "named: raystep has no textures"), and `gone.mtl`, which
+    // does not exist, is named 10,000 times too. main appended m.mtl's
+    // materials at every line, 20,000 in all, and said each warning
+    // 10,000 times. Read once: two materials, one warning for the texture
+    // and one for the missing file, and each file listed once among those
+    // the scene reads.
+    let dir = tempfile::tempdir().unwrap();
+    let mut obj = "mtllib m.mtl\nmtllib gone.mtl\n".repeat(10_000);
+    obj.push_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nusemtl red\nf 1 2 3\nusemtl blue\nf 2 4 3\n");
+    let mtl = "newmtl red\nKd 1 0 0\nmap_Kd wood.png\nnewmtl blue\nKd 0 0 1\n";
+    std::fs::write(dir.path().join("m.obj"), &obj).unwrap();
+    std::fs::write(dir.path().join("m.mtl"), mtl).unwrap();
+    let path = dir.path().join("m.obj");
+    let scene = raystep_engine::scene::load(&path).unwrap();
+    assert_eq!(scene.materials.len(), 2);
+    assert_eq!(scene.objects.len(), 2);
+    for file in ["m.mtl", "gone.mtl"] {
+        let named = scene.files.iter().filter(|f| f.ends_with(file)).count();
+        assert_eq!(named, 1, "{file}: {:?}", &scene.files[..3]);
+    }
+    // As printed: each warning once.
+    let png = dir.path().join("m.png");
+    let output = crate::support::raystep(&[
+        "render",
+        path.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "8x6",
+    ]);
+    assert!(output.status.success());
+    let said = crate::support::stderr(&output);
+    assert_eq!(
+        said.matches("warning: ").count(),
+        2,
+        "{}",
+        &said[..2000.min(said.len())]
+    );
+    assert_eq!(said.matches("map_Kd").count(), 1);
+    assert_eq!(said.matches("gone.mtl").count(), 1);
+}

@@ -4,6 +4,7 @@
 //! face index out of range or zero, a face of fewer than 3 vertices) is found
 //! here first, with its line and column.
 
+use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
@@ -14,14 +15,25 @@ use super::{Loaded, Triangle, read_file};
 use crate::scene::SceneError;
 use crate::scene::limits::COORDINATE;
 
-/// Reads `path` and the MTL files its `mtllib` lines name (beside it).
+/// Reads `path` and the MTL files its `mtllib` lines name (beside it),
+/// each file once however many lines name it (10,000 `mtllib` lines of one
+/// MTL added its materials 10,000 times: a gigabyte from 150 KB).
 pub(super) fn load(path: &Path) -> Result<Loaded, SceneError> {
     let bytes = read_file(path, "mesh file").map_err(SceneError::plain)?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let missing = std::cell::RefCell::new(Vec::new());
     let libraries = std::cell::RefCell::new(Vec::new());
+    // Each file by its canonical path (by the path as named when it
+    // cannot be had: a missing file), so that `./m.mtl` or `d/../m.mtl`
+    // is the same file as `m.mtl`.
+    let seen = std::cell::RefCell::new(HashSet::new());
     let loader = |mtl: &Path| -> tobj::MTLLoadResult {
         let full: PathBuf = dir.join(mtl);
+        let file = std::fs::canonicalize(&full).unwrap_or_else(|_| full.clone());
+        if !seen.borrow_mut().insert(file) {
+            // Read already: its materials are in, or its warning said.
+            return Ok((Vec::new(), HashMap::new()));
+        }
         libraries.borrow_mut().push(full.clone());
         // Read only as MTL: whatever the path names, its bytes go to the
         // MTL parser and nowhere else, and nothing is written.
