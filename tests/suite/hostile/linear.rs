@@ -325,6 +325,86 @@ fn an_mtl_named_by_10000_mtllib_lines_is_read_once() {
     assert_eq!(said.matches("gone.mtl").count(), 1);
 }
 
+/// A TOML scene of `width` x `height` pixels and no light, whose one mesh
+/// `big` holds `tiny` triangles of 0.01 behind the camera (never seen) and
+/// last a large one filling the view: every primary ray hits the mesh's
+/// last triangle, and casts no shadow ray.
+fn last_triangle_scene(dir: &Path, width: u32, height: u32, tiny: usize) -> PathBuf {
+    let mut obj = String::new();
+    for i in 0..tiny {
+        let z = 50.0 + i as f64 * 0.001;
+        obj.push_str(&format!("v 0 0 {z}\nv 0.01 0 {z}\nv 0 0.01 {z}\n"));
+    }
+    obj.push_str("v -100 -100 -5\nv 100 -100 -5\nv 0 100 -5\n");
+    for i in 0..=tiny {
+        obj.push_str(&format!("f {} {} {}\n", 3 * i + 1, 3 * i + 2, 3 * i + 3));
+    }
+    std::fs::write(dir.join("m.obj"), obj).unwrap();
+    let path = dir.join("last.toml");
+    std::fs::write(
+        &path,
+        format!(
+            "[camera]\neye = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 40\n\
+             [image]\nwidth = {width}\nheight = {height}\n\
+             [materials.m]\ncolor = [0.8, 0.8, 0.8]\n\
+             [[object]]\nname = \"big\"\nmaterial = \"m\"\nmesh = {{ file = \"m.obj\" }}\n"
+        ),
+    )
+    .unwrap();
+    path
+}
+
+#[test]
+fn a_log_naming_its_hits_is_read_against_a_mesh_of_100000_triangles_well_within_a_minute() {
+    // 40,000 primary rays, each naming the last of 100,000 triangles as
+    // its hit. main looked each name up object by object (2000 lines took
+    // 7.5 s, so these about 150 s); a map built once answers each at once:
+    // a few seconds, most of them the scene's loading and tracing.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = last_triangle_scene(dir.path(), 200, 200, 99_999);
+    // The last triangle's name as the scene names it (MODEL §3).
+    let loaded = raystep_engine::scene::load(&scene).unwrap();
+    assert_eq!(loaded.objects.len(), 100_000);
+    let name = loaded.objects.last().unwrap().name.to_string();
+    drop(loaded);
+    let mut log = String::new();
+    for y in 0..200 {
+        for x in 0..200 {
+            log.push_str(&format!(
+                "{{\"pixel\": [{x}, {y}], \"path\": \"P\", \"hit\": {name:?}}}\n"
+            ));
+        }
+    }
+    let log_path = dir.path().join("rays.jsonl");
+    std::fs::write(&log_path, log).unwrap();
+    let report = dir.path().join("report.txt");
+    let child = Command::new(env!("CARGO_BIN_EXE_raystep"))
+        .args([
+            "compare",
+            scene.to_str().unwrap(),
+            "--rays",
+            log_path.to_str().unwrap(),
+        ])
+        .stdout(std::fs::File::create(&report).unwrap())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    finish_by(
+        child,
+        Instant::now(),
+        Duration::from_secs(60),
+        "compare --rays",
+    );
+    // Every name found, and every hit the one ours makes.
+    let report = std::fs::read_to_string(report).unwrap();
+    assert!(
+        report.contains("40000 pixels logged (40000 rays), 40000 matching ours")
+            && report.contains("\nEvery logged ray matches."),
+        "{}",
+        &report[report.len().saturating_sub(400)..]
+    );
+}
+
 #[test]
 fn an_obj_of_400000_usemtl_names_is_read_well_within_a_minute() {
     // 400,000 different `usemtl` names and no MTL. main checked each name
