@@ -1,4 +1,4 @@
-//! `compare` on images whose decoded size, not file size, is the danger, and thresholds that are not numbers.
+//! `compare` and `grade` on images whose decoded size, not file size, is the danger, and thresholds that are not numbers.
 
 use std::io::Write;
 use std::os::unix::process::CommandExt;
@@ -103,6 +103,79 @@ fn an_icc_profile_inflating_to_a_gibibyte_is_refused_by_name_not_by_a_signal() {
     );
     let output = raystep(&["compare", "scenes/shadows.toml", &image]);
     assert!(output.status.success(), "{}", stderr(&output));
+}
+
+#[test]
+fn grade_refuses_an_icc_bomb_by_name_and_writes_its_results_under_a_memory_limit() {
+    // raystep's own 16 x 12 render of shadows.toml, the size the
+    // assignment asks for, with an iCCP chunk inflating to 512 MiB put in
+    // (about 520 KB: within the 16 x 12 x 8 bytes and 1 MiB a submission
+    // of that size may take, so the file's length lets it through). main
+    // read the size with the image crate's decoder, which inflates the
+    // profile whole first, and died by SIGABRT under 400 MB before any
+    // results file was written.
+    let dir = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    std::fs::copy(
+        root.join("scenes/shadows.toml"),
+        dir.path().join("shadows.toml"),
+    )
+    .unwrap();
+    let assignment = write(
+        dir.path(),
+        "a.toml",
+        b"title = \"bomb\"\n\n[[scene]]\nfile = \"shadows.toml\"\n\
+          submit = \"shadows.png\"\npoints = 10\nsize = [16, 12]\n",
+    );
+    let render = dir.path().join("render.png");
+    let rendered = raystep(&[
+        "render",
+        "scenes/shadows.toml",
+        "--size",
+        "16x12",
+        "-o",
+        render.to_str().unwrap(),
+    ]);
+    assert!(rendered.status.success(), "{}", stderr(&rendered));
+    let render = std::fs::read(render).unwrap();
+    let student = dir.path().join("student");
+    std::fs::create_dir(&student).unwrap();
+    let grade = |png: &[u8]| {
+        write(&student, "shadows.png", png);
+        let results = dir.path().join("gradescope.json");
+        let _ = std::fs::remove_file(&results);
+        let output = raystep_within(
+            400_000_000,
+            &[
+                "grade",
+                &assignment,
+                "--submission",
+                student.to_str().unwrap(),
+                "--gradescope",
+                results.to_str().unwrap(),
+            ],
+        );
+        // Graded (exit 0, whatever the grade), not killed by a signal.
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        let results: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&results).unwrap()).unwrap();
+        results["tests"][0].clone()
+    };
+    let bomb = with_chunk(&render, &iccp(512 << 20));
+    assert!(bomb.len() < 16 * 12 * 8 + (1 << 20), "{} bytes", bomb.len());
+    let test = grade(&bomb);
+    // The refusal compare gives, naming the file (as the assignment
+    // spells it), in grade's words for a file not graded.
+    assert_eq!(test["score"], 0.0);
+    assert_eq!(
+        test["output"],
+        "0 of 10 points: not graded, shadows.png: its ICC profile (iCCP chunk) inflates \
+         to more than 16 MiB: save the image without a colour profile, or with sRGB's.\n"
+    );
+    // The same render with a 3 MB profile (a printer's) is read whole and
+    // matches: 10 of 10.
+    let test = grade(&with_chunk(&render, &iccp(3 << 20)));
+    assert_eq!(test["score"], 10.0, "{}", test["output"]);
 }
 
 #[test]

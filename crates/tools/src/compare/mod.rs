@@ -10,7 +10,7 @@ mod flip;
 mod geometry;
 mod hits;
 pub(crate) mod metrics;
-mod png_chunks;
+pub(crate) mod png_chunks;
 mod ranking;
 mod reference;
 pub(crate) mod regions;

@@ -3,6 +3,7 @@
 //! file says, not by its length (a 1 MB file of 16 x 12 pixels may carry an
 //! iCCP chunk that inflates to 1 GiB), so both are checked first, reading
 //! chunk headers and inflating the profile into a counter, never a buffer.
+//! `grade` reads a submission's size the same way, from the header alone.
 
 use std::io::{self, BufRead, Read, Seek, SeekFrom};
 
@@ -58,6 +59,33 @@ pub(crate) fn walk(
         reader.seek(SeekFrom::Start(data_starts + u64::from(length) + 4))?;
     }
     Ok(Ok(()))
+}
+
+/// The size a PNG's header states, read from the signature and the IHDR
+/// chunk alone (nothing else is read or inflated); `None` when the file
+/// does not start with a whole, undamaged header of a non-empty size, which
+/// the checked reader then names.
+pub(crate) fn header_size(reader: &mut impl Read) -> io::Result<Option<(u32, u32)>> {
+    // The signature, IHDR's length and type, its 13 bytes and its CRC.
+    let mut start = [0u8; 8 + 8 + 13 + 4];
+    match reader.read_exact(&mut start) {
+        Ok(()) => {}
+        Err(e) if e.kind() == io::ErrorKind::UnexpectedEof => return Ok(None),
+        Err(e) => return Err(e),
+    }
+    let (signature, chunk) = start.split_at(8);
+    let (kind_and_data, crc) = chunk[4..].split_at(4 + 13);
+    let mut sum = flate2::Crc::new();
+    sum.update(kind_and_data);
+    if signature != b"\x89PNG\r\n\x1a\n"
+        || chunk[..8] != [0, 0, 0, 13, b'I', b'H', b'D', b'R']
+        || sum.sum().to_be_bytes() != crc
+    {
+        return Ok(None);
+    }
+    let width = u32::from_be_bytes(chunk[8..12].try_into().expect("4 bytes"));
+    let height = u32::from_be_bytes(chunk[12..16].try_into().expect("4 bytes"));
+    Ok((width > 0 && height > 0).then_some((width, height)))
 }
 
 /// The next chunk's length and type; `None` at the end of the file or of
@@ -157,6 +185,23 @@ mod tests {
         )
         .unwrap();
         assert_eq!(late, Ok(()));
+    }
+
+    #[test]
+    fn the_header_size_is_read_from_a_whole_undamaged_header_only() {
+        // A 3 x 2 PNG as the image crate writes it, then with its header's
+        // CRC damaged, cut inside the header, and not a PNG.
+        let mut png = Vec::new();
+        image::RgbImage::new(3, 2)
+            .write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        let size = |bytes: &[u8]| header_size(&mut Cursor::new(bytes)).unwrap();
+        assert_eq!(size(&png), Some((3, 2)));
+        let mut damaged = png.clone();
+        damaged[29] ^= 1;
+        assert_eq!(size(&damaged), None);
+        assert_eq!(size(&png[..32]), None);
+        assert_eq!(size(b"GIF89a"), None);
     }
 
     #[test]

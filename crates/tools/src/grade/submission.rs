@@ -7,10 +7,8 @@ use std::fs;
 use std::io::{BufReader, Seek};
 use std::path::Path;
 
-use image::{ImageFormat, ImageReader};
-
 use crate::compare::StudentImage;
-use crate::compare::student;
+use crate::compare::{png_chunks, student};
 use raystep_engine::input_file;
 
 /// A file larger than this many bytes per pixel (plus `SLACK_BYTES`) is
@@ -66,9 +64,12 @@ pub(crate) fn read(
         .len();
     let mut reader = BufReader::new(file);
     // The size in the header first: a wrong size is told as such, before
-    // the pixels are decoded.
-    let header = ImageReader::with_format(&mut reader, ImageFormat::Png).into_dimensions();
-    if let Ok((w, h)) = header
+    // the pixels are decoded. The header chunk alone is read, not the
+    // image crate's decoder's, which inflates an ICC profile whole before
+    // it says the size: compare's reader checks every chunk first.
+    let header =
+        png_chunks::header_size(&mut reader).map_err(|e| format!("cannot read {name}: {e}"))?;
+    if let Some((w, h)) = header
         && (w, h) != (width, height)
     {
         return Err(format!(

@@ -4,6 +4,7 @@
 //! face index out of range or zero, a face of fewer than 3 vertices) is found
 //! here first, with its line and column.
 
+use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
@@ -14,14 +15,25 @@ use super::{Loaded, Triangle, read_file};
 use crate::scene::SceneError;
 use crate::scene::limits::COORDINATE;
 
-/// Reads `path` and the MTL files its `mtllib` lines name (beside it).
+/// Reads `path` and the MTL files its `mtllib` lines name (beside it),
+/// each file once however many lines name it (10,000 `mtllib` lines of one
+/// MTL added its materials 10,000 times: a gigabyte from 150 KB).
 pub(super) fn load(path: &Path) -> Result<Loaded, SceneError> {
     let bytes = read_file(path, "mesh file").map_err(SceneError::plain)?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let missing = std::cell::RefCell::new(Vec::new());
     let libraries = std::cell::RefCell::new(Vec::new());
+    // Each file by its canonical path (by the path as named when it
+    // cannot be had: a missing file), so that `./m.mtl` or `d/../m.mtl`
+    // is the same file as `m.mtl`.
+    let seen = std::cell::RefCell::new(HashSet::new());
     let loader = |mtl: &Path| -> tobj::MTLLoadResult {
         let full: PathBuf = dir.join(mtl);
+        let file = std::fs::canonicalize(&full).unwrap_or_else(|_| full.clone());
+        if !seen.borrow_mut().insert(file) {
+            // Read already: its materials are in, or its warning said.
+            return Ok((Vec::new(), HashMap::new()));
+        }
         libraries.borrow_mut().push(full.clone());
         // Read only as MTL: whatever the path names, its bytes go to the
         // MTL parser and nowhere else, and nothing is written.
@@ -92,8 +104,9 @@ pub(super) fn parse(
     if let Ok(list) = mtl {
         loaded.materials = list.iter().map(mtl::Read::from_tobj).collect();
     }
+    let defined: HashSet<&str> = loaded.materials.iter().map(|m| m.name.as_str()).collect();
     for name in lines.used_materials {
-        if !loaded.materials.iter().any(|m| m.name == name) {
+        if !defined.contains(name.as_str()) {
             loaded.warnings.push(format!(
                 "{}: `usemtl {name}` names no material of the file's MTL: the default material is used",
                 path.display()
@@ -170,6 +183,9 @@ struct Lines {
 fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
     let mut counts = [0usize; 3]; // v, vt, vn
     let mut used_materials: Vec<String> = Vec::new();
+    // The names in `used_materials`, to tell a new one at once (each new
+    // name was checked against all before it: 100,000 names took 14 s).
+    let mut used: HashSet<&str> = HashSet::new();
     let mut smooth = Vec::new();
     let mut polylines = false;
     let mut start = 0;
@@ -244,7 +260,7 @@ fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
             "usemtl" => {
                 // tobj takes the rest of the line as the name.
                 let name = content[keyword_span.end - line_start..].trim();
-                if !name.is_empty() && !used_materials.iter().any(|u| u == name) {
+                if !name.is_empty() && used.insert(name) {
                     used_materials.push(name.to_string());
                 }
             }
