@@ -17,6 +17,7 @@ mod compare;
 mod compare_rays;
 mod compare_rays_mistakes;
 mod compare_slips;
+mod compare_sub_pixel;
 mod crossing;
 mod details_pane;
 mod docs_contract;

@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::compare::MatchRule;
 use crate::compare::student::check_compared_size;
 use raystep_engine::input_file::{self, Cap};
 use raystep_engine::scene::{self, Scene, SceneError, check_image_size};
@@ -55,6 +56,8 @@ pub struct AssignedScene {
     pub(crate) points: f64,
     /// With partial credit, the FLIP mean that scores 0.
     pub(crate) max_flip: Option<f64>,
+    /// What a match allows.
+    pub(crate) rule: MatchRule,
     /// Loaded at the size every submission must have.
     pub scene: Scene,
 }
@@ -184,6 +187,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
             submit: def.submit.into_inner(),
             points,
             max_flip,
+            rule: MatchRule::default(),
             scene,
         });
     }

@@ -241,7 +241,7 @@ impl Work<'_> {
                 .and_then(|folder| submission::read(folder, &scene.submit, size));
             let compared = read.and_then(|image| {
                 let yours_png = png(&image.image);
-                compare::compare_with(&self.shared[i], image)
+                compare::compare_with(&self.shared[i], image, &scene.rule)
                     .map(|comparison| (yours_png, comparison))
                     .map_err(|e| format!("{e:#}"))
             });
