@@ -99,11 +99,10 @@ pub(crate) fn shift(yours: &RgbImage, reference: &RgbImage, pixels: &[u32]) -> O
         if x == 0 || y == 0 || x + 1 == width || y + 1 == height {
             continue;
         }
-        let mine = yours.get_pixel(x, y).0;
-        for c in 0..3 {
+        for (c, mine) in yours.get_pixel(x, y).0.into_iter().enumerate() {
             let gx = (at(x + 1, y, c) - at(x - 1, y, c)) / 2.0;
             let gy = (at(x, y + 1, c) - at(x, y - 1, c)) / 2.0;
-            let d = f64::from(mine[c]) - at(x, y, c);
+            let d = f64::from(mine) - at(x, y, c);
             xx += gx * gx;
             xy += gx * gy;
             yy += gy * gy;
@@ -114,7 +113,7 @@ pub(crate) fn shift(yours: &RgbImage, reference: &RgbImage, pixels: &[u32]) -> O
     let det = xx * yy - xy * xy;
     // Gradients all along one line (or none) leave the shift along the
     // other direction unknown.
-    if !(det > 1e-9 * (xx * yy).max(1.0)) {
+    if det <= 1e-9 * (xx * yy).max(1.0) {
         return None;
     }
     Some([-(yy * xd - xy * yd) / det, -(xx * yd - xy * xd) / det])
