@@ -26,6 +26,7 @@ mod figure;
 mod five_questions;
 mod fuzz_regressions;
 mod grade;
+mod grade_edge_cases;
 mod grade_report;
 mod hostile;
 mod layout;

@@ -15,6 +15,9 @@
 //! partial = true        # optional: partial credit from FLIP (default false)
 //! max_flip = 0.2        # optional, with partial: the FLIP mean that scores 0
 //! ```
+//!
+//! The match rule's knobs (`match_rule`) and grades set by hand
+//! (`[[override]]`, `overrides`) have modules of their own.
 
 use std::collections::HashSet;
 use std::ops::Range;
@@ -27,6 +30,10 @@ use crate::compare::MatchRule;
 use crate::compare::student::check_compared_size;
 use raystep_engine::input_file::{self, Cap};
 use raystep_engine::scene::{self, Scene, SceneError, check_image_size};
+
+mod match_rule;
+mod overrides;
+pub use overrides::{Override, check_students};
 
 /// With `partial` and no `max_flip`: the FLIP mean that scores 0. Every
 /// classic mistake of the catalogue that changes much of the image scores
@@ -43,6 +50,8 @@ pub(crate) const ASSIGNMENT_CAP: Cap = Cap {
 pub struct Assignment {
     pub(crate) title: String,
     pub scenes: Vec<AssignedScene>,
+    /// Grades set by hand (`[[override]]`).
+    pub overrides: Vec<Override>,
 }
 
 /// One scene of the assignment.
@@ -68,6 +77,12 @@ struct FileDef {
     title: Option<String>,
     #[serde(default)]
     scene: Vec<SceneDef>,
+    // Issue 40: the match rule for every scene, and grades set by hand.
+    tolerance: Option<Spanned<i64>>,
+    far_off_allowed: Option<Spanned<i64>>,
+    antialiasing: Option<bool>,
+    #[serde(default, rename = "override")]
+    overrides: Vec<overrides::OverrideDef>,
 }
 
 #[derive(Deserialize)]
@@ -80,6 +95,10 @@ struct SceneDef {
     #[serde(default)]
     partial: bool,
     max_flip: Option<Spanned<f64>>,
+    // Issue 40: the match rule for this scene (the top's where not given).
+    tolerance: Option<Spanned<i64>>,
+    far_off_allowed: Option<Spanned<i64>>,
+    antialiasing: Option<bool>,
 }
 
 /// Reads the assignment at `path` and loads its scenes.
@@ -115,6 +134,14 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
         )));
     }
     let folder = path.parent().unwrap_or(Path::new(""));
+    let knobs = |tolerance, far_off_allowed, antialiasing| match_rule::Knobs {
+        tolerance,
+        far_off_allowed,
+        antialiasing,
+    };
+    let every_scene = knobs(file.tolerance, file.far_off_allowed, file.antialiasing)
+        .rule(MatchRule::default())
+        .map_err(|(span, m)| error(span, m))?;
     let mut submits = HashSet::new();
     let mut scenes = Vec::with_capacity(file.scene.len());
     for def in file.scene {
@@ -156,6 +183,9 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
                 Some(value)
             }
         };
+        let rule = knobs(def.tolerance, def.far_off_allowed, def.antialiasing)
+            .rule(every_scene)
+            .map_err(|(span, m)| error(span, m))?;
         let scene_path = folder.join(def.file.get_ref());
         if !scene_path.is_file() {
             return Err(error(
@@ -187,7 +217,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
             submit: def.submit.into_inner(),
             points,
             max_flip,
-            rule: MatchRule::default(),
+            rule,
             scene,
         });
     }
@@ -195,7 +225,12 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
         path.file_stem()
             .map_or("assignment".into(), |s| s.to_string_lossy().into_owned())
     });
-    Ok(Assignment { title, scenes })
+    let overrides = overrides::read(path, text, file.overrides, &scenes)?;
+    Ok(Assignment {
+        title,
+        scenes,
+        overrides,
+    })
 }
 
 /// A file name each student's folder can hold: one name, no folders.

@@ -5,6 +5,11 @@
 //! (starting with `=`, `+`, `-`, `@`, a tab or a carriage return) gets a
 //! leading `'`, as OWASP's advice on CSV injection has it: a student's
 //! folder name is data, never a formula.
+//!
+//! When the assignment sets grades by hand (`[[override]]`), one more
+//! column per scene follows the total, `SCENE override`: the points
+//! grading gave and the reason (blank where none); the points column holds
+//! the teacher's points. Without overrides the table is as it always was.
 
 use super::model::{ClassGrades, SceneGrade};
 
@@ -17,6 +22,16 @@ pub(crate) fn csv(grades: &ClassGrades) -> String {
         }
     }
     header.push("total".into());
+    let overridden =
+        (grades.students.iter()).any(|s| s.scenes.iter().any(|g| g.overridden.is_some()));
+    if overridden {
+        header.extend(
+            grades
+                .scenes
+                .iter()
+                .map(|s| format!("{} override", s.submit)),
+        );
+    }
     let mut out = line(&header);
     for student in &grades.students {
         let mut row = vec![student.student.clone()];
@@ -24,6 +39,13 @@ pub(crate) fn csv(grades: &ClassGrades) -> String {
             row.extend(cells(scene));
         }
         row.push(number(student.total));
+        if overridden {
+            row.extend(student.scenes.iter().map(|g| {
+                g.overridden.as_ref().map_or(String::new(), |o| {
+                    format!("graded {}: {}", number(o.graded_points), o.reason)
+                })
+            }));
+        }
         out += &line(&row);
     }
     out

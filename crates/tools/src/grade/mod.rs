@@ -34,7 +34,7 @@ pub use assignment::Assignment;
 pub(crate) use csv_table::csv;
 pub use csv_table::number as points_text;
 pub use gradescope::results as gradescope_results;
-pub use model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
+pub use model::{ClassGrades, Overridden, SceneGrade, SceneSheet, StudentGrades};
 pub use prairielearn::results as prairielearn_results;
 pub use report_dir::ReportDir;
 
@@ -48,6 +48,11 @@ pub struct Student {
 }
 
 impl Student {
+    /// The folder's name as the grades write it.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
     /// A folder given by itself (`--submission DIR`), named after its last part.
     pub fn alone(folder: &Path) -> Result<Student> {
         let meta = fs::metadata(folder)
@@ -175,6 +180,9 @@ pub fn grade(assignment: &Assignment, students: &[Student], done: &(dyn Fn() + S
             partial: s.max_flip.is_some(),
             max_flip: s.max_flip,
             reference_image: format!("reference/{slug}.png"),
+            tolerance: s.rule.tolerance_steps,
+            far_off_allowed: s.rule.far_off_allowed,
+            antialiasing: s.rule.antialiasing,
         })
         .collect();
     let mut images: Files = sheets
@@ -202,7 +210,8 @@ pub fn grade(assignment: &Assignment, students: &[Student], done: &(dyn Fn() + S
         })
         .collect();
     let mut grades = Vec::with_capacity(graded.len());
-    for (student, files) in graded {
+    for (mut student, files) in graded {
+        set_by_hand(&mut student, &assignment.overrides);
         grades.push(student);
         images.extend(files);
     }
@@ -278,6 +287,9 @@ impl Work<'_> {
                         report_text: Some(compare::text(&comparison, &scene.submit, &scene.file)),
                         yours_image: Some(yours),
                         error_map_image: Some(error_map),
+                        anti_aliased: comparison.matches
+                            && comparison.metrics.anti_aliased_pixels > 0,
+                        overridden: None,
                     }
                 }
             };
@@ -308,6 +320,28 @@ fn refused(max_points: f64, reason: String) -> SceneGrade {
         report_text: None,
         yours_image: None,
         error_map_image: None,
+        anti_aliased: false,
+        overridden: None,
+    }
+}
+
+/// The student's grades with the assignment's `[[override]]`s for them
+/// applied: the points set, the graded ones kept beside the reason, the
+/// total summed again.
+fn set_by_hand(student: &mut StudentGrades, overrides: &[assignment::Override]) {
+    let mine = overrides.iter().filter(|o| o.student == student.student);
+    let mut any = false;
+    for o in mine {
+        let grade = &mut student.scenes[o.scene];
+        grade.overridden = Some(Overridden {
+            reason: o.reason.clone(),
+            graded_points: grade.points,
+        });
+        grade.points = scoring::hundredths(o.points);
+        any = true;
+    }
+    if any {
+        student.total = scoring::total(student.scenes.iter().map(|s| s.points));
     }
 }
 

@@ -35,6 +35,12 @@ pub struct SceneSheet {
     pub max_flip: Option<f64>,
     /// raystep's render of the scene at that size (a PNG in REPORT/).
     pub reference_image: String,
+    /// The match rule's knobs for this scene (issue 40): the tolerance in
+    /// steps of 255, the far-off pixels a match allows, and whether
+    /// anti-aliased edges match.
+    pub tolerance: u8,
+    pub far_off_allowed: usize,
+    pub antialiasing: bool,
 }
 
 /// One student's grades, scene by scene.
@@ -75,4 +81,19 @@ pub struct SceneGrade {
     /// compared.
     pub yours_image: Option<String>,
     pub error_map_image: Option<String>,
+    /// A match thanks to anti-aliased edges (issue 40).
+    pub anti_aliased: bool,
+    /// Set by hand in the assignment's `[[override]]`: `points` are the
+    /// teacher's, for this reason.
+    #[serde(rename = "override")]
+    pub overridden: Option<Overridden>,
+}
+
+/// A grade set by hand.
+#[derive(Clone, Debug, Serialize)]
+pub struct Overridden {
+    /// Why, as the assignment says.
+    pub reason: String,
+    /// The points grading gave before the override.
+    pub graded_points: f64,
 }

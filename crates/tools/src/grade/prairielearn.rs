@@ -57,14 +57,18 @@ fn text(graded: &Graded, student: &StudentGrades, images: Images) -> String {
                 add("raystep's render", Some(&sheet.reference_image));
                 add("FLIP error map", grade.error_map_image.as_ref());
             }
-            let verdict = match (&grade.refused, grade.matches) {
+            let mut verdict = match (&grade.refused, grade.matches) {
                 (Some(reason), _) => format!("not graded: {reason}"),
+                (None, true) if grade.anti_aliased => "matches (anti-aliased)".to_string(),
                 (None, true) => "matches".to_string(),
                 (None, false) => match grade.mistakes.first() {
                     Some(mistake) => format!("differs: likely {mistake}"),
                     None => "differs".to_string(),
                 },
             };
+            if let Some(o) = &grade.overridden {
+                verdict.push_str(&format!("; overridden by hand: {}", o.reason));
+            }
             json!({
                 "name": sheet.submit,
                 "description": format!("{} rendered at {}x{}", sheet.file, sheet.width, sheet.height),
@@ -142,6 +146,9 @@ mod tests {
                 partial: false,
                 max_flip: None,
                 reference_image: reference,
+                tolerance: 3,
+                far_off_allowed: 0,
+                antialiasing: true,
             });
             grades.push(SceneGrade {
                 points: 10.0,
@@ -154,6 +161,8 @@ mod tests {
                 report_text: Some("they match.\n".into()),
                 yours_image: Some(yours),
                 error_map_image: Some(map),
+                anti_aliased: false,
+                overridden: None,
             });
         }
         let student = StudentGrades {

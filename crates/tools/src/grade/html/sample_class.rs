@@ -17,6 +17,9 @@ pub(super) fn class(students: &[(&str, Vec<SceneGrade>)]) -> ClassGrades {
             partial: false,
             max_flip: None,
             reference_image: format!("reference/scene{i}.png"),
+            tolerance: 3,
+            far_off_allowed: 0,
+            antialiasing: true,
         })
         .collect();
     let students = students
@@ -61,6 +64,8 @@ pub(super) fn compared(mistakes: &[&str]) -> SceneGrade {
         report_text: Some("yours.png against scene.toml: they differ.\n  FLIP 0.1566".into()),
         yours_image: Some("yours/x.png".into()),
         error_map_image: Some("error/x.png".into()),
+        anti_aliased: false,
+        overridden: None,
     }
 }
 
