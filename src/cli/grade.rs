@@ -23,6 +23,14 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
         (None, Some(folder)) => Submissions::alone(folder)?,
         (None, None) => unreachable!("clap requires SUBMISSIONS or --submission"),
     };
+    // A class must hold every student an override names; one submission
+    // (an autograder's) takes the overrides that name it and no others.
+    if args.submissions.is_some() {
+        grade::assignment::check_students(
+            &assignment.overrides,
+            class.students.iter().map(|s| s.name()),
+        )?;
+    }
     let folders = args.submissions.as_ref().or(args.submission.as_ref());
     let report = args
         .output
@@ -161,6 +169,14 @@ fn one_summary(graded: &Graded) -> String {
                     format!("differs{likely} (FLIP {:.4})", flip.unwrap_or(0.0))
                 }
                 (None, true, None) => "matches".to_string(),
+            };
+            let verdict = match &scene.overridden {
+                Some(o) => format!(
+                    "{verdict}; overridden by hand: {} (graded {})",
+                    o.reason,
+                    grade::points_text(o.graded_points)
+                ),
+                None => verdict,
             };
             let _ = writeln!(
                 out,

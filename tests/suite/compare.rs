@@ -509,11 +509,16 @@ fn the_json_report_has_the_documented_keys() {
     assert_eq!(
         keys(&report["metrics"]),
         [
+            "anti_aliased_pixels",
+            "antialiasing",
+            "edge_shift",
             "far_off",
+            "far_off_allowed",
             "far_off_pixels",
             "flip_mean",
             "mean_abs",
             "pixels_over_tolerance",
+            "sub_pixel_pixels",
             "tolerance",
             "worst"
         ]

@@ -6,6 +6,7 @@
 
 pub mod chromium;
 pub mod debugger;
+pub mod renders;
 pub mod student;
 
 /// Pins `value` (anything `Display`) as `snapshots/<file>__<name>.snap`,

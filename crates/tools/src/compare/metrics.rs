@@ -1,10 +1,13 @@
 //! How far two images of the same size are apart: the mean absolute error,
 //! NVIDIA's FLIP where the build has it (`flip`), the share of pixels past
-//! a tolerance, and the worst pixel.
+//! a tolerance, the worst pixel, and which differences are smaller than a
+//! pixel (`sub_pixel`), which the match rule allows.
 
 use anyhow::Result;
 use image::{GrayImage, RgbImage};
 use serde::Serialize;
+
+use super::sub_pixel;
 
 /// A channel may differ by this many 8-bit steps before a pixel counts as
 /// different (mental ray's imf_diff counts the same way): another correct
@@ -15,7 +18,8 @@ pub(crate) const TOLERANCE_STEPS: u8 = 3;
 /// tolerance: an independent correct tracer differs on a few pixels where a
 /// ray grazes an edge or a shadow boundary, which must still match.
 pub(crate) const MATCH_SHARE: f64 = 0.001;
-/// And no pixel of a match has a channel more than this many steps apart:
+/// And no pixel of a match has a channel more than this many steps apart
+/// (unless its value lies within the reference's around it: `sub_pixel`):
 /// an eighth of the range, more than rounding or float precision moves a
 /// correct tracer's pixel, less than a classic mistake moves the pixels it
 /// touches (a wrapped byte by about 255). So six wrapped bytes, well under
@@ -23,6 +27,30 @@ pub(crate) const MATCH_SHARE: f64 = 0.001;
 pub(crate) const MATCH_GAP: u8 = 32;
 /// At most this many pixels past `MATCH_GAP` are listed.
 const FAR_OFF_LISTED: usize = 8;
+
+/// The match rule's settings. `compare` uses the defaults; an assignment
+/// may change each for all its scenes or for one (docs/TEACHERS.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MatchRule {
+    /// A channel may differ by this many steps of 255 before a pixel
+    /// counts as different (`TOLERANCE_STEPS`; more for lossy images).
+    pub tolerance_steps: u8,
+    /// How many far-off pixels a match allows: past `MATCH_GAP` and not
+    /// within reach of the reference's values around them.
+    pub far_off_allowed: usize,
+    /// Whether anti-aliased edges (blends, `sub_pixel`) match.
+    pub antialiasing: bool,
+}
+
+impl Default for MatchRule {
+    fn default() -> Self {
+        MatchRule {
+            tolerance_steps: TOLERANCE_STEPS,
+            far_off_allowed: 0,
+            antialiasing: true,
+        }
+    }
+}
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Metrics {
@@ -34,13 +62,36 @@ pub struct Metrics {
     pub flip_mean: Option<f64>,
     /// The share of pixels with a channel more than `tolerance` apart.
     pub(crate) pixels_over_tolerance: f64,
-    /// `TOLERANCE_STEPS` / 255.
+    /// The rule's tolerance, in steps / 255.
     pub(crate) tolerance: f64,
     pub(crate) worst: Option<PixelPair>,
-    /// How many pixels have a channel more than `MATCH_GAP` steps apart.
+    /// How many pixels have a channel more than `MATCH_GAP` steps apart
+    /// and are neither within reach nor an accepted blend: those a match
+    /// allows `far_off_allowed` of.
     pub(crate) far_off_pixels: usize,
     /// The first of them in row-major order, at most `FAR_OFF_LISTED`.
     pub(crate) far_off: Vec<PixelPair>,
+    /// Of the pixels past the tolerance, how many lie within reach of the
+    /// reference's values around them (`sub_pixel`): an edge moved by less
+    /// than a pixel. None of them is far off.
+    pub(crate) sub_pixel_pixels: usize,
+    /// Of the pixels past the tolerance, how many are accepted as
+    /// anti-aliased edges (blends, `sub_pixel`): they count for nothing.
+    /// Looked for only when the image would not match without them.
+    pub(crate) anti_aliased_pixels: usize,
+    /// The shift of the edges estimated from the pixels past the tolerance
+    /// (`sub_pixel::shift`), in pixels (right, down) to three decimals,
+    /// when blends were looked for and the pixels show gradients to fit:
+    /// at `MAX_BLEND_SHIFT` or more no blend is accepted.
+    pub(crate) edge_shift: Option<[f64; 2]>,
+    /// The rule's other settings.
+    pub(crate) far_off_allowed: usize,
+    pub(crate) antialiasing: bool,
+    /// How many pixels are past the tolerance, of how many.
+    #[serde(skip)]
+    pub(crate) over_pixels: usize,
+    #[serde(skip)]
+    pub(crate) pixels: usize,
 }
 
 /// A pixel and its two values: the worst one, or one far off.
@@ -53,12 +104,20 @@ pub(crate) struct PixelPair {
 
 impl Metrics {
     pub(crate) fn matches(&self) -> bool {
-        self.few_over_tolerance() && self.far_off_pixels == 0
+        self.few_over_tolerance() && self.far_off_pixels <= self.far_off_allowed
     }
 
-    /// Whether the share rule alone would call it a match.
+    /// Whether the share rule alone would call it a match: the pixels past
+    /// the tolerance, but for those accepted as anti-aliased, at most
+    /// `MATCH_SHARE`.
     pub(crate) fn few_over_tolerance(&self) -> bool {
-        self.pixels_over_tolerance <= MATCH_SHARE
+        self.counted_share() <= MATCH_SHARE
+    }
+
+    /// The share of pixels past the tolerance that counts: all but the
+    /// anti-aliased ones.
+    pub(crate) fn counted_share(&self) -> f64 {
+        (self.over_pixels - self.anti_aliased_pixels) as f64 / self.pixels.max(1) as f64
     }
 }
 
@@ -82,46 +141,81 @@ pub(crate) fn channel_gap(a: [u8; 3], b: [u8; 3]) -> u8 {
     (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0)
 }
 
-/// Whether each pixel differs past the tolerance, as a mask (255 differs).
-pub(crate) fn over_tolerance(yours: &RgbImage, reference: &RgbImage) -> GrayImage {
+/// Whether each pixel differs past `tolerance` steps, as a mask (255 differs).
+pub(crate) fn over_tolerance(yours: &RgbImage, reference: &RgbImage, tolerance: u8) -> GrayImage {
     GrayImage::from_fn(yours.width(), yours.height(), |x, y| {
         let gap = channel_gap(yours.get_pixel(x, y).0, reference.get_pixel(x, y).0);
-        image::Luma([if gap > TOLERANCE_STEPS { 255 } else { 0 }])
+        image::Luma([if gap > tolerance { 255 } else { 0 }])
     })
 }
 
-/// Measures `yours` against `reference` (same size); also gives FLIP's
-/// error map in its magma colours where the build has FLIP. An error when
-/// the memory FLIP needs cannot be had.
+/// Measures `yours` against `reference` (same size) by `rule`; also gives
+/// FLIP's error map in its magma colours where the build has FLIP. `fine`
+/// gives raystep's render at twice the size, asked for only when blends
+/// are looked for. An error when the memory FLIP needs cannot be had.
 pub(crate) fn measure(
     yours: &RgbImage,
     reference: &RgbImage,
+    rule: &MatchRule,
+    fine: &dyn Fn() -> std::sync::Arc<RgbImage>,
 ) -> Result<(Metrics, Option<RgbImage>)> {
     let (width, height) = yours.dimensions();
-    let pixels = (width as u64 * height as u64) as f64;
+    let pixels = width as usize * height as usize;
+    let tolerance = rule.tolerance_steps;
     let mut sum = 0u64;
-    let mut over = 0u64;
     let mut worst: Option<(u8, u32, u32)> = None;
-    let mut far_off_pixels = 0;
-    let mut far_off = Vec::new();
-    let pair = |x, y| PixelPair {
-        pixel: [x, y],
-        yours: yours.get_pixel(x, y).0,
-        reference: reference.get_pixel(x, y).0,
-    };
+    // The pixels past the tolerance (row-major indices), and whether each
+    // is within reach of the reference's values around it.
+    let mut over: Vec<(u32, bool)> = Vec::new();
     for (x, y, p) in yours.enumerate_pixels() {
         let (a, b) = (p.0, reference.get_pixel(x, y).0);
         sum += (0..3).map(|c| a[c].abs_diff(b[c]) as u64).sum::<u64>();
         let gap = channel_gap(a, b);
-        over += u64::from(gap > TOLERANCE_STEPS);
-        if gap > MATCH_GAP {
-            far_off_pixels += 1;
-            if far_off.len() < FAR_OFF_LISTED {
-                far_off.push(pair(x, y));
-            }
+        if gap > tolerance {
+            let reach = sub_pixel::within_reach(reference, x, y, a, tolerance);
+            over.push((y * width + x, reach));
         }
         if gap > 0 && worst.is_none_or(|(g, _, _)| gap > g) {
             worst = Some((gap, x, y));
+        }
+    }
+    let pair = |index: u32| {
+        let (x, y) = (index % width, index / width);
+        PixelPair {
+            pixel: [x, y],
+            yours: yours.get_pixel(x, y).0,
+            reference: reference.get_pixel(x, y).0,
+        }
+    };
+    let far = |index: u32| {
+        let p = pair(index);
+        channel_gap(p.yours, p.reference) > MATCH_GAP
+    };
+    let far_off_within = |excused: &dyn Fn(usize) -> bool| -> Vec<u32> {
+        (over.iter().enumerate())
+            .filter(|&(i, &(index, reach))| !reach && !excused(i) && far(index))
+            .map(|(_, &(index, _))| index)
+            .collect()
+    };
+    let mut far_off = far_off_within(&|_| false);
+    let share_matches = over.len() as f64 <= MATCH_SHARE * pixels as f64;
+    let (mut anti_aliased, mut edge_shift) = (0, None);
+    if rule.antialiasing && !(share_matches && far_off.len() <= rule.far_off_allowed) {
+        // Blends are accepted only when the edges did not all move one way.
+        let indices: Vec<u32> = over.iter().map(|&(index, _)| index).collect();
+        let shift = sub_pixel::shift(yours, reference, &indices);
+        edge_shift = shift.map(|s| s.map(|v| (v * 1000.0).round() / 1000.0));
+        if shift.is_none_or(|[sx, sy]| sx.hypot(sy) < sub_pixel::MAX_BLEND_SHIFT) {
+            let fine = fine();
+            let blends: Vec<bool> = (over.iter())
+                .map(|&(index, _)| {
+                    let (x, y) = (index % width, index / width);
+                    let mine = yours.get_pixel(x, y).0;
+                    sub_pixel::blend(reference, &fine, x, y, mine, tolerance)
+                })
+                .collect();
+            anti_aliased = blends.iter().filter(|&&b| b).count();
+            far_off = far_off_within(&|i| blends[i]);
         }
     }
     #[cfg(feature = "flip")]
@@ -132,13 +226,24 @@ pub(crate) fn measure(
     #[cfg(not(feature = "flip"))]
     let (flip_mean, error_map) = (None, None);
     let metrics = Metrics {
-        mean_abs: sum as f64 / (3.0 * 255.0 * pixels),
+        mean_abs: sum as f64 / (3.0 * 255.0 * pixels as f64),
         flip_mean,
-        pixels_over_tolerance: over as f64 / pixels,
-        tolerance: TOLERANCE_STEPS as f64 / 255.0,
-        worst: worst.map(|(_, x, y)| pair(x, y)),
-        far_off_pixels,
-        far_off,
+        pixels_over_tolerance: over.len() as f64 / pixels as f64,
+        tolerance: f64::from(tolerance) / 255.0,
+        worst: worst.map(|(_, x, y)| pair(y * width + x)),
+        far_off_pixels: far_off.len(),
+        far_off: far_off
+            .iter()
+            .take(FAR_OFF_LISTED)
+            .map(|&i| pair(i))
+            .collect(),
+        sub_pixel_pixels: over.iter().filter(|&&(_, reach)| reach).count(),
+        anti_aliased_pixels: anti_aliased,
+        edge_shift,
+        far_off_allowed: rule.far_off_allowed,
+        antialiasing: rule.antialiasing,
+        over_pixels: over.len(),
+        pixels,
     };
     Ok((metrics, error_map))
 }
@@ -146,6 +251,24 @@ pub(crate) fn measure(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::Arc;
+
+    /// Each pixel of `image` four times, 2 x 2: a scene flat inside each
+    /// pixel rendered at twice the size.
+    fn doubled(image: &RgbImage) -> Arc<RgbImage> {
+        Arc::new(RgbImage::from_fn(
+            image.width() * 2,
+            image.height() * 2,
+            |x, y| *image.get_pixel(x / 2, y / 2),
+        ))
+    }
+
+    /// `measure` by the default rule, the scene flat inside each pixel.
+    fn measure(yours: &RgbImage, reference: &RgbImage) -> Result<(Metrics, Option<RgbImage>)> {
+        super::measure(yours, reference, &MatchRule::default(), &|| {
+            doubled(reference)
+        })
+    }
 
     #[test]
     fn counts_follow_the_tolerance_and_the_worst_pixel_is_found() {
@@ -206,5 +329,123 @@ mod tests {
         assert_eq!(metrics.flip_mean, None);
         assert!(metrics.worst.is_none());
         assert!(metrics.matches());
+    }
+}
+
+#[cfg(test)]
+mod sub_pixel_tests {
+    use super::*;
+    use std::sync::Arc;
+
+    /// A disc of radius 9 (bright, 230) about (20, 20) on a dark ground (30),
+    /// sampled at (u, v) in pixel units.
+    fn disc(u: f64, v: f64) -> image::Rgb<u8> {
+        let inside = (u - 20.0).hypot(v - 20.0) < 9.0;
+        image::Rgb([if inside { 230 } else { 30 }; 3])
+    }
+
+    /// The disc at 40 x 40 with rays through `offset` of each pixel, and at
+    /// 80 x 80 through the centres (raystep's render at twice the size).
+    fn sampled(offset: f64) -> (RgbImage, Arc<RgbImage>) {
+        let image = RgbImage::from_fn(40, 40, |x, y| disc(x as f64 + offset, y as f64 + offset));
+        let fine = RgbImage::from_fn(80, 80, |x, y| {
+            disc((x as f64 + 0.5) / 2.0, (y as f64 + 0.5) / 2.0)
+        });
+        (image, Arc::new(fine))
+    }
+
+    fn measured(yours: &RgbImage, rule: MatchRule) -> Metrics {
+        let (reference, fine) = sampled(0.5);
+        measure(yours, &reference, &rule, &|| Arc::clone(&fine))
+            .unwrap()
+            .0
+    }
+
+    #[test]
+    fn a_silhouette_pixel_that_takes_its_neighbours_colour_still_matches() {
+        // Issue 40: the eye moved by 1e-5 turns one silhouette pixel from
+        // the disc's to the ground's colour, 200 steps apart: far off by
+        // the old rule, which allowed none. (19, 11) is inside (its centre
+        // lies 8.5 from (20, 20)), its neighbour (19, 10) outside (9.5).
+        let (reference, _) = sampled(0.5);
+        assert_eq!(reference.get_pixel(19, 11).0, [230; 3]);
+        assert_eq!(reference.get_pixel(19, 10).0, [30; 3]);
+        let mut moved = reference.clone();
+        moved.put_pixel(19, 11, image::Rgb([30; 3]));
+        let rule = MatchRule::default();
+        let metrics = measured(&moved, rule);
+        assert_eq!(metrics.sub_pixel_pixels, 1);
+        assert_eq!(metrics.far_off_pixels, 0);
+        assert_eq!(metrics.anti_aliased_pixels, 0);
+        assert!(metrics.matches());
+        // A value no pixel around shows (a wrapped byte: 230 + 40 = 14)
+        // is far off, on a silhouette or not.
+        moved.put_pixel(19, 11, image::Rgb([14, 230, 230]));
+        let metrics = measured(&moved, rule);
+        assert_eq!((metrics.sub_pixel_pixels, metrics.far_off_pixels), (0, 1));
+        assert!(!metrics.matches());
+        // Unless the assignment allows one far-off pixel.
+        let lenient = MatchRule {
+            far_off_allowed: 1,
+            ..rule
+        };
+        assert!(measured(&moved, lenient).matches());
+    }
+
+    /// The disc averaged over 2 x 2 rays a pixel, through its quarter points
+    /// (the fine render's pixels), rounded.
+    fn anti_aliased() -> RgbImage {
+        let (_, fine) = sampled(0.5);
+        RgbImage::from_fn(40, 40, |x, y| {
+            let sum: u32 = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                .iter()
+                .map(|&(i, j)| u32::from(fine.get_pixel(2 * x + i, 2 * y + j).0[0]))
+                .sum();
+            image::Rgb([((sum + 2) / 4) as u8; 3])
+        })
+    }
+
+    #[test]
+    fn anti_aliased_edges_match_unless_the_rule_refuses_them() {
+        let yours = anti_aliased();
+        let (reference, _) = sampled(0.5);
+        // Every pixel whose four rays do not all agree with its centre's
+        // differs, by 50 steps at least (a quarter of 200): many more than
+        // the 0.1% of 1,600 pixels (1.6) a match allows.
+        let over: usize = (0..40)
+            .flat_map(|y| (0..40).map(move |x| (x, y)))
+            .filter(|&(x, y)| channel_gap(yours.get_pixel(x, y).0, reference.get_pixel(x, y).0) > 3)
+            .count();
+        assert!(over > 20, "{over}");
+        let metrics = measured(&yours, MatchRule::default());
+        assert_eq!(metrics.over_pixels, over);
+        // Each lies between its own rays' values: all blends.
+        assert_eq!(metrics.anti_aliased_pixels, over);
+        // A disc blends evenly all round: no shift.
+        let [sx, sy] = metrics.edge_shift.unwrap();
+        assert!(sx.hypot(sy) < 0.1, "({sx}, {sy})");
+        assert!(metrics.matches());
+        // Refused by the rule, they count as before.
+        let strict = MatchRule {
+            antialiasing: false,
+            ..MatchRule::default()
+        };
+        let metrics = measured(&yours, strict);
+        assert_eq!((metrics.anti_aliased_pixels, metrics.edge_shift), (0, None));
+        assert!(!metrics.matches());
+    }
+
+    #[test]
+    fn an_image_moved_half_a_pixel_is_no_anti_aliasing() {
+        // pixel-corner: rays through each pixel's top-left corner, the disc
+        // moved half a pixel right and down. Its edge pixels take values
+        // the scene shows right there, as blends do, but all moved one
+        // way: the shift found is down and right, past half a pixel.
+        let (corner, _) = sampled(0.0);
+        let metrics = measured(&corner, MatchRule::default());
+        let [sx, sy] = metrics.edge_shift.unwrap();
+        assert!(sx > 0.5 && sy > 0.5, "({sx}, {sy})");
+        assert_eq!(metrics.anti_aliased_pixels, 0);
+        assert!(!metrics.matches());
     }
 }

@@ -18,13 +18,15 @@ mod report;
 mod scene_renders;
 mod shows;
 pub mod student;
+mod sub_pixel;
 
 use std::sync::Arc;
 
 use image::{GrayImage, RgbImage};
 use serde::Serialize;
 
-pub(crate) use metrics::{MATCH_GAP, MATCH_SHARE, Metrics, TOLERANCE_STEPS};
+pub use metrics::MatchRule;
+pub(crate) use metrics::{MATCH_GAP, MATCH_SHARE, Metrics};
 pub use ranking::{Ranked, Verdict};
 pub use report::text;
 pub(crate) use scene_renders::SceneRenders;
@@ -55,8 +57,9 @@ pub struct Comparison {
     /// What was converted to read the student's image.
     pub(crate) notes: Vec<String>,
     pub metrics: Metrics,
-    /// At most `MATCH_SHARE` of the pixels past the tolerance, and none
-    /// more than `MATCH_GAP` steps apart.
+    /// At most `MATCH_SHARE` of the pixels past the tolerance (anti-aliased
+    /// edges aside), and no more than the rule allows more than `MATCH_GAP`
+    /// steps apart (edges moved by less than a pixel aside).
     pub matches: bool,
     /// How many connected regions of differing pixels there are.
     pub region_count: usize,
@@ -109,9 +112,10 @@ pub struct ObjectShare {
 }
 
 /// Compares the student's image with `scene` rendered at the image's size
-/// with the scene's own settings. An error only when memory runs out.
+/// with the scene's own settings, by the default match rule. An error only
+/// when memory runs out.
 pub fn compare(scene: &Scene, student: StudentImage) -> anyhow::Result<Comparison> {
-    compare_with(&SceneRenders::new(scene), student)
+    compare_with(&SceneRenders::new(scene), student, &MatchRule::default())
 }
 
 /// Renders, in parallel, what every comparison with this scene that differs
@@ -120,21 +124,24 @@ pub fn compare(scene: &Scene, student: StudentImage) -> anyhow::Result<Compariso
 #[cfg(feature = "flip")]
 pub(crate) fn prepare(shared: &SceneRenders) {
     ranking::prepare(shared);
+    shared.fine();
 }
 
 /// `compare`, with the scene's renders taken from `shared` (made once for
-/// every image compared with the scene). The image has the scene's size.
+/// every image compared with the scene), by `rule`. The image has the
+/// scene's size.
 pub(crate) fn compare_with(
     shared: &SceneRenders,
     student: StudentImage,
+    rule: &MatchRule,
 ) -> anyhow::Result<Comparison> {
     let yours = student.image;
     let scene = shared.scene();
     let reference = shared.reference();
     debug_assert_eq!(yours.dimensions(), reference.image.dimensions());
-    let (metrics, error_map) = metrics::measure(&yours, &reference.image)?;
+    let (metrics, error_map) = metrics::measure(&yours, &reference.image, rule, &|| shared.fine())?;
     let matches = metrics.matches();
-    let differs = metrics::over_tolerance(&yours, &reference.image);
+    let differs = metrics::over_tolerance(&yours, &reference.image, rule.tolerance_steps);
     let found = regions::regions(&differs);
     let (mut mistakes, geometry) = if matches {
         (Vec::new(), None)
@@ -589,10 +596,10 @@ mod tests {
         let alone = compare(&scene, student()).unwrap();
         assert_eq!(alone.mistakes[0].mistake, Mistake::NoAmbient);
         let shared = SceneRenders::new(&scene);
-        let first = compare_with(&shared, student()).unwrap();
+        let first = compare_with(&shared, student(), &MatchRule::default()).unwrap();
         let rendered = shared.rendered();
         assert!(rendered > 1, "{rendered} renders");
-        let second = compare_with(&shared, student()).unwrap();
+        let second = compare_with(&shared, student(), &MatchRule::default()).unwrap();
         // The second image asks for the same renders: none is made again.
         assert_eq!(shared.rendered(), rendered);
         assert_eq!(json(&first), json(&alone));
@@ -620,7 +627,7 @@ mod tests {
         let mut mistaken = scene.settings;
         mistaken.mistakes = Mistakes::NONE.with(mistake);
         let yours = render::<NoRecorder>(&scene, &mistaken, &|| {}).0;
-        let differs = metrics::over_tolerance(&yours, &reference.image);
+        let differs = metrics::over_tolerance(&yours, &reference.image, metrics::TOLERANCE_STEPS);
         let geometry = geometry::estimate(&yours, &reference.image, scene.camera.fov);
         let words = geometry
             .as_ref()

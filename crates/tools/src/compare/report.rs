@@ -22,19 +22,35 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
     } else {
         "they differ"
     };
-    let share = format!(
-        "{verdict}: {} of the pixels differ by more than {} steps of 255 (a match allows {})",
-        percent(m.pixels_over_tolerance),
-        super::TOLERANCE_STEPS,
-        percent(MATCH_SHARE)
-    );
+    let steps = (m.tolerance * 255.0).round();
+    let anti_aliased = m.anti_aliased_pixels > 0 && m.few_over_tolerance();
+    let share = if anti_aliased {
+        // The rest: what the share rule counts.
+        format!(
+            "{verdict}: {} of the pixels differ by more than {steps} steps of 255, but {} anti-aliased edges, which a match allows; the rest are {} (a match allows {})",
+            percent(m.pixels_over_tolerance),
+            count(m.anti_aliased_pixels as u64, "pixel is on", "pixels are on"),
+            percent(m.counted_share()),
+            percent(MATCH_SHARE)
+        )
+    } else {
+        format!(
+            "{verdict}: {} of the pixels differ by more than {steps} steps of 255 (a match allows {})",
+            percent(m.pixels_over_tolerance),
+            percent(MATCH_SHARE)
+        )
+    };
     if c.matches || !m.few_over_tolerance() {
         let _ = writeln!(out, "{share}.");
     } else {
         // The share alone would match: the few pixels far off decide.
+        let allowed = match m.far_off_allowed {
+            0 => "none".to_string(),
+            n => n.to_string(),
+        };
         let _ = writeln!(
             out,
-            "{share}, but {} by more than {MATCH_GAP} (a match allows none):",
+            "{share}, but {} by more than {MATCH_GAP} (a match allows {allowed}):",
             count(m.far_off_pixels as u64, "pixel differs", "pixels differ")
         );
         for p in &m.far_off {
@@ -47,6 +63,29 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
         if m.far_off_pixels > m.far_off.len() {
             let _ = writeln!(out, "  and {} more", m.far_off_pixels - m.far_off.len());
         }
+    }
+    if anti_aliased {
+        let _ = writeln!(
+            out,
+            "  anti-aliased: each of those {} lies, in every channel, within what the scene shows inside it (raystep's rays through its centre and its four quarter points), as averaging several rays a pixel gives; raystep traces one ray through each pixel's centre (MODEL §2)",
+            count(m.anti_aliased_pixels as u64, "pixel", "pixels")
+        );
+    } else if c.matches && m.sub_pixel_pixels > 0 {
+        let _ = writeln!(
+            out,
+            "  {} past the tolerance {} within raystep's values around {}: an edge moved by less than a pixel, as another tracer's rounding moves it, which a match allows",
+            count(m.sub_pixel_pixels as u64, "pixel", "pixels"),
+            if m.sub_pixel_pixels == 1 {
+                "lies"
+            } else {
+                "lie"
+            },
+            if m.sub_pixel_pixels == 1 {
+                "it"
+            } else {
+                "them"
+            },
+        );
     }
     let _ = match m.flip_mean {
         Some(flip) => writeln!(

@@ -1,6 +1,7 @@
 //! The renders a comparison needs that depend on the scene alone: raystep's
-//! own image (with the object under each pixel) and the scene rendered under
-//! each set of mistakes the ranking tries. Made once per scene and shared by
+//! own image (with the object under each pixel), the scene at twice the
+//! size (what it shows inside each pixel, for anti-aliasing) and the scene
+//! rendered under each set of mistakes the ranking tries. Made once per scene and shared by
 //! every image compared with it: `grade` compares a whole class against one
 //! set, and students who made the same mistake share the renders of the
 //! combinations the ranking tries on top of it.
@@ -11,7 +12,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 use image::RgbImage;
 
 use super::reference::{self, Reference};
-use raystep_engine::render::render;
+use raystep_engine::render::{render, render_at};
 use raystep_engine::scene::Scene;
 use raystep_engine::trace::NoRecorder;
 use raystep_model::mistakes::Mistakes;
@@ -29,6 +30,8 @@ pub(crate) struct SceneRenders<'a> {
     reference: Reference,
     /// Each set of mistakes rendered so far.
     mistaken: Mutex<HashMap<Mistakes, Arc<RgbImage>>>,
+    /// The render at twice the size, once asked for.
+    fine: Mutex<Option<Arc<RgbImage>>>,
 }
 
 impl<'a> SceneRenders<'a> {
@@ -38,6 +41,7 @@ impl<'a> SceneRenders<'a> {
             scene,
             reference: reference::render(scene, &scene.settings),
             mistaken: Mutex::new(HashMap::new()),
+            fine: Mutex::new(None),
         }
     }
 
@@ -68,6 +72,21 @@ impl<'a> SceneRenders<'a> {
             return image;
         }
         Arc::clone(stored.entry(mistakes).or_insert(image))
+    }
+
+    /// The scene at twice its size, with its settings: pixel (2x + i, 2y + j)
+    /// is the ray through (x + (2i + 1) / 4, y + (2j + 1) / 4) of the image,
+    /// a quarter point of pixel (x, y). Rendered the first time it is asked
+    /// for, without holding the lock (as `mistaken`).
+    pub(crate) fn fine(&self) -> Arc<RgbImage> {
+        let stored = || self.fine.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(image) = stored().as_ref() {
+            return Arc::clone(image);
+        }
+        let size = (2 * self.scene.width, 2 * self.scene.height);
+        let image =
+            Arc::new(render_at::<NoRecorder>(self.scene, &self.scene.settings, size, &|| {}).0);
+        Arc::clone(stored().get_or_insert(image))
     }
 
     /// How many sets of mistakes have been rendered.

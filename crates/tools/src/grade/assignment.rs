@@ -26,6 +26,9 @@
 //! # ...
 //! visibility = "hidden"       # this scene's test alone
 //! ```
+//!
+//! The match rule's knobs (`match_rule`) and grades set by hand
+//! (`[[override]]`, `overrides`) have modules of their own.
 
 use std::collections::HashSet;
 use std::ops::Range;
@@ -35,9 +38,14 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::gradescope::Visibility;
+use crate::compare::MatchRule;
 use crate::compare::student::check_compared_size;
 use raystep_engine::input_file::{self, Cap};
 use raystep_engine::scene::{self, Scene, SceneError, check_image_size};
+
+mod match_rule;
+mod overrides;
+pub use overrides::{Override, check_students};
 
 /// With `partial` and no `max_flip`: the FLIP mean that scores 0. Every
 /// classic mistake of the catalogue that changes much of the image scores
@@ -56,6 +64,8 @@ pub struct Assignment {
     pub scenes: Vec<AssignedScene>,
     /// How students hand in, and what Gradescope shows them.
     pub(crate) handing_in: HandingIn,
+    /// Grades set by hand (`[[override]]`).
+    pub overrides: Vec<Override>,
 }
 
 /// The assignment's top-level keys on handing in and the autograders.
@@ -80,6 +90,8 @@ pub struct AssignedScene {
     pub(crate) points: f64,
     /// With partial credit, the FLIP mean that scores 0.
     pub(crate) max_flip: Option<f64>,
+    /// What a match allows.
+    pub(crate) rule: MatchRule,
     /// Loaded at the size every submission must have.
     pub scene: Scene,
     /// Gradescope's visibility of this scene's test.
@@ -96,6 +108,12 @@ struct FileDef {
     #[serde(default)]
     strict_names: bool,
     visibility: Option<Visibility>,
+    // Issue 40: the match rule for every scene, and grades set by hand.
+    tolerance: Option<Spanned<i64>>,
+    far_off_allowed: Option<Spanned<i64>>,
+    antialiasing: Option<bool>,
+    #[serde(default, rename = "override")]
+    overrides: Vec<overrides::OverrideDef>,
 }
 
 #[derive(Deserialize)]
@@ -110,6 +128,10 @@ struct SceneDef {
     max_flip: Option<Spanned<f64>>,
     // Handing in and the autograders.
     visibility: Option<Visibility>,
+    // Issue 40: the match rule for this scene (the top's where not given).
+    tolerance: Option<Spanned<i64>>,
+    far_off_allowed: Option<Spanned<i64>>,
+    antialiasing: Option<bool>,
 }
 
 /// Reads the assignment at `path` and loads its scenes.
@@ -149,6 +171,14 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
         visibility: file.visibility.unwrap_or_default(),
     };
     let folder = path.parent().unwrap_or(Path::new(""));
+    let knobs = |tolerance, far_off_allowed, antialiasing| match_rule::Knobs {
+        tolerance,
+        far_off_allowed,
+        antialiasing,
+    };
+    let every_scene = knobs(file.tolerance, file.far_off_allowed, file.antialiasing)
+        .rule(MatchRule::default())
+        .map_err(|(span, m)| error(span, m))?;
     let mut submits = HashSet::new();
     let mut scenes = Vec::with_capacity(file.scene.len());
     for def in file.scene {
@@ -190,6 +220,9 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
                 Some(value)
             }
         };
+        let rule = knobs(def.tolerance, def.far_off_allowed, def.antialiasing)
+            .rule(every_scene)
+            .map_err(|(span, m)| error(span, m))?;
         let scene_path = folder.join(def.file.get_ref());
         if !scene_path.is_file() {
             return Err(error(
@@ -221,6 +254,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
             submit: def.submit.into_inner(),
             points,
             max_flip,
+            rule,
             scene,
             visibility: def.visibility.unwrap_or(handing_in.visibility),
         });
@@ -229,9 +263,11 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
         path.file_stem()
             .map_or("assignment".into(), |s| s.to_string_lossy().into_owned())
     });
+    let overrides = overrides::read(path, text, file.overrides, &scenes)?;
     Ok(Assignment {
         title,
         scenes,
+        overrides,
         handing_in,
     })
 }

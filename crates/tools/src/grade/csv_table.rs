@@ -8,6 +8,11 @@
 //! byte-order mark, without which Excel reads a CSV in the system's code
 //! page and garbles accented names (`CafÃ©`); LibreOffice and Python's
 //! `utf-8-sig` skip it.
+//!
+//! When the assignment sets grades by hand (`[[override]]`), one more
+//! column per scene follows the total, `SCENE override`: the points
+//! grading gave and the reason (blank where none); the points column holds
+//! the teacher's points. Without overrides the table is as it always was.
 
 use super::model::{ClassGrades, SceneGrade};
 
@@ -24,6 +29,16 @@ pub(crate) fn csv(grades: &ClassGrades) -> String {
         }
     }
     header.push("total".into());
+    let overridden =
+        (grades.students.iter()).any(|s| s.scenes.iter().any(|g| g.overridden.is_some()));
+    if overridden {
+        header.extend(
+            grades
+                .scenes
+                .iter()
+                .map(|s| format!("{} override", s.submit)),
+        );
+    }
     let mut out = String::from(BYTE_ORDER_MARK);
     out += &line(&header);
     for student in &grades.students {
@@ -32,6 +47,13 @@ pub(crate) fn csv(grades: &ClassGrades) -> String {
             row.extend(cells(scene));
         }
         row.push(number(student.total));
+        if overridden {
+            row.extend(student.scenes.iter().map(|g| {
+                g.overridden.as_ref().map_or(String::new(), |o| {
+                    format!("graded {}: {}", number(o.graded_points), o.reason)
+                })
+            }));
+        }
         out += &line(&row);
     }
     out

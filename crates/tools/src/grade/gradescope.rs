@@ -85,10 +85,23 @@ pub(crate) fn output(sheet: &SceneSheet, grade: &SceneGrade) -> String {
         .note
         .as_ref()
         .map_or(String::new(), |note| format!("Note: {note}.\n"));
+    // Set by hand: the teacher's points and reason first, then what
+    // grading found.
+    let by_hand = grade.overridden.as_ref().map_or(String::new(), |o| {
+        format!(
+            ", overridden by hand: {} (graded {} of {} points)",
+            o.reason,
+            super::csv_table::number(o.graded_points),
+            super::csv_table::number(grade.max_points)
+        )
+    });
     if let Some(reason) = &grade.refused {
-        return format!("{points}: not graded, {reason}.\n{note}");
+        return format!("{points}{by_hand}: not graded, {reason}.\n{note}");
     }
     let how = match (grade.matches, sheet.max_flip, grade.flip_mean) {
+        (true, _, _) if grade.anti_aliased => {
+            "your image matches raystep's (anti-aliased)".to_string()
+        }
         (true, _, _) => "your image matches raystep's".to_string(),
         (false, Some(max), Some(flip)) => format!(
             "your image differs; partial credit, the points × (1 − FLIP {flip:.4} / max_flip {max})"
@@ -96,5 +109,5 @@ pub(crate) fn output(sheet: &SceneSheet, grade: &SceneGrade) -> String {
         _ => "your image differs (a match scores the points, a difference 0)".to_string(),
     };
     let report = grade.report_text.as_deref().unwrap_or_default();
-    format!("{points}: {how}.\n{note}\n{report}")
+    format!("{points}{by_hand}: {how}.\n{note}\n{report}")
 }

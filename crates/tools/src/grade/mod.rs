@@ -35,7 +35,7 @@ pub use assignment::Assignment;
 pub(crate) use csv_table::csv;
 pub use csv_table::number as points_text;
 pub use gradescope::{Visibility, results as gradescope_results};
-pub use model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
+pub use model::{ClassGrades, Overridden, SceneGrade, SceneSheet, StudentGrades};
 pub use prairielearn::results as prairielearn_results;
 pub use report_dir::ReportDir;
 
@@ -49,6 +49,11 @@ pub struct Student {
 }
 
 impl Student {
+    /// The folder's name as the grades write it.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
     /// The files this student hands in for `assignment`, where they are
     /// found (the names asked for, and the near misses taken for them).
     pub fn submitted_files(&self, assignment: &Assignment) -> Vec<PathBuf> {
@@ -232,6 +237,9 @@ pub fn grade(
             max_flip: s.max_flip,
             reference_image: format!("reference/{slug}.png"),
             visibility: s.visibility,
+            tolerance: s.rule.tolerance_steps,
+            far_off_allowed: s.rule.far_off_allowed,
+            antialiasing: s.rule.antialiasing,
         })
         .collect();
     let mut images: Files = sheets
@@ -259,7 +267,8 @@ pub fn grade(
         })
         .collect();
     let mut grades = Vec::with_capacity(graded.len());
-    for (student, files) in graded {
+    for (mut student, files) in graded {
+        set_by_hand(&mut student, &assignment.overrides);
         grades.push(student);
         images.extend(files);
     }
@@ -309,7 +318,7 @@ impl Work<'_> {
             });
             let compared = read.and_then(|image| {
                 let yours_png = png(&image.image);
-                compare::compare_with(&self.shared[i], image)
+                compare::compare_with(&self.shared[i], image, &scene.rule)
                     .map(|comparison| (yours_png, comparison))
                     .map_err(|e| format!("{e:#}"))
             });
@@ -347,6 +356,9 @@ impl Work<'_> {
                         yours_image: Some(yours),
                         error_map_image: Some(error_map),
                         note: None,
+                        anti_aliased: comparison.matches
+                            && comparison.metrics.anti_aliased_pixels > 0,
+                        overridden: None,
                     }
                 }
             };
@@ -380,6 +392,28 @@ fn refused(max_points: f64, reason: String) -> SceneGrade {
         yours_image: None,
         error_map_image: None,
         note: None,
+        anti_aliased: false,
+        overridden: None,
+    }
+}
+
+/// The student's grades with the assignment's `[[override]]`s for them
+/// applied: the points set, the graded ones kept beside the reason, the
+/// total summed again.
+fn set_by_hand(student: &mut StudentGrades, overrides: &[assignment::Override]) {
+    let mine = overrides.iter().filter(|o| o.student == student.student);
+    let mut any = false;
+    for o in mine {
+        let grade = &mut student.scenes[o.scene];
+        grade.overridden = Some(Overridden {
+            reason: o.reason.clone(),
+            graded_points: grade.points,
+        });
+        grade.points = scoring::hundredths(o.points);
+        any = true;
+    }
+    if any {
+        student.total = scoring::total(student.scenes.iter().map(|s| s.points));
     }
 }
 

@@ -46,6 +46,12 @@ pub struct SceneSheet {
     pub reference_image: String,
     /// Gradescope's visibility of this scene's test.
     pub visibility: Visibility,
+    /// The match rule's knobs for this scene (issue 40): the tolerance in
+    /// steps of 255, the far-off pixels a match allows, and whether
+    /// anti-aliased edges match.
+    pub tolerance: u8,
+    pub far_off_allowed: usize,
+    pub antialiasing: bool,
 }
 
 /// One student's grades, scene by scene.
@@ -92,4 +98,19 @@ pub struct SceneGrade {
     /// Which file was taken when it is not the name asked for ("took
     /// Shadows.PNG for shadows.png").
     pub note: Option<String>,
+    /// A match thanks to anti-aliased edges (issue 40).
+    pub anti_aliased: bool,
+    /// Set by hand in the assignment's `[[override]]`: `points` are the
+    /// teacher's, for this reason.
+    #[serde(rename = "override")]
+    pub overridden: Option<Overridden>,
+}
+
+/// A grade set by hand.
+#[derive(Clone, Debug, Serialize)]
+pub struct Overridden {
+    /// Why, as the assignment says.
+    pub reason: String,
+    /// The points grading gave before the override.
+    pub graded_points: f64,
 }

@@ -65,6 +65,7 @@ fn text(graded: &Graded, student: &StudentGrades, images: Images) -> String {
             }
             let mut verdict = match (&grade.refused, grade.matches) {
                 (Some(reason), _) => format!("not graded: {reason}"),
+                (None, true) if grade.anti_aliased => "matches (anti-aliased)".to_string(),
                 (None, true) => "matches".to_string(),
                 (None, false) => match grade.mistakes.first() {
                     Some(mistake) => format!("differs: likely {mistake}"),
@@ -73,6 +74,9 @@ fn text(graded: &Graded, student: &StudentGrades, images: Images) -> String {
             };
             if let Some(note) = &grade.note {
                 verdict.push_str(&format!(" ({note})"));
+            }
+            if let Some(o) = &grade.overridden {
+                verdict.push_str(&format!("; overridden by hand: {}", o.reason));
             }
             json!({
                 "name": sheet.submit,
@@ -169,6 +173,9 @@ mod tests {
                 max_flip: None,
                 reference_image: reference,
                 visibility: Default::default(),
+                tolerance: 3,
+                far_off_allowed: 0,
+                antialiasing: true,
             });
             grades.push(SceneGrade {
                 points: 10.0,
@@ -182,6 +189,8 @@ mod tests {
                 yours_image: Some(yours),
                 error_map_image: Some(map),
                 note: None,
+                anti_aliased: false,
+                overridden: None,
             });
         }
         let student = StudentGrades {

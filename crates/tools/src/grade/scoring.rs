@@ -20,7 +20,7 @@ pub(crate) fn total(points: impl IntoIterator<Item = f64>) -> f64 {
     hundredths(points.into_iter().sum())
 }
 
-fn hundredths(x: f64) -> f64 {
+pub(crate) fn hundredths(x: f64) -> f64 {
     (x * 100.0).round() / 100.0
 }
 

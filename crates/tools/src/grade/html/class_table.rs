@@ -123,6 +123,10 @@ fn cell(scene: &SceneSheet, scenes: usize, grade: &SceneGrade, link: &str) -> St
         points(grade.max_points),
         verdict(grade),
     );
+    html.push_str(&overridden(grade, "div"));
+    if grade.anti_aliased {
+        html.push_str("<div class=\"flip\">anti-aliased</div>");
+    }
     if let Some(reason) = &grade.refused {
         // Cut to three lines on screen; the title and the student's page
         // hold it whole.
@@ -136,6 +140,18 @@ fn cell(scene: &SceneSheet, scenes: usize, grade: &SceneGrade, link: &str) -> St
     }
     html.push_str("</td>");
     html
+}
+
+/// "overridden: REASON (graded N)" in a `tag` element of class
+/// `overridden`, where the grade was set by hand (issue 40); else nothing.
+pub(super) fn overridden(grade: &SceneGrade, tag: &str) -> String {
+    grade.overridden.as_ref().map_or(String::new(), |o| {
+        format!(
+            "<{tag} class=\"overridden\">overridden: {} (graded {})</{tag}>",
+            escape(&o.reason),
+            points(o.graded_points)
+        )
+    })
 }
 
 /// The cell's word: match, the top mistake (and how many more were

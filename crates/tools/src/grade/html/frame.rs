@@ -64,6 +64,8 @@ overflow:hidden;overflow-wrap:anywhere}\
 .thumbs{display:flex;gap:3px;text-decoration:none}\
 .result{margin-top:3px}.result .tag{white-space:normal;overflow-wrap:anywhere}\
 .flip{font-size:12px;color:var(--muted)}\
+.overridden{font-size:12px;font-weight:600;max-width:var(--cell,204px);overflow-wrap:anywhere}\
+p.overridden{font-size:14px;max-width:none}\
 .reason{font-size:12px;color:var(--refused);max-width:var(--cell,204px);overflow-wrap:anywhere;\
 display:-webkit-box;-webkit-box-orient:vertical;-webkit-line-clamp:3;overflow:hidden}\
 p.reason{display:block;font-size:14px;max-width:none;overflow:visible}\

@@ -18,6 +18,9 @@ pub(super) fn class(students: &[(&str, Vec<SceneGrade>)]) -> ClassGrades {
             max_flip: None,
             reference_image: format!("reference/scene{i}.png"),
             visibility: Default::default(),
+            tolerance: 3,
+            far_off_allowed: 0,
+            antialiasing: true,
         })
         .collect();
     let students = students
@@ -66,6 +69,8 @@ pub(super) fn compared(mistakes: &[&str]) -> SceneGrade {
         yours_image: Some("yours/x.png".into()),
         error_map_image: Some("error/x.png".into()),
         note: None,
+        anti_aliased: false,
+        overridden: None,
     }
 }
 

@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::class_table::verdict;
+use super::class_table::{overridden, verdict};
 use super::escape::{escape, escape_block};
 use super::images::{image, readable_size};
 use super::{notes_line, scene_anchor};
@@ -40,12 +40,13 @@ fn contents(class: &ClassGrades, student: &StudentGrades) -> String {
     for (index, (scene, grade)) in class.scenes.iter().zip(&student.scenes).enumerate() {
         let _ = write!(
             html,
-            "<li><a href=\"#{}\">{}</a> <span class=\"pts\"><b>{}</b>/{}</span> {}</li>",
+            "<li><a href=\"#{}\">{}</a> <span class=\"pts\"><b>{}</b>/{}</span> {} {}</li>",
             scene_anchor(index),
             escape(&scene.file),
             points(grade.points),
             points(grade.max_points),
             verdict(grade),
+            overridden(grade, "span"),
         );
     }
     html.push_str("</ul>");
@@ -55,7 +56,7 @@ fn contents(class: &ClassGrades, student: &StudentGrades) -> String {
 fn section(index: usize, scene: &SceneSheet, grade: &SceneGrade) -> String {
     let mut html = format!(
         "<section class=\"scene\" id=\"{}\"><h2>{} <span class=\"sub\">hand in {}, {}x{}</span></h2>\
-         <p class=\"result\"><span class=\"pts\"><b>{}</b> of {} points</span> {}</p><p class=\"rule\">{}</p>",
+         <p class=\"result\"><span class=\"pts\"><b>{}</b> of {} points</span> {}</p>{}<p class=\"rule\">{}</p>",
         scene_anchor(index),
         escape(&scene.file),
         escape(&scene.submit),
@@ -64,6 +65,7 @@ fn section(index: usize, scene: &SceneSheet, grade: &SceneGrade) -> String {
         points(grade.points),
         points(grade.max_points),
         verdict(grade),
+        overridden(grade, "p"),
         escape(&scoring(scene, grade)),
     );
     if let Some(reason) = &grade.refused {
