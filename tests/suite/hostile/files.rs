@@ -1,4 +1,5 @@
-//! Outputs aimed at inputs, inputs that are not regular files, and readers past their size caps.
+//! Outputs aimed at inputs, inputs that are not regular files, and readers
+//! past their size caps.
 //!
 //! Issue 27, items 1 to 3: every output of a command is checked against
 //! every file the command reads (the scene, each mesh and MTL it reads, the
@@ -7,8 +8,9 @@
 //! input is refused at once, never opened for a blocking read; a file over
 //! its reader's cap is refused from its length with both numbers said; and
 //! the debugger reloads beside its keys, so a watched scene replaced by a
-//! FIFO never freezes it. Every run has a deadline: a regression fails
-//! here instead of hanging the tests.
+//! FIFO never freezes it. Issue 41, section 2: standard input is an input
+//! too. Every run has a deadline: a regression fails here instead of
+//! hanging the tests.
 
 use std::ffi::CString;
 use std::fs::{self, File};
@@ -32,11 +34,16 @@ struct Ended {
 /// `raystep ARGS` run in `dir` with no terminal, killed if it has not
 /// ended by `DEADLINE` (and the test failed: it hung).
 fn run(dir: &Path, args: &[&str]) -> Ended {
+    run_reading(dir, args, Stdio::null())
+}
+
+/// As `run`, with `stdin` as standard input.
+fn run_reading(dir: &Path, args: &[&str], stdin: impl Into<Stdio>) -> Ended {
     let stderr_path = dir.join(".stderr");
     let mut child = Command::new(env!("CARGO_BIN_EXE_raystep"))
         .args(args)
         .current_dir(dir)
-        .stdin(Stdio::null())
+        .stdin(stdin)
         .stdout(Stdio::null())
         .stderr(File::create(&stderr_path).unwrap())
         .spawn()
@@ -281,6 +288,49 @@ fn no_command_writes_over_any_other_input() {
         refused(&ended, words);
         assert_eq!(contents(d), before, "{args:?} changed a file");
     }
+}
+
+#[test]
+fn compare_never_writes_over_the_ray_log_it_reads_from_standard_input() {
+    // Issue 41: `compare SCENE IMG --rays - -o LOG < LOG` replaced the log
+    // by the error map: standard input is an input too, by any name.
+    let dir = cornell();
+    let d = dir.path();
+    fs::hard_link(d.join("rays.jsonl"), d.join("hard.png")).unwrap();
+    std::os::unix::fs::symlink("rays.jsonl", d.join("link.png")).unwrap();
+    let before = contents(d);
+    for out in ["rays.jsonl", "hard.png", "./link.png"] {
+        let log = File::open(d.join("rays.jsonl")).unwrap();
+        let args = [
+            "compare",
+            "cornell.toml",
+            "yours.png",
+            "--rays",
+            "-",
+            "-o",
+            out,
+        ];
+        refused(
+            &run_reading(d, &args, log),
+            &format!("cannot write {out}: it is your ray log, read from standard input"),
+        );
+        assert_eq!(contents(d), before, "{out} changed a file");
+    }
+    // Any other file is written as before, the log read from stdin.
+    let log = File::open(d.join("rays.jsonl")).unwrap();
+    let args = [
+        "compare",
+        "cornell.toml",
+        "yours.png",
+        "--rays",
+        "-",
+        "-o",
+        "map.png",
+    ];
+    let ended = run_reading(d, &args, log);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let map = image::open(d.join("map.png")).unwrap();
+    assert_eq!((map.width(), map.height()), (8, 8));
 }
 
 #[test]
