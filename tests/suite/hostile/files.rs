@@ -9,8 +9,8 @@
 //! its reader's cap is refused from its length with both numbers said; and
 //! the debugger reloads beside its keys, so a watched scene replaced by a
 //! FIFO never freezes it. Issue 41, section 2: standard input is an input
-//! too. Every run has a deadline: a regression fails here instead of
-//! hanging the tests.
+//! too; the outputs of one run never collide. Every run has a deadline: a
+//! regression fails here instead of hanging the tests.
 
 use std::ffi::CString;
 use std::fs::{self, File};
@@ -331,6 +331,102 @@ fn compare_never_writes_over_the_ray_log_it_reads_from_standard_input() {
     assert_eq!(ended.code, Some(0), "{}", ended.stderr);
     let map = image::open(d.join("map.png")).unwrap();
     assert_eq!((map.width(), map.height()), (8, 8));
+}
+
+/// Every entry under `dir` but raystep's stderr, relative (folders with a
+/// `/`), with its bytes, where it links to, or nothing for a folder.
+fn tree(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut found = Vec::new();
+    let mut stack = vec![dir.to_owned()];
+    while let Some(folder) = stack.pop() {
+        for entry in fs::read_dir(&folder).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.strip_prefix(dir).unwrap().to_str().unwrap().to_owned();
+            let kind = fs::symlink_metadata(&path).unwrap().file_type();
+            if name == ".stderr" {
+                continue;
+            } else if kind.is_dir() {
+                found.push((format!("{name}/"), Vec::new()));
+                stack.push(path);
+            } else if kind.is_symlink() {
+                let to = fs::read_link(&path).unwrap();
+                found.push((name, to.as_os_str().as_bytes().to_vec()));
+            } else {
+                found.push((name, fs::read(&path).unwrap()));
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// `cornell()` with a class beside it: ada and bob, each handing in the
+/// render, graded into report/.
+fn graded_class() -> tempfile::TempDir {
+    let dir = cornell();
+    let d = dir.path();
+    for student in ["ada", "bob"] {
+        fs::create_dir_all(d.join("class").join(student)).unwrap();
+        fs::copy(
+            d.join("yours.png"),
+            d.join("class").join(student).join("c.png"),
+        )
+        .unwrap();
+    }
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    dir
+}
+
+#[test]
+fn the_results_files_never_collide_with_the_report_and_nothing_is_written() {
+    // Issue 41: `--gradescope R/grades.json -o R` overwrote the report's
+    // own grades.json; `--prairielearn R -o R` half-wrote.
+    let dir = graded_class();
+    let d = dir.path();
+    let before = tree(d);
+    fn one<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+        [&["grade", "a.toml", "--submission", "ada"][..], extra].concat()
+    }
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            one(&["-o", "report", "--gradescope", "report/grades.json"]),
+            "cannot write report/grades.json (--gradescope): it lies inside the report \
+             folder report (-o), which raystep replaces whole",
+        ),
+        (
+            one(&["-o", "new", "--prairielearn", "new"]),
+            "cannot write new (--prairielearn): it is the report folder new (-o)",
+        ),
+        (
+            one(&["-o", "new", "--gradescope", "new/results/r.json"]),
+            "cannot write new/results/r.json (--gradescope): it lies inside the report folder new (-o)",
+        ),
+        (
+            one(&["-o", "new/report", "--prairielearn", "./new"]),
+            "cannot write ./new (--prairielearn): the report folder new/report (-o) lies inside it",
+        ),
+        (
+            one(&[
+                "--gradescope",
+                "new/r.json",
+                "--prairielearn",
+                "new/./r.json",
+            ]),
+            "cannot write new/./r.json: it would be both the results of --gradescope and the \
+             results of --prairielearn",
+        ),
+    ];
+    for (args, words) in cases {
+        refused(&run(d, &args), words);
+        // Nothing written: no file, no folder made for one.
+        let after = tree(d);
+        let changed: Vec<&String> = (after.iter().filter(|e| !before.contains(e)))
+            .chain(before.iter().filter(|e| !after.contains(e)))
+            .map(|(name, _)| name)
+            .collect();
+        assert!(changed.is_empty(), "{args:?} changed {changed:?}");
+    }
 }
 
 #[test]

@@ -71,6 +71,29 @@ impl ReportDir {
         Ok(report)
     }
 
+    /// Refuses an output file of the same run (`flag` names it) that is
+    /// REPORT, lies in it (REPORT is replaced whole), or would hold it.
+    pub fn refuse_overlap(&self, path: &Path, flag: &str) -> Result<()> {
+        // A path that cannot be resolved is refused by its own checks.
+        let Ok(real) = resolve(path) else {
+            return Ok(());
+        };
+        let (file, report) = (path.display(), self.shown.display());
+        if real == self.real {
+            bail!("cannot write {file} ({flag}): it is the report folder {report} (-o)");
+        }
+        if real.starts_with(&self.real) {
+            bail!(
+                "cannot write {file} ({flag}): it lies inside the report folder {report} (-o), \
+                 which raystep replaces whole"
+            );
+        }
+        if self.real.starts_with(&real) {
+            bail!("cannot write {file} ({flag}): the report folder {report} (-o) lies inside it");
+        }
+        Ok(())
+    }
+
     /// An existing REPORT must be a folder that is empty or a previous report.
     fn check_replaceable(&self) -> Result<()> {
         let fail = |why: &str| {
