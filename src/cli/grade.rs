@@ -29,6 +29,9 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
         .as_deref()
         .map(|dir| ReportDir::check(dir, &inputs(args, &assignment, folders)))
         .transpose()?;
+    for warning in report.iter().flat_map(ReportDir::warnings) {
+        warn(warning);
+    }
     let results = ResultsFiles::check(args, &assignment, &class, report.as_ref())?;
     let progress = progress_bar(class.students.len() * assignment.scenes.len());
     let tick = || progress.inc(1);
@@ -37,7 +40,9 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
     })?;
     progress.finish_and_clear();
     if let Some(report) = &report {
-        report.write(&graded.report_files()?)?;
+        for warning in report.write(&graded.report_files()?)? {
+            warn(&warning);
+        }
     }
     results.write(&graded)?;
     let summary = match (&args.submission, &args.output) {
@@ -49,6 +54,13 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
     // file names: spelt as names are (`raystep_engine::printable`).
     emit(&raystep_engine::printable::printable_text(&summary))?;
     Ok(ExitCode::SUCCESS)
+}
+
+fn warn(warning: &str) {
+    eprintln!(
+        "warning: {}",
+        raystep_engine::printable::printable_text(warning)
+    );
 }
 
 /// What REPORT/ may neither be, hold nor lie in.

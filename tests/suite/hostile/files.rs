@@ -1,5 +1,5 @@
-//! Outputs aimed at inputs, inputs that are not regular files, and readers
-//! past their size caps.
+//! Outputs aimed at inputs, inputs that are not regular files, readers
+//! past their size caps, and a teacher's files in REPORT/.
 //!
 //! Issue 27, items 1 to 3: every output of a command is checked against
 //! every file the command reads (the scene, each mesh and MTL it reads, the
@@ -9,8 +9,9 @@
 //! its reader's cap is refused from its length with both numbers said; and
 //! the debugger reloads beside its keys, so a watched scene replaced by a
 //! FIFO never freezes it. Issue 41, section 2: standard input is an input
-//! too; the outputs of one run never collide. Every run has a deadline: a
-//! regression fails here instead of hanging the tests.
+//! too; the outputs of one run never collide; of a previous REPORT/ only
+//! what raystep wrote is replaced, a teacher's own files kept. Every run
+//! has a deadline: a regression fails here instead of hanging the tests.
 
 use std::ffi::CString;
 use std::fs::{self, File};
@@ -376,6 +377,92 @@ fn graded_class() -> tempfile::TempDir {
     let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
     assert_eq!(ended.code, Some(0), "{}", ended.stderr);
     dir
+}
+
+/// The names of the hidden folders raystep made beside the report.
+fn hidden_folders(d: &Path) -> Vec<String> {
+    (fs::read_dir(d).unwrap())
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|name| name.starts_with(".raystep"))
+        .collect()
+}
+
+#[test]
+fn a_teachers_files_in_a_previous_report_are_kept_and_only_raysteps_replaced() {
+    // Issue 41: a previous REPORT/ into which the teacher saved notes.txt
+    // or a folder was replaced whole, and those files were gone.
+    let dir = graded_class();
+    let d = dir.path();
+    let report = d.join("report");
+    assert!(report.join("students/bob.html").exists());
+    fs::write(report.join("notes.txt"), "bob: late, see email").unwrap();
+    fs::create_dir_all(report.join("comments/week 4")).unwrap();
+    fs::write(report.join("comments/week 4/ada.txt"), "good").unwrap();
+    fs::write(report.join("images/ada/remark.txt"), "shadow acne?").unwrap();
+    fs::create_dir(report.join("empty")).unwrap();
+    std::os::unix::fs::symlink("grades.csv", report.join("latest.csv")).unwrap();
+    let teachers = [
+        ("comments/", &b""[..]),
+        ("comments/week 4/", b""),
+        ("comments/week 4/ada.txt", b"good"),
+        ("empty/", b""),
+        ("images/ada/remark.txt", b"shadow acne?"),
+        ("latest.csv", b"grades.csv"),
+        ("notes.txt", b"bob: late, see email"),
+    ];
+    // Bob leaves the class: his pages and images were raystep's, and go.
+    fs::remove_dir_all(d.join("class/bob")).unwrap();
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let after = tree(&report);
+    for (name, bytes) in teachers {
+        assert!(
+            after.contains(&(name.to_string(), bytes.to_vec())),
+            "{name} was not kept: {after:?}"
+        );
+    }
+    assert!(!report.join("students/bob.html").exists());
+    assert!(!report.join("images/bob").exists());
+    let grades = fs::read_to_string(report.join("grades.csv")).unwrap();
+    assert!(
+        grades.contains("ada") && !grades.contains("bob"),
+        "{grades}"
+    );
+    assert_eq!(hidden_folders(d), Vec::<String>::new());
+}
+
+#[test]
+fn a_changed_report_file_or_a_teachers_file_in_the_way_is_refused_untouched() {
+    let dir = graded_class();
+    let d = dir.path();
+    let report = d.join("report");
+    // grades.csv opened in a spreadsheet, a column of comments added.
+    let mut grades = fs::read(report.join("grades.csv")).unwrap();
+    let written = grades.clone();
+    grades.extend_from_slice(b"comments: ada retakes\r\n");
+    fs::write(report.join("grades.csv"), &grades).unwrap();
+    let before = tree(&report);
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    refused(
+        &ended,
+        "cannot write the report into report: files in the way of the new report, which \
+         raystep does not delete: grades.csv (changed since raystep wrote it); move them out \
+         of the folder, or name another folder",
+    );
+    assert_eq!(tree(&report), before);
+    // Put back as written, the report is replaced as before.
+    fs::write(report.join("grades.csv"), &written).unwrap();
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    // A page the teacher made where a new student's page goes.
+    fs::create_dir(d.join("class/cy")).unwrap();
+    fs::copy(d.join("yours.png"), d.join("class/cy/c.png")).unwrap();
+    fs::write(report.join("students/cy.html"), "<p>cy: to do</p>").unwrap();
+    let before = tree(&report);
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    refused(&ended, "students/cy.html (not written by raystep)");
+    assert_eq!(tree(&report), before);
+    assert_eq!(hidden_folders(d), Vec::<String>::new());
 }
 
 #[test]
