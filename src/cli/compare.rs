@@ -44,8 +44,13 @@ pub(super) fn run(args: &CompareArgs) -> Result<ExitCode> {
         if let Some(image) = &args.image {
             inputs = inputs.with(image, "your image");
         }
-        if let Some(log) = args.rays.as_deref().filter(|l| *l != Path::new("-")) {
-            inputs = inputs.with(log, "your ray log");
+        if let Some(log) = args.rays.as_deref() {
+            inputs = if log == Path::new("-") {
+                // `--rays - < rays.jsonl`: that file is an input too.
+                inputs.with_stdin("your ray log")
+            } else {
+                inputs.with(log, "your ray log")
+            };
         }
         output::refuse_clashes(&inputs, &[(diff, "the error map (-o)".to_owned())])?;
     }

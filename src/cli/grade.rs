@@ -37,7 +37,10 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
         .as_deref()
         .map(|dir| ReportDir::check(dir, &inputs(args, &assignment, folders)))
         .transpose()?;
-    let results = ResultsFiles::check(args, &assignment, &class)?;
+    for warning in report.iter().flat_map(ReportDir::warnings) {
+        warn(warning);
+    }
+    let results = ResultsFiles::check(args, &assignment, &class, report.as_ref())?;
     let progress = progress_bar(class.students.len() * assignment.scenes.len());
     let tick = || progress.inc(1);
     let graded = with_threads(args.jobs.map(usize::from), || {
@@ -45,7 +48,9 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
     })?;
     progress.finish_and_clear();
     if let Some(report) = &report {
-        report.write(&graded.report_files()?)?;
+        for warning in report.write(&graded.report_files()?)? {
+            warn(&warning);
+        }
     }
     results.write(&graded)?;
     let summary = match (&args.submission, &args.output) {
@@ -57,6 +62,13 @@ pub(super) fn run(args: &GradeArgs) -> Result<ExitCode> {
     // file names: spelt as names are (`raystep_engine::printable`).
     emit(&raystep_engine::printable::printable_text(&summary))?;
     Ok(ExitCode::SUCCESS)
+}
+
+fn warn(warning: &str) {
+    eprintln!(
+        "warning: {}",
+        raystep_engine::printable::printable_text(warning)
+    );
 }
 
 /// What REPORT/ may neither be, hold nor lie in.
@@ -85,16 +97,56 @@ struct ResultsFiles {
 }
 
 impl ResultsFiles {
-    fn check(args: &GradeArgs, assignment: &Assignment, class: &Submissions) -> Result<Self> {
-        let target = |path: &Option<PathBuf>| -> Result<Option<Target>> {
+    /// Checks the results files: against REPORT/ before a folder is made
+    /// for them, then against each other and every input. A refused run
+    /// leaves no folder it made.
+    fn check(
+        args: &GradeArgs,
+        assignment: &Assignment,
+        class: &Submissions,
+        report: Option<&ReportDir>,
+    ) -> Result<Self> {
+        if let Some(report) = report {
+            for (path, flag) in [
+                (&args.gradescope, "--gradescope"),
+                (&args.prairielearn, "--prairielearn"),
+            ] {
+                if let Some(path) = path {
+                    report.refuse_overlap(path, flag)?;
+                }
+            }
+        }
+        let mut made = Vec::new();
+        let checked = Self::check_made(args, assignment, class, &mut made);
+        if checked.is_err() {
+            // Deepest first, and only if still empty.
+            for folder in made.iter().rev() {
+                let _ = std::fs::remove_dir(folder);
+            }
+        }
+        checked
+    }
+
+    fn check_made(
+        args: &GradeArgs,
+        assignment: &Assignment,
+        class: &Submissions,
+        made: &mut Vec<PathBuf>,
+    ) -> Result<Self> {
+        let mut target = |path: &Option<PathBuf>| -> Result<Option<Target>> {
             let Some(path) = path else { return Ok(None) };
             // An autograder's results folder may not exist yet (PrairieLearn
             // leaves /grade/results to the grader).
             if let Some(folder) = path.parent().filter(|p| !p.as_os_str().is_empty())
                 && !folder.exists()
             {
+                let missing: Vec<PathBuf> = (folder.ancestors())
+                    .take_while(|f| !f.as_os_str().is_empty() && !f.exists())
+                    .map(Path::to_owned)
+                    .collect();
                 std::fs::create_dir_all(folder)
                     .with_context(|| format!("cannot create {}", folder.display()))?;
+                made.extend(missing.into_iter().rev());
             }
             output::file(path).map(Some)
         };

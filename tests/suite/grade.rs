@@ -771,9 +771,11 @@ fn the_report_never_replaces_an_input_or_a_folder_that_is_not_a_report() {
     assert_eq!(class.grade(&["-o", path(&report)]).status.code(), Some(0));
     fs::write(report.join("stale.txt"), "from before").unwrap();
     assert_eq!(class.grade(&["-o", path(&report)]).status.code(), Some(0));
-    assert!(
-        !report.join("stale.txt").exists(),
-        "the old report is replaced whole"
+    // Of the old report only raystep's files are replaced (issue 41).
+    assert_eq!(
+        fs::read_to_string(report.join("stale.txt")).unwrap(),
+        "from before",
+        "a file the teacher saved in the report is kept"
     );
     assert!(report.join("grades.json").exists());
     // A results file may not be a submission.

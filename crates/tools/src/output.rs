@@ -147,12 +147,25 @@ impl Folder {
 /// Every file a command reads, each with what it is for messages: no
 /// output of the command may be one of them, however either path is spelt.
 #[derive(Debug, Default)]
-pub struct Inputs(Vec<(PathBuf, String)>);
+pub struct Inputs {
+    files: Vec<(PathBuf, String)>,
+    /// Files read through a descriptor (standard input): their identity.
+    opened: Vec<(FileId, String)>,
+}
 
 impl Inputs {
     /// `path`, named `what` ("your image").
     pub fn with(mut self, path: &Path, what: &str) -> Inputs {
-        self.0.push((path.to_owned(), what.to_owned()));
+        self.files.push((path.to_owned(), what.to_owned()));
+        self
+    }
+
+    /// Standard input, named `what`, when it is a regular file
+    /// (`--rays - < rays.jsonl`): no output may be that file, by any name.
+    pub fn with_stdin(mut self, what: &str) -> Inputs {
+        if let Some(id) = stdin_file() {
+            self.opened.push((id, what.to_owned()));
+        }
         self
     }
 
@@ -171,7 +184,40 @@ impl Inputs {
 
     /// Each input, with what it is.
     pub(crate) fn iter(&self) -> impl Iterator<Item = (&Path, &str)> {
-        self.0.iter().map(|(p, w)| (p.as_path(), w.as_str()))
+        self.files.iter().map(|(p, w)| (p.as_path(), w.as_str()))
+    }
+}
+
+/// A file's device and inode: the file, whatever its names.
+type FileId = (u64, u64);
+
+fn file_id(path: &Path) -> Option<FileId> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        fs::metadata(path).ok().map(|m| (m.dev(), m.ino()))
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = path;
+        None
+    }
+}
+
+/// The regular file standard input reads, if it is one.
+fn stdin_file() -> Option<FileId> {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        use std::os::unix::fs::MetadataExt;
+        // A second descriptor of it, closed when dropped.
+        let fd = io::stdin().as_fd().try_clone_to_owned().ok()?;
+        let meta = File::from(fd).metadata().ok()?;
+        meta.is_file().then(|| (meta.dev(), meta.ino()))
+    }
+    #[cfg(not(unix))]
+    {
+        None
     }
 }
 
@@ -185,6 +231,13 @@ pub fn refuse_clashes(inputs: &Inputs, targets: &[(&Target, String)]) -> Result<
                 "cannot write {}: it is {input_what} {}",
                 target.shown.display(),
                 input.display()
+            );
+        }
+        let id = file_id(&target.real);
+        if let Some((_, input_what)) = inputs.opened.iter().find(|(i, _)| Some(*i) == id) {
+            bail!(
+                "cannot write {}: it is {input_what}, read from standard input",
+                target.shown.display()
             );
         }
         let same = |(other, _): &&(&Target, String)| {
@@ -220,15 +273,7 @@ fn lands_at(input: &Path, target: &Target) -> bool {
 
 /// Whether two existing paths are the same file (hard links included).
 fn same_file(a: &Path, b: &Path) -> bool {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        if let (Ok(a), Ok(b)) = (fs::metadata(a), fs::metadata(b)) {
-            return (a.dev(), a.ino()) == (b.dev(), b.ino());
-        }
-    }
-    let _ = (a, b);
-    false
+    matches!((file_id(a), file_id(b)), (Some(a), Some(b)) if a == b)
 }
 
 /// Writes every image to a temporary beside its target, then renames them

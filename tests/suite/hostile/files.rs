@@ -1,4 +1,5 @@
-//! Outputs aimed at inputs, inputs that are not regular files, and readers past their size caps.
+//! Outputs aimed at inputs, inputs that are not regular files, readers
+//! past their size caps, and a teacher's files in REPORT/.
 //!
 //! Issue 27, items 1 to 3: every output of a command is checked against
 //! every file the command reads (the scene, each mesh and MTL it reads, the
@@ -7,8 +8,10 @@
 //! input is refused at once, never opened for a blocking read; a file over
 //! its reader's cap is refused from its length with both numbers said; and
 //! the debugger reloads beside its keys, so a watched scene replaced by a
-//! FIFO never freezes it. Every run has a deadline: a regression fails
-//! here instead of hanging the tests.
+//! FIFO never freezes it. Issue 41, section 2: standard input is an input
+//! too; the outputs of one run never collide; of a previous REPORT/ only
+//! what raystep wrote is replaced, a teacher's own files kept. Every run
+//! has a deadline: a regression fails here instead of hanging the tests.
 
 use std::ffi::CString;
 use std::fs::{self, File};
@@ -32,11 +35,16 @@ struct Ended {
 /// `raystep ARGS` run in `dir` with no terminal, killed if it has not
 /// ended by `DEADLINE` (and the test failed: it hung).
 fn run(dir: &Path, args: &[&str]) -> Ended {
+    run_reading(dir, args, Stdio::null())
+}
+
+/// As `run`, with `stdin` as standard input.
+fn run_reading(dir: &Path, args: &[&str], stdin: impl Into<Stdio>) -> Ended {
     let stderr_path = dir.join(".stderr");
     let mut child = Command::new(env!("CARGO_BIN_EXE_raystep"))
         .args(args)
         .current_dir(dir)
-        .stdin(Stdio::null())
+        .stdin(stdin)
         .stdout(Stdio::null())
         .stderr(File::create(&stderr_path).unwrap())
         .spawn()
@@ -280,6 +288,231 @@ fn no_command_writes_over_any_other_input() {
         let ended = run(d, &args);
         refused(&ended, words);
         assert_eq!(contents(d), before, "{args:?} changed a file");
+    }
+}
+
+#[test]
+fn compare_never_writes_over_the_ray_log_it_reads_from_standard_input() {
+    // Issue 41: `compare SCENE IMG --rays - -o LOG < LOG` replaced the log
+    // by the error map: standard input is an input too, by any name.
+    let dir = cornell();
+    let d = dir.path();
+    fs::hard_link(d.join("rays.jsonl"), d.join("hard.png")).unwrap();
+    std::os::unix::fs::symlink("rays.jsonl", d.join("link.png")).unwrap();
+    let before = contents(d);
+    for out in ["rays.jsonl", "hard.png", "./link.png"] {
+        let log = File::open(d.join("rays.jsonl")).unwrap();
+        let args = [
+            "compare",
+            "cornell.toml",
+            "yours.png",
+            "--rays",
+            "-",
+            "-o",
+            out,
+        ];
+        refused(
+            &run_reading(d, &args, log),
+            &format!("cannot write {out}: it is your ray log, read from standard input"),
+        );
+        assert_eq!(contents(d), before, "{out} changed a file");
+    }
+    // Any other file is written as before, the log read from stdin.
+    let log = File::open(d.join("rays.jsonl")).unwrap();
+    let args = [
+        "compare",
+        "cornell.toml",
+        "yours.png",
+        "--rays",
+        "-",
+        "-o",
+        "map.png",
+    ];
+    let ended = run_reading(d, &args, log);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let map = image::open(d.join("map.png")).unwrap();
+    assert_eq!((map.width(), map.height()), (8, 8));
+}
+
+/// Every entry under `dir` but raystep's stderr, relative (folders with a
+/// `/`), with its bytes, where it links to, or nothing for a folder.
+fn tree(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut found = Vec::new();
+    let mut stack = vec![dir.to_owned()];
+    while let Some(folder) = stack.pop() {
+        for entry in fs::read_dir(&folder).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.strip_prefix(dir).unwrap().to_str().unwrap().to_owned();
+            let kind = fs::symlink_metadata(&path).unwrap().file_type();
+            if name == ".stderr" {
+                continue;
+            } else if kind.is_dir() {
+                found.push((format!("{name}/"), Vec::new()));
+                stack.push(path);
+            } else if kind.is_symlink() {
+                let to = fs::read_link(&path).unwrap();
+                found.push((name, to.as_os_str().as_bytes().to_vec()));
+            } else {
+                found.push((name, fs::read(&path).unwrap()));
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// `cornell()` with a class beside it: ada and bob, each handing in the
+/// render, graded into report/.
+fn graded_class() -> tempfile::TempDir {
+    let dir = cornell();
+    let d = dir.path();
+    for student in ["ada", "bob"] {
+        fs::create_dir_all(d.join("class").join(student)).unwrap();
+        fs::copy(
+            d.join("yours.png"),
+            d.join("class").join(student).join("c.png"),
+        )
+        .unwrap();
+    }
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    dir
+}
+
+/// The names of the hidden folders raystep made beside the report.
+fn hidden_folders(d: &Path) -> Vec<String> {
+    (fs::read_dir(d).unwrap())
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|name| name.starts_with(".raystep"))
+        .collect()
+}
+
+#[test]
+fn a_teachers_files_in_a_previous_report_are_kept_and_only_raysteps_replaced() {
+    // Issue 41: a previous REPORT/ into which the teacher saved notes.txt
+    // or a folder was replaced whole, and those files were gone.
+    let dir = graded_class();
+    let d = dir.path();
+    let report = d.join("report");
+    assert!(report.join("students/bob.html").exists());
+    fs::write(report.join("notes.txt"), "bob: late, see email").unwrap();
+    fs::create_dir_all(report.join("comments/week 4")).unwrap();
+    fs::write(report.join("comments/week 4/ada.txt"), "good").unwrap();
+    fs::write(report.join("images/ada/remark.txt"), "shadow acne?").unwrap();
+    fs::create_dir(report.join("empty")).unwrap();
+    std::os::unix::fs::symlink("grades.csv", report.join("latest.csv")).unwrap();
+    let teachers = [
+        ("comments/", &b""[..]),
+        ("comments/week 4/", b""),
+        ("comments/week 4/ada.txt", b"good"),
+        ("empty/", b""),
+        ("images/ada/remark.txt", b"shadow acne?"),
+        ("latest.csv", b"grades.csv"),
+        ("notes.txt", b"bob: late, see email"),
+    ];
+    // Bob leaves the class: his pages and images were raystep's, and go.
+    fs::remove_dir_all(d.join("class/bob")).unwrap();
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let after = tree(&report);
+    for (name, bytes) in teachers {
+        assert!(
+            after.contains(&(name.to_string(), bytes.to_vec())),
+            "{name} was not kept: {after:?}"
+        );
+    }
+    assert!(!report.join("students/bob.html").exists());
+    assert!(!report.join("images/bob").exists());
+    let grades = fs::read_to_string(report.join("grades.csv")).unwrap();
+    assert!(
+        grades.contains("ada") && !grades.contains("bob"),
+        "{grades}"
+    );
+    assert_eq!(hidden_folders(d), Vec::<String>::new());
+}
+
+#[test]
+fn a_changed_report_file_or_a_teachers_file_in_the_way_is_refused_untouched() {
+    let dir = graded_class();
+    let d = dir.path();
+    let report = d.join("report");
+    // grades.csv opened in a spreadsheet, a column of comments added.
+    let mut grades = fs::read(report.join("grades.csv")).unwrap();
+    let written = grades.clone();
+    grades.extend_from_slice(b"comments: ada retakes\r\n");
+    fs::write(report.join("grades.csv"), &grades).unwrap();
+    let before = tree(&report);
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    refused(
+        &ended,
+        "cannot write the report into report: files in the way of the new report, which \
+         raystep does not delete: grades.csv (changed since raystep wrote it); move them out \
+         of the folder, or name another folder",
+    );
+    assert_eq!(tree(&report), before);
+    // Put back as written, the report is replaced as before.
+    fs::write(report.join("grades.csv"), &written).unwrap();
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    // A page the teacher made where a new student's page goes.
+    fs::create_dir(d.join("class/cy")).unwrap();
+    fs::copy(d.join("yours.png"), d.join("class/cy/c.png")).unwrap();
+    fs::write(report.join("students/cy.html"), "<p>cy: to do</p>").unwrap();
+    let before = tree(&report);
+    let ended = run(d, &["grade", "a.toml", "class", "-o", "report"]);
+    refused(&ended, "students/cy.html (not written by raystep)");
+    assert_eq!(tree(&report), before);
+    assert_eq!(hidden_folders(d), Vec::<String>::new());
+}
+
+#[test]
+fn the_results_files_never_collide_with_the_report_and_nothing_is_written() {
+    // Issue 41: `--gradescope R/grades.json -o R` overwrote the report's
+    // own grades.json; `--prairielearn R -o R` half-wrote.
+    let dir = graded_class();
+    let d = dir.path();
+    let before = tree(d);
+    fn one<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+        [&["grade", "a.toml", "--submission", "ada"][..], extra].concat()
+    }
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            one(&["-o", "report", "--gradescope", "report/grades.json"]),
+            "cannot write report/grades.json (--gradescope): it lies inside the report \
+             folder report (-o), which raystep replaces whole",
+        ),
+        (
+            one(&["-o", "new", "--prairielearn", "new"]),
+            "cannot write new (--prairielearn): it is the report folder new (-o)",
+        ),
+        (
+            one(&["-o", "new", "--gradescope", "new/results/r.json"]),
+            "cannot write new/results/r.json (--gradescope): it lies inside the report folder new (-o)",
+        ),
+        (
+            one(&["-o", "new/report", "--prairielearn", "./new"]),
+            "cannot write ./new (--prairielearn): the report folder new/report (-o) lies inside it",
+        ),
+        (
+            one(&[
+                "--gradescope",
+                "new/r.json",
+                "--prairielearn",
+                "new/./r.json",
+            ]),
+            "cannot write new/./r.json: it would be both the results of --gradescope and the \
+             results of --prairielearn",
+        ),
+    ];
+    for (args, words) in cases {
+        refused(&run(d, &args), words);
+        // Nothing written: no file, no folder made for one.
+        let after = tree(d);
+        let changed: Vec<&String> = (after.iter().filter(|e| !before.contains(e)))
+            .chain(before.iter().filter(|e| !after.contains(e)))
+            .map(|(name, _)| name)
+            .collect();
+        assert!(changed.is_empty(), "{args:?} changed {changed:?}");
     }
 }
 

@@ -34,7 +34,7 @@ const FAR_OFF_LISTED: usize = 8;
 pub struct MatchRule {
     /// A channel may differ by this many steps of 255 before a pixel
     /// counts as different (`TOLERANCE_STEPS`; more for lossy images).
-    pub tolerance_steps: u8,
+    pub(crate) tolerance_steps: u8,
     /// How many far-off pixels a match allows: past `MATCH_GAP` and not
     /// within reach of the reference's values around them.
     pub far_off_allowed: usize,

@@ -37,15 +37,15 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::gradescope::Visibility;
+use super::model::Visibility;
 use crate::compare::MatchRule;
 use crate::compare::student::check_compared_size;
 use raystep_engine::input_file::{self, Cap};
 use raystep_engine::scene::{self, Scene, SceneError, check_image_size};
 
+mod by_hand;
 mod match_rule;
-mod overrides;
-pub use overrides::{Override, check_students};
+pub use by_hand::{Override, check_students};
 
 /// With `partial` and no `max_flip`: the FLIP mean that scores 0. Every
 /// classic mistake of the catalogue that changes much of the image scores
@@ -113,7 +113,7 @@ struct FileDef {
     far_off_allowed: Option<Spanned<i64>>,
     antialiasing: Option<bool>,
     #[serde(default, rename = "override")]
-    overrides: Vec<overrides::OverrideDef>,
+    overrides: Vec<by_hand::OverrideDef>,
 }
 
 #[derive(Deserialize)]
@@ -263,7 +263,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
         path.file_stem()
             .map_or("assignment".into(), |s| s.to_string_lossy().into_owned())
     });
-    let overrides = overrides::read(path, text, file.overrides, &scenes)?;
+    let overrides = by_hand::read(path, text, file.overrides, &scenes)?;
     Ok(Assignment {
         title,
         scenes,

@@ -14,28 +14,12 @@
 //! default), `hidden`, `after_due_date` and `after_published`
 //! ("Controlling Test Case Visibility"), set in the assignment file.
 
-use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
 use super::model::{ClassGrades, SceneGrade, SceneSheet, StudentGrades};
 
 /// How every `output` is rendered: as written, no markup.
 const OUTPUT_FORMAT: &str = "text";
-
-/// When Gradescope shows students a test (or the whole results).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Visibility {
-    /// Always.
-    #[default]
-    Visible,
-    /// Never.
-    Hidden,
-    /// Once the due date (the late due date, if any) has passed.
-    AfterDueDate,
-    /// Once the grades are published.
-    AfterPublished,
-}
 
 /// The results of `student` (one of `grades`' students).
 pub fn results(grades: &ClassGrades, student: &StudentGrades) -> Value {

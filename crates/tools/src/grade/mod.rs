@@ -34,8 +34,8 @@ use rayon::prelude::*;
 pub use assignment::Assignment;
 pub(crate) use csv_table::csv;
 pub use csv_table::number as points_text;
-pub use gradescope::{Visibility, results as gradescope_results};
-pub use model::{ClassGrades, Overridden, SceneGrade, SceneSheet, StudentGrades};
+pub use gradescope::results as gradescope_results;
+pub use model::{ClassGrades, Overridden, SceneGrade, SceneSheet, StudentGrades, Visibility};
 pub use prairielearn::results as prairielearn_results;
 pub use report_dir::ReportDir;
 

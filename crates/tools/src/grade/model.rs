@@ -4,9 +4,7 @@
 //!
 //! Paths in it are relative to REPORT/ and use `/`, as HTML links need.
 
-use serde::Serialize;
-
-use super::gradescope::Visibility;
+use serde::{Deserialize, Serialize};
 
 /// A whole class's grades.
 #[derive(Clone, Debug, Serialize)]
@@ -113,4 +111,20 @@ pub struct Overridden {
     pub reason: String,
     /// The points grading gave before the override.
     pub graded_points: f64,
+}
+
+/// When Gradescope shows students a test (or the whole results): the
+/// assignment's `visibility`, as its autograder specification names it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Visibility {
+    /// Always.
+    #[default]
+    Visible,
+    /// Never.
+    Hidden,
+    /// Once the due date (the late due date, if any) has passed.
+    AfterDueDate,
+    /// Once the grades are published.
+    AfterPublished,
 }
