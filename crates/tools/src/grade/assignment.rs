@@ -59,6 +59,10 @@ pub(crate) const ASSIGNMENT_CAP: Cap = Cap {
 };
 
 /// An assignment, its scenes loaded.
+/// The most points one scene may give: a million, so that totals and
+/// hundredths stay finite whatever the number of scenes.
+pub(crate) const MAX_POINTS: f64 = 1e6;
+
 pub struct Assignment {
     pub(crate) title: String,
     pub scenes: Vec<AssignedScene>,
@@ -192,11 +196,20 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
                 ),
             ));
         }
-        let points = *def.points.get_ref();
-        if !(points.is_finite() && points >= 0.0) {
+        // At most MAX_POINTS, so that no total or hundredth overflows
+        // (1e308 gave an infinite total, written `inf` and `null`); -0 is 0.
+        let points = *def.points.get_ref() + 0.0;
+        if !(points.is_finite() && (0.0..=MAX_POINTS).contains(&points)) {
             return Err(error(
                 def.points.span(),
-                format!("points must be a number of at least 0, got {points}"),
+                format!(
+                    "points must be a number from 0 to {MAX_POINTS}, got {}",
+                    if points.abs() >= 1e9 {
+                        format!("{points:e}")
+                    } else {
+                        points.to_string()
+                    }
+                ),
             ));
         }
         let max_flip = match (def.partial, &def.max_flip) {
@@ -347,6 +360,17 @@ mod tests {
         assert!(message.contains("only with partial = true"), "{message}");
         let message = error(&format!("{head}points = -1\n"));
         assert!(message.starts_with(&at("4:10")), "{message}");
+        // 1e308 is finite, but 100 of it (hundredths) and any sum of two are
+        // not: refused at its line and column.
+        let message = error(&format!("{head}points = 1e308\n"));
+        assert!(message.starts_with(&at("4:10")), "{message}");
+        assert!(
+            message.contains("from 0 to 1000000, got 1e308"),
+            "{message}"
+        );
+        // -0 reads as 0, never printed "-0".
+        let zero = parse_here(&format!("{head}points = -0.0\n")).unwrap();
+        assert_eq!(zero.scenes[0].points.to_bits(), 0.0f64.to_bits());
         let message = error(&format!("{head}points = 1\nsize = [0, 10]\n"));
         assert!(message.starts_with(&at("5:8")), "{message}");
         assert!(message.contains("image size 0x10 is empty"), "{message}");
