@@ -13,20 +13,7 @@
 use serde_json::Value;
 
 use crate::support::student::{TRACER, run_tracer};
-use crate::support::{program_or_skip, raystep, stdout};
-
-/// The teaching scenes.
-const SCENES: [&str; 9] = [
-    "scenes/attenuation.toml",
-    "scenes/glass.toml",
-    "scenes/highlights.toml",
-    "scenes/mirrors.toml",
-    "scenes/polygons.toml",
-    "scenes/prism.toml",
-    "scenes/seven-rays.toml",
-    "scenes/shadows.toml",
-    "scenes/two-lights.toml",
-];
+use crate::support::{TEACHING_SCENES, program_or_skip, raystep, stdout};
 
 /// The slips outside the catalogue that change the image.
 const SLIPS: [&str; 8] = [
@@ -102,7 +89,7 @@ fn no_slip_outside_the_catalogue_is_named_on_any_teaching_scene() {
     // At 80 x 60, a quarter of the pixels: the verdicts are those of the
     // scenes' own 160 x 120 (checked by hand, issue 39), in a quarter of
     // the time.
-    for scene in SCENES {
+    for scene in TEACHING_SCENES {
         for slip in SLIPS {
             let report = compared_at(scene, slip, None, Some("80x60"));
             for (name, verdict) in named(&report) {

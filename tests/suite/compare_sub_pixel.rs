@@ -8,20 +8,7 @@ use std::path::Path;
 use serde_json::Value;
 
 use crate::support::renders::{eye_moved, largest_gap, render_to, supersampled};
-use crate::support::{raystep, stderr, stdout};
-
-/// The teaching scenes.
-const SCENES: [&str; 9] = [
-    "scenes/attenuation.toml",
-    "scenes/glass.toml",
-    "scenes/highlights.toml",
-    "scenes/mirrors.toml",
-    "scenes/polygons.toml",
-    "scenes/prism.toml",
-    "scenes/seven-rays.toml",
-    "scenes/shadows.toml",
-    "scenes/two-lights.toml",
-];
+use crate::support::{TEACHING_SCENES, raystep, stderr, stdout};
 
 fn path(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -55,7 +42,7 @@ fn a_render_with_the_eye_moved_by_1e_5_matches_on_every_teaching_scene() {
     // compare does not excuse (docs/STUDENTS.md); it is left out.
     let dir = tempfile::tempdir().unwrap();
     let mut cases: Vec<(&str, usize, (u32, u32))> = Vec::new();
-    for scene in SCENES {
+    for scene in TEACHING_SCENES {
         for axis in [0, 2] {
             cases.push((scene, axis, own_size(scene)));
         }
@@ -102,7 +89,7 @@ fn a_render_anti_aliased_2x2_matches_and_is_said_so() {
     // scene shows inside its pixel and the edges moved no way: a match,
     // said to be anti-aliased.
     let dir = tempfile::tempdir().unwrap();
-    for scene in SCENES {
+    for scene in TEACHING_SCENES {
         let size = own_size(scene);
         let image = dir.path().join("aa.png");
         supersampled(Path::new(scene), dir.path(), size)
@@ -138,7 +125,7 @@ fn a_half_pixel_shift_and_wrapped_bytes_still_differ() {
     // and the pixels past 3 steps (over 0.6%) make it differ. byte-wrap's
     // wrapped pixels (glass.toml: 6) lie far outside the values around them.
     let dir = tempfile::tempdir().unwrap();
-    for scene in SCENES {
+    for scene in TEACHING_SCENES {
         let image = dir.path().join("corner.png");
         render_to(
             Path::new(scene),

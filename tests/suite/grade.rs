@@ -12,7 +12,7 @@ use std::process::Output;
 
 use serde_json::Value;
 
-use crate::support::{raystep, stderr, stdout};
+use crate::support::{json, path, raystep, stderr, stdout};
 
 /// Two scenes at 80 x 60: shadows all or nothing, highlights with partial
 /// credit (10 × max(0, 1 − FLIP / 0.2)).
@@ -35,10 +35,6 @@ max_flip = 0.2
 
 /// The longest folder name Linux allows: 255 bytes.
 const LONG: usize = 255;
-
-fn path(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 /// A folder with the assignment, its two scene files, and raystep's
 /// renders at 80 x 60 (correct, and under a few mistakes) to copy from.
@@ -174,10 +170,6 @@ fn whole_class() -> Class {
     let hidden = class.student(b".hidden");
     class.hand_in(&hidden, "shadows", "");
     class
-}
-
-fn json(path: &Path) -> Value {
-    serde_json::from_slice(&fs::read(path).unwrap()).unwrap()
 }
 
 fn student<'a>(grades: &'a Value, name: &str) -> &'a Value {

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use crate::support::{raystep, stderr, stdout};
+use crate::support::{json, path, raystep, stderr, stdout};
 
 /// Two scenes at 80 x 60, all or nothing, 10 points each.
 const ASSIGNMENT: &str = r#"title = "A5 <meshes> test"
@@ -29,14 +29,6 @@ submit = "highlights.png"
 points = 10
 size = [80, 60]
 "#;
-
-fn path(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-fn json(path: &Path) -> Value {
-    serde_json::from_slice(&fs::read(path).unwrap()).unwrap()
-}
 
 /// A folder with the assignment (`assignment` as its text), its scenes, and
 /// raystep's correct renders of both to hand in.

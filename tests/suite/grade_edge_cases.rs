@@ -12,15 +12,7 @@ use std::process::Output;
 use serde_json::Value;
 
 use crate::support::renders::{eye_moved, render_to, supersampled};
-use crate::support::{raystep, stderr, stdout};
-
-fn path(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-fn json(path: &Path) -> Value {
-    serde_json::from_slice(&fs::read(path).unwrap()).unwrap()
-}
+use crate::support::{json, path, raystep, stderr, stdout};
 
 /// A folder with `scenes` copied from `scenes/`, an assignment, renders
 /// and a submissions folder.

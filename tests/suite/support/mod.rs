@@ -127,6 +127,30 @@ pub fn on_path(name: &str) -> Option<std::path::PathBuf> {
         .find(|file| file.is_file())
 }
 
+/// The teaching scenes, as paths from the repository's root: the ones a
+/// student's tracer and compare's sweeps are tried on.
+pub const TEACHING_SCENES: [&str; 9] = [
+    "scenes/attenuation.toml",
+    "scenes/glass.toml",
+    "scenes/highlights.toml",
+    "scenes/mirrors.toml",
+    "scenes/polygons.toml",
+    "scenes/prism.toml",
+    "scenes/seven-rays.toml",
+    "scenes/shadows.toml",
+    "scenes/two-lights.toml",
+];
+
+/// A path as the command line takes it (the tests' paths are UTF-8).
+pub fn path(p: &std::path::Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// A JSON file read whole.
+pub fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap()
+}
+
 /// The TOML scenes at the top of `scenes/` (not the SPD, mesh or assignment
 /// folders), in name order.
 pub fn top_level_toml_scenes() -> Vec<std::path::PathBuf> {
