@@ -32,25 +32,25 @@ fn a_render_with_the_eye_moved_by_1e_5_matches_on_every_teaching_scene() {
     // Another correct tracer's eye sits a hair away (float32, another order
     // of operations). Moved along x and along z, at each scene's own size,
     // and at 320 x 240 along x, y and z for glass.toml: where the images
-    // differ, a few silhouette pixels took a neighbour's colour. On main,
-    // one such pixel more than 32 steps off made them differ ("1 pixel
-    // differs by more than 32 (a match allows none)": prism.toml moved
-    // along x, glass.toml at 320 x 240). Along y at seven-rays.toml's own
-    // size the level centre row is the horizon of its endless floor: an
-    // eye 1e-5 higher turns the whole row from sky to floor (161 pixels,
-    // 0.83%), a horizon moved one way as a shifted image moves, which
-    // compare does not excuse (docs/STUDENTS.md); it is left out.
+    // differ, a few silhouette pixels took a neighbour's colour. Before
+    // issue 40, one such pixel more than 32 steps off made them differ ("1
+    // pixel differs by more than 32 (a match allows none)": prism.toml
+    // moved along x, glass.toml at 320 x 240). Along y at seven-rays.toml's
+    // own size (161 x 121) the level centre row is the horizon of its
+    // endless floor: an eye 1e-5 higher turns the whole row from sky to
+    // floor (161 pixels, 0.83%, 41 steps apart in blue), which differed
+    // until pixels on an edge through their centres were excused.
     let dir = tempfile::tempdir().unwrap();
     let mut cases: Vec<(&str, usize, (u32, u32))> = Vec::new();
     for scene in TEACHING_SCENES {
-        for axis in [0, 2] {
+        for axis in 0..3 {
             cases.push((scene, axis, own_size(scene)));
         }
     }
     for axis in 0..3 {
         cases.push(("scenes/glass.toml", axis, (320, 240)));
     }
-    let (mut differing, mut far_off) = (0, 0);
+    let (mut differing, mut far_off, mut horizon) = (0, 0, false);
     for (scene, axis, size) in cases {
         let ours = dir.path().join("ours.png");
         render_to(Path::new(scene), &ours, size, &[]);
@@ -72,11 +72,19 @@ fn a_render_with_the_eye_moved_by_1e_5_matches_on_every_teaching_scene() {
             "{scene} axis {axis} {size:?}: {report:#}"
         );
         assert_eq!(report["metrics"]["far_off_pixels"], 0, "{scene}");
+        if scene.ends_with("seven-rays.toml") && axis == 1 {
+            // The horizon row: most of its 161 pixels on an edge through
+            // their centres (those seen through the glass balls may not
+            // be), the rest within the share a match allows (19 of 19,481).
+            let on_edge = report["metrics"]["on_edge_pixels"].as_u64().unwrap();
+            horizon = on_edge > 161 - 19;
+        }
     }
-    // The test can fail: some moves change bytes, and some past 32 steps.
+    // The test can fail: some moves change bytes, and some past 32 steps,
+    // the horizon's among them.
     assert!(
-        differing >= 5 && far_off >= 2,
-        "{differing} differ, {far_off} far off"
+        differing >= 5 && far_off >= 3 && horizon,
+        "{differing} differ, {far_off} far off, horizon {horizon}"
     );
 }
 
@@ -101,15 +109,19 @@ fn a_render_anti_aliased_2x2_matches_and_is_said_so() {
         assert!(over > 0.001, "{scene}: {over}");
         assert_eq!(report["matches"], true, "{scene}: {metrics:#}");
         let pixels = f64::from(size.0 * size.1);
+        // A few may lie on an edge through their centres, which a blend
+        // lies within too (highlights.toml: 4 of 341, where the balls'
+        // silhouettes pass within 1e-3 pixel of a centre).
         let anti_aliased = metrics["anti_aliased_pixels"].as_f64().unwrap();
+        let on_edge = metrics["on_edge_pixels"].as_f64().unwrap();
+        assert!(on_edge < anti_aliased / 20.0, "{scene}: {metrics:#}");
         assert!(
-            over - anti_aliased / pixels <= 0.001,
+            over - (anti_aliased + on_edge) / pixels <= 0.001,
             "{scene}: {metrics:#}"
         );
         let text = stdout(&raystep(&["compare", scene, path(&image)]));
         assert!(
-            text.contains("they match: ")
-                && text.contains("anti-aliased edges, which a match allows"),
+            text.contains("they match: ") && text.contains("anti-aliased edges"),
             "{text}"
         );
         assert!(text.contains("\n  anti-aliased: each of those "), "{text}");

@@ -147,6 +147,20 @@ impl Viewport {
         (px, py)
     }
 
+    /// The ray from the eye through the point (du, dv) pixels away, along
+    /// the image's x and the traced rows' y, from where pixel (x, y)'s
+    /// primary ray passes: what the scene shows a hair beside that ray
+    /// (compare looks there for an edge through the pixel's centre).
+    pub fn ray_beside(&self, x: u32, y: u32, (du, dv): (f64, f64)) -> Ray {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let s = self.half_height;
+        let y = self.traced_row(y);
+        let px = (2.0 * (x as f64 + self.pixel_offset + du) / w - 1.0) * s * (w / h);
+        let py = (1.0 - 2.0 * (y as f64 + self.pixel_offset + dv) / h) * s;
+        let direction = (self.forward + px * self.right + py * self.true_up).normalize();
+        Ray::new(self.eye, direction)
+    }
+
     /// The mapping of `plane_offsets` read backwards: where a ray from the
     /// eye along `direction` crosses the image, in pixel units of the
     /// traced rows ((x + 0.5, y + 0.5) is the centre of pixel (x, y));

@@ -7,6 +7,10 @@ use anyhow::Result;
 use image::{GrayImage, RgbImage};
 use serde::Serialize;
 
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
 use super::sub_pixel;
 
 /// A channel may differ by this many 8-bit steps before a pixel counts as
@@ -79,6 +83,11 @@ pub struct Metrics {
     /// anti-aliased edges (blends, `sub_pixel`): they count for nothing.
     /// Looked for only when the image would not match without them.
     pub(crate) anti_aliased_pixels: usize,
+    /// Of the pixels past the tolerance, how many lie on an edge through
+    /// their centre, either side of which is right (`sub_pixel::on_edge`):
+    /// they count for nothing. Looked for only when the image would not
+    /// match without them. None of them is anti-aliased too.
+    pub(crate) on_edge_pixels: usize,
     /// The shift of the edges estimated from the pixels past the tolerance
     /// (`sub_pixel::shift`), in pixels (right, down) to three decimals,
     /// when blends were looked for and the pixels show gradients to fit:
@@ -115,9 +124,15 @@ impl Metrics {
     }
 
     /// The share of pixels past the tolerance that counts: all but the
-    /// anti-aliased ones.
+    /// anti-aliased ones and those on an edge through their centre.
     pub(crate) fn counted_share(&self) -> f64 {
-        (self.over_pixels - self.anti_aliased_pixels) as f64 / self.pixels.max(1) as f64
+        (self.over_pixels - self.excused_pixels()) as f64 / self.pixels.max(1) as f64
+    }
+
+    /// How many pixels past the tolerance count for nothing: anti-aliased,
+    /// or on an edge through their centre.
+    pub(crate) fn excused_pixels(&self) -> usize {
+        self.anti_aliased_pixels + self.on_edge_pixels
     }
 }
 
@@ -149,15 +164,27 @@ pub(crate) fn over_tolerance(yours: &RgbImage, reference: &RgbImage, tolerance: 
     })
 }
 
+/// What the scene shows inside a pixel besides the reference's one ray
+/// through its centre (`sub_pixel`): asked for only when an image would
+/// not match without it.
+pub(crate) trait InsidePixels {
+    /// raystep's render at twice the size: each pixel's quarter points.
+    fn fine(&self) -> Arc<RgbImage>;
+    /// What raystep's rays `sub_pixel::BESIDE_CENTRE` from pixel (x, y)'s
+    /// centre see.
+    fn beside_centre(&self, x: u32, y: u32) -> [[u8; 3]; 4];
+}
+
 /// Measures `yours` against `reference` (same size) by `rule`; also gives
-/// FLIP's error map in its magma colours where the build has FLIP. `fine`
-/// gives raystep's render at twice the size, asked for only when blends
-/// are looked for. An error when the memory FLIP needs cannot be had.
+/// FLIP's error map in its magma colours where the build has FLIP. `inside`
+/// gives what the scene shows inside a pixel, asked for only when pixels
+/// on edges are looked for. An error when the memory FLIP needs cannot be
+/// had.
 pub(crate) fn measure(
     yours: &RgbImage,
     reference: &RgbImage,
     rule: &MatchRule,
-    fine: &dyn Fn() -> std::sync::Arc<RgbImage>,
+    inside: &(dyn InsidePixels + Sync),
 ) -> Result<(Metrics, Option<RgbImage>)> {
     let (width, height) = yours.dimensions();
     let pixels = width as usize * height as usize;
@@ -199,23 +226,46 @@ pub(crate) fn measure(
     };
     let mut far_off = far_off_within(&|_| false);
     let share_matches = over.len() as f64 <= MATCH_SHARE * pixels as f64;
-    let (mut anti_aliased, mut edge_shift) = (0, None);
+    let (mut on_edge, mut anti_aliased, mut edge_shift) = (vec![false; over.len()], 0, None);
+    // Edges through pixels' centres lie along lines of centres (a horizon
+    // on a row): more pixels over than the share plus two whole rows and
+    // two whole columns are not looked at, which they could not excuse.
+    let lines = 2 * (width as usize + height as usize);
+    let could_excuse = over.len() as f64 <= MATCH_SHARE * pixels as f64 + lines as f64;
+    if could_excuse && !(share_matches && far_off.len() <= rule.far_off_allowed) {
+        // Four rays a pixel, for the pixels past the tolerance only.
+        on_edge = (over.par_iter())
+            .map(|&(index, _)| {
+                let (x, y) = (index % width, index / width);
+                let mine = yours.get_pixel(x, y).0;
+                let beside = inside.beside_centre(x, y);
+                sub_pixel::on_edge(reference, x, y, beside, mine, tolerance)
+            })
+            .collect();
+        far_off = far_off_within(&|i| on_edge[i]);
+    }
+    let on_edge_pixels = on_edge.iter().filter(|&&e| e).count();
+    let share_matches = (over.len() - on_edge_pixels) as f64 <= MATCH_SHARE * pixels as f64;
     if rule.antialiasing && !(share_matches && far_off.len() <= rule.far_off_allowed) {
-        // Blends are accepted only when the edges did not all move one way.
-        let indices: Vec<u32> = over.iter().map(|&(index, _)| index).collect();
+        // Blends are accepted only when the edges did not all move one way
+        // (pixels on an edge through their centre moved no way: left out).
+        let indices: Vec<u32> = (over.iter().zip(&on_edge))
+            .filter(|&(_, &edge)| !edge)
+            .map(|(&(index, _), _)| index)
+            .collect();
         let shift = sub_pixel::shift(yours, reference, &indices);
         edge_shift = shift.map(|s| s.map(|v| (v * 1000.0).round() / 1000.0));
         if shift.is_none_or(|[sx, sy]| sx.hypot(sy) < sub_pixel::MAX_BLEND_SHIFT) {
-            let fine = fine();
-            let blends: Vec<bool> = (over.iter())
-                .map(|&(index, _)| {
+            let fine = inside.fine();
+            let blends: Vec<bool> = (over.iter().zip(&on_edge))
+                .map(|(&(index, _), &edge)| {
                     let (x, y) = (index % width, index / width);
                     let mine = yours.get_pixel(x, y).0;
-                    sub_pixel::blend(reference, &fine, x, y, mine, tolerance)
+                    !edge && sub_pixel::blend(reference, &fine, x, y, mine, tolerance)
                 })
                 .collect();
             anti_aliased = blends.iter().filter(|&&b| b).count();
-            far_off = far_off_within(&|i| blends[i]);
+            far_off = far_off_within(&|i| blends[i] || on_edge[i]);
         }
     }
     #[cfg(feature = "flip")]
@@ -239,6 +289,7 @@ pub(crate) fn measure(
             .collect(),
         sub_pixel_pixels: over.iter().filter(|&&(_, reach)| reach).count(),
         anti_aliased_pixels: anti_aliased,
+        on_edge_pixels,
         edge_shift,
         far_off_allowed: rule.far_off_allowed,
         antialiasing: rule.antialiasing,
@@ -251,7 +302,6 @@ pub(crate) fn measure(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::sync::Arc;
 
     /// Each pixel of `image` four times, 2 x 2: a scene flat inside each
     /// pixel rendered at twice the size.
@@ -263,11 +313,22 @@ mod tests {
         ))
     }
 
+    /// A scene flat inside each pixel: the reference's value everywhere in it.
+    struct Flat<'a>(&'a RgbImage);
+
+    impl InsidePixels for Flat<'_> {
+        fn fine(&self) -> Arc<RgbImage> {
+            doubled(self.0)
+        }
+
+        fn beside_centre(&self, x: u32, y: u32) -> [[u8; 3]; 4] {
+            [self.0.get_pixel(x, y).0; 4]
+        }
+    }
+
     /// `measure` by the default rule, the scene flat inside each pixel.
     fn measure(yours: &RgbImage, reference: &RgbImage) -> Result<(Metrics, Option<RgbImage>)> {
-        super::measure(yours, reference, &MatchRule::default(), &|| {
-            doubled(reference)
-        })
+        super::measure(yours, reference, &MatchRule::default(), &Flat(reference))
     }
 
     #[test]
@@ -335,7 +396,6 @@ mod tests {
 #[cfg(test)]
 mod sub_pixel_tests {
     use super::*;
-    use std::sync::Arc;
 
     /// A disc of radius 9 (bright, 230) about (20, 20) on a dark ground (30),
     /// sampled at (u, v) in pixel units.
@@ -354,11 +414,24 @@ mod sub_pixel_tests {
         (image, Arc::new(fine))
     }
 
+    /// The disc as raystep sees it: rays through each pixel's quarter
+    /// points and a hair beside its centre.
+    struct Disc(Arc<RgbImage>);
+
+    impl InsidePixels for Disc {
+        fn fine(&self) -> Arc<RgbImage> {
+            Arc::clone(&self.0)
+        }
+
+        fn beside_centre(&self, x: u32, y: u32) -> [[u8; 3]; 4] {
+            sub_pixel::BESIDE_CENTRE
+                .map(|(du, dv)| disc(x as f64 + 0.5 + du, y as f64 + 0.5 + dv).0)
+        }
+    }
+
     fn measured(yours: &RgbImage, rule: MatchRule) -> Metrics {
         let (reference, fine) = sampled(0.5);
-        measure(yours, &reference, &rule, &|| Arc::clone(&fine))
-            .unwrap()
-            .0
+        measure(yours, &reference, &rule, &Disc(fine)).unwrap().0
     }
 
     #[test]
@@ -390,6 +463,75 @@ mod sub_pixel_tests {
             ..rule
         };
         assert!(measured(&moved, lenient).matches());
+    }
+
+    /// A horizon: sky (20, 30, 60) above v = 10.5, ground (34, 31, 23)
+    /// from it down, on a 40 x 21 image: row 10's centres lie on it, and
+    /// raystep's rays through them see the ground (10.5 is not above).
+    struct Horizon;
+
+    impl Horizon {
+        fn at(v: f64) -> [u8; 3] {
+            if v < 10.5 { [20, 30, 60] } else { [34, 31, 23] }
+        }
+
+        fn image(row_ten: [u8; 3]) -> RgbImage {
+            RgbImage::from_fn(40, 21, |_, y| {
+                image::Rgb(if y == 10 {
+                    row_ten
+                } else {
+                    Self::at(y as f64 + 0.5)
+                })
+            })
+        }
+    }
+
+    impl InsidePixels for Horizon {
+        fn fine(&self) -> Arc<RgbImage> {
+            Arc::new(RgbImage::from_fn(80, 42, |_, y| {
+                image::Rgb(Self::at((y as f64 + 0.5) / 2.0))
+            }))
+        }
+
+        fn beside_centre(&self, _: u32, y: u32) -> [[u8; 3]; 4] {
+            sub_pixel::BESIDE_CENTRE.map(|(_, dv)| Self::at(y as f64 + 0.5 + dv))
+        }
+    }
+
+    #[test]
+    fn a_row_of_centres_on_the_horizon_may_show_either_side() {
+        // Issue 40: a level camera's middle row on an endless floor's
+        // horizon; an eye 1e-5 higher turns the whole row from ground to
+        // sky. 40 pixels of 840 (4.8%) past the tolerance, 37 steps apart
+        // in blue: the share rule refused it. Rays 0.001 above and below
+        // each centre see sky and ground: on an edge through the centre,
+        // either value is right.
+        let reference = Horizon::image(Horizon::at(10.5));
+        assert_eq!(reference.get_pixel(0, 10).0, [34, 31, 23]);
+        let sky = Horizon::image([20, 30, 60]);
+        let rule = MatchRule::default();
+        let metrics = measure(&sky, &reference, &rule, &Horizon).unwrap().0;
+        assert_eq!((metrics.over_pixels, metrics.on_edge_pixels), (40, 40));
+        assert_eq!(
+            (metrics.far_off_pixels, metrics.anti_aliased_pixels),
+            (0, 0)
+        );
+        assert!(metrics.matches());
+        // A value outside both sides is no rounding: (20, 30, 70) is 10
+        // bluer than the sky, past the tolerance of 3.
+        let bluer = Horizon::image([20, 30, 70]);
+        let metrics = measure(&bluer, &reference, &rule, &Horizon).unwrap().0;
+        assert_eq!(metrics.on_edge_pixels, 0);
+        assert!(!metrics.matches());
+        // Nor is the sky on row 11, whose centres (11.5) lie a whole pixel
+        // below the horizon: the rays beside them all see the ground.
+        let mut lowered = reference.clone();
+        for x in 0..40 {
+            lowered.put_pixel(x, 11, image::Rgb([20, 30, 60]));
+        }
+        let metrics = measure(&lowered, &reference, &rule, &Horizon).unwrap().0;
+        assert_eq!((metrics.over_pixels, metrics.on_edge_pixels), (40, 0));
+        assert!(!metrics.matches());
     }
 
     /// The disc averaged over 2 x 2 rays a pixel, through its quarter points

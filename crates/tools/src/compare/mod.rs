@@ -139,7 +139,7 @@ pub(crate) fn compare_with(
     let scene = shared.scene();
     let reference = shared.reference();
     debug_assert_eq!(yours.dimensions(), reference.image.dimensions());
-    let (metrics, error_map) = metrics::measure(&yours, &reference.image, rule, &|| shared.fine())?;
+    let (metrics, error_map) = metrics::measure(&yours, &reference.image, rule, shared)?;
     let matches = metrics.matches();
     let differs = metrics::over_tolerance(&yours, &reference.image, rule.tolerance_steps);
     let found = regions::regions(&differs);

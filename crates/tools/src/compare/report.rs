@@ -24,12 +24,18 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
     };
     let steps = (m.tolerance * 255.0).round();
     let anti_aliased = m.anti_aliased_pixels > 0 && m.few_over_tolerance();
-    let share = if anti_aliased {
+    let on_edge = m.on_edge_pixels > 0 && m.few_over_tolerance();
+    let share = if anti_aliased || on_edge {
         // The rest: what the share rule counts.
+        let excused = match (anti_aliased, on_edge) {
+            (true, false) => "anti-aliased edges",
+            (false, true) => "edges through their centres",
+            _ => "anti-aliased edges or edges through their centres",
+        };
         format!(
-            "{verdict}: {} of the pixels differ by more than {steps} steps of 255, but {} anti-aliased edges, which a match allows; the rest are {} (a match allows {})",
+            "{verdict}: {} of the pixels differ by more than {steps} steps of 255, but {} {excused}, which a match allows; the rest are {} (a match allows {})",
             percent(m.pixels_over_tolerance),
-            count(m.anti_aliased_pixels as u64, "pixel is on", "pixels are on"),
+            count(m.excused_pixels() as u64, "pixel is on", "pixels are on"),
             percent(m.counted_share()),
             percent(MATCH_SHARE)
         )
@@ -64,27 +70,28 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
             let _ = writeln!(out, "  and {} more", m.far_off_pixels - m.far_off.len());
         }
     }
+    if on_edge {
+        let _ = writeln!(
+            out,
+            "  on an edge through the centre: for each of those {} raystep's rays a thousandth of a pixel to either side of its centre see different things, and yours lies within what they see: which side the centre's own ray falls on is a matter of rounding (a horizon through a row of centres), so either value is right",
+            count(m.on_edge_pixels as u64, "pixel", "pixels")
+        );
+    }
     if anti_aliased {
         let _ = writeln!(
             out,
             "  anti-aliased: each of those {} lies, in every channel, within what the scene shows inside it (raystep's rays through its centre and its four quarter points), as averaging several rays a pixel gives; raystep traces one ray through each pixel's centre (MODEL §2)",
             count(m.anti_aliased_pixels as u64, "pixel", "pixels")
         );
-    } else if c.matches && m.sub_pixel_pixels > 0 {
+    } else if c.matches && m.sub_pixel_pixels > m.on_edge_pixels {
+        // Those on an edge through their centre are said so above.
+        let moved = m.sub_pixel_pixels - m.on_edge_pixels;
         let _ = writeln!(
             out,
             "  {} past the tolerance {} within raystep's values around {}: an edge moved by less than a pixel, as another tracer's rounding moves it, which a match allows",
-            count(m.sub_pixel_pixels as u64, "pixel", "pixels"),
-            if m.sub_pixel_pixels == 1 {
-                "lies"
-            } else {
-                "lie"
-            },
-            if m.sub_pixel_pixels == 1 {
-                "it"
-            } else {
-                "them"
-            },
+            count(moved as u64, "pixel", "pixels"),
+            if moved == 1 { "lies" } else { "lie" },
+            if moved == 1 { "it" } else { "them" },
         );
     }
     let _ = match m.flip_mean {

@@ -12,9 +12,10 @@ use std::sync::{Arc, Mutex, PoisonError};
 use image::RgbImage;
 
 use super::reference::{self, Reference};
-use raystep_engine::render::{render, render_at};
+use super::{metrics, sub_pixel};
+use raystep_engine::render::{render, render_at, viewport};
 use raystep_engine::scene::Scene;
-use raystep_engine::trace::NoRecorder;
+use raystep_engine::trace::{NoRecorder, trace};
 use raystep_model::mistakes::Mistakes;
 
 /// The most the mistaken renders kept may take, in bytes: 300 renders of a
@@ -89,6 +90,20 @@ impl<'a> SceneRenders<'a> {
         Arc::clone(stored().get_or_insert(image))
     }
 
+    /// What raystep's rays through pixel (x, y), `sub_pixel::BESIDE_CENTRE`
+    /// away from its centre, see, as bytes: with the scene's settings and
+    /// its size, as the reference's own rays.
+    pub(crate) fn beside_centre(&self, x: u32, y: u32) -> [[u8; 3]; 4] {
+        let (scene, settings) = (self.scene, &self.scene.settings);
+        let viewport = viewport(scene, settings, (scene.width, scene.height));
+        sub_pixel::BESIDE_CENTRE.map(|offset| {
+            let ray = viewport.ray_beside(x, y, offset);
+            settings
+                .mistakes
+                .rgb8(trace(scene, settings, &ray, &mut NoRecorder))
+        })
+    }
+
     /// How many sets of mistakes have been rendered.
     #[cfg(test)]
     pub(crate) fn rendered(&self) -> usize {
@@ -98,5 +113,15 @@ impl<'a> SceneRenders<'a> {
     fn stored(&self) -> std::sync::MutexGuard<'_, HashMap<Mistakes, Arc<RgbImage>>> {
         // A panic elsewhere cannot leave the map half-changed: keep using it.
         self.mistaken.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+impl metrics::InsidePixels for SceneRenders<'_> {
+    fn fine(&self) -> Arc<RgbImage> {
+        SceneRenders::fine(self)
+    }
+
+    fn beside_centre(&self, x: u32, y: u32) -> [[u8; 3]; 4] {
+        SceneRenders::beside_centre(self, x, y)
     }
 }

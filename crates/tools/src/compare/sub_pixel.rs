@@ -19,6 +19,18 @@
 //!   When anti-aliasing is accepted, a blend counts for nothing, as long as
 //!   the image is not shifted (below).
 //!
+//! - **on an edge through its centre**: raystep's rays a thousandth of a
+//!   pixel to either side of the centre (left, right, up, down) see
+//!   different things, and each channel lies between the least and the
+//!   most of what they and the centre's ray see, widened by the tolerance.
+//!   Which side the centre's own ray falls on is then a matter of rounding:
+//!   a level camera's middle row on the horizon of an endless floor turns
+//!   from sky to floor, all of it, when the eye rises by 1e-5. Either value
+//!   is right: such a pixel counts for nothing. An edge lies that close to
+//!   a pixel's centre only by construction (a row or column of centres on
+//!   a horizon or a plane seen edge-on): one edge pixel in a thousand by
+//!   chance, so a mistake that moves edges is still seen on the others.
+//!
 //! A whole image shifted by half a pixel (`pixel-corner`: rays through the
 //! pixels' corners) also changes every edge pixel to a value the scene
 //! shows there. It is told apart by the direction: a shift moves every edge
@@ -39,6 +51,46 @@ use image::RgbImage;
 /// 256 x 256: |s| ≤ 0.43 (tree) and ≥ 0.88 (balls). Half a pixel lies
 /// between.
 pub(crate) const MAX_BLEND_SHIFT: f64 = 0.5;
+
+/// How far from a pixel's centre, in pixels, raystep looks for an edge
+/// through it. Near enough that an edge found is one the centre's ray
+/// grazes (one edge pixel in a thousand lies that close by chance; a
+/// `pixel-corner` ray passes 0.5 away), far enough to see both sides of an
+/// edge that passes exactly through the centre, which the rounding of a
+/// correct tracer (float32 directions: about 1e-7 of a radian; an eye 1e-5
+/// off at 7 units: 1.4e-6) puts on either side.
+pub(crate) const EDGE_REACH: f64 = 1e-3;
+
+/// Where, from a pixel's centre, the rays that look for an edge through
+/// it pass (`EDGE_REACH` left, right, up and down).
+pub(crate) const BESIDE_CENTRE: [(f64, f64); 4] = [
+    (-EDGE_REACH, 0.0),
+    (EDGE_REACH, 0.0),
+    (0.0, -EDGE_REACH),
+    (0.0, EDGE_REACH),
+];
+
+/// Whether a ray a hair beside pixel (x, y)'s centre (`beside`, the rays
+/// through `BESIDE_CENTRE`) sees something past `tolerance` steps from its
+/// centre's, and `mine` lies, in every channel, within what they all see,
+/// widened by `tolerance` steps: an edge through the centre, either side
+/// of which is right.
+pub(crate) fn on_edge(
+    reference: &RgbImage,
+    x: u32,
+    y: u32,
+    beside: [[u8; 3]; 4],
+    mine: [u8; 3],
+    tolerance: u8,
+) -> bool {
+    let centre = reference.get_pixel(x, y).0;
+    // An edge: a ray beside the centre sees something else, past the
+    // tolerance (a smooth shading gradient changes by less in 1e-3 px).
+    let edge = beside
+        .iter()
+        .any(|&b| (0..3).any(|c| b[c].abs_diff(centre[c]) > tolerance));
+    edge && within(std::iter::once(centre).chain(beside), mine, tolerance)
+}
 
 /// Whether `mine` lies, in every channel, within the reference's values
 /// over the 3 x 3 pixels around (x, y), widened by `tolerance` steps.
