@@ -517,6 +517,7 @@ fn the_json_report_has_the_documented_keys() {
             "far_off_pixels",
             "flip_mean",
             "mean_abs",
+            "on_edge_pixels",
             "pixels_over_tolerance",
             "sub_pixel_pixels",
             "tolerance",
