@@ -9,6 +9,7 @@
 pub(crate) mod alone;
 mod mtl;
 mod obj;
+mod obj_lines;
 mod placing;
 mod stl;
 
