@@ -74,11 +74,14 @@ fn mesh_loader_finds() {
                        v 549.6 0.0 559.2\nv 549.6 0.0 559.2\nvt 132.0 0\n";
     // An `l` line of three points with a texture index far out of range:
     // tobj read it as a triangle and computed -194 + 1 texture coordinates.
-    // A polyline is no surface: it is left out, and nothing else is there.
+    // A polyline is no surface: it is left out, and nothing else is there,
+    // so the mesh is refused, saying why (issue 41: never an empty render).
     let polyline = format!("{five_points}l 02/-194 -2/-2 00\n");
+    let error = load_bytes(Path::new("f.obj"), polyline.as_bytes()).unwrap_err();
     assert_eq!(
-        load_bytes(Path::new("f.obj"), polyline.as_bytes()).unwrap(),
-        0
+        error.message,
+        "f.obj: the mesh has no triangles to show: it has 5 `v` line(s) and no `f` line \
+         (its `l` lines are polylines, not surfaces)"
     );
     // A polyline beside a face: only the face's triangle is read.
     let beside = format!("{five_points}l 1 2 3 4\nf 1 2 3\n");

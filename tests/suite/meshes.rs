@@ -224,7 +224,7 @@ fn bad_stl_files_are_refused() {
     refused(
         &[("g.stl", b"solid g\nfacet garbage\n")],
         "g.stl",
-        "g.stl: triangle 0 cannot be read",
+        "g.stl:2:1: expected `facet normal x y z` or `endsolid`, got `facet garbage`",
     );
     let mut nan = vec![0u8; 84 + 50];
     nan[80] = 1;

@@ -50,6 +50,19 @@ pub fn open(path: &Path, what: &str, cap: Cap) -> Result<File, InputError> {
     Ok(file)
 }
 
+/// Whether `path` is a file `open` would read, judged from its metadata
+/// alone (nothing is opened): `Ok(false)` when there is nothing there,
+/// `Err` naming what it is when it is a FIFO, a device or a directory.
+pub fn is_regular(path: &Path, what: &str) -> Result<bool, InputError> {
+    match fs::metadata(path) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(false),
+        Err(e) => Err(refused(what, path, e.to_string())),
+        Ok(meta) => regular(&meta)
+            .map(|()| true)
+            .map_err(|why| refused(what, path, why)),
+    }
+}
+
 /// Files given by a user where there is no file system to read (the web
 /// page): their paths, as a scene names them, and their bytes.
 pub type GivenFiles = BTreeMap<PathBuf, Arc<[u8]>>;
@@ -125,6 +138,22 @@ pub fn read(path: &Path, what: &str, cap: Cap) -> Result<Vec<u8>, InputError> {
         return Err(fail(too_large(bytes.len() as u64, cap)));
     }
     Ok(bytes)
+}
+
+/// UTF-8's byte-order mark (U+FEFF), which Notepad and PowerShell 5 put
+/// before a text file's first line. It is no part of the text: TOML's
+/// reader skips it, and every text reader of ours (NFF, OBJ, MTL, ASCII STL,
+/// ray log) skips it with `byte_order_mark`.
+pub const BYTE_ORDER_MARK: &[u8] = "\u{feff}".as_bytes();
+
+/// How many bytes of a byte-order mark `text` starts with: 3 or 0. Skip
+/// them, not strip them, where positions in the file are counted.
+pub fn byte_order_mark(text: &[u8]) -> usize {
+    if text.starts_with(BYTE_ORDER_MARK) {
+        BYTE_ORDER_MARK.len()
+    } else {
+        0
+    }
 }
 
 /// "cannot read the ray log LOG: why".
@@ -247,6 +276,14 @@ mod tests {
         });
         // Outside, the file system again.
         assert_eq!(read(&on_disk, "", SMALL).unwrap(), b"0123456789");
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_its_three_bytes_at_the_start_only() {
+        // U+FEFF in UTF-8: EF BB BF.
+        assert_eq!(byte_order_mark(b"\xEF\xBB\xBFv 0 0 0"), 3);
+        assert_eq!(byte_order_mark(b"v 0 0 0\xEF\xBB\xBF"), 0);
+        assert_eq!(byte_order_mark(b"\xEF\xBB"), 0);
     }
 
     #[test]

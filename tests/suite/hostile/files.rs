@@ -27,14 +27,14 @@ use raystep::tui::{Action, App};
 const DEADLINE: Duration = Duration::from_secs(30);
 
 /// What a run of raystep ended with.
-struct Ended {
+pub(super) struct Ended {
     code: Option<i32>,
     stderr: String,
 }
 
 /// `raystep ARGS` run in `dir` with no terminal, killed if it has not
 /// ended by `DEADLINE` (and the test failed: it hung).
-fn run(dir: &Path, args: &[&str]) -> Ended {
+pub(super) fn run(dir: &Path, args: &[&str]) -> Ended {
     run_reading(dir, args, Stdio::null())
 }
 
@@ -68,13 +68,13 @@ fn run_reading(dir: &Path, args: &[&str], stdin: impl Into<Stdio>) -> Ended {
 }
 
 /// Asserts that the run was refused (exit 1) saying `words`.
-fn refused(ended: &Ended, words: &str) {
+pub(super) fn refused(ended: &Ended, words: &str) {
     assert_eq!(ended.code, Some(1), "{}", ended.stderr);
     assert!(ended.stderr.contains("error: "), "{}", ended.stderr);
     assert!(ended.stderr.contains(words), "{}", ended.stderr);
 }
 
-fn mkfifo(path: &Path) {
+pub(super) fn mkfifo(path: &Path) {
     let name = CString::new(path.as_os_str().as_bytes()).unwrap();
     assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
 }

@@ -4,6 +4,7 @@
 
 mod argv;
 mod compare_input;
+mod errors;
 mod files;
 mod linear;
 mod names;

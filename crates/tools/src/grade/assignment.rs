@@ -237,7 +237,11 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
             .rule(every_scene)
             .map_err(|(span, m)| error(span, m))?;
         let scene_path = folder.join(def.file.get_ref());
-        if !scene_path.is_file() {
+        // A FIFO, a device or a folder is said to be one, as for every
+        // other input (it was "no scene file").
+        let exists = input_file::is_regular(&scene_path, "the scene file")
+            .map_err(|e| error(def.file.span(), e.to_string()))?;
+        if !exists {
             return Err(error(
                 def.file.span(),
                 format!(

@@ -12,6 +12,7 @@ use super::line::{self, Field, PerLight, read_line};
 use super::logged_ray::{Hit, LoggedRay};
 use super::path::RayPath;
 use super::seen::SeenRays;
+use raystep_engine::input_file;
 use raystep_engine::record::count;
 use raystep_engine::scene::Scene;
 
@@ -202,6 +203,11 @@ impl<'a, R: BufRead> RaylogReader<'a, R> {
             return Ok(None);
         }
         self.line += 1;
+        if self.line == 1 {
+            // Notepad's and PowerShell 5's byte-order mark, before the
+            // first ray: no part of the log (columns count after it).
+            buffer.drain(..input_file::byte_order_mark(buffer));
+        }
         if buffer.last() == Some(&b'\n') {
             buffer.pop();
         }

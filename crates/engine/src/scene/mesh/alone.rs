@@ -33,13 +33,8 @@ pub(crate) fn scene(path: &Path) -> Result<Scene, SceneError> {
         material: None,
         first_material: 0,
     };
+    // Never empty: `load` refuses a mesh with no triangle to show.
     let placed = load(&request)?;
-    if placed.objects.is_empty() {
-        return Err(SceneError::plain(format!(
-            "{}: the mesh has no triangles to show",
-            path.display()
-        )));
-    }
     let bounds = placed
         .objects
         .iter()

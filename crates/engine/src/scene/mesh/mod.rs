@@ -9,6 +9,7 @@
 pub(crate) mod alone;
 mod mtl;
 mod obj;
+mod obj_lines;
 mod placing;
 mod stl;
 
@@ -147,7 +148,23 @@ pub(crate) fn load(request: &Request) -> Result<Placed, SceneError> {
             )));
         }
     };
-    placing::place(request, loaded)
+    let triangles = loaded.triangles.len();
+    let placed = placing::place(request, loaded)?;
+    // A mesh that draws nothing is refused, in a scene as alone: a scene
+    // rendered without it (a reference image, a student's) would look
+    // finished, and a warning is easily missed in a grader's log.
+    if placed.objects.is_empty() {
+        let why = if triangles == 0 {
+            "the file holds none".to_string()
+        } else {
+            format!("all {triangles} are degenerate (their vertices are collinear)")
+        };
+        return Err(SceneError::plain(format!(
+            "{}: the mesh has no triangles to show: {why}",
+            path.display()
+        )));
+    }
+    Ok(placed)
 }
 
 /// Reads a mesh from bytes already in memory (the fuzz target's way in):

@@ -1,19 +1,26 @@
-//! Wavefront OBJ with `tobj`, after a pass of our own over the lines: tobj's
-//! errors carry no line, so every error a file can have at a line (a number
-//! that is not one, NaN or infinity, a coordinate past the model's bounds, a
-//! face index out of range or zero, a face of fewer than 3 vertices) is found
-//! here first, with its line and column.
+//! Wavefront OBJ with `tobj`, after a pass of our own over the lines
+//! (`obj_lines.rs`), which finds every error a file can have at a line with
+//! its line and column (tobj's errors carry none). Should tobj still refuse
+//! a line, the line it stopped at is named.
+//!
+//! A byte-order mark is skipped, and a comment after a `v`, `vt`, `vn` or
+//! `f` line's numbers (`f 1 2 3 # tri`) is read as a comment, as Blender's
+//! and most OBJ readers read it (tobj refused the face).
 
+use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
+use std::io::Cursor;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
 use super::mtl;
+use super::obj_lines::{Lines, check_lines, no_faces};
 use super::{Loaded, Triangle, read_file};
+use crate::input_file::byte_order_mark;
+use crate::printable::printable;
 use crate::scene::SceneError;
-use crate::scene::limits::COORDINATE;
 
 /// Reads `path` and the MTL files its `mtllib` lines name (beside it),
 /// each file once however many lines name it (10,000 `mtllib` lines of one
@@ -38,11 +45,20 @@ pub(super) fn load(path: &Path) -> Result<Loaded, SceneError> {
         // Read only as MTL: whatever the path names, its bytes go to the
         // MTL parser and nowhere else, and nothing is written.
         match read_file(&full, "MTL file") {
-            Ok(bytes) => tobj::load_mtl_buf(&mut bytes.as_slice()).inspect_err(|e| {
-                missing
-                    .borrow_mut()
-                    .push(format!("{}: {e}", full.display()));
-            }),
+            Ok(bytes) => {
+                let text = &bytes[byte_order_mark(&bytes)..];
+                let mut reader = Cursor::new(text);
+                tobj::load_mtl_buf(&mut reader).inspect_err(|e| {
+                    let line = stopped_at(text, reader.position());
+                    let number = text[..line.start].iter().filter(|&&b| b == b'\n').count() + 1;
+                    let shown = String::from_utf8_lossy(&text[line]);
+                    missing.borrow_mut().push(format!(
+                        "{}:{number}: {e} in `{}`",
+                        full.display(),
+                        cut(&printable(shown.trim_end()), 80)
+                    ));
+                })
+            }
             Err(message) => {
                 missing.borrow_mut().push(message);
                 Err(tobj::LoadError::OpenFileFailed)
@@ -82,24 +98,25 @@ pub(super) fn parse(
             path.display()
         ))
     })?;
+    let text = &text[byte_order_mark(text.as_bytes())..];
     let lines = check_lines(path, text)?;
+    if lines.faces == 0 {
+        return Err(no_faces(path, text, &lines));
+    }
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
         ignore_points: true,
         ignore_lines: true,
     };
-    // tobj reads an `l` line of three or more points as a face, whatever
-    // `ignore_lines` says: a polyline is no surface, so it never sees one.
-    let without_polylines;
-    let text = if lines.polylines {
-        without_polylines = blank_polylines(text);
-        without_polylines.as_str()
-    } else {
-        text
-    };
-    let (models, mtl) = tobj::load_obj_buf(&mut text.as_bytes(), &options, materials)
-        .map_err(|e| SceneError::plain(format!("{}: {e}", path.display())))?;
+    let for_tobj = for_tobj(text, &lines);
+    let mut reader = Cursor::new(for_tobj.as_bytes());
+    let (models, mtl) = tobj::load_obj_buf(&mut reader, &options, materials).map_err(|e| {
+        // Its lines are the file's, one for one: where it stopped is the
+        // file's line.
+        let line = stopped_at(for_tobj.as_bytes(), reader.position());
+        SceneError::at(path, text, line, format!("{e} (tobj refused this line)"))
+    })?;
     let mut loaded = Loaded::default();
     if let Ok(list) = mtl {
         loaded.materials = list.iter().map(mtl::Read::from_tobj).collect();
@@ -166,151 +183,45 @@ pub(super) fn parse(
     Ok(loaded)
 }
 
-/// What the pass over the lines learns besides the errors.
-struct Lines {
-    /// The names `usemtl` lines use, each once, so that one naming no
-    /// material is said.
-    used_materials: Vec<String>,
-    /// For each triangle of each face's fan, in file order: whether every
-    /// corner of its face has a `vn`.
-    smooth: Vec<bool>,
-    /// Whether the file has `l` lines (polylines).
-    polylines: bool,
-}
-
-/// The pass over the lines: counts `v`, `vt` and `vn` as they come and
-/// checks every number and every face index against them.
-fn check_lines(path: &Path, text: &str) -> Result<Lines, SceneError> {
-    let mut counts = [0usize; 3]; // v, vt, vn
-    let mut used_materials: Vec<String> = Vec::new();
-    // The names in `used_materials`, to tell a new one at once (each new
-    // name was checked against all before it: 100,000 names took 14 s).
-    let mut used: HashSet<&str> = HashSet::new();
-    let mut smooth = Vec::new();
-    let mut polylines = false;
-    let mut start = 0;
+/// The text tobj reads, line for line the file's: each `l` line emptied
+/// (tobj reads an `l` line of three or more points as a face, whatever
+/// `ignore_lines` says, and a polyline is no surface), and a comment after
+/// numbers cut off (tobj read `f 1 2 3 # tri` as a face with a vertex `#`).
+fn for_tobj<'a>(text: &'a str, lines: &Lines) -> Cow<'a, str> {
+    if !lines.polylines && !lines.comments_after_numbers {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len());
     for line in text.split_inclusive('\n') {
-        let line_start = start;
-        start += line.len();
-        let content = line.split('#').next().unwrap_or("");
-        let mut words = words(content).map(|(r, w)| (r.start + line_start..r.end + line_start, w));
-        let Some((keyword_span, keyword)) = words.next() else {
-            continue;
-        };
-        let error = |span: Range<usize>, message: String| SceneError::at(path, text, span, message);
-        match keyword {
-            "v" | "vn" | "vt" => {
-                let needed = if keyword == "vt" { 1 } else { 3 };
-                let mut numbers = 0;
-                for (span, word) in words.by_ref().take(3) {
-                    let value: f64 = word
-                        .parse()
-                        .map_err(|_| error(span.clone(), format!("`{word}` is not a number")))?;
-                    if !value.is_finite() {
-                        return Err(error(span, format!("numbers must be finite, got {word}")));
-                    }
-                    if keyword == "v" && COORDINATE.check(value).is_err() {
-                        return Err(error(
-                            span,
-                            format!(
-                                "vertex coordinate {word} {}",
-                                COORDINATE.check(value).unwrap_err()
-                            ),
-                        ));
-                    }
-                    numbers += 1;
-                }
-                if numbers < needed {
-                    return Err(error(
-                        keyword_span,
-                        format!("`{keyword}` needs {needed} numbers, got {numbers}"),
-                    ));
-                }
-                let slot = match keyword {
-                    "v" => 0,
-                    "vt" => 1,
-                    _ => 2,
-                };
-                counts[slot] += 1;
+        let ending = if line.ends_with('\n') { "\n" } else { "" };
+        match line.split_whitespace().next() {
+            Some("l") => out.push_str(ending),
+            Some("v" | "vt" | "vn" | "f") if line.contains('#') => {
+                out.push_str(line.split('#').next().unwrap_or(""));
+                out.push_str(ending);
             }
-            "f" => {
-                let mut corners = 0;
-                let mut with_normal = 0;
-                for (span, word) in words {
-                    corners += 1;
-                    for (slot, part) in word.split('/').enumerate().take(3) {
-                        if part.is_empty() && slot > 0 {
-                            continue;
-                        }
-                        with_normal += usize::from(slot == 2);
-                        check_index(part, slot, counts[slot])
-                            .map_err(|m| error(span.clone(), m))?;
-                    }
-                }
-                if corners < 3 {
-                    return Err(error(
-                        keyword_span,
-                        format!("a face needs at least 3 vertices, got {corners}"),
-                    ));
-                }
-                let all_normals = with_normal == corners;
-                smooth.extend(std::iter::repeat_n(all_normals, corners - 2));
-            }
-            "l" => polylines = true,
-            "usemtl" => {
-                // tobj takes the rest of the line as the name.
-                let name = content[keyword_span.end - line_start..].trim();
-                if !name.is_empty() && used.insert(name) {
-                    used_materials.push(name.to_string());
-                }
-            }
-            _ => {}
+            _ => out.push_str(line),
         }
     }
-    Ok(Lines {
-        used_materials,
-        smooth,
-        polylines,
-    })
+    Cow::Owned(out)
 }
 
-/// `text` with each `l` line emptied (its line break kept).
-fn blank_polylines(text: &str) -> String {
-    text.split_inclusive('\n')
-        .map(|line| {
-            if line.split_whitespace().next() == Some("l") {
-                "\n"
-            } else {
-                line
-            }
-        })
-        .collect()
+/// The byte range of the line a line-by-line reader was reading when it
+/// stopped at `position` (just past that line's end).
+fn stopped_at(text: &[u8], position: u64) -> Range<usize> {
+    let end = usize::try_from(position).map_or(text.len(), |p| p.min(text.len()));
+    let last = end.saturating_sub(1);
+    let start = text[..last]
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    start..end
 }
 
-/// One index of a face corner: 1..=count, or -count..=-1 counting back.
-fn check_index(part: &str, slot: usize, count: usize) -> Result<(), String> {
-    let what = ["vertex", "texture coordinate", "normal"][slot];
-    let list = ["v", "vt", "vn"][slot];
-    let index: i64 = part
-        .parse()
-        .map_err(|_| format!("face {what} index `{part}` is not a whole number"))?;
-    if index == 0 {
-        return Err(format!("face {what} index 0: OBJ indices start at 1"));
+/// At most `chars` characters of `text`, then "…".
+fn cut(text: &str, chars: usize) -> Cow<'_, str> {
+    match text.char_indices().nth(chars) {
+        Some((end, _)) => Cow::Owned(format!("{}…", &text[..end])),
+        None => Cow::Borrowed(text),
     }
-    if index.unsigned_abs() > count as u64 {
-        return Err(format!(
-            "face {what} index {index} is out of range: {count} `{list}` line(s) come before this face"
-        ));
-    }
-    Ok(())
-}
-
-/// The whitespace-separated words of a line and their byte ranges: split
-/// as tobj splits them (Unicode whitespace, so U+000B too), so that both
-/// read the same keyword.
-fn words(line: &str) -> impl Iterator<Item = (Range<usize>, &str)> {
-    line.split_whitespace().map(move |w| {
-        let start = w.as_ptr() as usize - line.as_ptr() as usize;
-        (start..start + w.len(), w)
-    })
 }

@@ -33,11 +33,7 @@ pub(super) struct Parser<'a> {
 
 impl<'a> Parser<'a> {
     pub(super) fn new(path: &'a Path, text: &'a str) -> Self {
-        let pos = if text.starts_with('\u{feff}') {
-            '\u{feff}'.len_utf8()
-        } else {
-            0
-        };
+        let pos = crate::input_file::byte_order_mark(text.as_bytes());
         Self {
             path,
             text,
