@@ -6,5 +6,6 @@ mod argv;
 mod compare_input;
 mod files;
 mod linear;
+mod memory;
 mod names;
 mod results;
