@@ -1,5 +1,10 @@
 use std::process::ExitCode;
 
+mod out_of_memory;
+
+#[global_allocator]
+static ALLOCATOR: out_of_memory::Bounded = out_of_memory::Bounded;
+
 fn main() -> ExitCode {
     keep_large_blocks_mapped();
     let cli = raystep::cli::parse_or_exit();

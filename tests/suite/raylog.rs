@@ -374,7 +374,7 @@ fn nan_and_infinities_read_as_such_and_unknown_keys_are_listed() {
     let dir = primary.dir.unwrap();
     assert_eq!(dir.to_array(), [f64::INFINITY, f64::NEG_INFINITY, 0.0]);
     let (_, shadow) = &rays[1];
-    assert_eq!(shadow.path.steps, [Step::Transmitted, Step::Shadow(1)]);
+    assert_eq!(*shadow.path.steps, [Step::Transmitted, Step::Shadow(1)]);
     assert_eq!(shadow.s, Some(f64::NEG_INFINITY));
     // The smallest subnormal, exactly.
     assert_eq!(shadow.weight.map(f64::to_bits), Some(1));
@@ -682,7 +682,7 @@ fn after_the_log_the_reader_tells_every_ray_it_held_and_no_other() {
         assert!(reader.was_logged((80, 60), &ray.path), "{}", ray.path);
         assert!(!reader.was_logged((80, 61), &ray.path), "{}", ray.path);
     }
-    let path = |steps: Vec<Step>| RayPath { steps };
+    let path = RayPath::of;
     let r = Step::Reflected;
     assert!(!reader.was_logged((80, 60), &path(vec![r, r, r])));
     assert!(!reader.was_logged((80, 60), &path(vec![Step::Shadow(2)])));

@@ -160,7 +160,8 @@ fn anchor(tree: &RayTree, path: &RayPath) -> Option<(RayPath, NodeId, Option<Ste
         if let Some((ray, node)) = rays.iter().find(|(ray, _)| ray.path == at) {
             return Some((ray.path.clone(), *node, missing));
         }
-        missing = Some(at.steps.pop()?);
+        let (parent, step) = at.parent()?;
+        (at, missing) = (parent, Some(step));
     }
 }
 

@@ -1,35 +1,12 @@
 //! `compare` and `grade` on images whose decoded size, not file size, is the danger, and thresholds that are not numbers.
 
 use std::io::Write;
-use std::os::unix::process::CommandExt;
 use std::path::Path;
-use std::process::{Command, Output};
 
 use flate2::{Compression, write::ZlibEncoder};
 use image::{ImageFormat, RgbImage};
 
-use crate::support::{raystep, stderr};
-
-/// `raystep args`, its address space limited to `bytes` (as `ulimit -v`
-/// does): an allocation past it fails instead of being granted.
-fn raystep_within(bytes: u64, args: &[&str]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_raystep"));
-    command.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
-    // SAFETY: setrlimit is async-signal-safe; nothing else runs in the child.
-    unsafe {
-        command.pre_exec(move || {
-            let limit = libc::rlimit {
-                rlim_cur: bytes,
-                rlim_max: bytes,
-            };
-            if libc::setrlimit(libc::RLIMIT_AS, &limit) != 0 {
-                return Err(std::io::Error::last_os_error());
-            }
-            Ok(())
-        });
-    }
-    command.output().expect("raystep runs")
-}
+use crate::support::{raystep, raystep_within, stderr};
 
 /// A PNG chunk: length, type, data, CRC-32 of type and data.
 fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {

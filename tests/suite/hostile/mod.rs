@@ -7,5 +7,6 @@ mod compare_input;
 mod errors;
 mod files;
 mod linear;
+mod memory;
 mod names;
 mod results;

@@ -52,6 +52,7 @@ pub fn snapshot_name(module_path: &str, name: &str) -> String {
     format!("{file}__{name}")
 }
 
+use std::os::unix::process::CommandExt;
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -89,6 +90,27 @@ pub fn raystep(args: &[&str]) -> Output {
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .expect("raystep runs")
+}
+
+/// `raystep args`, its address space limited to `bytes` (as `ulimit -v`
+/// does): an allocation past it fails instead of being granted.
+pub fn raystep_within(bytes: u64, args: &[&str]) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_raystep"));
+    command.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
+    // SAFETY: setrlimit is async-signal-safe; nothing else runs in the child.
+    unsafe {
+        command.pre_exec(move || {
+            let limit = libc::rlimit {
+                rlim_cur: bytes,
+                rlim_max: bytes,
+            };
+            if libc::setrlimit(libc::RLIMIT_AS, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    command.output().expect("raystep runs")
 }
 
 pub fn stderr(output: &Output) -> String {

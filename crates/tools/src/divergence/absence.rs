@@ -9,8 +9,7 @@ use raystep_engine::trace::{PruneRule, RayKind};
 
 /// Why our tree has no ray at `path` (a ray only in yours).
 pub(crate) fn why_not_ours(scene: &Scene, ours: &OurRays, path: &RayPath) -> String {
-    let mut parent = path.clone();
-    let Some(step) = parent.steps.pop() else {
+    let Some((parent, step)) = path.parent() else {
         return "MODEL §2: one primary ray per pixel".into();
     };
     let Some(node) = ours.node_at(&parent) else {

@@ -6,6 +6,7 @@
 
 mod absence;
 mod checks;
+mod held;
 mod kind;
 mod meaning;
 mod miss_t;
@@ -21,6 +22,7 @@ use std::collections::HashMap;
 use std::io::BufRead;
 
 pub use checks::{Check, Value};
+pub use held::{CATALOGUE_RAYS, CountedOnly, HELD_RAYS};
 pub use kind::Kind;
 pub use moment::Field;
 pub use ours::OurRays;
@@ -60,6 +62,9 @@ pub struct LogComparison {
     /// How many distinct unknown keys, and whether only at least that many.
     pub unknown_key_count: (usize, bool),
     pub tolerance: Tolerance,
+    /// Whether the catalogue's budget (`CATALOGUE_RAYS`) ran out before
+    /// every mistake was tried at every pixel shown.
+    pub catalogue_stopped: bool,
 }
 
 /// A counted pixel's rays so far.
@@ -140,7 +145,8 @@ pub fn compare_log<R: BufRead>(
     mut reader: RaylogReader<R>,
     tolerance: Tolerance,
 ) -> Result<LogComparison, RaylogError> {
-    let mut shown: Vec<((u32, u32), Vec<LoggedRay>)> = Vec::new();
+    let mut shown: Vec<((u32, u32), Vec<LoggedRay>, CountedOnly)> = Vec::new();
+    let mut holding = held::Holding::new(scene);
     let mut shown_at: HashMap<(u32, u32), usize> = HashMap::new();
     let mut rays_read = 0;
     let mut size = size_guess::SizeGuess::new(scene);
@@ -172,16 +178,26 @@ pub fn compare_log<R: BufRead>(
         let mut batch = Vec::with_capacity(BATCH);
         let read = (|| {
             for item in reader.by_ref() {
-                let (_, ray) = item?;
+                let (_, mut ray) = item?;
                 rays_read += 1;
                 size.see(&ray);
-                if let Some(&at) = shown_at.get(&ray.pixel) {
-                    shown[at].1.push(ray);
-                } else if shown.len() < PIXELS_SHOWN {
-                    // No pixel is counted before the shown ones are all found.
-                    shown_at.insert(ray.pixel, shown.len());
-                    shown.push((ray.pixel, vec![ray]));
+                let at = match shown_at.get(&ray.pixel) {
+                    Some(&at) => Some(at),
+                    None if shown.len() < PIXELS_SHOWN => {
+                        // No pixel is counted before the shown ones are all found.
+                        shown_at.insert(ray.pixel, shown.len());
+                        shown.push((ray.pixel, Vec::new(), CountedOnly::default()));
+                        Some(shown.len() - 1)
+                    }
+                    None => None,
+                };
+                if let Some(at) = at {
+                    let (_, rays, counted) = &mut shown[at];
+                    if !holding.too_deep(&ray, counted) && holding.take(rays.len(), counted) {
+                        rays.push(ray);
+                    }
                 } else {
+                    holding.shallow(&mut ray);
                     batch.push(ray);
                     if batch.len() == BATCH {
                         hand_over(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
@@ -203,14 +219,15 @@ pub fn compare_log<R: BufRead>(
     read?;
     let unknown_keys = reader.unknown_keys().listed().map(String::from).collect();
     let unknown_key_count = reader.unknown_keys().count();
+    let mut budget = held::CatalogueBudget::new(CATALOGUE_RAYS);
     let mut pixels: Vec<PixelReport> = shown
         .into_iter()
-        .map(|(pixel, yours)| {
+        .map(|(pixel, yours, counted)| {
             let ours = OurRays::record(scene, &scene.settings, pixel);
-            compare_pixel(scene, yours, &ours, &tolerance)
+            pixel_report::compare_within(scene, (yours, counted), &ours, &tolerance, &mut budget)
         })
         .collect();
-    verdict::decide(scene, &mut pixels, &tolerance);
+    verdict::decide(scene, &mut pixels, &tolerance, &mut budget);
     let matching = pixels.iter().filter(|p| p.matches).count() + counter.matching();
     let colour_agreeing = pixels
         .iter()
@@ -227,5 +244,6 @@ pub fn compare_log<R: BufRead>(
         unknown_keys,
         unknown_key_count,
         tolerance,
+        catalogue_stopped: budget.stopped,
     })
 }

@@ -6,6 +6,7 @@ use std::collections::HashMap;
 
 use super::absence::{why_not_ours, why_ours};
 use super::checks::{Check, Value, checks};
+use super::held::{CATALOGUE_RAYS, CatalogueBudget, CountedOnly};
 use super::kind::{Kind, classify};
 use super::meaning::meaning;
 use super::moment::{Field, cast_order, in_trace_order};
@@ -129,6 +130,12 @@ pub struct PixelReport {
     pub yours: Vec<LoggedRay>,
     pub aligned: Vec<AlignedRay>,
     pub rays_ours: usize,
+    /// Your rays of the pixel that were counted, not held nor compared
+    /// one by one (`held`): rays ours can never cast.
+    pub counted_only: CountedOnly,
+    /// Whether the catalogue's budget ran out before every mistake was
+    /// tried here.
+    pub catalogue_stopped: bool,
 }
 
 /// A mistake of the catalogue whose tree is your log at a pixel, and a
@@ -182,12 +189,31 @@ pub(crate) fn differences(aligned: &[AlignedRay]) -> Vec<Difference<'_>> {
 }
 
 /// Compares your rays of one pixel with `ours`, its reference tree, and
-/// when they differ tries the catalogue.
+/// when they differ tries the catalogue (within `CATALOGUE_RAYS`).
 pub fn compare_pixel(
     scene: &Scene,
     yours: Vec<LoggedRay>,
     ours: &OurRays,
     tolerance: &Tolerance,
+) -> PixelReport {
+    let mut budget = CatalogueBudget::new(CATALOGUE_RAYS);
+    compare_within(
+        scene,
+        (yours, CountedOnly::default()),
+        ours,
+        tolerance,
+        &mut budget,
+    )
+}
+
+/// `compare_pixel`, with the rays of the pixel that were only counted
+/// and the catalogue's budget left.
+pub(crate) fn compare_within(
+    scene: &Scene,
+    (yours, counted_only): (Vec<LoggedRay>, CountedOnly),
+    ours: &OurRays,
+    tolerance: &Tolerance,
+    budget: &mut CatalogueBudget,
 ) -> PixelReport {
     let notes = super::miss_t::notes(&yours);
     let aligned = align(&yours, ours, tolerance);
@@ -214,12 +240,13 @@ pub fn compare_pixel(
     let only_ours = unpaired(RayStatus::OnlyOurs, &|a| {
         why_ours(scene, ours, a.ours.unwrap_or(0))
     });
-    let matches = found.is_empty();
-    let later_differences = found.len().saturating_sub(1);
+    // A ray only counted is one ours never casts: a difference.
+    let matches = found.is_empty() && counted_only.total() == 0;
+    let later_differences = (found.len() + counted_only.total()).saturating_sub(1);
     let candidates = if matches {
         Vec::new()
     } else {
-        catalogue(scene, ours.tree.pixel, &yours, tolerance)
+        catalogue(scene, ours.tree.pixel, &yours, tolerance, budget)
     };
     // Which pixel would tell is the log's question (`verdict::decide`).
     let consistent = candidates
@@ -243,6 +270,8 @@ pub fn compare_pixel(
         rays_ours: ours.rays().len(),
         yours,
         aligned,
+        counted_only,
+        catalogue_stopped: !matches && budget.stopped,
     }
 }
 
@@ -288,30 +317,44 @@ pub(crate) fn traceable_mistakes() -> impl Iterator<Item = Mistake> {
     Mistake::ALL.into_iter().filter(|m| !m.acts_only_on_bytes())
 }
 
-/// Whether our tree of `pixel` under `mistake` is your log of it.
+/// Whether our tree of `pixel` under `mistake` is your log of it; `None`
+/// when the budget is spent.
 pub(crate) fn fits(
     scene: &Scene,
     mistake: Mistake,
     pixel: (u32, u32),
     yours: &[LoggedRay],
     tolerance: &Tolerance,
-) -> bool {
+    budget: &mut CatalogueBudget,
+) -> Option<bool> {
+    if !budget.allows() {
+        return None;
+    }
     let settings = Settings {
         mistakes: Mistakes::from_iter([mistake]),
         ..scene.settings
     };
     let ours = OurRays::record(scene, &settings, pixel);
-    differences(&align(yours, &ours, tolerance)).is_empty()
+    budget.spend(ours.rays().len());
+    Some(differences(&align(yours, &ours, tolerance)).is_empty())
 }
 
-/// The mistakes under which our tree of `pixel` is your log.
+/// The mistakes under which our tree of `pixel` is your log, of those
+/// tried before the budget ran out.
 fn catalogue(
     scene: &Scene,
     pixel: (u32, u32),
     yours: &[LoggedRay],
     tolerance: &Tolerance,
+    budget: &mut CatalogueBudget,
 ) -> Vec<Mistake> {
-    traceable_mistakes()
-        .filter(|&mistake| fits(scene, mistake, pixel, yours, tolerance))
-        .collect()
+    let mut found = Vec::new();
+    for mistake in traceable_mistakes() {
+        match fits(scene, mistake, pixel, yours, tolerance, budget) {
+            Some(true) => found.push(mistake),
+            Some(false) => {}
+            None => break,
+        }
+    }
+    found
 }

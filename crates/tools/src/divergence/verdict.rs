@@ -10,6 +10,7 @@
 
 use std::collections::BTreeSet;
 
+use super::held::CatalogueBudget;
 use super::ours::OurRays;
 use super::pixel_report::{Consistent, PixelReport, fits};
 use super::tolerance::Tolerance;
@@ -35,22 +36,34 @@ fn colours_differ(a: &OurRays, b: &OurRays) -> bool {
     }
 }
 
-fn under(scene: &Scene, mistake: Option<Mistake>, pixel: (u32, u32)) -> OurRays {
+fn under(
+    scene: &Scene,
+    mistake: Option<Mistake>,
+    pixel: (u32, u32),
+    budget: &mut CatalogueBudget,
+) -> Option<OurRays> {
+    if !budget.allows() {
+        return None;
+    }
     let settings = Settings {
         mistakes: Mistakes::from_iter(mistake),
         ..scene.settings
     };
-    OurRays::record(scene, &settings, pixel)
+    let ours = OurRays::record(scene, &settings, pixel);
+    budget.spend(ours.rays().len());
+    Some(ours)
 }
 
 /// The pixel nearest `near`, not among `logged`, where each candidate's
 /// colour differs from ours and from every other candidate's: logging it
-/// tells them apart. `None` when there is no candidate, or no such pixel.
+/// tells them apart. `None` when there is no candidate, or no such pixel
+/// within the budget.
 pub(crate) fn tell_pixel(
     scene: &Scene,
     near: (u32, u32),
     candidates: &[Mistake],
     logged: &[(u32, u32)],
+    budget: &mut CatalogueBudget,
 ) -> Option<(u32, u32)> {
     if candidates.is_empty() {
         return None;
@@ -72,17 +85,21 @@ pub(crate) fn tell_pixel(
         .copied()
         .collect::<Vec<_>>();
     pixels.truncate(PIXELS_NEAR);
-    pixels.into_iter().chain(grid).find(|&pixel| {
-        let model = under(scene, None, pixel);
+    for pixel in pixels.into_iter().chain(grid) {
+        let model = under(scene, None, pixel, budget)?;
         let trees: Vec<OurRays> = candidates
             .iter()
-            .map(|&m| under(scene, Some(m), pixel))
-            .collect();
-        trees.iter().enumerate().all(|(i, tree)| {
+            .map(|&m| under(scene, Some(m), pixel, budget))
+            .collect::<Option<_>>()?;
+        let tells = trees.iter().enumerate().all(|(i, tree)| {
             colours_differ(tree, &model)
                 && trees[..i].iter().all(|other| colours_differ(tree, other))
-        })
-    })
+        });
+        if tells {
+            return Some(pixel);
+        }
+    }
+    None
 }
 
 /// The log-level verdict on the pixels shown: each candidate of a pixel
@@ -91,7 +108,12 @@ pub(crate) fn tell_pixel(
 /// the colour at two of them or more; it is dropped everywhere when
 /// another logged pixel refutes it; otherwise it stays consistent, with
 /// a pixel to log that would tell.
-pub(crate) fn decide(scene: &Scene, pixels: &mut [PixelReport], tolerance: &Tolerance) {
+pub(crate) fn decide(
+    scene: &Scene,
+    pixels: &mut [PixelReport],
+    tolerance: &Tolerance,
+    budget: &mut CatalogueBudget,
+) {
     let candidates: BTreeSet<Mistake> = pixels
         .iter()
         .flat_map(|p| p.consistent.iter().map(|c| c.mistake))
@@ -101,17 +123,30 @@ pub(crate) fn decide(scene: &Scene, pixels: &mut [PixelReport], tolerance: &Tole
     let mut named = Vec::new();
     let mut refuted = Vec::new();
     for m in candidates {
-        let fits_all = pixels
-            .iter()
-            .all(|p| claims(p, m) || (p.matches && fits(scene, m, p.pixel, &p.yours, tolerance)));
+        // A pixel the budget left untried neither names nor refutes.
+        let mut fits_all = Some(true);
+        for p in pixels.iter().filter(|p| !claims(p, m)) {
+            let fits_here = match p.matches {
+                true => fits(scene, m, p.pixel, &p.yours, tolerance, budget),
+                false => Some(false),
+            };
+            match fits_here {
+                Some(true) => {}
+                Some(false) => {
+                    fits_all = Some(false);
+                    break;
+                }
+                None => fits_all = None,
+            }
+        }
         let evidence = pixels
             .iter()
             .filter(|p| claims(p, m) && !p.matches && p.colour_agrees != Some(true))
             .count();
-        if !fits_all {
-            refuted.push(m);
-        } else if evidence >= PIXELS_TO_NAME {
-            named.push(m);
+        match fits_all {
+            Some(false) => refuted.push(m),
+            Some(true) if evidence >= PIXELS_TO_NAME => named.push(m),
+            _ => {}
         }
     }
     for pixel in pixels.iter_mut() {
@@ -126,7 +161,7 @@ pub(crate) fn decide(scene: &Scene, pixels: &mut [PixelReport], tolerance: &Tole
     // One pixel to tell the candidates still open, away from every logged one.
     if let Some(first) = pixels.iter().position(|p| !p.consistent.is_empty()) {
         let open: Vec<Mistake> = pixels[first].consistent.iter().map(|c| c.mistake).collect();
-        let tell = tell_pixel(scene, pixels[first].pixel, &open, &logged);
+        let tell = tell_pixel(scene, pixels[first].pixel, &open, &logged, budget);
         for pixel in pixels.iter_mut() {
             for c in &mut pixel.consistent {
                 c.tell = tell;

@@ -8,7 +8,7 @@ use serde_json::{Value as Json, json as object};
 use super::checks::Value;
 use super::meaning::{fine, fine3};
 use super::pixel_report::{PixelReport, Unpaired};
-use super::{LogComparison, PIXELS_SHOWN};
+use super::{CATALOGUE_RAYS, HELD_RAYS, LogComparison, PIXELS_SHOWN};
 use crate::raylog::Hit;
 use raystep_engine::record::count;
 
@@ -75,6 +75,14 @@ pub fn text(
             }
         });
     }
+    if comparison.catalogue_stopped {
+        let _ = writeln!(
+            out,
+            "The catalogue stopped: its budget of {CATALOGUE_RAYS} rays of our trees ran out \
+             before every mistake was tried at every pixel shown (log fewer or smaller pixels \
+             to try them all)."
+        );
+    }
     if !comparison.unknown_keys.is_empty() {
         let (count, at_least) = comparison.unknown_key_count;
         let more = count.saturating_sub(comparison.unknown_keys.len());
@@ -107,7 +115,11 @@ fn pixel_text(out: &mut String, pixel: &PixelReport) {
     let (x, y) = pixel.pixel;
     let rays = format!(
         "{} logged, {} in ours, shadow rays included",
-        count(pixel.yours.len() as u64, "ray", "rays"),
+        count(
+            (pixel.yours.len() + pixel.counted_only.total()) as u64,
+            "ray",
+            "rays"
+        ),
         pixel.rays_ours
     );
     let Some(first) = &pixel.first_divergence else {
@@ -158,7 +170,15 @@ fn pixel_text(out: &mut String, pixel: &PixelReport) {
         );
     }
     unpaired_text(out, "Only in yours", &pixel.only_yours);
+    counted_text(out, pixel);
     unpaired_text(out, "Only in ours", &pixel.only_ours);
+    if pixel.catalogue_stopped {
+        let _ = writeln!(
+            out,
+            "  The catalogue's budget ({CATALOGUE_RAYS} rays of our trees) ran out: not every \
+             mistake was tried here."
+        );
+    }
     for line in consistent_lines(pixel) {
         let _ = writeln!(
             out,
@@ -193,6 +213,29 @@ pub fn consistent_lines(pixel: &PixelReport) -> Vec<String> {
         "Consistent with {} here; {tell}.",
         names.join(" or ")
     )]
+}
+
+/// Your rays of a pixel counted, not compared one by one (`held`).
+fn counted_text(out: &mut String, pixel: &PixelReport) {
+    let counted = &pixel.counted_only;
+    if counted.deeper > 0 {
+        let _ = writeln!(
+            out,
+            "  and {} deeper, down to depth {}, counted only: ours never casts them \
+             (your tracer does not stop at max_depth, MODEL §5)",
+            count(counted.deeper as u64, "ray", "rays"),
+            counted.deepest
+        );
+    }
+    if counted.over > 0 {
+        let _ = writeln!(
+            out,
+            "  and {} more counted only: past the most our tree of a pixel holds (max_rays, \
+             and a shadow ray per light for each, MODEL §5), or past the {HELD_RAYS} rays held \
+             over the pixels shown",
+            count(counted.over as u64, "ray", "rays"),
+        );
+    }
 }
 
 /// At most this many rays in one tree only are listed per pixel.
@@ -251,7 +294,7 @@ fn value_json(value: Option<Value>) -> Json {
 /// The report as JSON.
 pub fn json(comparison: &LogComparison) -> Json {
     let pixels: Vec<Json> = comparison.pixels.iter().map(pixel_json).collect();
-    object!({
+    let mut report = object!({
         "pixels": pixels,
         "pixel_count": comparison.pixel_count,
         "matching_pixels": comparison.matching,
@@ -264,7 +307,11 @@ pub fn json(comparison: &LogComparison) -> Json {
         },
         "unknown_keys": comparison.unknown_keys,
         "unknown_key_count": comparison.unknown_key_count.0,
-    })
+    });
+    if comparison.catalogue_stopped {
+        report["catalogue_stopped"] = object!(true);
+    }
+    report
 }
 
 fn pixel_json(pixel: &PixelReport) -> Json {
@@ -298,7 +345,7 @@ fn pixel_json(pixel: &PixelReport) -> Json {
         .collect();
     let mut unpaired = rules(&pixel.only_yours, "yours");
     unpaired.extend(rules(&pixel.only_ours, "ours"));
-    object!({
+    let mut report = object!({
         "pixel": [pixel.pixel.0, pixel.pixel.1],
         "matches": pixel.matches,
         "first_divergence": first,
@@ -310,7 +357,21 @@ fn pixel_json(pixel: &PixelReport) -> Json {
         "consistent_with": consistent,
         "colour_agrees": pixel.colour_agrees,
         "notes": pixel.notes,
-        "rays_yours": pixel.yours.len(),
+        "rays_yours": pixel.yours.len() + pixel.counted_only.total(),
         "rays_ours": pixel.rays_ours,
-    })
+    });
+    // Only when something was counted or left untried: a log within the
+    // bounds reads as it always did.
+    let counted = &pixel.counted_only;
+    if counted.total() > 0 {
+        report["counted_only"] = object!({
+            "deeper": counted.deeper,
+            "deepest": counted.deepest,
+            "over": counted.over,
+        });
+    }
+    if pixel.catalogue_stopped {
+        report["catalogue_stopped"] = object!(true);
+    }
+    report
 }

@@ -719,7 +719,7 @@ mod tests {
         let (ray, _) = read_line_of_ball(r#"{"pixel": [5, 5], "path": "P", "t": 1, "t": 2}"#);
         assert_eq!(ray.unwrap().t, Some(2.0));
         let (ray, _) = read_line_of_ball(r#"{"pixel": [5, 5], "p\u0061th": "P\/R"}"#);
-        assert_eq!(ray.unwrap().path.steps, [crate::raylog::Step::Reflected]);
+        assert_eq!(*ray.unwrap().path.steps, [crate::raylog::Step::Reflected]);
         let line = r#"{"pixel": [5, 5], "path": "P", "hit": 0, "weight": 1e0, "mine": [{"a": 1}]}"#;
         let (ray, unknown) = read_line_of_ball(line);
         let ray = ray.unwrap();

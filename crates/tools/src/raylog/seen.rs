@@ -5,8 +5,10 @@
 //! `u64`, an index into those in an open-addressing table, and its line
 //! kept as runs of consecutive lines. (A map from pixel and `RayPath` took
 //! about 200 bytes a ray with the path's allocation.) The few that do not
-//! pack (a path deeper than the spare bits, a huge image) go to a plain map:
-//! nothing is hashed into fewer bits than it has, so no two rays collide.
+//! pack (a path deeper than the spare bits, a huge image) go to a plain map,
+//! their paths spelled a bit a step (`Spelled`: a runaway recursion logs
+//! paths thousands of steps deep, 16 bytes a step as `RayPath`s): nothing
+//! is hashed into fewer bits than it has, so no two rays collide.
 
 use std::collections::HashMap;
 
@@ -22,7 +24,32 @@ pub(crate) struct SeenRays {
     slots: Vec<u32>,
     lines: Lines,
     /// The rays whose pixel and path do not pack, with their lines.
-    unpacked: HashMap<((u32, u32), RayPath), usize>,
+    unpacked: HashMap<((u32, u32), Spelled), usize>,
+}
+
+/// A path a bit a reflected or transmitted step, eight to a byte, after
+/// their count, then its shadow ray's light if it has one: one spelling
+/// per path, an eighth of a byte a step.
+#[derive(PartialEq, Eq, Hash)]
+struct Spelled(Box<[u8]>);
+
+impl Spelled {
+    fn of(path: &RayPath) -> Self {
+        let mut bytes = Vec::with_capacity(8 + path.steps.len() / 8 + 10);
+        let branches = path.branches();
+        bytes.extend_from_slice(&(branches as u64).to_le_bytes());
+        for chunk in path.steps[..branches].chunks(8) {
+            let byte = chunk.iter().enumerate().fold(0u8, |byte, (i, step)| {
+                byte | u8::from(*step == Step::Transmitted) << i
+            });
+            bytes.push(byte);
+        }
+        if let Some(Step::Shadow(light)) = path.steps.last() {
+            bytes.push(1);
+            bytes.extend_from_slice(&(*light as u64).to_le_bytes());
+        }
+        Self(bytes.into())
+    }
 }
 
 const EMPTY: u32 = u32::MAX;
@@ -56,7 +83,7 @@ impl SeenRays {
         if self.unpacked.is_empty() {
             return None;
         }
-        self.unpacked.get(&(pixel, path.clone())).copied()
+        self.unpacked.get(&(pixel, Spelled::of(path))).copied()
     }
 
     /// Notes `pixel` and `path`, read on `line` (after every line before
@@ -65,7 +92,7 @@ impl SeenRays {
         let key = self.packing.pack(pixel, path);
         let ordinal = u32::try_from(self.keys.len()).ok().filter(|&o| o < EMPTY);
         let (Some(key), Some(ordinal)) = (key, ordinal) else {
-            self.unpacked.insert((pixel, path.clone()), line);
+            self.unpacked.insert((pixel, Spelled::of(path)), line);
             return;
         };
         // At most three quarters full, so that probes stay short.
@@ -243,7 +270,7 @@ impl Packing {
             steps.push(Step::Shadow(light as usize));
         }
         let xy = ((pixel % self.width) as u32, (pixel / self.width) as u32);
-        (xy, RayPath { steps })
+        (xy, RayPath::of(steps))
     }
 }
 
@@ -290,7 +317,7 @@ mod tests {
         assert_eq!(packing.pack((512, 0), &path("P")), None);
         assert_eq!(packing.pack((0, 512), &path("P")), None);
         let after_shadow = RayPath {
-            steps: vec![Step::Shadow(0), Step::Reflected],
+            steps: vec![Step::Shadow(0), Step::Reflected].into(),
         };
         assert_eq!(packing.pack((0, 0), &after_shadow), None);
         // The largest image leaves no bits for a path; one pixel, all 64.
