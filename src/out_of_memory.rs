@@ -64,6 +64,9 @@ fn out_of_memory(bytes: usize) -> ! {
         "; this input needs more memory than that: raise the limit, or make the scene, \
          the image or the ray log smaller (README, \"Memory\")\n",
     );
+    // The debugger's terminal first, so the message lands on the shell's
+    // screen and the shell gets back a cooked terminal.
+    raystep::tui::give_back_unlocked();
     // SAFETY: writes initialised bytes to standard error, then ends the
     // process at once without running anything that could allocate.
     unsafe {

@@ -52,6 +52,11 @@ enum Start {
     /// in another group of the same session), so the kernel carries out
     /// SIGTSTP's stop; in a new session it would discard it.
     Job,
+    /// As `Session`, under an address-space limit of this many bytes
+    /// (`ulimit -v`, an autograder's container), with two threads and two
+    /// malloc arenas, so that a machine with many cores does not spend the
+    /// limit on stacks and arenas.
+    LimitedSession(u64),
 }
 
 impl Session {
@@ -68,6 +73,11 @@ impl Session {
             .stdin(stdio())
             .stdout(stdio())
             .stderr(stdio());
+        if let Start::LimitedSession(_) = start {
+            command
+                .env("RAYON_NUM_THREADS", "2")
+                .env("MALLOC_ARENA_MAX", "2");
+        }
         // SAFETY: only async-signal-safe calls between fork and exec.
         unsafe {
             command.pre_exec(move || {
@@ -75,6 +85,15 @@ impl Session {
                     Start::Session => {
                         libc::setsid();
                         libc::ioctl(0, libc::TIOCSCTTY, 0);
+                    }
+                    Start::LimitedSession(bytes) => {
+                        libc::setsid();
+                        libc::ioctl(0, libc::TIOCSCTTY, 0);
+                        let limit = libc::rlimit {
+                            rlim_cur: bytes,
+                            rlim_max: bytes,
+                        };
+                        libc::setrlimit(libc::RLIMIT_AS, &limit);
                     }
                     Start::Job => {
                         libc::setpgid(0, 0);
@@ -328,6 +347,35 @@ fn a_signal_during_a_long_render_restores_the_terminal_at_once() {
     let path = dir.path().join("big.toml");
     std::fs::write(&path, scene).unwrap();
     signal_restores_the_terminal(libc::SIGTERM, &[path.to_str().unwrap()]);
+}
+
+#[test]
+fn running_out_of_memory_restores_the_terminal() {
+    // Under a 430 MiB address-space limit the debugger takes the terminal
+    // (it needs about 370 MiB of address space with two threads), then
+    // asks for the image of an 8192 x 8192 scene: 8192² x 3 bytes =
+    // 201,326,592 for the pixels alone, more than the limit leaves (it runs
+    // whole under 510 MiB: measured with `ulimit -v` in tmux). The refused block ends it with a message and exit 1, and
+    // the terminal must come back as on quit (before, the alternate
+    // screen and raw mode stayed).
+    let dir = tempfile::tempdir().unwrap();
+    let scene = raystep_engine::scene::builtin::TEXT
+        .replace("width = 161", "width = 8192")
+        .replace("height = 121", "height = 8192");
+    let path = dir.path().join("big.toml");
+    std::fs::write(&path, scene).unwrap();
+    let mut session =
+        Session::start_as(Start::LimitedSession(430 << 20), &[path.to_str().unwrap()]);
+    let status = session.wait_for_exit();
+    assert_eq!(status.code(), Some(1), "{status:?}");
+    assert_eq!(session.cooked_and_echo(), (true, true), "cooked after");
+    session.wait_for("the terminal taken", |text| text.contains("\x1b[?1049h"));
+    session.wait_for("restore of every mode", all_modes_reset);
+    // The message comes after the restore, on the shell's screen.
+    session.wait_for("the message", |text| {
+        text.rfind("error: out of memory: a block of 201326592 bytes was refused")
+            > text.rfind("\x1b[?1049l")
+    });
 }
 
 #[test]

@@ -33,6 +33,8 @@ pub mod pane;
 pub(crate) mod render_job;
 pub(crate) mod source;
 mod terminal;
+
+pub use terminal::give_back_unlocked;
 pub mod view;
 
 use std::collections::VecDeque;

@@ -12,7 +12,7 @@
 
 use std::io::{self, Stdout, Write, stdout};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Mutex, OnceLock, PoisonError};
 
 use anyhow::{Context, Result};
 use crossterm::cursor::Show;
@@ -43,6 +43,40 @@ static CONTINUED: AtomicBool = AtomicBool::new(false);
 /// continues it needs nothing more, `suspend` takes the terminal again.
 static OWN_STOP: AtomicBool = AtomicBool::new(false);
 
+/// Whether the terminal is in our modes now, for `give_back_unlocked`.
+static IN_OUR_MODES: AtomicBool = AtomicBool::new(false);
+
+/// The terminal's modes before `take`, for `give_back_unlocked`.
+static MODES_BEFORE: OnceLock<libc::termios> = OnceLock::new();
+
+/// What `write_restore` writes, as bytes: crossterm's DisableMouseCapture,
+/// ResetColor, LeaveAlternateScreen and Show.
+const RESTORE_BYTES: &[u8] =
+    b"\x1b[?1006l\x1b[?1015l\x1b[?1003l\x1b[?1002l\x1b[?1000l\x1b[0m\x1b[?1049l\x1b[?25h";
+
+/// Gives the terminal back without allocating or taking a lock: for the
+/// binary's out-of-memory path (an allocation refused under `ulimit -v`
+/// ends the process there, and the lock `restore` takes may be held by
+/// the thread that ran out). Does nothing unless the terminal is in our
+/// modes.
+pub fn give_back_unlocked() {
+    if !IN_OUR_MODES.swap(false, Ordering::SeqCst) {
+        return;
+    }
+    // SAFETY: a write of a constant buffer, and tcsetattr with the modes
+    // tcgetattr read before `take`.
+    unsafe {
+        libc::write(
+            libc::STDOUT_FILENO,
+            RESTORE_BYTES.as_ptr().cast(),
+            RESTORE_BYTES.len(),
+        );
+        if let Some(modes) = MODES_BEFORE.get() {
+            libc::tcsetattr(libc::STDIN_FILENO, libc::TCSANOW, modes);
+        }
+    }
+}
+
 /// Raw mode, the alternate screen and mouse capture, with the signal thread
 /// and the panic hook that undo them.
 pub(crate) fn take() -> Result<Terminal<CrosstermBackend<Stdout>>> {
@@ -52,6 +86,13 @@ pub(crate) fn take() -> Result<Terminal<CrosstermBackend<Stdout>>> {
     {
         let mut taken = TAKEN.lock().unwrap_or_else(PoisonError::into_inner);
         *taken = true;
+        // SAFETY: tcgetattr on a descriptor with a valid termios to fill.
+        unsafe {
+            let mut modes: libc::termios = std::mem::zeroed();
+            if libc::tcgetattr(libc::STDIN_FILENO, &mut modes) == 0 {
+                let _ = MODES_BEFORE.set(modes);
+            }
+        }
         enter(&mut stdout()).context("cannot set up the terminal")?;
     }
     Terminal::new(CrosstermBackend::new(stdout())).context("cannot set up the terminal")
@@ -68,14 +109,21 @@ pub(crate) fn restore() {
     // Holding stdout keeps the UI thread from drawing over the main screen
     // after it comes back (a signal exits with the lock still held).
     let mut out = stdout().lock();
-    let _ = write_restore(&mut out);
-    let _ = disable_raw_mode();
+    leave(&mut out);
 }
 
 /// Raw mode, the alternate screen and mouse capture.
 fn enter(out: &mut impl Write) -> io::Result<()> {
+    IN_OUR_MODES.store(true, Ordering::SeqCst);
     enable_raw_mode()?;
     execute!(out, EnterAlternateScreen, EnableMouseCapture)
+}
+
+/// `enter` undone.
+fn leave(out: &mut impl Write) {
+    IN_OUR_MODES.store(false, Ordering::SeqCst);
+    let _ = write_restore(out);
+    let _ = disable_raw_mode();
 }
 
 /// Ctrl+Z or SIGTSTP: gives the terminal back as `restore` does, stops the
@@ -94,8 +142,7 @@ pub(crate) fn suspend() {
         return;
     }
     let mut out = stdout().lock();
-    let _ = write_restore(&mut out);
-    let _ = disable_raw_mode();
+    leave(&mut out);
     OWN_STOP.store(true, Ordering::SeqCst);
     stop();
     let _ = enter(&mut out);
@@ -246,6 +293,13 @@ mod tests {
             );
         }
         assert!(text.contains("\x1b[?25h"), "cursor shown in {text:?}");
+    }
+
+    #[test]
+    fn the_restore_without_allocating_writes_the_same_bytes() {
+        let mut bytes = Vec::new();
+        write_restore(&mut bytes).unwrap();
+        assert_eq!(bytes, RESTORE_BYTES);
     }
 
     #[test]
