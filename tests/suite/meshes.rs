@@ -606,3 +606,112 @@ fn mesh_triangles_are_numbered_once_per_name_and_named_once() {
     .unwrap();
     assert_eq!(names("p.toml"), ["pyramid triangle 0"]);
 }
+
+/// The vertices of object `index` of `scene`: a mesh triangle's three.
+fn corners(scene: &raystep_engine::scene::Scene, index: usize) -> Vec<[f64; 3]> {
+    use raystep_model::shapes::Shape;
+    match &scene.objects[index].shape {
+        Shape::Polygon(p) => p.vertices.iter().map(|v| v.to_array()).collect(),
+        Shape::Patch(p) => p.polygon.vertices.iter().map(|v| v.to_array()).collect(),
+        other => panic!("object {index} is not a triangle: {other:?}"),
+    }
+}
+
+/// Issue 41: a ray that hits a smooth ball's triangle near an edge crosses
+/// the planes of the triangles around it just before (the ball is convex:
+/// the ray enters it through its last plane), inside their bounding boxes
+/// and outside them: every such neighbour was listed, and explained, as a
+/// near miss. A triangle of the same mesh that shares a corner with the
+/// one hit is the same surface, not something the ray went past: none is
+/// listed. A ray that misses the ball still lists the triangles it passed.
+#[test]
+fn a_mesh_hits_neighbours_are_not_near_misses() {
+    let dir = folder(&[("ball.obj", smooth_ball_obj(6, 8).as_bytes())]);
+    let toml = dir.path().join("ball.toml");
+    std::fs::write(
+        &toml,
+        "[camera]\neye = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 40\n\
+         [image]\nwidth = 64\nheight = 64\n\
+         [materials.m]\ncolor = [0.9, 0.4, 0.1]\n\
+         [[light]]\nposition = [-4, 4, 4]\n\
+         [[object]]\nmaterial = \"m\"\nmesh = { file = \"ball.obj\" }\n",
+    )
+    .unwrap();
+    let scene = scene_at(&toml, None);
+    let (mut hits, mut passed_by) = (0, 0);
+    for y in 0..64 {
+        for x in 0..64 {
+            let tree = record_pixel(&scene, &scene.settings, x, y);
+            let root = tree.root();
+            let Some(hit) = root.hit.as_ref() else {
+                passed_by += root.near_misses.len();
+                continue;
+            };
+            hits += 1;
+            let hit_corners = corners(&scene, hit.object_index);
+            for near in &root.near_misses {
+                let shared = corners(&scene, near.object_index)
+                    .iter()
+                    .any(|c| hit_corners.contains(c));
+                assert!(
+                    !shared,
+                    "pixel {x},{y}: {} shares a corner with {}:\n{}",
+                    near.object,
+                    hit.object,
+                    explain(&tree)
+                );
+            }
+        }
+    }
+    assert!(hits > 0);
+    // Rays that miss the ball near its rim pass by its triangles' planes.
+    assert!(passed_by > 0, "no ray passes the ball by");
+}
+
+/// The same for NFF's teapot, whose `pp` patches name no mesh: a patch
+/// sharing a corner, and the normal there, with the patch hit is the same
+/// smooth surface, not a near miss.
+#[test]
+fn a_patchs_smooth_neighbours_are_not_near_misses() {
+    use raystep_model::shapes::Shape;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/teapot-small.nff");
+    let scene = scene_at(&path, Some((128, 128)));
+    let smooth_corners = |index: usize| -> Vec<([f64; 3], [f64; 3])> {
+        match &scene.objects[index].shape {
+            Shape::Patch(p) => p
+                .polygon
+                .vertices
+                .iter()
+                .zip(&p.normals)
+                .map(|(v, n)| (v.to_array(), n.to_array()))
+                .collect(),
+            _ => Vec::new(),
+        }
+    };
+    let mut patch_hits = 0;
+    for y in 0..128 {
+        for x in 0..128 {
+            let tree = record_pixel(&scene, &scene.settings, x, y);
+            let root = tree.root();
+            let Some(hit) = root.hit.as_ref() else {
+                continue;
+            };
+            let hit_corners = smooth_corners(hit.object_index);
+            if hit_corners.is_empty() {
+                continue;
+            }
+            patch_hits += 1;
+            for near in &root.near_misses {
+                assert!(
+                    !smooth_corners(near.object_index)
+                        .iter()
+                        .any(|c| hit_corners.contains(c)),
+                    "pixel {x},{y}: {} shares a corner and its normal with {}",
+                    near.object,
+                    hit.object
+                );
+            }
+        }
+    }
+    assert!(patch_hits > 0, "no pixel hits the teapot");
+}
