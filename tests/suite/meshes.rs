@@ -715,3 +715,124 @@ fn a_patchs_smooth_neighbours_are_not_near_misses() {
     }
     assert!(patch_hits > 0, "no pixel hits the teapot");
 }
+
+/// Whether a pixel's primary ray hits something one light reaches: facing
+/// it and not blocked (MODEL §4).
+fn lit(tree: &raystep_engine::record::RayTree) -> bool {
+    tree.root()
+        .lights
+        .iter()
+        .any(|l| !l.faces_away && l.shadow.as_ref().is_none_or(|s| s.s > 0.0))
+}
+
+/// Issue 41: `raystep render cornell.obj` alone showed a dark cube: the
+/// camera outside the box saw the walls' outsides, which the box's own
+/// light (the MTL's Ke, under the ceiling) lights from behind. The box is a
+/// room: its faces are wound to face inward (the floor's first corners
+/// (552.8, 0, 0), (0, 0, 0), (0, 0, 559.2) give (v1 - v0) x (v2 - v0) =
+/// (-552.8, 0, 0) x (-552.8, 0, 559.2) = (0, +309127, 0): up, into the
+/// room), so it is looked at from inside (SCENES.md "A mesh file alone").
+#[test]
+fn the_cornell_obj_alone_is_seen_from_inside_and_lit() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell/cornell.obj");
+    let scene = scene_at(&path, None);
+    // The box: x 0 to 556 (ceiling and left wall), y 0 to 548.8, z 0 to
+    // 559.2; centre (278, 274.4, 279.6). No triangle lies in the tenth of
+    // the box nearest z = 0 (the nearest centroid is the short block's
+    // front, z >= 65): the open side is -z. The camera stands a hundredth
+    // of the depth in, z = 5.592, and looks at the back wall's centre.
+    let camera = scene.camera;
+    let close = |a: glam::DVec3, b: [f64; 3]| (a - glam::DVec3::from(b)).length() < 1e-9;
+    assert!(close(camera.eye, [278.0, 274.4, 5.592]), "{camera:?}");
+    assert!(close(camera.look_at, [278.0, 274.4, 559.2]), "{camera:?}");
+    assert!(close(camera.up, [0.0, 1.0, 0.0]), "{camera:?}");
+    // The back wall half as large again just fills the image: its half
+    // height 274.4 (its half width 278 is 208.5 at 320:240) at 553.608:
+    // fov = 2 atan(1.5 x 274.4 / 553.608) = 2 atan(0.743487) = 73.2613°.
+    assert!((camera.fov - 73.2613).abs() < 1e-3, "{camera:?}");
+    // Inside the room, every ray heads into it (+z) and meets a wall: no
+    // background. Most of what it sees the light reaches (only the blocks'
+    // fronts, facing the camera, and their shadows do not); before, none.
+    let (w, h) = (64, 48);
+    let scene = scene.with_size(w, h).unwrap();
+    let mut hits = 0;
+    let mut lit_pixels = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let tree = record_pixel(&scene, &scene.settings, x, y);
+            hits += usize::from(tree.root().hit.is_some());
+            lit_pixels += usize::from(lit(&tree));
+        }
+    }
+    assert_eq!(hits, (w * h) as usize);
+    assert!(
+        lit_pixels * 2 > (w * h) as usize,
+        "{lit_pixels} of {}",
+        w * h
+    );
+}
+
+/// The unit cube's six faces as an OBJ, wound counter-clockwise seen from
+/// outside (`outward`) or from inside.
+fn cube_obj(outward: bool) -> String {
+    let mut obj = String::new();
+    for z in 0..2 {
+        for y in 0..2 {
+            for x in 0..2 {
+                obj += &format!("v {x} {y} {z}\n");
+            }
+        }
+    }
+    // Vertex (x, y, z) is number 1 + x + 2y + 4z; each face counter-clockwise
+    // seen from outside.
+    let faces = [
+        [1, 3, 4, 2], // z = 0, seen from -z
+        [5, 6, 8, 7], // z = 1, seen from +z
+        [1, 2, 6, 5], // y = 0, seen from -y
+        [3, 7, 8, 4], // y = 1, seen from +y
+        [1, 5, 7, 3], // x = 0, seen from -x
+        [2, 4, 8, 6], // x = 1, seen from +x
+    ];
+    for mut face in faces {
+        if !outward {
+            face.reverse();
+        }
+        obj += &format!("f {} {} {} {}\n", face[0], face[1], face[2], face[3]);
+    }
+    obj
+}
+
+/// A closed cube wound outward is an object, framed from outside as
+/// before; wound inward it is a room, seen from inside. All its sides are
+/// walls alike, so the first side in the order +z, -z, +x, -x, +y, -y is
+/// taken as the open one: +z.
+#[test]
+fn a_mesh_alone_wound_inward_is_a_room_and_outward_an_object() {
+    let dir = folder(&[
+        ("out.obj", cube_obj(true).as_bytes()),
+        ("in.obj", cube_obj(false).as_bytes()),
+    ]);
+    let close = |a: glam::DVec3, b: glam::DVec3| (a - b).length() < 1e-9;
+    let object = scene_at(&dir.path().join("out.obj"), None).camera;
+    // Centre (0.5, 0.5, 0.5), half diagonal sqrt(3)/2, three of them from
+    // the centre along (0.4, 0.3, 1) normalised; fov 45.
+    let centre = glam::DVec3::splat(0.5);
+    let eye = centre + glam::DVec3::new(0.4, 0.3, 1.0).normalize() * (3.0 * 3f64.sqrt() / 2.0);
+    assert!(close(object.eye, eye), "{object:?}");
+    assert!(close(object.look_at, centre), "{object:?}");
+    assert_eq!(object.fov, 45.0);
+    let room = scene_at(&dir.path().join("in.obj"), None).camera;
+    // A hundredth of the depth in from z = 1, looking at z = 0's centre;
+    // fov = 2 atan(1.5 x 0.5 / 0.99) = 2 atan(0.757576) = 74.29°.
+    assert!(
+        close(room.eye, glam::DVec3::new(0.5, 0.5, 0.99)),
+        "{room:?}"
+    );
+    assert!(
+        close(room.look_at, glam::DVec3::new(0.5, 0.5, 0.0)),
+        "{room:?}"
+    );
+    let fov = 2.0 * (0.75f64 / 0.99).atan().to_degrees();
+    assert!((room.fov - fov).abs() < 1e-9, "{room:?}");
+    assert!((fov - 74.29).abs() < 0.01, "{fov}");
+}
