@@ -606,3 +606,233 @@ fn mesh_triangles_are_numbered_once_per_name_and_named_once() {
     .unwrap();
     assert_eq!(names("p.toml"), ["pyramid triangle 0"]);
 }
+
+/// The vertices of object `index` of `scene`: a mesh triangle's three.
+fn corners(scene: &raystep_engine::scene::Scene, index: usize) -> Vec<[f64; 3]> {
+    use raystep_model::shapes::Shape;
+    match &scene.objects[index].shape {
+        Shape::Polygon(p) => p.vertices.iter().map(|v| v.to_array()).collect(),
+        Shape::Patch(p) => p.polygon.vertices.iter().map(|v| v.to_array()).collect(),
+        other => panic!("object {index} is not a triangle: {other:?}"),
+    }
+}
+
+/// Issue 41: a ray that hits a smooth ball's triangle near an edge crosses
+/// the planes of the triangles around it just before (the ball is convex:
+/// the ray enters it through its last plane), inside their bounding boxes
+/// and outside them: every such neighbour was listed, and explained, as a
+/// near miss. A triangle of the same mesh that shares a corner with the
+/// one hit is the same surface, not something the ray went past: none is
+/// listed. A ray that misses the ball still lists the triangles it passed.
+#[test]
+fn a_mesh_hits_neighbours_are_not_near_misses() {
+    let dir = folder(&[("ball.obj", smooth_ball_obj(6, 8).as_bytes())]);
+    let toml = dir.path().join("ball.toml");
+    std::fs::write(
+        &toml,
+        "[camera]\neye = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 40\n\
+         [image]\nwidth = 64\nheight = 64\n\
+         [materials.m]\ncolor = [0.9, 0.4, 0.1]\n\
+         [[light]]\nposition = [-4, 4, 4]\n\
+         [[object]]\nmaterial = \"m\"\nmesh = { file = \"ball.obj\" }\n",
+    )
+    .unwrap();
+    let scene = scene_at(&toml, None);
+    let (mut hits, mut passed_by) = (0, 0);
+    for y in 0..64 {
+        for x in 0..64 {
+            let tree = record_pixel(&scene, &scene.settings, x, y);
+            let root = tree.root();
+            let Some(hit) = root.hit.as_ref() else {
+                passed_by += root.near_misses.len();
+                continue;
+            };
+            hits += 1;
+            let hit_corners = corners(&scene, hit.object_index);
+            for near in &root.near_misses {
+                let shared = corners(&scene, near.object_index)
+                    .iter()
+                    .any(|c| hit_corners.contains(c));
+                assert!(
+                    !shared,
+                    "pixel {x},{y}: {} shares a corner with {}:\n{}",
+                    near.object,
+                    hit.object,
+                    explain(&tree)
+                );
+            }
+        }
+    }
+    assert!(hits > 0);
+    // Rays that miss the ball near its rim pass by its triangles' planes.
+    assert!(passed_by > 0, "no ray passes the ball by");
+}
+
+/// The same for NFF's teapot, whose `pp` patches name no mesh: a patch
+/// sharing a corner, and the normal there, with the patch hit is the same
+/// smooth surface, not a near miss.
+#[test]
+fn a_patchs_smooth_neighbours_are_not_near_misses() {
+    use raystep_model::shapes::Shape;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spd/teapot-small.nff");
+    let scene = scene_at(&path, Some((128, 128)));
+    let smooth_corners = |index: usize| -> Vec<([f64; 3], [f64; 3])> {
+        match &scene.objects[index].shape {
+            Shape::Patch(p) => p
+                .polygon
+                .vertices
+                .iter()
+                .zip(&p.normals)
+                .map(|(v, n)| (v.to_array(), n.to_array()))
+                .collect(),
+            _ => Vec::new(),
+        }
+    };
+    let mut patch_hits = 0;
+    for y in 0..128 {
+        for x in 0..128 {
+            let tree = record_pixel(&scene, &scene.settings, x, y);
+            let root = tree.root();
+            let Some(hit) = root.hit.as_ref() else {
+                continue;
+            };
+            let hit_corners = smooth_corners(hit.object_index);
+            if hit_corners.is_empty() {
+                continue;
+            }
+            patch_hits += 1;
+            for near in &root.near_misses {
+                assert!(
+                    !smooth_corners(near.object_index)
+                        .iter()
+                        .any(|c| hit_corners.contains(c)),
+                    "pixel {x},{y}: {} shares a corner and its normal with {}",
+                    near.object,
+                    hit.object
+                );
+            }
+        }
+    }
+    assert!(patch_hits > 0, "no pixel hits the teapot");
+}
+
+/// Whether a pixel's primary ray hits something one light reaches: facing
+/// it and not blocked (MODEL §4).
+fn lit(tree: &raystep_engine::record::RayTree) -> bool {
+    tree.root()
+        .lights
+        .iter()
+        .any(|l| !l.faces_away && l.shadow.as_ref().is_none_or(|s| s.s > 0.0))
+}
+
+/// Issue 41: `raystep render cornell.obj` alone showed a dark cube: the
+/// camera outside the box saw the walls' outsides, which the box's own
+/// light (the MTL's Ke, under the ceiling) lights from behind. The box is a
+/// room: its faces are wound to face inward (the floor's first corners
+/// (552.8, 0, 0), (0, 0, 0), (0, 0, 559.2) give (v1 - v0) x (v2 - v0) =
+/// (-552.8, 0, 0) x (-552.8, 0, 559.2) = (0, +309127, 0): up, into the
+/// room), so it is looked at from inside (SCENES.md "A mesh file alone").
+#[test]
+fn the_cornell_obj_alone_is_seen_from_inside_and_lit() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell/cornell.obj");
+    let scene = scene_at(&path, None);
+    // The box: x 0 to 556 (ceiling and left wall), y 0 to 548.8, z 0 to
+    // 559.2; centre (278, 274.4, 279.6). No triangle lies in the tenth of
+    // the box nearest z = 0 (the nearest centroid is the short block's
+    // front, z >= 65): the open side is -z. The camera stands a hundredth
+    // of the depth in, z = 5.592, and looks at the back wall's centre.
+    let camera = scene.camera;
+    let close = |a: glam::DVec3, b: [f64; 3]| (a - glam::DVec3::from(b)).length() < 1e-9;
+    assert!(close(camera.eye, [278.0, 274.4, 5.592]), "{camera:?}");
+    assert!(close(camera.look_at, [278.0, 274.4, 559.2]), "{camera:?}");
+    assert!(close(camera.up, [0.0, 1.0, 0.0]), "{camera:?}");
+    // The back wall half as large again just fills the image: its half
+    // height 274.4 (its half width 278 is 208.5 at 320:240) at 553.608:
+    // fov = 2 atan(1.5 x 274.4 / 553.608) = 2 atan(0.743487) = 73.2613°.
+    assert!((camera.fov - 73.2613).abs() < 1e-3, "{camera:?}");
+    // Inside the room, every ray heads into it (+z) and meets a wall: no
+    // background. Most of what it sees the light reaches (only the blocks'
+    // fronts, facing the camera, and their shadows do not); before, none.
+    let (w, h) = (64, 48);
+    let scene = scene.with_size(w, h).unwrap();
+    let mut hits = 0;
+    let mut lit_pixels = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let tree = record_pixel(&scene, &scene.settings, x, y);
+            hits += usize::from(tree.root().hit.is_some());
+            lit_pixels += usize::from(lit(&tree));
+        }
+    }
+    assert_eq!(hits, (w * h) as usize);
+    assert!(
+        lit_pixels * 2 > (w * h) as usize,
+        "{lit_pixels} of {}",
+        w * h
+    );
+}
+
+/// The unit cube's six faces as an OBJ, wound counter-clockwise seen from
+/// outside (`outward`) or from inside.
+fn cube_obj(outward: bool) -> String {
+    let mut obj = String::new();
+    for z in 0..2 {
+        for y in 0..2 {
+            for x in 0..2 {
+                obj += &format!("v {x} {y} {z}\n");
+            }
+        }
+    }
+    // Vertex (x, y, z) is number 1 + x + 2y + 4z; each face counter-clockwise
+    // seen from outside.
+    let faces = [
+        [1, 3, 4, 2], // z = 0, seen from -z
+        [5, 6, 8, 7], // z = 1, seen from +z
+        [1, 2, 6, 5], // y = 0, seen from -y
+        [3, 7, 8, 4], // y = 1, seen from +y
+        [1, 5, 7, 3], // x = 0, seen from -x
+        [2, 4, 8, 6], // x = 1, seen from +x
+    ];
+    for mut face in faces {
+        if !outward {
+            face.reverse();
+        }
+        obj += &format!("f {} {} {} {}\n", face[0], face[1], face[2], face[3]);
+    }
+    obj
+}
+
+/// A closed cube wound outward is an object, framed from outside as
+/// before; wound inward it is a room, seen from inside. All its sides are
+/// walls alike, so the first side in the order +z, -z, +x, -x, +y, -y is
+/// taken as the open one: +z.
+#[test]
+fn a_mesh_alone_wound_inward_is_a_room_and_outward_an_object() {
+    let dir = folder(&[
+        ("out.obj", cube_obj(true).as_bytes()),
+        ("in.obj", cube_obj(false).as_bytes()),
+    ]);
+    let close = |a: glam::DVec3, b: glam::DVec3| (a - b).length() < 1e-9;
+    let object = scene_at(&dir.path().join("out.obj"), None).camera;
+    // Centre (0.5, 0.5, 0.5), half diagonal sqrt(3)/2, three of them from
+    // the centre along (0.4, 0.3, 1) normalised; fov 45.
+    let centre = glam::DVec3::splat(0.5);
+    let eye = centre + glam::DVec3::new(0.4, 0.3, 1.0).normalize() * (3.0 * 3f64.sqrt() / 2.0);
+    assert!(close(object.eye, eye), "{object:?}");
+    assert!(close(object.look_at, centre), "{object:?}");
+    assert_eq!(object.fov, 45.0);
+    let room = scene_at(&dir.path().join("in.obj"), None).camera;
+    // A hundredth of the depth in from z = 1, looking at z = 0's centre;
+    // fov = 2 atan(1.5 x 0.5 / 0.99) = 2 atan(0.757576) = 74.29°.
+    assert!(
+        close(room.eye, glam::DVec3::new(0.5, 0.5, 0.99)),
+        "{room:?}"
+    );
+    assert!(
+        close(room.look_at, glam::DVec3::new(0.5, 0.5, 0.0)),
+        "{room:?}"
+    );
+    let fov = 2.0 * (0.75f64 / 0.99).atan().to_degrees();
+    assert!((room.fov - fov).abs() < 1e-9, "{room:?}");
+    assert!((fov - 74.29).abs() < 0.01, "{fov}");
+}

@@ -52,26 +52,39 @@ impl ObjectTables {
         object: usize,
         point: DVec3,
     ) -> DVec3 {
-        let from_shape = || objects[object].shape.geometric_normal(point);
-        match &self.normals[object] {
-            NormalRecipe::FromLeaf => accel.leaf_normal(object, point).unwrap_or_else(from_shape),
-            NormalRecipe::Flat(index) => self.flats[*index as usize],
-            NormalRecipe::SmoothTriangle(triangle) => triangle.normal_at(point),
-            NormalRecipe::FromShape => from_shape(),
-        }
+        self.normals(objects, accel, object, point).0
     }
 
-    /// A patch's plane normal, which decides the side a ray meets it from
-    /// (MODEL §3); `None` for every other shape, whose side is its N_g's.
+    /// `geometric_normal`, and with it a patch's plane normal, which decides
+    /// the side a ray meets it from (MODEL §3); `None` for every other
+    /// shape, whose side is its N_g's. A hit's one look-up in the tables.
     #[inline]
-    pub fn patch_plane(&self, objects: &[Object], object: usize) -> Option<DVec3> {
+    pub fn normals(
+        &self,
+        objects: &[Object],
+        accel: &Accel,
+        object: usize,
+        point: DVec3,
+    ) -> (DVec3, Option<DVec3>) {
         match &self.normals[object] {
-            NormalRecipe::SmoothTriangle(triangle) => Some(triangle.flat),
-            NormalRecipe::FromShape => match &objects[object].shape {
-                Shape::Patch(patch) => Some(patch.polygon.plane.normal),
-                _ => None,
-            },
-            NormalRecipe::FromLeaf | NormalRecipe::Flat(_) => None,
+            NormalRecipe::FromLeaf => (
+                accel
+                    .leaf_normal(object, point)
+                    .unwrap_or_else(|| objects[object].shape.geometric_normal(point)),
+                None,
+            ),
+            NormalRecipe::Flat(index) => (self.flats[*index as usize], None),
+            NormalRecipe::SmoothTriangle(triangle) => {
+                (triangle.normal_at(point), Some(triangle.flat))
+            }
+            NormalRecipe::FromShape => {
+                let shape = &objects[object].shape;
+                let plane = match shape {
+                    Shape::Patch(patch) => Some(patch.polygon.plane.normal),
+                    _ => None,
+                };
+                (shape.geometric_normal(point), plane)
+            }
         }
     }
 }

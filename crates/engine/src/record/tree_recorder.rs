@@ -8,10 +8,14 @@ use crate::trace::{
     Blocker, ChildTerm, DepthLimit, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit,
     trace,
 };
+use std::sync::Arc;
+
+use glam::DVec3;
 use raystep_accel::Cost;
 use raystep_model::math::{Color, EPS, Interval, Ray};
+use raystep_model::object::{Object, ObjectName};
 use raystep_model::shapes::{
-    CrossingFigure, Polygon, PolygonWorking, Shape, Sphere, SphereWorking, Working,
+    CrossingFigure, Patch, Polygon, PolygonWorking, Shape, Sphere, SphereWorking, Working,
 };
 
 use super::ray_tree::{
@@ -139,7 +143,7 @@ impl Recorder for TreeRecorder<'_> {
         let node = self.node();
         let ray = Ray::new(node.origin, node.direction);
         node.cost = cost;
-        node.near_misses = near_misses(scene, &ray, hit.t);
+        node.near_misses = near_misses(scene, &ray, hit.t, Some(hit.object));
         let working = object.shape.working(&ray, Interval::in_front());
         node.hit = Some(HitRecord {
             object: object.name.to_string(),
@@ -175,8 +179,12 @@ impl Recorder for TreeRecorder<'_> {
         let scene = self.scene;
         let node = self.node();
         node.cost = cost;
-        node.near_misses =
-            near_misses(scene, &Ray::new(node.origin, node.direction), f64::INFINITY);
+        node.near_misses = near_misses(
+            scene,
+            &Ray::new(node.origin, node.direction),
+            f64::INFINITY,
+            None,
+        );
         self.push_event(EventKind::Miss { tested: cost });
     }
 
@@ -317,14 +325,19 @@ impl Recorder for TreeRecorder<'_> {
 /// within the polygon's bounding box, but whose crossing test puts the point
 /// outside (a concave notch, or just past an edge); spheres whose bounding
 /// box the ray crosses in front of `before` but whose quadratic has no real
-/// roots, or only roots more than EPS behind the origin (MODEL §3).
-fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
+/// roots, or only roots more than EPS behind the origin (MODEL §3). The
+/// object `hit`'s own surface is left out (`same_surface`).
+fn near_misses(scene: &Scene, ray: &Ray, before: f64, hit: Option<usize>) -> Vec<NearMiss> {
     if scene.objects.len() > NEAR_MISS_SCENE_LIMIT {
         return Vec::new();
     }
     let range = Interval::new(EPS, before);
+    let hit = hit.map(|h| &scene.objects[h]);
     let mut found = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
+        if hit.is_some_and(|h| same_surface(h, object)) {
+            continue;
+        }
         // Each candidate solved once; a patch's fan is located only when
         // its polygon was missed.
         let working = match &object.shape {
@@ -355,6 +368,50 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64) -> Vec<NearMiss> {
         });
     }
     found
+}
+
+/// Whether `other` is a piece of the surface `hit` lies on, so that a ray
+/// hitting `hit` near an edge did not go past it: a triangle of the same
+/// mesh (one mesh file as the scene placed it: its triangles share their
+/// names) with a corner in common, or a patch that shares a corner and its
+/// normal there with the patch hit (NFF's `pp` patches, which name no mesh,
+/// are pieces of a smooth surface). The ray crosses such a neighbour's
+/// plane just before it hits wherever the surface is convex (MODEL §3).
+fn same_surface(hit: &Object, other: &Object) -> bool {
+    if same_mesh(&hit.name, &other.name) {
+        let (Some(a), Some(b)) = (corners(&hit.shape), corners(&other.shape)) else {
+            return false;
+        };
+        return a.iter().any(|v| b.contains(v));
+    }
+    let (Shape::Patch(a), Shape::Patch(b)) = (&hit.shape, &other.shape) else {
+        return false;
+    };
+    smooth_corners(a).any(|corner| smooth_corners(b).any(|other| other == corner))
+}
+
+/// A patch's corners, each with its normal.
+fn smooth_corners(patch: &Patch) -> impl Iterator<Item = (&DVec3, &DVec3)> {
+    patch.polygon.vertices.iter().zip(&patch.normals)
+}
+
+/// Both triangles of one placed mesh.
+fn same_mesh(a: &ObjectName, b: &ObjectName) -> bool {
+    match (a, b) {
+        (ObjectName::MeshTriangle { names: a, .. }, ObjectName::MeshTriangle { names: b, .. }) => {
+            Arc::ptr_eq(a, b)
+        }
+        _ => false,
+    }
+}
+
+/// A polygon's or patch's corners.
+fn corners(shape: &Shape) -> Option<&[DVec3]> {
+    match shape {
+        Shape::Polygon(p) => Some(&p.vertices),
+        Shape::Patch(p) => Some(&p.polygon.vertices),
+        _ => None,
+    }
 }
 
 fn polygon_missed(polygon: &Polygon, ray: &Ray, working: &PolygonWorking) -> bool {

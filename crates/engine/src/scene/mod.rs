@@ -258,16 +258,12 @@ impl Scene {
             .map_or(Cow::Borrowed("?"), |o| o.name.text())
     }
 
-    /// `object`'s geometric normal N_g at `point` (MODEL §3).
+    /// `object`'s N_g at `point` and, for a patch, its plane normal (its
+    /// side, MODEL §3), in one look-up of the object tables.
     #[inline]
-    pub(crate) fn geometric_normal(&self, object: usize, point: DVec3) -> DVec3 {
+    pub(crate) fn normals(&self, object: usize, point: DVec3) -> (DVec3, Option<DVec3>) {
         self.tables
-            .geometric_normal(&self.objects, &self.accel, object, point)
-    }
-
-    /// A patch's plane normal (its side, MODEL §3), `None` for other shapes.
-    pub(crate) fn patch_plane(&self, object: usize) -> Option<DVec3> {
-        self.tables.patch_plane(&self.objects, object)
+            .normals(&self.objects, &self.accel, object, point)
     }
 }
 

@@ -447,11 +447,11 @@ fn at_point(term: LightTerm) -> LightTerm {
 
 fn surface_hit(scene: &Scene, ray: &Ray, candidate: Candidate) -> SurfaceHit {
     let point = ray.at(candidate.t);
-    let geometric_normal = scene.geometric_normal(candidate.object, point);
+    let (geometric_normal, patch_plane) = scene.normals(candidate.object, point);
     // A patch's blended normal may face away from a ray that meets its
     // front near a silhouette: the side is its plane's, turned to the
     // blended normal's side (as pbrt does), and N follows it (MODEL §3).
-    let side = match scene.patch_plane(candidate.object) {
+    let side = match patch_plane {
         Some(plane) if plane.dot(geometric_normal) < 0.0 => -plane,
         Some(plane) => plane,
         None => geometric_normal,
