@@ -97,6 +97,12 @@ pub fn raystep(args: &[&str]) -> Output {
 pub fn raystep_within(bytes: u64, args: &[&str]) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_raystep"));
     command.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
+    // Two threads and two malloc arenas, as on the 2-core machine where the
+    // limits were measured: on a machine with many cores each thread's
+    // stack and arena (64 MiB of address space) would spend the limit.
+    command
+        .env("RAYON_NUM_THREADS", "2")
+        .env("MALLOC_ARENA_MAX", "2");
     // SAFETY: setrlimit is async-signal-safe; nothing else runs in the child.
     unsafe {
         command.pre_exec(move || {
