@@ -18,7 +18,7 @@
 //! - `pane/`: the drawing, one file per pane; `pane::draw` only reads an `App`.
 //! - `render_job.rs` renders whole images on a background thread, and
 //!   `find_job.rs` scans them for `f`; picking a pixel retraces that pixel
-//!   alone. `source.rs` loads and watches the scene file,
+//!   alone, and `compare_job.rs` compares it with `--rays`' log. `source.rs` loads and watches the scene file,
 //!   `terminal.rs` sets the terminal up and restores it.
 //!
 //! The main loop is generic over the ratatui `Backend`, so tests drive the
@@ -26,6 +26,7 @@
 
 pub(crate) mod action;
 pub mod app;
+pub(crate) mod compare_job;
 pub mod event;
 pub(crate) mod find_job;
 pub mod keymap;

@@ -6,6 +6,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use crossterm::event::KeyCode;
 use raystep::tui::app::RayLog;
 use raystep::tui::{App, Pane};
 use raystep_engine::record::{EventKind, record_pixel};
@@ -473,4 +474,108 @@ fn the_debugger_takes_size_for_a_log_traced_at_another_size() {
         "{}",
         stderr(&output)
     );
+}
+
+/// Three glass planes (tests/scenes/three-glass-planes.toml) at 8x6, with
+/// no weight cutoff and the largest ray budget: our tree of pixel (3, 2)
+/// has 98,326 rays, shadow rays included (hostile/memory.rs counts them).
+/// Returns the scene file, a log of that pixel: raystep's own, its last
+/// ray left out, and that ray's path, so that the pixel differs and the catalogue of mistakes
+/// is tried against it. Compared on the UI thread, such a pixel had `q`
+/// answered after 4 s (issue 41 §1).
+fn planes_and_their_log(dir: &Path) -> (PathBuf, tempfile::TempPath, String) {
+    let text = include_str!("../scenes/three-glass-planes.toml")
+        .replace(
+            "[settings]\n",
+            "[settings]\nmin_weight = 0\nmax_rays = 65536\n",
+        )
+        .replace("width = 32\nheight = 24", "width = 8\nheight = 6");
+    let scene_path = dir.join("planes.toml");
+    std::fs::write(&scene_path, text).unwrap();
+    let scene = raystep_engine::scene::load(&scene_path).unwrap();
+    let ours = raylog(&record_pixel(&scene, &scene.settings, 3, 2));
+    let lines: Vec<&str> = ours.lines().collect();
+    assert!(lines.len() > 90_000, "{} rays", lines.len());
+    let (last, kept) = lines.split_last().unwrap();
+    let path: serde_json::Value = serde_json::from_str(last).unwrap();
+    let yours = kept.join("\n") + "\n";
+    (
+        scene_path,
+        log_file(&yours),
+        path["path"].as_str().unwrap().to_string(),
+    )
+}
+
+#[test]
+fn keys_are_answered_while_a_pixel_of_100000_rays_is_compared() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, path, left_out) = planes_and_their_log(dir.path());
+    // The debugger as `raystep SCENE --rays LOG` runs it: its comparisons
+    // in the background (`false`: not on the caller's thread).
+    let app = App::open(Some(scene), false).unwrap();
+    let log = RayLog::read(app.session().scene(), &path).expect("the log reads");
+    let mut app = app.with_ray_log(log);
+    // It opens on the logged pixel and says it is being compared: the
+    // comparison has not been waited for (before, the status line already
+    // said where the rays first differ).
+    assert_eq!(app.pixel().cursor(), (3, 2));
+    let opening = app.message().unwrap().to_string();
+    assert!(
+        opening.ends_with("(3, 2): comparing your rays with ours…; y: next"),
+        "{opening}"
+    );
+    let title = tree_title(&mut app);
+    assert!(title.ends_with(" · comparing with your log… "), "{title}");
+    // A key is answered at once: `q`, while the comparison goes on.
+    chars(&mut app, "q");
+    assert!(app.should_quit());
+    assert!(app.ray_log().unwrap().comparing());
+    // Once back, the comparison is taken in on a tick, as renders are.
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(600);
+    while app.ray_log().unwrap().comparing() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the comparison never came back"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        app.update(raystep::tui::Action::Tick);
+    }
+    // It is the comparison the debugger made on its own thread before:
+    // the one ray left out is the only difference, in ours alone.
+    let report = app
+        .ray_log()
+        .unwrap()
+        .report()
+        .expect("(3, 2) is in the log");
+    assert!(!report.matches);
+    let only_ours: Vec<String> = report
+        .only_ours
+        .iter()
+        .map(|u| u.path.to_string())
+        .collect();
+    assert_eq!(only_ours, [left_out]);
+    assert!(report.only_yours.is_empty());
+    assert_eq!(report.rays_ours, 98_326);
+    let title = tree_title(&mut app);
+    assert!(title.ends_with(" · your log differs "), "{title}");
+    // Moved away, the pixel is not compared.
+    press(&mut app, &[key(KeyCode::Right)]);
+    assert_eq!(app.pixel().cursor(), (4, 2));
+    let log = app.ray_log().unwrap();
+    assert!(!log.comparing() && log.report().is_none());
+}
+
+/// The tree pane's title, from its top border.
+fn tree_title(app: &mut App) -> String {
+    let terminal = screen(app, 240, 40);
+    let rect = app.panes().rect(Pane::Tree);
+    let top: String = (rect.x..rect.x + rect.width)
+        .map(|x| {
+            terminal.backend().buffer()[(x, rect.y)]
+                .symbol()
+                .to_string()
+        })
+        .collect();
+    top.trim_matches(|c| c == '─' || c == '┌' || c == '┐' || c == '╭' || c == '╮')
+        .to_string()
 }

@@ -9,7 +9,8 @@
 //! - `renders.rs`: the whole image's renders;
 //! - `session.rs`: the scene, its source and watcher, the settings traced;
 //! - `comparing.rs`: `--compare`'s image, findings and regions;
-//! - `ray_log.rs`: `--rays`' log, and the pixel traced set beside it;
+//! - `ray_log.rs`: `--rays`' log, and the pixel traced set beside it (in
+//!   the background: `compare_job.rs`);
 //! - `screen.rs`: focus, zoom, the image pane's picture, the diagram's
 //!   plane, pan and zoom;
 //! - `search.rs`: a find across the image under way.
@@ -21,7 +22,8 @@
 //! (the panes' layout, the colour shown at a pixel, whether work is under
 //! way); a part's readers are public, its changes private to this folder.
 //! Keys become `Action`s in `event.rs` first, and background work
-//! (finished renders, a changed scene file) is looked at on `Action::Tick`.
+//! (finished renders, a changed scene file, a pixel compared with the
+//! log) is looked at on `Action::Tick`.
 
 use std::path::PathBuf;
 
@@ -82,6 +84,9 @@ pub struct App {
     search: Option<Search>,
     /// The status line's message.
     message: Option<String>,
+    /// The message shown while the pixel is compared with the log, and
+    /// what it becomes once the comparison is back (if it is still shown).
+    log_words: Option<(String, LogWords)>,
     quit: bool,
     /// Background work runs on the caller's thread (tests).
     sync: bool,
@@ -154,6 +159,7 @@ impl App {
             ray_log: None,
             search: None,
             message: Some(WELCOME.into()),
+            log_words: None,
             quit: false,
             sync,
             show_timings: !sync,
@@ -181,15 +187,14 @@ impl App {
             return Err(find::outside(pixel, size));
         }
         self.pick(pixel.0, pixel.1);
-        if let Some(log) = &self.ray_log {
-            self.message = Some(log.opening_words(pixel));
-        }
+        self.say_of_log(LogWords::Opening);
         Ok(self)
     }
 
     /// The app with the student's ray log (`--rays`, read against this
     /// app's scene), on the log's first pixel.
-    pub fn with_ray_log(mut self, mut log: RayLog) -> App {
+    pub fn with_ray_log(mut self, log: RayLog) -> App {
+        let mut log = log.comparing_in(self.sync);
         let first = log.first_pixel();
         if let (Some(comparison), Some((traced, words))) = (&mut self.comparison, log.verdict()) {
             comparison.supersede_by_log(traced, words);
@@ -198,9 +203,7 @@ impl App {
         if let Some((x, y)) = first {
             self.pick(x, y);
         }
-        if let Some(log) = &self.ray_log {
-            self.message = Some(log.opening_words(self.pixel.cursor()));
-        }
+        self.say_of_log(LogWords::Opening);
         self
     }
 
@@ -305,6 +308,7 @@ impl App {
         self.collect_reload();
         self.collect_renders();
         self.collect_find();
+        self.collect_log();
     }
 
     /// Selects a pixel: only that pixel is traced again.
@@ -319,7 +323,34 @@ impl App {
     /// Sets the pixel traced, as it is now, beside the student's rays of it.
     fn follow_log(&mut self) {
         if let Some(log) = &mut self.ray_log {
-            log.follow(self.pixel.tree(), self.session.scene());
+            log.follow(self.pixel.tree(), self.session.shared_scene());
+        }
+    }
+
+    /// The status line's words on the log's pixel, once it is compared:
+    /// until then what they are meanwhile, replaced when it is back.
+    fn say_of_log(&mut self, words: LogWords) {
+        let Some(log) = &self.ray_log else {
+            return;
+        };
+        let message = words.say(log, self.pixel.cursor());
+        self.log_words = log.comparing().then(|| (message.clone(), words));
+        self.message = Some(message);
+    }
+
+    /// Takes in the comparison of the pixel with the log once it is back;
+    /// the words said meanwhile, if still shown, become the final ones.
+    fn collect_log(&mut self) {
+        let Some(log) = &mut self.ray_log else {
+            return;
+        };
+        if !log.collect() && log.comparing() {
+            return;
+        }
+        if let Some((shown, words)) = self.log_words.take()
+            && self.message.as_deref() == Some(shown.as_str())
+        {
+            self.message = Some(words.say(log, self.pixel.cursor()));
         }
     }
 
@@ -369,13 +400,10 @@ impl App {
         if let Some(settings) = settings {
             self.apply_settings(settings);
         }
-        let against = (self.ray_log.as_ref().and_then(RayLog::report)).map(|report| match &report
-            .first_divergence
-        {
-            None => " · your rays of this pixel match ours".to_string(),
-            Some(d) => format!(" · your rays first differ at {} {}", d.path, d.field),
-        });
-        self.message = Some(message + &against.unwrap_or_default());
+        match self.ray_log {
+            None => self.message = Some(message),
+            Some(_) => self.say_of_log(LogWords::Toggled(message)),
+        }
     }
 
     /// Traces the scene with new settings: the pixel, then the image.
@@ -435,7 +463,7 @@ impl App {
         };
         let (x, y) = log.step(self.pixel.cursor(), delta);
         self.pick(x, y);
-        self.message = self.ray_log.as_ref().map(|log| log.pixel_words((x, y)));
+        self.say_of_log(LogWords::Pixel);
     }
 
     /// `D`: the current event to where the pixel's first divergence from
@@ -447,6 +475,12 @@ impl App {
             return;
         };
         let (x, y) = self.pixel.cursor();
+        if log.comparing() {
+            self.message = Some(format!(
+                "still comparing your rays of pixel ({x}, {y}) with ours: D once it is done"
+            ));
+            return;
+        }
         let Some(report) = log.report() else {
             self.message = Some(format!(
                 "pixel ({x}, {y}) is not in your log: y goes to a logged pixel"
@@ -600,7 +634,10 @@ impl App {
 
     /// Whether background work is under way (the loop then polls more often).
     pub(crate) fn busy(&self) -> bool {
-        self.renders.busy() || self.session.reload_waits() || self.search.is_some()
+        self.renders.busy()
+            || self.session.reload_waits()
+            || self.search.is_some()
+            || self.ray_log.as_ref().is_some_and(RayLog::comparing)
     }
 
     /// What the running find looks for and the row it is on (from 1), of
@@ -636,6 +673,35 @@ impl App {
     pub(crate) fn our_pixel(&self) -> Option<[u8; 3]> {
         let (x, y) = self.pixel.cursor();
         self.renders.image().and_then(|i| pixel(i, x, y))
+    }
+}
+
+/// What the status line says of the log's pixel: words that change when
+/// its comparison comes back.
+enum LogWords {
+    /// Which logged pixel it is and how it compares (`y`).
+    Pixel,
+    /// The log's name and counts too (at open).
+    Opening,
+    /// What a toggle did (its message), and how the pixel compares now.
+    Toggled(String),
+}
+
+impl LogWords {
+    fn say(&self, log: &RayLog, cursor: (u32, u32)) -> String {
+        match self {
+            LogWords::Pixel => log.pixel_words(cursor),
+            LogWords::Opening => log.opening_words(cursor),
+            LogWords::Toggled(message) => {
+                let against = match log.report().map(|r| &r.first_divergence) {
+                    _ if log.comparing() => format!(" · {}", ray_log::COMPARING),
+                    None => String::new(),
+                    Some(None) => " · your rays of this pixel match ours".to_string(),
+                    Some(Some(d)) => format!(" · your rays first differ at {} {}", d.path, d.field),
+                };
+                format!("{message}{against}")
+            }
+        }
     }
 }
 

@@ -2,28 +2,36 @@
 //! set beside it. The log's first pixels are kept whole (as `compare
 //! --rays` reports them); the pixel shown is compared again with the tree
 //! as it is traced now, so that a toggle or a mistake turned on shows
-//! whether it makes your rays and ours agree. `y` goes from logged pixel
-//! to logged pixel.
+//! whether it makes your rays and ours agree. That comparison runs in the
+//! background (`compare_job.rs`): until it is back, the pixel is shown as
+//! being compared. `y` goes from logged pixel to logged pixel.
 
 use std::io::BufReader;
 use std::path::Path;
+use std::sync::Arc;
 
 use anyhow::{Result, bail};
 
 use raystep_engine::record::{RayTree, count};
 use raystep_engine::scene::Scene;
-use raystep_model::mistakes::{Mistake, Mistakes};
-use raystep_tools::divergence::{
-    Consistent, LogComparison, OurRays, PixelReport, Tolerance, compare_log, compare_pixel,
-};
+use raystep_model::mistakes::Mistake;
+use raystep_tools::divergence::{Consistent, LogComparison, PixelReport, Tolerance, compare_log};
 use raystep_tools::raylog::{LoggedRay, RaylogReader};
+
+use crate::tui::compare_job::{Comparer, Request};
+
+/// Your rays of one pixel, shared with the comparing thread.
+type YourRays = Arc<Vec<LoggedRay>>;
+
+/// What is said of a logged pixel while it is being compared.
+pub(super) const COMPARING: &str = "comparing your rays with ours…";
 
 pub struct RayLog {
     /// The log's file, as given.
     name: String,
     /// The pixels kept whole, in the order they first appear in the log,
-    /// each with your rays.
-    pixels: Vec<((u32, u32), Vec<LoggedRay>)>,
+    /// each with your rays (shared with the comparing thread).
+    pixels: Vec<((u32, u32), YourRays)>,
     /// The log's verdict on each of those pixels, as `compare --rays`
     /// gives it: the mistakes named, and those it is only consistent with.
     verdicts: Vec<(Vec<Mistake>, Vec<Consistent>)>,
@@ -34,8 +42,15 @@ pub struct RayLog {
     /// The logged pixel `y` went to last.
     at: Option<usize>,
     /// The pixel traced beside your rays of it; `None` when it is not in
-    /// the log.
+    /// the log, or while it is being compared.
     report: Option<PixelReport>,
+    /// Compares the pixel shown in the background.
+    comparer: Comparer,
+    /// Each pixel or settings followed is a new generation; results of
+    /// older ones are dropped.
+    generation: u64,
+    /// Whether the pixel shown is logged and its comparison not back yet.
+    comparing: bool,
     /// The log's verdict (the mistakes it is traced as, and in words), when
     /// a logged pixel differs: it overrides the image's (issue 39).
     verdict: Option<(Vec<raystep_model::mistakes::Mistake>, String)>,
@@ -66,14 +81,29 @@ impl RayLog {
             name,
             verdicts,
             pixels: (comparison.pixels.into_iter())
-                .map(|p| (p.pixel, p.yours))
+                .map(|p| (p.pixel, Arc::new(p.yours)))
                 .collect(),
             pixel_count: comparison.pixel_count,
             rays_read: comparison.rays_read,
             tolerance: comparison.tolerance,
             at: None,
             report: None,
+            comparer: Comparer::new(false),
+            generation: 0,
+            comparing: false,
         }
+    }
+
+    /// The log comparing on the caller's thread when `sync` (tests), so
+    /// that a pixel's report is ready when `follow` returns.
+    pub(super) fn comparing_in(mut self, sync: bool) -> RayLog {
+        self.comparer = Comparer::new(sync);
+        self
+    }
+
+    /// Whether the pixel shown is logged and still being compared.
+    pub fn comparing(&self) -> bool {
+        self.comparing
     }
 
     /// The mistake the pixel shown is named with, or else consistent
@@ -93,23 +123,42 @@ impl RayLog {
         self.report.as_ref()
     }
 
-    /// Compares `tree`, the pixel as traced now, with your rays of it.
-    pub(super) fn follow(&mut self, tree: &RayTree, scene: &Scene) {
+    /// Compares `tree`, the pixel as traced now, with your rays of it, in
+    /// the background: the report is there once `collect` has taken it in
+    /// (at once when comparing on the caller's thread).
+    pub(super) fn follow(&mut self, tree: &RayTree, scene: Arc<Scene>) {
+        self.generation += 1;
+        self.report = None;
         let logged = self
             .pixels
             .iter()
             .position(|(pixel, _)| *pixel == tree.pixel);
-        self.report = logged.map(|at| {
-            let ours = OurRays::of(tree.clone());
-            let mut report =
-                compare_pixel(scene, self.pixels[at].1.clone(), &ours, &self.tolerance);
-            // Traced as the scene says (no mistake turned on), the pixel
-            // has the whole log's verdict: a name needs every logged pixel.
-            if tree.mistakes == Mistakes::NONE && !report.matches {
-                (report.mistakes, report.consistent) = self.verdicts[at].clone();
+        self.comparing = logged.is_some();
+        if let Some(at) = logged {
+            self.comparer.request(Request {
+                generation: self.generation,
+                scene,
+                tree: tree.clone(),
+                yours: self.pixels[at].1.clone(),
+                tolerance: self.tolerance,
+                verdict: self.verdicts[at].clone(),
+            });
+            self.collect();
+        }
+    }
+
+    /// Takes in the comparison of the pixel shown once it is back; whether
+    /// it came now. Those of pixels or settings since left are dropped.
+    pub(super) fn collect(&mut self) -> bool {
+        let mut came = false;
+        while let Some((generation, report)) = self.comparer.poll() {
+            if generation == self.generation {
+                self.report = Some(report);
+                self.comparing = false;
+                came = true;
             }
-            report
-        });
+        }
+        came
     }
 
     /// `y` (`delta` 1) or `Y` (-1): the logged pixel after or before the
@@ -154,6 +203,7 @@ impl RayLog {
             .as_ref()
             .and_then(|r| r.first_divergence.as_ref())
         {
+            None if self.comparing => COMPARING.to_string(),
             None => "your rays match ours".to_string(),
             Some(d) => format!("first differs at {} {}, D goes there", d.path, d.field),
         };

@@ -29,6 +29,7 @@ pub(crate) fn draw(frame: &mut Frame, app: &App, area: Rect) {
     let report = log.and_then(|l| l.report());
     let against = match (log, report) {
         (None, _) => String::new(),
+        (Some(l), None) if l.comparing() => " · comparing with your log…".into(),
         (Some(_), None) => " · not in your log".into(),
         (Some(_), Some(r)) if r.matches => " · your log matches".into(),
         (Some(_), Some(_)) => " · your log differs".into(),
