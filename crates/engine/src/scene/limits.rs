@@ -39,6 +39,20 @@ pub(crate) const ATTENUATION: Bounds = Bounds::new(0.0, 1e6);
 /// `min_weight`, the cutoff of a ray's accumulated weight (MODEL §5).
 pub(crate) const WEIGHT: Bounds = Bounds::new(0.0, 1.0);
 
+/// A scale factor of a CSE 167 `.test` `scale` (its absolute value; a
+/// negative factor mirrors): as narrow as a size, so no factor flattens.
+pub(crate) const SCALE: Bounds = Bounds::new(1e-3, 1e4);
+/// A rotation angle in degrees (`.test` `rotate`): any turn, a bounded number.
+pub(crate) const ANGLE: Bounds = Bounds::new(-1e6, 1e6);
+/// Any entry of a composed `.test` transform: a product of many scales may
+/// not grow past this, so every point it places stays finite.
+pub(crate) const TRANSFORM_ENTRY: Bounds = Bounds::new(-1e8, 1e8);
+/// The most vertices (or vertex-normal pairs) a `.test` file may define or
+/// declare with `maxverts` / `maxvertnorms`: a million-triangle mesh's worth.
+pub(crate) const MAX_TEST_VERTICES: usize = 1 << 22;
+/// The deepest `pushTransform` nesting of a `.test` file.
+pub(crate) const MAX_TRANSFORM_DEPTH: usize = 1024;
+
 impl Bounds {
     pub(crate) const fn new(min: f64, max: f64) -> Self {
         Self { min, max }

@@ -8,6 +8,7 @@ pub mod mesh;
 pub(crate) mod nff;
 pub mod overrides;
 mod switches;
+pub mod test_format;
 pub(crate) mod toml_format;
 mod toml_sections;
 
@@ -319,6 +320,16 @@ fn parse_parts(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
     let is_nff = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("nff"));
+    let is_test = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("test"));
+    if is_test {
+        // test_format::parse reads them, but nothing renders a TestScene yet.
+        return Err(SceneError::plain(format!(
+            "{}: CSE 167 .test scenes are not read yet (issue 42)",
+            path.display()
+        )));
+    }
     if is_nff {
         nff::parse(path, text)
     } else {

@@ -1,0 +1,15 @@
+#![no_main]
+//! The CSE 167 `.test` reader on arbitrary text: a description or an error,
+//! never a panic, and the error prints (its excerpt slices the text by byte
+//! offsets).
+
+use std::path::Path;
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let text = String::from_utf8_lossy(data);
+    if let Err(error) = raystep_engine::scene::test_format::parse(&text, Path::new("fuzz.test")) {
+        let _ = error.to_string();
+    }
+});
