@@ -99,7 +99,7 @@ use raystep_model::camera::Camera;
 use raystep_model::math::exceeds;
 
 #[cfg(test)]
-mod tests;
+mod parsing_tests;
 
 /// The course's default recursion depth (its spec: "default 5").
 pub const DEFAULT_MAXDEPTH: u32 = 5;
