@@ -40,3 +40,7 @@ mkdir -p corpus/mesh_loaders
 { printf '0'; grep -v '^#' ../scenes/cornell/cornell.obj; } > corpus/mesh_loaders/cornell-obj
 printf '1solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' \
     > corpus/mesh_loaders/triangle-stl
+# test_loader: a CSE 167 .test scene using every kind of command (issue 42).
+mkdir -p corpus/test_loader
+printf 'size 4 3\ncamera 0 0 5 0 0 0 0 1 0 45\nambient .1 .2 .3\npushTransform\ntranslate 1 0 0\nscale 2 1 1\nsphere 0 0 0 1\npopTransform\nmaxverts 3\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 2\npoint 1 1 1 1 1 1\ndirectional 0 0 1 .5 .5 .5\nattenuation 1 0.1 0.05\n' \
+    > corpus/test_loader/every-command
