@@ -285,6 +285,26 @@ fn an_ascii_stl_is_refused_at_the_line_and_column_of_what_is_wrong() {
 }
 
 #[test]
+fn a_mesh_that_is_not_utf_8_is_refused_at_the_bad_byte() {
+    // Line 2 of each; the byte 0xFF after `v 1 ` (column 5) and after
+    // `vertex 1 ` (column 10). The OBJ's message named its line only, the
+    // STL's too, until both used the scene reader's check.
+    refused(
+        &[("u.obj", b"v 0 0 0\nv 1 \xff 0\nv 0 1 0\nf 1 2 3\n")],
+        "u.obj",
+        "u.obj:2:5: invalid UTF-8 (byte 0xFF): OBJ files must be UTF-8 text",
+    );
+    let mut bytes = ascii_stl("vertex 1 X 0").into_bytes();
+    let bad = bytes.iter().position(|&b| b == b'X').unwrap();
+    bytes[bad] = 0xFF;
+    refused(
+        &[("u.stl", &bytes)],
+        "u.stl",
+        "u.stl:5:10: invalid UTF-8 (byte 0xFF): ASCII STL files must be UTF-8 text",
+    );
+}
+
+#[test]
 fn a_mesh_that_gives_no_triangle_is_refused_in_a_scene_too() {
     // main rendered the scene without the mesh, silently: an ASCII STL
     // saved as .obj (tobj knows none of its keywords), an OBJ of comments,

@@ -278,16 +278,27 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let mut parts = {
         let bytes =
             input_file::read(path, "", SCENE_CAP).map_err(|e| SceneError::plain(e.to_string()))?;
-        let text = String::from_utf8(bytes).map_err(|e| invalid_utf8(path, e.as_bytes()))?;
+        let text = String::from_utf8(bytes)
+            .map_err(|e| invalid_utf8(path, e.as_bytes(), "scene files"))?;
         parse_parts(path, &text)?
     };
     parts.files.insert(0, path.to_owned());
     Ok(parts.build())
 }
 
+/// `bytes` as text, or where they stop being UTF-8 (`invalid_utf8`):
+/// `files` says what must be text ("OBJ files").
+pub(crate) fn utf8_text<'a>(
+    path: &Path,
+    bytes: &'a [u8],
+    files: &str,
+) -> Result<&'a str, SceneError> {
+    std::str::from_utf8(bytes).map_err(|_| invalid_utf8(path, bytes, files))
+}
+
 /// Where a file stops being UTF-8 text: the first bad byte's line and column,
 /// with the line shown with U+FFFD in place of its bad bytes.
-fn invalid_utf8(path: &Path, bytes: &[u8]) -> SceneError {
+fn invalid_utf8(path: &Path, bytes: &[u8], files: &str) -> SceneError {
     let Err(e) = std::str::from_utf8(bytes) else {
         unreachable!("called only on bytes that are not UTF-8")
     };
@@ -304,7 +315,7 @@ fn invalid_utf8(path: &Path, bytes: &[u8]) -> SceneError {
         &text,
         bad..bad + char::REPLACEMENT_CHARACTER.len_utf8(),
         format!(
-            "invalid UTF-8 (byte 0x{:02X}): scene files must be UTF-8 text",
+            "invalid UTF-8 (byte 0x{:02X}): {files} must be UTF-8 text",
             bytes[bad]
         ),
     )

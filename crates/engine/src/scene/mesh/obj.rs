@@ -20,7 +20,7 @@ use super::obj_lines::{Lines, check_lines, no_faces};
 use super::{Loaded, Triangle, read_file};
 use crate::input_file::byte_order_mark;
 use crate::printable::printable;
-use crate::scene::SceneError;
+use crate::scene::{SceneError, utf8_text};
 
 /// Reads `path` and the MTL files its `mtllib` lines name (beside it),
 /// each file once however many lines name it (10,000 `mtllib` lines of one
@@ -87,17 +87,7 @@ pub(super) fn parse(
     bytes: &[u8],
     materials: &dyn Fn(&Path) -> tobj::MTLLoadResult,
 ) -> Result<Loaded, SceneError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        SceneError::plain(format!(
-            "{}:{line}: invalid UTF-8: OBJ files must be text",
-            path.display()
-        ))
-    })?;
+    let text = utf8_text(path, bytes, "OBJ files")?;
     let text = &text[byte_order_mark(text.as_bytes())..];
     let lines = check_lines(path, text)?;
     if lines.faces == 0 {

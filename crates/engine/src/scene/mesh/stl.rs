@@ -17,8 +17,8 @@ use glam::DVec3;
 
 use super::{Loaded, Triangle, read_file};
 use crate::input_file::byte_order_mark;
-use crate::scene::SceneError;
 use crate::scene::limits::COORDINATE;
+use crate::scene::{SceneError, utf8_text};
 
 /// A binary STL's header and triangle count, and each triangle's bytes
 /// (normal, three vertices, attribute count).
@@ -122,17 +122,7 @@ fn binary(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, String> {
 /// `vertex x y z`, `endloop`, `endfacet`; then `endsolid NAME`, after
 /// which nothing is read.
 fn ascii(path: &Path, bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, SceneError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        SceneError::plain(format!(
-            "{}:{line}: invalid UTF-8: an ASCII STL is text",
-            path.display()
-        ))
-    })?;
+    let text = utf8_text(path, bytes, "ASCII STL files")?;
     let error = |span: Range<usize>, message: String| SceneError::at(path, text, span, message);
     let mut lines = Lines::new(text);
     // The `solid` line, as `is_ascii` found it.
