@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::support::renders::render_to;
 use crate::support::{raystep, scene_at, stderr};
 use raystep_engine::record::{explain, record_pixel};
 use raystep_engine::render::render;
@@ -439,21 +440,9 @@ fn compare_takes_a_mesh_as_its_scene() {
                g floor\nf 1 4 3 2\ng leaf\nf 5 7 6\n";
     let dir = folder(&[("m.obj", obj.as_bytes())]);
     let scene = dir.path().join("m.obj");
-    let image = |name: &str, mistake: Option<&str>| {
+    let image = |name: &str, mistake: &[&str]| {
         let out = dir.path().join(name);
-        let mut args = vec![
-            "render",
-            scene.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--size",
-            "64x48",
-        ];
-        if let Some(m) = mistake {
-            args.extend(["--mistake", m]);
-        }
-        let output = raystep(&args);
-        assert!(output.status.success(), "{}", stderr(&output));
+        render_to(&scene, &out, (64, 48), mistake);
         out
     };
     let compare = |image: &Path| {
@@ -467,9 +456,9 @@ fn compare_takes_a_mesh_as_its_scene() {
         assert!(output.status.success(), "{}", stderr(&output));
         serde_json::from_slice::<serde_json::Value>(&output.stdout).unwrap()
     };
-    let same = compare(&image("same.png", None));
+    let same = compare(&image("same.png", &[]));
     assert_eq!(same["matches"], true, "{same}");
-    let dark = compare(&image("dark.png", Some("no-ambient")));
+    let dark = compare(&image("dark.png", &["--mistake", "no-ambient"]));
     assert_eq!(dark["matches"], false, "{dark}");
     assert_eq!(dark["mistakes"][0]["name"], "no-ambient", "{dark}");
 }
@@ -513,6 +502,25 @@ fn smooth_ball_obj(rings: usize, segments: usize) -> String {
     obj
 }
 
+/// `smooth_ball_obj(6, 8)` seen from (0, 0, 4), 40°, at `size` x `size`,
+/// lit from (−4, 4, 4), its material `material` (TOML keys, a line each).
+fn smooth_ball_scene(size: u32, material: &str) -> raystep_engine::scene::Scene {
+    let dir = folder(&[("ball.obj", smooth_ball_obj(6, 8).as_bytes())]);
+    let toml = dir.path().join("ball.toml");
+    std::fs::write(
+        &toml,
+        format!(
+            "[camera]\neye = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 40\n\
+             [image]\nwidth = {size}\nheight = {size}\n\
+             [materials.m]\n{material}\n\
+             [[light]]\nposition = [-4, 4, 4]\n\
+             [[object]]\nmaterial = \"m\"\nmesh = {{ file = \"ball.obj\" }}\n"
+        ),
+    )
+    .unwrap();
+    scene_at(&toml, None)
+}
+
 /// Issue 41: a smooth ball's rim. Where a ray meets a triangle's front but
 /// the blended normal N_s faces away from it (N_s·d > 0, only near the
 /// silhouette), the side is the triangle's plane's: entering, "front", and
@@ -520,18 +528,10 @@ fn smooth_ball_obj(rings: usize, segments: usize) -> String {
 /// from inside; made glass, total internal reflection on the first hit).
 #[test]
 fn a_smooth_balls_rim_is_its_front_side() {
-    let dir = folder(&[("ball.obj", smooth_ball_obj(6, 8).as_bytes())]);
-    let toml = dir.path().join("ball.toml");
-    std::fs::write(
-        &toml,
-        "[camera]\neye = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 40\n\
-         [image]\nwidth = 128\nheight = 128\n\
-         [materials.glass]\ncolor = [0.9, 0.9, 0.9]\nkd = 0.2\nks = 0.1\nkt = 0.8\nior = 1.5\n\
-         [[light]]\nposition = [-4, 4, 4]\n\
-         [[object]]\nmaterial = \"glass\"\nmesh = { file = \"ball.obj\" }\n",
-    )
-    .unwrap();
-    let scene = scene_at(&toml, None);
+    let scene = smooth_ball_scene(
+        128,
+        "color = [0.9, 0.9, 0.9]\nkd = 0.2\nks = 0.1\nkt = 0.8\nior = 1.5",
+    );
     let mut rim = 0;
     for y in 0..128 {
         for x in 0..128 {
@@ -626,18 +626,7 @@ fn corners(scene: &raystep_engine::scene::Scene, index: usize) -> Vec<[f64; 3]> 
 /// listed. A ray that misses the ball still lists the triangles it passed.
 #[test]
 fn a_mesh_hits_neighbours_are_not_near_misses() {
-    let dir = folder(&[("ball.obj", smooth_ball_obj(6, 8).as_bytes())]);
-    let toml = dir.path().join("ball.toml");
-    std::fs::write(
-        &toml,
-        "[camera]\neye = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 40\n\
-         [image]\nwidth = 64\nheight = 64\n\
-         [materials.m]\ncolor = [0.9, 0.4, 0.1]\n\
-         [[light]]\nposition = [-4, 4, 4]\n\
-         [[object]]\nmaterial = \"m\"\nmesh = { file = \"ball.obj\" }\n",
-    )
-    .unwrap();
-    let scene = scene_at(&toml, None);
+    let scene = smooth_ball_scene(64, "color = [0.9, 0.4, 0.1]");
     let (mut hits, mut passed_by) = (0, 0);
     for y in 0..64 {
         for x in 0..64 {

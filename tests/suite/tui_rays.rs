@@ -443,15 +443,7 @@ fn the_details_say_no_line_twice_and_the_tree_counts_rays_as_compare_does() {
             .any(|l| l.contains("a shadow ray to each light in front")),
         "{details:#?}"
     );
-    let terminal = screen(&mut app, 160, 80);
-    let rect = app.panes().rect(Pane::Tree);
-    let top: String = (rect.x..rect.x + rect.width)
-        .map(|x| {
-            terminal.backend().buffer()[(x, rect.y)]
-                .symbol()
-                .to_string()
-        })
-        .collect();
+    let top = tree_title(&mut app);
     assert!(
         top.contains("· 16 rays (8 shadow) · your log differs"),
         "{top}"

@@ -302,16 +302,25 @@ fn check_submit(name: &str) -> Result<(), String> {
     }
 }
 
+/// An assignment file in scenes/, beside the scenes it names, for tests.
+#[cfg(test)]
+pub(crate) fn test_path() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/a.toml")
+}
+
+/// `parse` of `text` as `test_path()`; refused, the message's first line.
+#[cfg(test)]
+pub(crate) fn test_parsed(text: &str) -> Result<Assignment, String> {
+    parse(&test_path(), text).map_err(|e| e.to_string().lines().next().unwrap().to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     /// `parse` from a folder holding glass.toml, as scenes/ does.
     fn parse_here(text: &str) -> Result<Assignment, SceneError> {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../..")
-            .join("scenes/a.toml");
-        parse(&path, text)
+        parse(&test_path(), text)
     }
 
     fn error(text: &str) -> String {

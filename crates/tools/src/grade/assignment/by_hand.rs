@@ -136,15 +136,7 @@ mod tests {
     use std::path::Path;
 
     use super::check_students;
-    use crate::grade::assignment::{Assignment, parse};
-
-    fn here() -> std::path::PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/a.toml")
-    }
-
-    fn parsed(text: &str) -> Result<Assignment, String> {
-        parse(&here(), text).map_err(|e| e.to_string().lines().next().unwrap().to_string())
-    }
+    use crate::grade::assignment::{Assignment, test_parsed as parsed, test_path as here};
 
     /// Two scenes (glass.png 10 points, shadows.png 5) and `overrides`,
     /// from line 9 on.

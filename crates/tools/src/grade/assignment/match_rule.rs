@@ -68,18 +68,8 @@ impl Knobs {
 
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
-
     use crate::compare::MatchRule;
-    use crate::grade::assignment::{Assignment, parse};
-
-    fn here() -> std::path::PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/a.toml")
-    }
-
-    fn parsed(text: &str) -> Result<Assignment, String> {
-        parse(&here(), text).map_err(|e| e.to_string().lines().next().unwrap().to_string())
-    }
+    use crate::grade::assignment::{test_parsed as parsed, test_path as here};
 
     fn refused(text: &str) -> String {
         match parsed(text) {
