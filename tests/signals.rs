@@ -82,22 +82,20 @@ impl Session {
         unsafe {
             command.pre_exec(move || {
                 match start {
-                    Start::Session => {
+                    Start::Session | Start::LimitedSession(_) => {
                         libc::setsid();
                         libc::ioctl(0, libc::TIOCSCTTY, 0);
-                    }
-                    Start::LimitedSession(bytes) => {
-                        libc::setsid();
-                        libc::ioctl(0, libc::TIOCSCTTY, 0);
-                        let limit = libc::rlimit {
-                            rlim_cur: bytes,
-                            rlim_max: bytes,
-                        };
-                        libc::setrlimit(libc::RLIMIT_AS, &limit);
                     }
                     Start::Job => {
                         libc::setpgid(0, 0);
                     }
+                }
+                if let Start::LimitedSession(bytes) = start {
+                    let limit = libc::rlimit {
+                        rlim_cur: bytes,
+                        rlim_max: bytes,
+                    };
+                    libc::setrlimit(libc::RLIMIT_AS, &limit);
                 }
                 Ok(())
             });
