@@ -154,6 +154,58 @@ fn the_catalogue_stops_within_its_budget_and_says_so() {
     );
 }
 
+#[test]
+fn many_pixels_against_huge_trees_keep_what_they_report() {
+    // Twelve primary rays against the same scene: each pixel's tree has
+    // 98,326 rays and the log has one of them, so 98,325 are ours only.
+    // The old code kept each pixel's alignment and a rule in words for
+    // every one of those rays, about 130 MB a pixel on top of the 620 MB
+    // one tree takes while it is compared (12 pixels: past 2 GB); now a
+    // pixel keeps its first 256 rays in one tree only and counts the rest.
+    let dir = tempfile::tempdir().unwrap();
+    let text = include_str!("../../scenes/three-glass-planes.toml")
+        .replace(
+            "[settings]\n",
+            "[settings]\nmin_weight = 0\nmax_rays = 65536\n",
+        )
+        .replace("width = 32\nheight = 24", "width = 8\nheight = 6");
+    let scene = dir.path().join("planes.toml");
+    std::fs::write(&scene, text).unwrap();
+    let log = dir.path().join("twelve.jsonl");
+    let lines: String = (0..12)
+        .map(|i| format!("{{\"pixel\": [{}, {}], \"path\": \"P\"}}\n", i % 8, i / 8))
+        .collect();
+    std::fs::write(&log, lines).unwrap();
+    let output = raystep_within(
+        1100 * MB,
+        &[
+            "compare",
+            path(&scene),
+            "--rays",
+            path(&log),
+            "--format",
+            "json",
+        ],
+    );
+    exited(&output, 0);
+    let report: serde_json::Value = serde_json::from_str(&stdout(&output)).unwrap();
+    let pixels = report["pixels"].as_array().unwrap();
+    assert_eq!(pixels.len(), 12);
+    for pixel in pixels {
+        let ours = pixel["rays_ours"].as_u64().unwrap();
+        // The primary ray is in both trees; every other ray of ours is
+        // ours only: 256 listed, the rest counted.
+        assert_eq!(pixel["only_ours"].as_array().unwrap().len(), 256, "{pixel}");
+        assert_eq!(
+            pixel["unpaired_not_listed"]["ours"],
+            ours - 1 - 256,
+            "{pixel}"
+        );
+        assert_eq!(pixel["unpaired_not_listed"]["yours"], 0, "{pixel}");
+        assert_eq!(pixel["unpaired"].as_array().unwrap().len(), 256, "{pixel}");
+    }
+}
+
 /// The message the allocator gives, naming the limit.
 fn out_of_memory(output: &Output, limit_mb: u64) {
     exited(output, 1);

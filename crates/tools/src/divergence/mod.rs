@@ -38,6 +38,10 @@ use raystep_engine::scene::Scene;
 /// The pixels reported in full; the rest are counted.
 pub const PIXELS_SHOWN: usize = 64;
 
+/// The rays in one tree only kept per pixel shown, each with its rule in
+/// words; the rest are counted (`PixelReport::unpaired_total`).
+pub const UNPAIRED_KEPT: usize = 256;
+
 /// Our trees kept for the counted pixels: a log usually holds a pixel's
 /// rays together, so a few suffice; out of order, a tree is recorded again.
 const TREES_KEPT: usize = 8;
@@ -224,7 +228,16 @@ pub fn compare_log<R: BufRead>(
         .into_iter()
         .map(|(pixel, yours, counted)| {
             let ours = OurRays::record(scene, &scene.settings, pixel);
-            pixel_report::compare_within(scene, (yours, counted), &ours, &tolerance, &mut budget)
+            let mut report = pixel_report::compare_within(
+                scene,
+                (yours, counted),
+                &ours,
+                &tolerance,
+                &mut budget,
+                UNPAIRED_KEPT,
+            );
+            report.aligned = Vec::new();
+            report
         })
         .collect();
     verdict::decide(scene, &mut pixels, &tolerance, &mut budget);

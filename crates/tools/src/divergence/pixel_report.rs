@@ -109,8 +109,13 @@ pub struct PixelReport {
     /// How many differences (numbers, and rays in one tree only) come after
     /// the first: they follow from it.
     pub later_differences: usize,
+    /// The rays in one tree only, in cast order: in a whole log's
+    /// comparison the first `UNPAIRED_KEPT` of each, `unpaired_total`
+    /// saying how many there are.
     pub only_yours: Vec<Unpaired>,
     pub only_ours: Vec<Unpaired>,
+    /// How many rays are in yours only and in ours only.
+    pub unpaired_total: (usize, usize),
     /// The catalogue mistakes named: each one's tree is your log at this
     /// pixel and at every other pixel of the log, and at least two of the
     /// log's pixels differ from ours in colour where it does.
@@ -126,7 +131,9 @@ pub struct PixelReport {
     /// What the comparison read differently from the log as written (a
     /// miss that logs a t), in words.
     pub notes: Vec<String>,
-    /// Your rays as logged, and both trees aligned.
+    /// Your rays as logged, and both trees aligned. A whole log's
+    /// comparison (`compare_log`) keeps no alignment: every pixel's would
+    /// be held at once, up to `max_rays` rays each, for nothing it reports.
     pub yours: Vec<LoggedRay>,
     pub aligned: Vec<AlignedRay>,
     pub rays_ours: usize,
@@ -203,17 +210,20 @@ pub fn compare_pixel(
         ours,
         tolerance,
         &mut budget,
+        usize::MAX,
     )
 }
 
-/// `compare_pixel`, with the rays of the pixel that were only counted
-/// and the catalogue's budget left.
+/// `compare_pixel`, with the rays of the pixel that were only counted,
+/// the catalogue's budget left and how many rays in one tree only to keep
+/// (each with its rule in words) on either side.
 pub(crate) fn compare_within(
     scene: &Scene,
     (yours, counted_only): (Vec<LoggedRay>, CountedOnly),
     ours: &OurRays,
     tolerance: &Tolerance,
     budget: &mut CatalogueBudget,
+    unpaired_kept: usize,
 ) -> PixelReport {
     let notes = super::miss_t::notes(&yours);
     let aligned = align(&yours, ours, tolerance);
@@ -228,6 +238,7 @@ pub(crate) fn compare_within(
         aligned
             .iter()
             .filter(|a| a.status() == status)
+            .take(unpaired_kept)
             .map(|a| Unpaired {
                 path: a.path.clone(),
                 rule: rule(a),
@@ -240,6 +251,16 @@ pub(crate) fn compare_within(
     let only_ours = unpaired(RayStatus::OnlyOurs, &|a| {
         why_ours(scene, ours, a.ours.unwrap_or(0))
     });
+    let unpaired_total = (
+        aligned
+            .iter()
+            .filter(|a| a.status() == RayStatus::OnlyYours)
+            .count(),
+        aligned
+            .iter()
+            .filter(|a| a.status() == RayStatus::OnlyOurs)
+            .count(),
+    );
     // A ray only counted is one ours never casts: a difference.
     let matches = found.is_empty() && counted_only.total() == 0;
     let later_differences = (found.len() + counted_only.total()).saturating_sub(1);
@@ -263,6 +284,7 @@ pub(crate) fn compare_within(
         later_differences,
         only_yours,
         only_ours,
+        unpaired_total,
         mistakes: Vec::new(),
         consistent,
         colour_agrees,

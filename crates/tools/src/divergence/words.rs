@@ -169,9 +169,19 @@ fn pixel_text(out: &mut String, pixel: &PixelReport) {
             )
         );
     }
-    unpaired_text(out, "Only in yours", &pixel.only_yours);
+    unpaired_text(
+        out,
+        "Only in yours",
+        &pixel.only_yours,
+        pixel.unpaired_total.0,
+    );
     counted_text(out, pixel);
-    unpaired_text(out, "Only in ours", &pixel.only_ours);
+    unpaired_text(
+        out,
+        "Only in ours",
+        &pixel.only_ours,
+        pixel.unpaired_total.1,
+    );
     if pixel.catalogue_stopped {
         let _ = writeln!(
             out,
@@ -241,7 +251,8 @@ fn counted_text(out: &mut String, pixel: &PixelReport) {
 /// At most this many rays in one tree only are listed per pixel.
 const UNPAIRED_SHOWN: usize = 8;
 
-fn unpaired_text(out: &mut String, title: &str, rays: &[Unpaired]) {
+/// `rays`: the first of `total` rays in one tree only.
+fn unpaired_text(out: &mut String, title: &str, rays: &[Unpaired], total: usize) {
     if rays.is_empty() {
         return;
     }
@@ -249,8 +260,8 @@ fn unpaired_text(out: &mut String, title: &str, rays: &[Unpaired]) {
     for ray in rays.iter().take(UNPAIRED_SHOWN) {
         let _ = writeln!(out, "    {}: {}", ray.path, ray.rule);
     }
-    if rays.len() > UNPAIRED_SHOWN {
-        let _ = writeln!(out, "    and {} more", rays.len() - UNPAIRED_SHOWN);
+    if total > UNPAIRED_SHOWN {
+        let _ = writeln!(out, "    and {} more", total - UNPAIRED_SHOWN);
     }
 }
 
@@ -368,6 +379,18 @@ fn pixel_json(pixel: &PixelReport) -> Json {
             "deeper": counted.deeper,
             "deepest": counted.deepest,
             "over": counted.over,
+        });
+    }
+    // Only when the lists stop short (`UNPAIRED_KEPT`): how many rays of
+    // each side they leave out.
+    let left_out = (
+        pixel.unpaired_total.0 - pixel.only_yours.len(),
+        pixel.unpaired_total.1 - pixel.only_ours.len(),
+    );
+    if left_out != (0, 0) {
+        report["unpaired_not_listed"] = object!({
+            "yours": left_out.0,
+            "ours": left_out.1,
         });
     }
     if pixel.catalogue_stopped {
