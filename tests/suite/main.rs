@@ -35,6 +35,7 @@ mod meshes;
 mod mistakes;
 mod nff_import;
 mod one_engine;
+mod profiles;
 mod pruning;
 mod raylog;
 mod readme;

@@ -649,6 +649,24 @@ fn scenes_guide_defaults_are_the_readers() {
         ("material `ior`", "1", 3, "ior = 1"),
         ("material `ka`", "1", 3, "ka = 1"),
         ("material `reflect`", "`true`", 3, "reflect = true"),
+        (
+            "`settings.profile`",
+            "`\"lecture\"`",
+            2,
+            "profile = \"lecture\"",
+        ),
+        (
+            "material `emission` (E)",
+            "`[0, 0, 0]`",
+            3,
+            "emission = [0, 0, 0]",
+        ),
+        (
+            "material `specular_color` (O_s)",
+            "`[1, 1, 1]`",
+            3,
+            "specular_color = [1, 1, 1]",
+        ),
         ("light `name`", "`\"light 0\"`", 4, "name = \"light 0\""),
         ("light `color` (I_p)", "`[1, 1, 1]`", 4, "color = [1, 1, 1]"),
         ("mesh `scale`", "1", 5, ", scale = 1"),
@@ -664,6 +682,8 @@ fn scenes_guide_defaults_are_the_readers() {
     let described = [
         "`camera.eye`, `camera.look_at`",
         "material `specular`",
+        "material `ambient`",
+        "light `attenuation`",
         "object `name`",
         "object `material`",
         "mesh `material`",

@@ -244,6 +244,10 @@ impl<A: Recorder, B: Recorder> Recorder for Both<'_, A, B> {
         self.0.ambient(term);
         self.1.ambient(term);
     }
+    fn emission(&mut self, term: Color) {
+        self.0.emission(term);
+        self.1.emission(term);
+    }
     fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: f64) {
         self.0.shadow_cast(light, ray, distance);
         self.1.shadow_cast(light, ray, distance);

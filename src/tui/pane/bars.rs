@@ -83,6 +83,13 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
         sep(),
         Span::raw(format!("depth {}", settings.max_depth)),
     ]);
+    if !settings.profile.is_lecture() {
+        // Which equation the scene means: every term follows it (MODEL §11).
+        right.extend([
+            sep(),
+            Span::raw(format!("profile {}", settings.profile.name())).bold(),
+        ]);
+    }
     if !settings.mistakes.is_empty() {
         // A teacher must not forget a mistake is on: it changes every pixel.
         right.extend([

@@ -3,6 +3,7 @@
 
 use raystep_model::math::Color;
 
+use super::shared_words::weight_words;
 use super::{Event, EventKind, RayTree, color, kind_name, light_label, not_cast_line, num, root};
 use crate::scene::Scene;
 
@@ -17,7 +18,7 @@ pub fn describe_event(tree: &RayTree, scene: &Scene, event: &Event) -> (String, 
     match &event.kind {
         EventKind::RayCast { kind, depth } => {
             let weight = if node.parent.is_some() {
-                format!(", weight {}", num(node.weight))
+                format!(", weight {}", weight_words(node))
             } else {
                 String::new()
             };
@@ -43,6 +44,10 @@ pub fn describe_event(tree: &RayTree, scene: &Scene, event: &Event) -> (String, 
             Some(node.color),
         ),
         EventKind::Ambient { term } => (format!("{ray}: ambient {}", color(*term)), Some(*term)),
+        EventKind::Emission { term } => (
+            format!("{ray}: emission {}, added as it is", color(*term)),
+            Some(*term),
+        ),
         EventKind::ShadowCast { light } => (
             format!("{ray}: shadow ray to {}", light_name(scene, *light)),
             None,

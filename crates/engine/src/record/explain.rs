@@ -8,7 +8,7 @@ use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
 use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
-use super::shared_words::{kind_name, not_cast_reason};
+use super::shared_words::{kind_name, not_cast_reason, weight_words};
 use super::sources::{brightness, sources};
 use crate::trace::{PruneRule, RayKind};
 use raystep_model::math::{Color, EPS};
@@ -152,6 +152,9 @@ pub fn explain_lines(tree: &RayTree) -> Vec<Told> {
             color(c)
         ),
     );
+    if let Some(words) = tree.settings.profile.words() {
+        out.say(Said::Mistakes, words);
+    }
     if !tree.mistakes.is_empty() {
         out.say(
             Said::Mistakes,
@@ -345,7 +348,14 @@ fn write_shaping(out: &mut Story, tree: &RayTree) {
 /// Each term of the primary ray with its share of the total brightness.
 fn write_shares(out: &mut Story, tree: &RayTree, id: NodeId) {
     let node = &tree.nodes[id];
-    let mut terms: Vec<(String, Color)> = vec![("ambient".into(), node.ambient)];
+    let ambient = match node.hit.as_ref().and_then(|h| h.factors.ambient) {
+        Some(_) => "ambient (the material's own)",
+        None => "ambient",
+    };
+    let mut terms: Vec<(String, Color)> = vec![(ambient.into(), node.ambient)];
+    if node.emission != Color::ZERO {
+        terms.push(("emission, added as it is".into(), node.emission));
+    }
     for light in &node.lights {
         terms.push((format!("diffuse from {}", light.light), light.diffuse));
         terms.push((format!("specular from {}", light.light), light.specular));
@@ -419,7 +429,17 @@ fn light_fate(light: &LightRecord) -> String {
         | LightFate::PartlyBlocked(shadow)
         | LightFate::Blocked(shadow) => shadow,
     };
-    let distance = if light.f_att < 1.0 {
+    let distance = if !light.clamped {
+        let [c1, c2, c3] = light.coefficients;
+        format!(
+            " At distance d = {} attenuation f_att = 1 / ({} + {} d + {} d²) = {}, no clamp (the cse167 profile).",
+            num(light.distance),
+            num(c1),
+            num(c2),
+            num(c3),
+            num(light.f_att)
+        )
+    } else if light.f_att < 1.0 {
         format!(
             " At distance {} attenuation f_att = {} lets {:.1}% of its light arrive.",
             num(light.distance),
@@ -428,6 +448,14 @@ fn light_fate(light: &LightRecord) -> String {
         )
     } else {
         String::new()
+    };
+    let distance = if light.lit_from_behind {
+        format!(
+            "{distance} It is behind the surface (N·L = {}): the cse167 profile adds no diffuse light, (N·L)₊ = 0, but its highlight still counts.",
+            num(light.n_dot_l)
+        )
+    } else {
+        distance
     };
     if let LightFate::Lit(_) = fate {
         return format!(
@@ -493,7 +521,7 @@ fn write_child(out: &mut Story, tree: &RayTree, id: NodeId) {
         Said::Child,
         format!(
             "{kind} ray (weight {}): {target} and brings back {}; after attenuation {} it adds {}.",
-            num(child.weight),
+            weight_words(child),
             color(child.color),
             num(child.attenuation),
             color(child.contribution)

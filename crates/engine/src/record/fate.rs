@@ -33,7 +33,7 @@ impl LightFate<'_> {
         if light.at_point {
             return LightFate::AtPoint;
         }
-        if light.faces_away {
+        if light.faces_away && !light.lit_from_behind {
             return LightFate::FacesAway;
         }
         match &light.shadow {

@@ -21,6 +21,7 @@ pub enum About {
     /// The miss, which also gives the ray's colour (the background).
     Miss,
     Ambient,
+    Emission,
     /// A light by its index in the scene: its shadow ray, blockers and terms.
     Light(usize),
     Refraction,
@@ -40,6 +41,7 @@ impl About {
             EventKind::Hit { .. } => About::Hit,
             EventKind::Miss { .. } => About::Miss,
             EventKind::Ambient { .. } => About::Ambient,
+            EventKind::Emission { .. } => About::Emission,
             EventKind::ShadowCast { light }
             | EventKind::Blocker { light, .. }
             | EventKind::Light { light, .. } => About::Light(*light),

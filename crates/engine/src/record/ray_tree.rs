@@ -27,6 +27,10 @@ pub struct Node {
     pub weight: f64,
     /// Distance attenuation applied in the parent (1 for a miss and for the primary ray).
     pub attenuation: f64,
+    /// A colour the profile weighs the ray by besides `weight`: a cse167
+    /// mirror ray's specular colour S (MODEL §11); absent when none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tint: Option<Color>,
     pub hit: Option<HitRecord>,
     /// Polygons whose plane the ray met before its hit (or at all, on a miss)
     /// but whose crossing test said outside: why the ray went past them.
@@ -34,6 +38,9 @@ pub struct Node {
     /// What the closest-hit query tested.
     pub cost: Cost,
     pub ambient: Color,
+    /// The material's emission E, added as it is; absent when black.
+    #[serde(skip_serializing_if = "is_black")]
+    pub emission: Color,
     pub lights: Vec<LightRecord>,
     pub refraction: Option<Refraction>,
     pub reflected: Option<NodeId>,
@@ -138,6 +145,13 @@ pub struct MaterialFactors {
     pub n: f64,
     pub kt: f64,
     pub ior: f64,
+    /// The material's own ambient colour, the ambient term as it is in
+    /// place of I_a k_a O_d (MODEL §1); absent when it has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ambient: Option<Color>,
+    /// The specular term's colour S; absent when white.
+    #[serde(skip_serializing_if = "is_white")]
+    pub specular_color: Color,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -178,6 +192,17 @@ pub struct LightRecord {
     pub at_point: bool,
     pub shadow: Option<ShadowRecord>,
     pub f_att: f64,
+    /// The (c1, c2, c3) f_att was computed with (the light's own, else
+    /// the scene's, as the mistakes in force left them), and whether it
+    /// was clamped to 1 (the profile's rule, MODEL §11): for the words.
+    #[serde(skip)]
+    pub(crate) coefficients: [f64; 3],
+    #[serde(skip)]
+    pub(crate) clamped: bool,
+    /// N·L <= 0, yet the profile casts the shadow ray and adds the
+    /// highlight (cse167, MODEL §11): the light is not left out.
+    #[serde(skip_serializing_if = "is_false")]
+    pub lit_from_behind: bool,
     pub specular_model: SpecularModel,
     /// N·H with Blinn, R·V with Phong, before clamping.
     pub specular_cosine: f64,
@@ -243,6 +268,10 @@ pub enum EventKind {
         tested: Cost,
     },
     Ambient {
+        term: Color,
+    },
+    /// A material's emission E, added as it is (only when not black).
+    Emission {
         term: Color,
     },
     ShadowCast {
@@ -337,6 +366,9 @@ impl RayTree {
         let node = &self.nodes[id];
         node.hit.as_ref()?;
         let mut sum = node.ambient;
+        if node.emission != Color::ZERO {
+            sum += node.emission;
+        }
         for light in &node.lights {
             sum += light.diffuse + light.specular;
         }
@@ -380,4 +412,12 @@ impl RayTree {
         value["tir"] = node.tir().into();
         value
     }
+}
+
+fn is_black(color: &Color) -> bool {
+    *color == Color::ZERO
+}
+
+fn is_white(color: &Color) -> bool {
+    *color == Color::ONE
 }

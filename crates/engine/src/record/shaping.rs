@@ -63,16 +63,10 @@ pub fn shaping_events(tree: &RayTree) -> Vec<Shaping> {
     events
 }
 
-/// The factor a node's colour is scaled by in the pixel: the product of
-/// weight x attenuation of the node and every ray above it.
+/// The most a node's colour is scaled by in the pixel, in any channel: the
+/// product of weight x attenuation of the node and every ray above it.
 pub fn reach(tree: &RayTree, id: NodeId) -> f64 {
-    let mut factor = 1.0;
-    let mut at = Some(id);
-    while let Some(node) = at.map(|i| &tree.nodes[i]) {
-        factor *= node.weight * node.attenuation;
-        at = node.parent;
-    }
-    factor
+    super::tree_words::path_factor(tree, id).max_element()
 }
 
 fn mean(c: Color) -> f64 {
@@ -97,14 +91,22 @@ pub fn place(tree: &RayTree, id: NodeId) -> String {
 
 fn miss(tree: &RayTree, id: NodeId, reach: f64) -> Shaping {
     let node = &tree.nodes[id];
+    // Channel by channel: a profile may weigh a ray by a colour (MODEL §11).
+    let adds = super::tree_words::path_factor(tree, id) * node.color;
+    let tinted = std::iter::successors(Some(id), |&n| tree.nodes[n].parent)
+        .any(|n| tree.nodes[n].tint.is_some());
     Shaping {
-        matters: reach * mean(node.color),
+        matters: if tinted {
+            mean(adds)
+        } else {
+            reach * mean(node.color)
+        },
         node: id,
         text: format!(
             "{} misses everything: the background {} adds {} to the pixel.",
             place(tree, id),
             color(node.color),
-            color(reach * node.color)
+            color(adds)
         ),
     }
 }

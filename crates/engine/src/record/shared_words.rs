@@ -63,7 +63,17 @@ pub(crate) fn cosine_name(model: SpecularModel) -> &'static str {
 pub fn ray_header(node: &Node) -> String {
     let mut text = format!("{} ray, depth {}", kind_name(node.kind), node.depth);
     if node.kind != RayKind::Primary {
-        let _ = write!(text, ", weight {}", num(node.weight));
+        let _ = write!(text, ", weight {}", weight_words(node));
     }
     text
+}
+
+/// A secondary ray's weight as its parent scales it: "0.5", or with the
+/// colour a profile weighs it by, "0.5 × O_s (0.200, 0.400, 0.600)"
+/// (cse167's mirror ray, MODEL §11).
+pub(crate) fn weight_words(node: &Node) -> String {
+    match node.tint {
+        None => num(node.weight),
+        Some(tint) => format!("{} × O_s {}", num(node.weight), super::color(tint)),
+    }
 }

@@ -5,7 +5,7 @@
 //! node's colour is its local terms plus its children's contributions.
 
 use super::ray_tree::{NodeId, RayTree};
-use super::shaping::reach;
+use super::tree_words::path_factor;
 use raystep_model::math::Color;
 
 /// One ray's own part of the pixel: what its surface (or the background,
@@ -29,14 +29,14 @@ pub(crate) fn sources(tree: &RayTree) -> Vec<Source> {
             let local = match &node.hit {
                 Some(_) => {
                     let lights = node.lights.iter().map(|l| l.diffuse + l.specular);
-                    lights.fold(node.ambient, |sum, term| sum + term)
+                    lights.fold(node.ambient + node.emission, |sum, term| sum + term)
                 }
                 None => node.color,
             };
             Source {
                 node: id,
                 object: node.hit.as_ref().map(|h| h.object.clone()),
-                color: reach(tree, id) * local,
+                color: path_factor(tree, id) * local,
             }
         })
         .collect();

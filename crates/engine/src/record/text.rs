@@ -13,6 +13,7 @@ use super::ray_tree::{
 };
 use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
 use crate::trace::RayKind;
+use raystep_model::math::Color;
 use raystep_model::math::EPS;
 use raystep_model::mistakes::{Mistake, Mistakes};
 use raystep_model::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};
@@ -297,33 +298,46 @@ pub(crate) fn light_lines(
         ));
         lines.extend(indented(about, indented_strings(blocker_lines(&b.working))));
     }
+    // A light behind the surface that the profile still counts (cse167)
+    // lights it through (N·L)₊, which is 0 there (MODEL §11).
+    let (n_dot_l, cosine_value) = if light.lit_from_behind {
+        (format!("({n_dot_l})₊"), highlight_base(light.n_dot_l))
+    } else {
+        (format!("({n_dot_l})"), num(light.n_dot_l))
+    };
+    let tinted = factors.specular_color != Color::ONE;
+    let (o_s, o_s_value) = if tinted {
+        (" · O_s", format!(" · {}", color(factors.specular_color)))
+    } else {
+        ("", String::new())
+    };
     lines.extend([
         Line::text(
             about,
             format!(
-                "  f_att = {}, {cosine} = {}",
-                precise(light.f_att),
+                "  {}, {cosine} = {}",
+                f_att_words(light),
                 num(light.specular_cosine)
             ),
         ),
         Line::text(
             about,
-            format!("  diffuse = S · f_att · I_p · k_d · O_d · ({n_dot_l})"),
+            format!("  diffuse = S · f_att · I_p · k_d · O_d · {n_dot_l}"),
         ),
         Line::text(about, lead.clone())
             .color(light.i_p)
             .then(format!(" · {} · ", num(factors.kd)))
             .color(factors.o_d)
-            .then(format!(" · {} = ", num(light.n_dot_l)))
+            .then(format!(" · {cosine_value} = "))
             .color(light.diffuse),
         Line::text(
             about,
-            format!("  specular = S · f_att · I_p · k_s · ({cosine})^n"),
+            format!("  specular = S · f_att · I_p · k_s{o_s} · ({cosine})^n"),
         ),
         Line::text(about, lead)
             .color(light.i_p)
             .then(format!(
-                " · {} · {}^{} = ",
+                " · {}{o_s_value} · {}^{} = ",
                 num(factors.ks),
                 highlight_base(light.specular_cosine),
                 num(factors.n)
@@ -331,6 +345,24 @@ pub(crate) fn light_lines(
             .color(light.specular),
     ]);
     lines
+}
+
+/// "f_att = 0.25": with its formula where the profile does not clamp it
+/// (cse167, MODEL §11), "f_att = 1 / (0 + 0 d + 1 d²) = 4, d = 0.5, no
+/// clamp".
+fn f_att_words(light: &LightRecord) -> String {
+    if light.clamped {
+        return format!("f_att = {}", precise(light.f_att));
+    }
+    let [c1, c2, c3] = light.coefficients;
+    format!(
+        "f_att = 1 / ({} + {} d + {} d²) = {}, d = {}, no clamp",
+        num(c1),
+        num(c2),
+        num(c3),
+        precise(light.f_att),
+        num(light.distance)
+    )
 }
 
 /// A blocker's intersection working: as for a hit, but a sphere's roots
@@ -362,9 +394,21 @@ fn highlight_base(cosine: f64) -> String {
     }
 }
 
-/// The ambient term with its factors: I_a · k_a · O_d (MODEL §1).
+/// The ambient term with its factors: I_a · k_a · O_d (MODEL §1), or the
+/// material's own ambient colour, as it is.
 fn ambient_line(tree: &RayTree, node: &Node, hit: &HitRecord) -> Line {
     let f = &hit.factors;
+    if let Some(own) = f.ambient {
+        let line = Line::text(
+            Some(About::Ambient),
+            "ambient = the material's own ambient colour, added as it is: ",
+        )
+        .color(own);
+        return match node.ambient == own {
+            true => line,
+            false => line.then(" (off: 0)"),
+        };
+    }
     let line = Line::text(Some(About::Ambient), "ambient = I_a · k_a · O_d = ")
         .color(hit.i_a)
         .then(format!(" · {} · ", num(f.ka)))
@@ -420,6 +464,13 @@ pub fn node_lines(tree: &RayTree, id: NodeId, children: Children) -> Vec<Line> {
     };
     lines.extend(hit_lines(node, hit));
     lines.push(ambient_line(tree, node, hit));
+    if node.emission != Color::ZERO {
+        lines.push(
+            Line::text(Some(About::Emission), "emission E = ")
+                .color(node.emission)
+                .then(", added as it is"),
+        );
+    }
     for light in &node.lights {
         lines.extend(light_lines(light, &hit.factors, tree.mistakes));
     }
@@ -544,6 +595,7 @@ pub(crate) fn child_formula(tree: &RayTree, child: NodeId) -> String {
     let parent = node.parent.map(|p| &tree.nodes[p]);
     match node.kind {
         RayKind::Transmitted => "transmitted = k_t · att · I_t".into(),
+        _ if node.tint.is_some() => "reflected = k_s · O_s · att · I_r".into(),
         _ if parent.is_some_and(Node::tir) && node.weight != ks_of(parent) => {
             "reflected = (k_s + k_t) · att · I_r (TIR)".into()
         }
@@ -559,10 +611,14 @@ fn ks_of(node: Option<&Node>) -> f64 {
 /// A child ray's term with its numbers, as the child's own lines end.
 fn child_term(tree: &RayTree, id: NodeId) -> Line {
     let node = &tree.nodes[id];
+    let tint = node
+        .tint
+        .map(|t| format!("{} · ", color(t)))
+        .unwrap_or_default();
     Line::text(
         None,
         format!(
-            "{} = {} · {} · ",
+            "{} = {} · {tint}{} · ",
             child_formula(tree, id),
             num(node.weight),
             num(node.attenuation)
@@ -596,6 +652,9 @@ pub fn text(tree: &RayTree) -> String {
         tree.pixel.1,
         color(c)
     );
+    if !tree.settings.profile.is_lecture() {
+        let _ = writeln!(out, "profile: {} (MODEL §11)", tree.settings.profile.name());
+    }
     if !tree.mistakes.is_empty() {
         let _ = writeln!(out, "traced with the mistakes: {}", tree.mistakes);
     }

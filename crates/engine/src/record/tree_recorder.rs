@@ -5,8 +5,8 @@
 use crate::render::viewport;
 use crate::scene::{Scene, Settings};
 use crate::trace::{
-    Blocker, ChildTerm, DepthLimit, LightTerm, NotCast, RayKind, Recorder, Refraction, SurfaceHit,
-    trace,
+    Blocker, ChildTerm, DepthLimit, LightTerm, NotCast, RayKind, Recorder, Refraction, Rules,
+    SurfaceHit, trace,
 };
 use std::sync::Arc;
 
@@ -111,10 +111,12 @@ impl Recorder for TreeRecorder<'_> {
             direction: ray.direction,
             weight,
             attenuation: 1.0,
+            tint: None,
             hit: None,
             near_misses: Vec::new(),
             cost: Cost::default(),
             ambient: Color::ZERO,
+            emission: Color::ZERO,
             lights: Vec::new(),
             refraction: None,
             reflected: None,
@@ -165,6 +167,8 @@ impl Recorder for TreeRecorder<'_> {
                 n: material.shininess,
                 kt: material.kt,
                 ior: material.ior,
+                ambient: material.ambient,
+                specular_color: material.specular_color.unwrap_or(Color::ONE),
             },
             i_a,
         });
@@ -191,6 +195,11 @@ impl Recorder for TreeRecorder<'_> {
     fn ambient(&mut self, term: Color) {
         self.node().ambient = term;
         self.push_event(EventKind::Ambient { term });
+    }
+
+    fn emission(&mut self, term: Color) {
+        self.node().emission = term;
+        self.push_event(EventKind::Emission { term });
     }
 
     fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: f64) {
@@ -249,6 +258,9 @@ impl Recorder for TreeRecorder<'_> {
             _ => None,
         };
         let s = shadow.as_ref().map(|s| s.s);
+        let coefficients =
+            *Rules::<true>::new(&self.settings).light_attenuation(&scene.lights[term.light]);
+        let profile = self.settings.profile;
         self.node().lights.push(LightRecord {
             light: scene.lights[term.light].name.clone(),
             light_index: term.light,
@@ -260,6 +272,11 @@ impl Recorder for TreeRecorder<'_> {
             at_point: term.at_point,
             shadow,
             f_att: term.f_att,
+            coefficients,
+            clamped: profile.clamps_attenuation(),
+            lit_from_behind: term.faces_away
+                && !term.at_point
+                && !profile.light_behind_adds_nothing(),
             specular_model: term.specular_model,
             specular_cosine: term.specular_cosine,
             diffuse: term.diffuse,
@@ -292,6 +309,7 @@ impl Recorder for TreeRecorder<'_> {
         };
         let Some(child) = child else { return };
         self.nodes[child].attenuation = term.attenuation;
+        self.nodes[child].tint = term.tint;
         self.nodes[child].contribution = term.contribution;
         self.push_event(EventKind::ChildReturned {
             child,

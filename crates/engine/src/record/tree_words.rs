@@ -31,14 +31,19 @@ pub fn light_summary(light: &LightRecord) -> String {
     }
 }
 
-/// The product of weights and attenuations from the primary ray down to `id`:
-/// what one unit of this ray's colour is worth in the pixel.
-pub fn path_factor(tree: &RayTree, id: NodeId) -> f64 {
-    let mut factor = 1.0;
+/// The product of weights and attenuations (and the tints a profile weighs
+/// rays by, MODEL §11) from the primary ray down to `id`: what one unit of
+/// this ray's colour is worth in the pixel, channel by channel.
+pub fn path_factor(tree: &RayTree, id: NodeId) -> Color {
+    let mut factor = Color::ONE;
     let mut node = Some(id);
     while let Some(n) = node {
-        factor *= tree.nodes[n].weight * tree.nodes[n].attenuation;
-        node = tree.nodes[n].parent;
+        let ray = &tree.nodes[n];
+        factor *= ray.weight * ray.attenuation;
+        if let Some(tint) = ray.tint {
+            factor *= tint;
+        }
+        node = ray.parent;
     }
     factor
 }
@@ -62,8 +67,8 @@ mod tests {
     fn a_rays_worth_in_the_pixel_is_the_product_down_its_path() {
         let (_, tree) = ball();
         // r0 counts fully; r1 is weighted by ks = 0.5 (no distance attenuation).
-        assert_eq!(path_factor(&tree, 0), 1.0);
-        assert_eq!(path_factor(&tree, 1), 0.5);
+        assert_eq!(path_factor(&tree, 0), Color::ONE);
+        assert_eq!(path_factor(&tree, 1), Color::splat(0.5));
     }
 
     #[test]

@@ -7,6 +7,7 @@ pub(crate) mod limits;
 pub mod mesh;
 pub(crate) mod nff;
 pub mod overrides;
+mod profile;
 mod switches;
 pub mod test_format;
 pub(crate) mod toml_format;
@@ -19,6 +20,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use error::SceneError;
+pub use profile::Profile;
 pub use switches::{DEEPEST_TOGGLED_DEPTH, Switch, Switches};
 
 use crate::input_file::{self, Cap};
@@ -81,6 +83,10 @@ pub struct Settings {
     /// hold; further secondary rays are not cast (MODEL §5).
     pub max_rays: u32,
     pub specular: SpecularModel,
+    /// Which equation the scene means (MODEL §11); the lecture's by default,
+    /// which JSON leaves out, as files written before profiles had it.
+    #[serde(skip_serializing_if = "Profile::is_lecture")]
+    pub profile: Profile,
     pub switches: Switches,
     /// Classic student mistakes to trace with (none in a scene file; `compare`
     /// and the debugger set them).
@@ -98,6 +104,7 @@ impl Default for Settings {
             min_weight: DEFAULT_MIN_WEIGHT,
             max_rays: DEFAULT_MAX_RAYS,
             specular: SpecularModel::Blinn,
+            profile: Profile::Lecture,
             switches: Switches::default(),
             mistakes: Mistakes::NONE,
         }
@@ -122,6 +129,16 @@ pub struct Material {
     /// a material with highlights but no mirror (TOML `reflect = false`,
     /// MTL `illum` 2).
     pub reflects: bool,
+    /// The ambient term as it is, in place of k_a I_a O_d (MODEL §1): a
+    /// material's own ambient colour (TOML `ambient`, CSE 167's `ambient`).
+    pub ambient: Option<Color>,
+    /// E, a colour the surface adds as it is (TOML `emission`); it lights
+    /// nothing else. `None` for black, so that the lecture's materials
+    /// cost the tracer one test.
+    pub emission: Option<Color>,
+    /// O_s, the specular term's colour (TOML `specular_color`); under the
+    /// cse167 profile it weighs the mirror ray too. `None` for white.
+    pub specular_color: Option<Color>,
 }
 
 impl Material {
@@ -138,6 +155,9 @@ impl Material {
             ka: 1.0,
             specular: None,
             reflects: true,
+            ambient: None,
+            emission: None,
+            specular_color: None,
         }
     }
 }
@@ -148,6 +168,9 @@ pub struct Light {
     pub position: DVec3,
     /// I_p.
     pub color: Color,
+    /// This light's (c1, c2, c3) of f_att, in place of the scene's
+    /// `light_attenuation` (TOML `attenuation`, CSE 167's per light).
+    pub attenuation: Option<[f64; 3]>,
 }
 
 /// A scene ready to trace: validated, with its acceleration structure built.

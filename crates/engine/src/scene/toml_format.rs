@@ -46,10 +46,11 @@ use toml::Spanned;
 
 use super::toml_sections;
 use super::{
-    Light, MAX_RAYS_LIMIT, Material, Object, ObjectName, SceneError, SceneParts, Settings,
+    Light, MAX_RAYS_LIMIT, Material, Object, ObjectName, Profile, SceneError, SceneParts, Settings,
     check_camera, check_image_size,
 };
 use raystep_model::camera::Camera;
+use raystep_model::math::Color;
 use raystep_model::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
 
 mod bounds;
@@ -151,6 +152,7 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
         None => DEFAULT_SIZE,
     };
     let settings = settings(&source, &file.settings)?;
+    unclamped_attenuations(&source, &file, settings.profile)?;
     let mut materials = Vec::new();
     for (name, def) in &file.materials {
         materials.push(material(name, def.get_ref()));
@@ -305,8 +307,36 @@ fn settings(source: &Source, def: &SettingsDef) -> Result<Settings, SceneError> 
         min_weight: def.min_weight.as_ref().map_or(defaults.min_weight, number),
         max_rays: max_rays(source, def)?,
         specular: def.specular.unwrap_or_default(),
+        profile: def.profile.unwrap_or_default(),
         ..defaults
     })
+}
+
+/// Without the clamp (the cse167 profile, MODEL §11) f_att is 1 / (c1 +
+/// c2 d + c3 d²) as it is: coefficients all 0 would divide by zero.
+fn unclamped_attenuations(
+    source: &Source,
+    file: &FileDef,
+    profile: Profile,
+) -> Result<(), SceneError> {
+    if profile.clamps_attenuation() {
+        return Ok(());
+    }
+    let scene = file.settings.light_attenuation.iter();
+    let lights = file
+        .lights
+        .iter()
+        .filter_map(|l| l.get_ref().attenuation.as_ref());
+    for coefficients in scene.chain(lights.map(|a| a.get_ref())) {
+        if triple(coefficients) == [0.0; 3] {
+            return Err(source.error(
+                coefficients.0[0].span().start..coefficients.0[2].span().end,
+                "attenuation (0, 0, 0) divides by zero: the cse167 profile does not clamp \
+                 f_att = 1 / (c1 + c2 d + c3 d²) to 1, so some coefficient must be above 0",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// `max_rays`, the per-pixel ray budget, from 1 to `MAX_RAYS_LIMIT` (MODEL §5).
@@ -421,6 +451,10 @@ fn material(name: &str, m: &MaterialDef) -> Material {
         ka: m.ka.as_ref().map_or(1.0, number),
         specular: m.specular,
         reflects: m.reflect.unwrap_or(true),
+        ambient: m.ambient.as_ref().map(vec3),
+        // Black emission and a white specular colour are no colour at all.
+        emission: m.emission.as_ref().map(vec3).filter(|e| *e != Color::ZERO),
+        specular_color: (m.specular_color.as_ref().map(vec3)).filter(|s| *s != Color::ONE),
     }
 }
 
@@ -430,6 +464,7 @@ fn light(index: usize, l: &LightDef) -> Light {
         name: l.name.clone().unwrap_or_else(|| format!("light {index}")),
         position: vec3(&l.position),
         color,
+        attenuation: l.attenuation.as_ref().map(|a| triple(a.get_ref())),
     }
 }
 

@@ -92,7 +92,10 @@ pub struct ChildTerm {
     pub(crate) kind: RayKind,
     /// Distance attenuation; 1 for a miss.
     pub(crate) attenuation: f64,
-    /// weight * attenuation * color: the term added to the parent.
+    /// A colour the profile weighs the ray by besides its weight: the
+    /// specular colour S of a cse167 mirror ray (MODEL §11).
+    pub(crate) tint: Option<Color>,
+    /// weight * attenuation * color (∘ tint): the term added to the parent.
     pub(crate) contribution: Color,
 }
 
@@ -164,6 +167,10 @@ pub trait Recorder {
     fn miss(&mut self, _background: Color, _cost: Cost) {}
     #[inline]
     fn ambient(&mut self, _term: Color) {}
+    /// A material's emission E, added as it is (after `ambient`, only
+    /// when some channel is above 0).
+    #[inline]
+    fn emission(&mut self, _term: Color) {}
     #[inline]
     fn shadow_cast(&mut self, _light: usize, _ray: &Ray, _distance: f64) {}
     #[inline]

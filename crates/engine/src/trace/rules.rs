@@ -9,7 +9,7 @@
 use glam::DVec3;
 
 use super::recorder::{RayKind, SurfaceHit};
-use crate::scene::{Material, Settings, SpecularModel};
+use crate::scene::{Light, Material, Settings, SpecularModel};
 use raystep_model::math::Color;
 use raystep_model::math::{EPS, Interval};
 use raystep_model::mistakes::Mistake;
@@ -56,10 +56,30 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
         }
     }
 
-    /// Whether the material refracts: k_t > 0 with transmission switched on.
+    /// Whether the material refracts: k_t > 0 with transmission switched
+    /// on, in a profile that refracts (not cse167's, MODEL §11).
     #[inline]
     pub fn transmits(&self, material: &Material) -> bool {
-        material.kt > 0.0 && self.settings.switches.transmission
+        material.kt > 0.0 && self.settings.switches.transmission && self.settings.profile.refracts()
+    }
+
+    /// What the mirror ray's colour is multiplied by besides its weight:
+    /// the material's specular colour S under the cse167 profile (S ∘ I_R,
+    /// MODEL §11), else nothing (`None`: white).
+    #[inline]
+    pub(crate) fn mirror_tint(&self, material: &Material) -> Option<Color> {
+        self.settings
+            .profile
+            .mirror_takes_specular_colour()
+            .then(|| material.specular_color.unwrap_or(Color::ONE))
+    }
+
+    /// Whether a light behind the surface (N·L <= 0) adds nothing and
+    /// casts no shadow ray: the lecture's rule; under the cse167 profile
+    /// it still casts one and adds its highlight (MODEL §11).
+    #[inline]
+    pub(crate) fn light_behind_adds_nothing(&self) -> bool {
+        self.settings.profile.light_behind_adds_nothing()
     }
 
     /// Hits at a depth below this spawn secondary rays: max_depth, or one
@@ -74,17 +94,37 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
         }
     }
 
-    /// (c1, c2, c3) of f_att; (1, 0, 0), so f_att = 1, under
-    /// `no-light-attenuation`; else (0, 0, 1), f_att = min(1, 1 / d²), under
-    /// `inverse-square`.
+    /// (c1, c2, c3) of `light`'s f_att: its own, else the scene's; (1, 0,
+    /// 0), so f_att = 1, under `no-light-attenuation`; else (0, 0, 1),
+    /// f_att = min(1, 1 / d²), under `inverse-square`.
     #[inline]
-    pub fn light_attenuation(&self) -> [f64; 3] {
+    pub fn light_attenuation(&self, light: &'a Light) -> &'a [f64; 3] {
         if self.has(Mistake::NoLightAttenuation) {
-            [1.0, 0.0, 0.0]
+            &[1.0, 0.0, 0.0]
         } else if self.has(Mistake::InverseSquare) {
-            [0.0, 0.0, 1.0]
+            &[0.0, 0.0, 1.0]
         } else {
-            self.settings.light_attenuation
+            (light.attenuation.as_ref()).unwrap_or(&self.settings.light_attenuation)
+        }
+    }
+
+    /// f_att of `light` at `distance`: min(1, 1 / (c1 + c2 d + c3 d²)),
+    /// without the min under a profile that does not clamp (cse167: then
+    /// at most the largest finite number), 1 where the quotient has no
+    /// positive denominator (MODEL §4, §11).
+    #[inline]
+    pub fn f_att(&self, light: &'a Light, distance: f64) -> f64 {
+        let [c1, c2, c3] = *self.light_attenuation(light);
+        let denominator = c1 + c2 * distance + c3 * distance * distance;
+        let most = if self.settings.profile.clamps_attenuation() {
+            1.0
+        } else {
+            f64::MAX
+        };
+        if denominator <= 0.0 {
+            1.0
+        } else {
+            (1.0 / denominator).min(most)
         }
     }
 

@@ -161,13 +161,17 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         let scene = self.scene;
         let settings = self.settings;
         let material = scene.material_of(hit.object);
-        let ambient = if self.rules.ambient() {
-            settings.ambient * material.color * material.ka
-        } else {
-            Color::ZERO
+        let ambient = match material.ambient {
+            _ if !self.rules.ambient() => Color::ZERO,
+            Some(own) => own,
+            None => settings.ambient * material.color * material.ka,
         };
         self.rec.ambient(ambient);
         let mut color = ambient;
+        if let Some(emission) = material.emission {
+            self.rec.emission(emission);
+            color += emission;
+        }
         let to_viewer = -ray.direction;
         let normal = self.rules.lighting_normal(hit);
         for (index, light) in scene.lights.iter().enumerate() {
@@ -251,7 +255,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
             faces_away: n_dot_l <= 0.0,
             at_point: false,
             shadow: None,
-            f_att: attenuation(self.rules.light_attenuation(), distance),
+            f_att: self.rules.f_att(light, distance),
             specular_model: self.rules.specular_model(material),
             specular_cosine: 0.0,
             diffuse: Color::ZERO,
@@ -262,7 +266,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         if distance < EPS {
             return at_point(term);
         }
-        if term.faces_away {
+        if term.faces_away && self.rules.light_behind_adds_nothing() {
             return term;
         }
         if self.rules.shadows() {
@@ -282,8 +286,15 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         } else {
             term.specular_cosine.max(0.0).powf(material.shininess)
         };
-        term.diffuse = light.color * material.color * (strength * material.kd * n_dot_l);
+        // (N·L)₊ = 0 for a light the profile counts from behind for its
+        // highlight (MODEL §11); N·L is above 0 everywhere else here.
+        if !term.faces_away {
+            term.diffuse = light.color * material.color * (strength * material.kd * n_dot_l);
+        }
         term.specular = light.color * (strength * material.ks * highlight);
+        if let Some(o_s) = material.specular_color {
+            term.specular *= o_s;
+        }
         term
     }
 
@@ -363,11 +374,11 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
                 self.rules.reflected(mirrored),
                 reflected_weight,
             );
-            color += self.trace_child(hit, child, parent);
+            color += self.trace_child(hit, child, self.rules.mirror_tint(material), parent);
         }
         if let Some(direction) = refraction.and_then(|r| r.direction) {
             let child = (RayKind::Transmitted, direction, material.kt);
-            color += self.trace_child(hit, child, parent);
+            color += self.trace_child(hit, child, None, parent);
         }
         color
     }
@@ -398,11 +409,13 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
 
     /// Traces a secondary ray (kind, direction, weight) from the hit of a ray
     /// of (depth, accumulated weight) `parent`, and scales what it returns by
-    /// its weight and its distance attenuation; a ray a rule prunes adds nothing.
+    /// its weight (and `tint`, a colour the profile weighs it by) and its
+    /// distance attenuation; a ray a rule prunes adds nothing.
     fn trace_child(
         &mut self,
         hit: &SurfaceHit,
         (kind, direction, weight): (RayKind, DVec3, f64),
+        tint: Option<Color>,
         (depth, parent_weight): (u32, f64),
     ) -> Color {
         let path_weight = parent_weight * weight;
@@ -416,10 +429,14 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         let attenuation = traced
             .distance
             .map_or(1.0, |t| attenuation(self.settings.ray_attenuation, t));
-        let contribution = traced.color * (weight * attenuation);
+        let contribution = match tint {
+            None => traced.color * (weight * attenuation),
+            Some(tint) => traced.color * tint * (weight * attenuation),
+        };
         self.rec.child(&ChildTerm {
             kind,
             attenuation,
+            tint,
             contribution,
         });
         contribution

@@ -248,10 +248,20 @@ fn may_change(scene: &Scene, settings: &Settings, mistake: Mistake) -> bool {
     match mistake.acts_on() {
         ActsOn::ShadowRays => switches.shadows,
         ActsOn::TransparentShadows => switches.shadows && any(|m| m.kt > 0.0),
-        ActsOn::Refraction => switches.transmission && any(|m| m.kt > 0.0),
-        ActsOn::LightAttenuation => settings.light_attenuation != [1.0, 0.0, 0.0],
+        // A profile without refraction (cse167, MODEL §11) has no
+        // transmitted ray for such a mistake to change.
+        ActsOn::Refraction => {
+            switches.transmission && settings.profile.refracts() && any(|m| m.kt > 0.0)
+        }
+        ActsOn::LightAttenuation => {
+            let none = [1.0, 0.0, 0.0];
+            settings.light_attenuation != none
+                || (scene.lights.iter()).any(|l| l.attenuation.is_some_and(|a| a != none))
+        }
         ActsOn::Ambient => {
-            switches.ambient && settings.ambient != Color::ZERO && any(|m| m.ka > 0.0)
+            let own = any(|m| m.ambient.is_some_and(|a| a != Color::ZERO));
+            let lit = settings.ambient != Color::ZERO && any(|m| m.ambient.is_none() && m.ka > 0.0);
+            switches.ambient && (own || lit)
         }
         ActsOn::Highlights => any(|m| m.ks > 0.0),
         ActsOn::SecondaryRays => settings.max_depth > 1 && any(|m| m.ks > 0.0 || m.kt > 0.0),

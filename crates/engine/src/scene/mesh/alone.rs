@@ -56,6 +56,7 @@ pub(crate) fn scene(path: &Path) -> Result<Scene, SceneError> {
             name: "default light".into(),
             position: light,
             color: Color::ONE,
+            attenuation: None,
         });
     }
     let settings = Settings {

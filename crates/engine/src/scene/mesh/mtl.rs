@@ -257,6 +257,7 @@ pub(crate) fn to_model(m: &Read) -> (Material, Vec<String>) {
         ka,
         specular: None,
         reflects: rays.reflects,
+        ..Material::default_white()
     };
     (material, warnings)
 }

@@ -316,6 +316,7 @@ impl EmitterSums {
             name: format!("{prefix}light (Ke of material {})", read.name),
             position: self.weighted_centres / self.area + offset,
             color: read.emission.unwrap_or_default() * mtl::EMITTER_INTENSITY,
+            attenuation: None,
         })
     }
 }

@@ -264,6 +264,7 @@ impl Builder {
                 name: format!("light {i}"),
                 position,
                 color: color.unwrap_or(grey),
+                attenuation: None,
             })
             .collect();
         let settings = Settings {

@@ -306,5 +306,6 @@ fn material(index: usize, color: Color, [kd, ks, shininess, kt]: [f64; 4], ior: 
         ka: 1.0,
         specular: None,
         reflects: true,
+        ..Material::default_white()
     }
 }

@@ -32,6 +32,10 @@ pub(super) fn file(source: &Source, file: &FileDef) -> Result<(), SceneError> {
             COORDINATE,
         )?;
         optional_vector(source, &format!("light[{i}].color"), &light.color, COLOR)?;
+        if let Some(attenuation) = &light.attenuation {
+            let key = format!("light[{i}].attenuation");
+            vector(source, &key, attenuation.get_ref(), ATTENUATION)?;
+        }
     }
     Ok(())
 }
@@ -51,6 +55,10 @@ fn settings(source: &Source, s: &SettingsDef) -> Result<(), SceneError> {
 
 fn material(source: &Source, key: &str, m: &MaterialDef) -> Result<(), SceneError> {
     optional_vector(source, &format!("{key}.color"), &m.color, COLOR)?;
+    optional_vector(source, &format!("{key}.ambient"), &m.ambient, COLOR)?;
+    optional_vector(source, &format!("{key}.emission"), &m.emission, COLOR)?;
+    let specular = &m.specular_color;
+    optional_vector(source, &format!("{key}.specular_color"), specular, COLOR)?;
     for (name, value, bounds) in [
         ("kd", &m.kd, COEFFICIENT),
         ("ks", &m.ks, COEFFICIENT),

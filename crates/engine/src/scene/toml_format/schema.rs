@@ -11,7 +11,7 @@ use glam::DVec3;
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::scene::SpecularModel;
+use crate::scene::{Profile, SpecularModel};
 
 /// A number that must be finite: TOML allows `nan` and `inf`, scenes do not.
 #[derive(Clone, Copy, Debug)]
@@ -143,6 +143,8 @@ pub(super) struct SettingsDef {
     pub(super) min_weight: Option<Spanned<Finite>>,
     pub(super) max_rays: Option<Spanned<u32>>,
     pub(super) specular: Option<SpecularModel>,
+    /// Which equation the scene means (MODEL §11).
+    pub(super) profile: Option<Profile>,
 }
 
 #[derive(Deserialize)]
@@ -158,6 +160,12 @@ pub(super) struct MaterialDef {
     pub(super) specular: Option<SpecularModel>,
     /// False: k_s gives highlights but no mirror-reflected ray (MODEL §5).
     pub(super) reflect: Option<bool>,
+    /// The ambient term as it is, in place of k_a I_a O_d (MODEL §1).
+    pub(super) ambient: Option<Vec3>,
+    /// E, added as it is (MODEL §1).
+    pub(super) emission: Option<Vec3>,
+    /// The specular term's colour S (MODEL §4, §11).
+    pub(super) specular_color: Option<Vec3>,
 }
 
 #[derive(Deserialize)]
@@ -166,6 +174,8 @@ pub(super) struct LightDef {
     pub(super) name: Option<String>,
     pub(super) position: Vec3,
     pub(super) color: Option<Vec3>,
+    /// This light's (c1, c2, c3) of f_att, in place of the scene's.
+    pub(super) attenuation: Option<Spanned<Vec3>>,
 }
 
 #[derive(Deserialize)]

@@ -1,0 +1,76 @@
+//! Which illumination equation a scene means (issue 42). The lecture's model
+//! (MODEL §1-§6) is one course's; UCSD's CSE 167 (and its edX course
+//! CSE167x) hands out scenes whose equation differs from it in a few
+//! places. A profile names the variant, so that raystep traces a scene as
+//! its course means it without bending the lecture's model: every
+//! difference is one question here, asked by `trace::Rules`, and written in
+//! MODEL §11.
+
+use serde::{Deserialize, Serialize};
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Profile {
+    /// The lecture's model, MODEL §1-§6 (the default).
+    #[default]
+    Lecture,
+    /// CSE 167's: I = A + E + Σ V L / (c0 + c1 d + c2 d²) [D (N·L)₊ +
+    /// S (N·H)₊^s] + S I_R, MODEL §11.
+    Cse167,
+}
+
+impl Profile {
+    pub const ALL: [Profile; 2] = [Profile::Lecture, Profile::Cse167];
+
+    /// As a scene names it (`profile = "cse167"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Profile::Lecture => "lecture",
+            Profile::Cse167 => "cse167",
+        }
+    }
+
+    /// What a reader is told of the profile a pixel is traced with; nothing
+    /// for the lecture's, the model every page assumes.
+    pub fn words(self) -> Option<&'static str> {
+        match self {
+            Profile::Lecture => None,
+            Profile::Cse167 => Some(
+                "It is traced with the cse167 profile, CSE 167's equation (MODEL §11): \
+                 ambient and emission added as they are, f_att not clamped, a light behind \
+                 the surface still casts its shadow ray and adds its highlight, the mirror \
+                 ray weighted by k_s O_s, and no refraction.",
+            ),
+        }
+    }
+
+    pub fn is_lecture(&self) -> bool {
+        *self == Profile::Lecture
+    }
+
+    /// Whether a light behind the surface (N·L <= 0) adds nothing and casts
+    /// no shadow ray (the lecture), or still casts its shadow ray and adds
+    /// its highlight, the diffuse term taking (N·L)₊ (CSE 167: the specular
+    /// term has no N·L > 0 condition).
+    pub(crate) fn light_behind_adds_nothing(self) -> bool {
+        self == Profile::Lecture
+    }
+
+    /// Whether f_att is min(1, 1 / (c1 + c2 d + c3 d²)) (the lecture) or
+    /// the quotient as it is (CSE 167: no clamp).
+    pub(crate) fn clamps_attenuation(self) -> bool {
+        self == Profile::Lecture
+    }
+
+    /// Whether the mirror ray's weight k_s is multiplied by the material's
+    /// specular colour S (CSE 167: the mirror ray adds S ∘ I_R).
+    pub(crate) fn mirror_takes_specular_colour(self) -> bool {
+        self == Profile::Cse167
+    }
+
+    /// Whether a material with k_t > 0 refracts (CSE 167's tracer casts no
+    /// transmitted ray, and its shadows are 0 or 1).
+    pub fn refracts(self) -> bool {
+        self == Profile::Lecture
+    }
+}
