@@ -11,7 +11,7 @@ use super::ray_tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
     ShadowRecord,
 };
-use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
+use super::shared_words::{cosine_name, directional_words, kind_name, not_cast_line, ray_header};
 use crate::trace::RayKind;
 use raystep_model::math::EPS;
 use raystep_model::mistakes::{Mistake, Mistakes};
@@ -244,7 +244,7 @@ pub(crate) fn light_lines(
                 format!(
                     "{}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
                     light.light,
-                    precise(light.distance),
+                    precise(light.distance.unwrap_or_default()),
                     precise(EPS)
                 ),
             )];
@@ -301,7 +301,8 @@ pub(crate) fn light_lines(
         Line::text(
             about,
             format!(
-                "  f_att = {}, {cosine} = {}",
+                "  {}f_att = {}, {cosine} = {}",
+                directional_words(light).map_or(String::new(), |w| format!("{w}: ")),
                 precise(light.f_att),
                 num(light.specular_cosine)
             ),

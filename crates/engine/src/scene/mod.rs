@@ -4,6 +4,7 @@
 pub mod builtin;
 mod error;
 pub(crate) mod limits;
+mod light;
 pub mod mesh;
 pub(crate) mod nff;
 pub mod overrides;
@@ -19,6 +20,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use error::SceneError;
+pub use light::{Light, LightKind};
 pub use switches::{DEEPEST_TOGGLED_DEPTH, Switch, Switches};
 
 use crate::input_file::{self, Cap};
@@ -140,14 +142,6 @@ impl Material {
             reflects: true,
         }
     }
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct Light {
-    pub name: String,
-    pub position: DVec3,
-    /// I_p.
-    pub color: Color,
 }
 
 /// A scene ready to trace: validated, with its acceleration structure built.
