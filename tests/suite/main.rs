@@ -19,6 +19,7 @@ mod compare_rays_mistakes;
 mod compare_slips;
 mod compare_sub_pixel;
 mod crossing;
+mod directional;
 mod details_pane;
 mod docs_contract;
 mod explain_story;
