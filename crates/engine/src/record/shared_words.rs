@@ -31,7 +31,7 @@ pub fn light_label(name: &str) -> String {
 /// "directional light, L = (0.6, 0.8, 0), not attenuated" for a
 /// directional light (MODEL §4: one L everywhere, no d_L, f_att = 1);
 /// `None` for a point light.
-pub fn directional_words(light: &LightRecord) -> Option<String> {
+pub(crate) fn directional_words(light: &LightRecord) -> Option<String> {
     light.directional.then(|| {
         format!(
             "directional light, L = {}, not attenuated",

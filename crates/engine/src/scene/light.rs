@@ -52,14 +52,6 @@ impl Light {
         }
     }
 
-    /// The unit direction to a directional light; `None` for a point light.
-    pub fn direction(&self) -> Option<DVec3> {
-        match self.kind {
-            LightKind::Point { .. } => None,
-            LightKind::Directional { direction } => Some(direction),
-        }
-    }
-
     pub fn is_directional(&self) -> bool {
         matches!(self.kind, LightKind::Directional { .. })
     }
@@ -73,7 +65,8 @@ mod tests {
     fn a_direction_is_normalised_and_a_zero_one_refused() {
         // (3, 0, 4) has length 5: its unit direction is (0.6, 0, 0.8).
         let sun = Light::directional("sun", DVec3::new(3.0, 0.0, 4.0), Color::ONE).unwrap();
-        assert_eq!(sun.direction(), Some(DVec3::new(0.6, 0.0, 0.8)));
+        let direction = DVec3::new(0.6, 0.0, 0.8);
+        assert_eq!(sun.kind, LightKind::Directional { direction });
         assert_eq!(sun.position(), None);
         assert!(Light::directional("none", DVec3::ZERO, Color::ONE).is_none());
         // 1e-200 squared underflows to 0: no length to divide by.
