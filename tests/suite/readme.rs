@@ -666,6 +666,7 @@ fn scenes_guide_defaults_are_the_readers() {
         "material `specular`",
         "object `name`",
         "object `material`",
+        "light `position` or `direction`",
         "mesh `material`",
         "a mesh alone",
     ];
