@@ -95,7 +95,12 @@ fn a_directional_light_is_never_attenuated() {
         };
         let light = &record_pixel(&s, &settings, 0, 0).root().lights[0].clone();
         assert_eq!(light.f_att, 1.0, "{}", mistake.name());
-        assert_eq!(the_byte(&s, &settings), [255, 196, 156], "{}", mistake.name());
+        assert_eq!(
+            the_byte(&s, &settings),
+            [255, 196, 156],
+            "{}",
+            mistake.name()
+        );
     }
 }
 
@@ -216,7 +221,10 @@ fn inspect_and_explain_say_what_a_directional_light_is() {
         "{inspect}"
     );
     // The lamp, a point light, is told as before.
-    assert!(inspect.contains("    f_att = 0.4112, N·H = 0.5525\n"), "{inspect}");
+    assert!(
+        inspect.contains("    f_att = 0.4112, N·H = 0.5525\n"),
+        "{inspect}"
+    );
     let explain = stdout(&raystep(&["explain", scene, "--pixel", "20,100"]));
     assert!(
         explain.contains("A directional light, L = (-0.4082, 0.8165, 0.4082),")
@@ -265,7 +273,11 @@ fn the_recorded_tree_of_a_directional_light_is_finite_json() {
         "--format",
         "json",
     ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = stdout(&out);
     let json: Value = serde_json::from_str(&text).unwrap();
     let mut all = Vec::new();

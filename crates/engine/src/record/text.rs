@@ -11,9 +11,7 @@ use super::ray_tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
     ShadowRecord,
 };
-use super::shared_words::{
-    cosine_name, directional_words, kind_name, not_cast_line, ray_header,
-};
+use super::shared_words::{cosine_name, directional_words, kind_name, not_cast_line, ray_header};
 use crate::trace::RayKind;
 use raystep_model::math::EPS;
 use raystep_model::mistakes::{Mistake, Mistakes};

@@ -3,8 +3,8 @@
 
 pub mod builtin;
 mod error;
-pub(crate) mod limits;
 mod light;
+pub(crate) mod limits;
 pub mod mesh;
 pub(crate) mod nff;
 pub mod overrides;

@@ -330,9 +330,11 @@ fn shadow_factor(ours: &OurRays, light: &LightRecord) -> Vec<String> {
     };
     // The segment the rules in force gave the shadow ray.
     let segment = ours.rules().shadow_segment(light.distance);
-    let end = light.distance.map_or("∞ (a directional light)".to_string(), |d| {
-        format!("d_L = {}", fine(d))
-    });
+    let end = light
+        .distance
+        .map_or("∞ (a directional light)".to_string(), |d| {
+            format!("d_L = {}", fine(d))
+        });
     let model_end = light.distance.unwrap_or(f64::INFINITY);
     let mut lines = vec![if segment.min() == EPS && segment.max() == model_end {
         format!("MODEL §4: S = the product of k_t over every crossing with EPS < t < {end}")
