@@ -86,9 +86,16 @@ fn a_directional_light_is_never_attenuated() {
     assert_eq!(light.f_att, 1.0);
     assert!(close(light.diffuse, [0.64, 0.32, 0.16]));
     assert_eq!(the_byte(&s, &s.settings), [255, 196, 156]);
-    // Nor do the mistakes that change f_att touch it (MODEL §8): under
-    // inverse-square a point light would get min(1, 1 / d_L^2).
-    for mistake in [Mistake::InverseSquare, Mistake::NoLightAttenuation] {
+    // Nor do the mistakes whose rule is about a point light's d_L or P_L
+    // touch it (MODEL §8): under inverse-square a point light would get
+    // min(1, 1 / d_L^2), under light-not-normalised L = P_L - p, under
+    // shadows-past-light a segment past d_L.
+    for mistake in [
+        Mistake::InverseSquare,
+        Mistake::NoLightAttenuation,
+        Mistake::LightNotNormalised,
+        Mistake::ShadowsPastLight,
+    ] {
         let settings = Settings {
             mistakes: s.settings.mistakes.with(mistake),
             ..s.settings
@@ -299,4 +306,33 @@ fn the_recorded_tree_of_a_directional_light_is_finite_json() {
         .filter(|key| text.contains(&format!("\"{key}\": null")))
         .collect();
     assert!(nulls.is_empty(), "{nulls:?}");
+}
+
+#[test]
+fn the_diagram_draws_a_directional_light_along_its_l_from_every_hit() {
+    use raystep_tools::diagram::{Diagram, DiagramPlane, Progress};
+    // A directional light has no place: it is drawn along L from the
+    // primary ray's hit. The figure is centred on that hit and drawn in the
+    // camera's frame, so L, the same everywhere, points the same way in
+    // the figures of two pixels whose rays hit the floor far apart (its
+    // shadow rays are parallel); the point lamp, a place, lies in
+    // different directions from the two hits.
+    let scene = raystep_engine::scene::load(Path::new("scenes/directional.toml")).unwrap();
+    let seen = |x, y| {
+        let tree = record_pixel(&scene, &scene.settings, x, y);
+        let point = tree.root().hit.as_ref().unwrap().point;
+        let diagram = Diagram::new(&scene, &tree, DiagramPlane::Side, Progress::done(&tree));
+        // segments[0] is the primary ray, from the eye to its hit.
+        let hit = diagram.segments[0].to;
+        let svg = raystep_tools::diagram::svg::figure(&diagram, 1.0);
+        assert!(svg.contains("light sun (directional)"), "{svg}");
+        assert!(!svg.contains("light lamp (directional)"));
+        let (sun, lamp) = (diagram.lights[0].at, diagram.lights[1].at);
+        ((sun - hit).normalize(), (lamp - hit).normalize(), point)
+    };
+    let (sun_a, lamp_a, hit_a) = seen(100, 68);
+    let (sun_b, lamp_b, hit_b) = seen(20, 100);
+    assert!((hit_a - hit_b).length() > 1.0, "{hit_a} {hit_b}");
+    assert!((sun_a - sun_b).length() < 1e-9, "{sun_a} {sun_b}");
+    assert!((lamp_a - lamp_b).length() > 0.01, "{lamp_a} {lamp_b}");
 }
