@@ -33,10 +33,16 @@ impl Light {
         }
     }
 
-    /// A directional light towards `direction`, normalised here; `None` when
-    /// it has no direction (zero, or too small or large to normalise).
+    /// A directional light towards `direction`, normalised here (divided by
+    /// its length, as a point light's L is: (3, 0, 4) gives (0.6, 0, 0.8)
+    /// exactly); `None` when it has no direction (zero, or too small or
+    /// large to normalise).
     pub fn directional(name: impl Into<String>, direction: DVec3, color: Color) -> Option<Light> {
-        let direction = direction.try_normalize()?;
+        let length = direction.length();
+        if !(length > 0.0 && length.is_finite()) {
+            return None;
+        }
+        let direction = direction / length;
         Some(Light {
             name: name.into(),
             kind: LightKind::Directional { direction },
