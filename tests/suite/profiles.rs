@@ -78,7 +78,7 @@ fn a_close_light_passes_the_clamp_under_cse167_only() {
     //   -> (15.3, 30.6, 18.36) + 0.5 floored: (15, 31, 18).
     let tree = centre(&with_profile(Profile::Cse167, CLOSE_LIGHT));
     let light = &tree.root().lights[0];
-    assert_eq!((light.distance, light.f_att), (0.5, 4.0));
+    assert_eq!((light.distance, light.f_att), (Some(0.5), 4.0));
     assert_eq!(to_rgb8(tree.root().color), [61, 122, 73]);
     let words = text(&tree);
     assert!(

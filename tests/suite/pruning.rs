@@ -295,7 +295,7 @@ fn a_light_within_eps_of_the_point_adds_nothing_and_casts_no_shadow_ray() {
         assert_eq!(light.diffuse + light.specular, DVec3::ZERO);
         assert!(light.f_att.is_finite() && light.specular_cosine.is_finite());
     }
-    assert_eq!(lights[0].distance, 0.0);
+    assert_eq!(lights[0].distance, Some(0.0));
     assert!(!lights[2].at_point);
     assert_eq!(
         (lights[2].n_dot_l, lights[2].shadow.as_ref().unwrap().s),

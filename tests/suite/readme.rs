@@ -686,6 +686,7 @@ fn scenes_guide_defaults_are_the_readers() {
         "light `attenuation`",
         "object `name`",
         "object `material`",
+        "light `position` or `direction`",
         "mesh `material`",
         "a mesh alone",
     ];

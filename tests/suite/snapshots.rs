@@ -106,6 +106,12 @@ const PIXELS: &[(&str, u32, u32, &str)] = &[
         48,
         "a far pillar: light attenuation f_att = 0.21",
     ),
+    (
+        "directional.toml",
+        100,
+        68,
+        "the sun's shadow: a directional light, no distance, blocked by the ball",
+    ),
 ];
 
 #[test]

@@ -127,7 +127,7 @@ impl Recorder for TermsRecorder {
         }
     }
 
-    fn shadow_cast(&mut self, _light: usize, _ray: &Ray, _distance: f64) {
+    fn shadow_cast(&mut self, _light: usize, _ray: &Ray, _distance: Option<f64>) {
         self.terms.rays += 1;
     }
 
@@ -248,7 +248,7 @@ impl<A: Recorder, B: Recorder> Recorder for Both<'_, A, B> {
         self.0.emission(term);
         self.1.emission(term);
     }
-    fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: f64) {
+    fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: Option<f64>) {
         self.0.shadow_cast(light, ray, distance);
         self.1.shadow_cast(light, ray, distance);
     }

@@ -114,9 +114,15 @@ fn write_light(out: &mut String, id: NodeId, i: usize, light: &LightRecord) {
             format!("S = {}, partly blocked by {names}", num(s.s))
         }
     };
+    // A directional light has no place: say what it is instead.
+    let kind = if light.directional {
+        "\\ndirectional, not attenuated"
+    } else {
+        ""
+    };
     let _ = writeln!(
         out,
-        "  n{id}l{i} [shape=ellipse, label=\"{}\\n{fate}\"];",
+        "  n{id}l{i} [shape=ellipse, label=\"{}{kind}\\n{fate}\"];",
         escape(&light.light)
     );
     let edge = if light.shadow.is_some() {

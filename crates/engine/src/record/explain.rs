@@ -8,7 +8,7 @@ use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
 use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
-use super::shared_words::{kind_name, not_cast_reason, weight_words};
+use super::shared_words::{directional_words, kind_name, not_cast_reason, weight_words};
 use super::sources::{brightness, sources};
 use crate::trace::{PruneRule, RayKind};
 use raystep_model::math::{Color, EPS};
@@ -406,7 +406,7 @@ fn light_fate(light: &LightRecord) -> String {
             return format!(
                 "{}: sits on the point (distance {} < EPS = {}), so it has no direction; it adds nothing and no shadow ray is cast.",
                 light.light,
-                num(light.distance),
+                num(light.distance.unwrap_or_default()),
                 num(EPS)
             );
         }
@@ -429,25 +429,26 @@ fn light_fate(light: &LightRecord) -> String {
         | LightFate::PartlyBlocked(shadow)
         | LightFate::Blocked(shadow) => shadow,
     };
-    let distance = if !light.clamped {
-        let [c1, c2, c3] = light.coefficients;
-        format!(
-            " At distance d = {} attenuation f_att = 1 / ({} + {} d + {} d²) = {}, no clamp (the cse167 profile).",
-            num(light.distance),
-            num(c1),
-            num(c2),
-            num(c3),
-            num(light.f_att)
-        )
-    } else if light.f_att < 1.0 {
-        format!(
+    let distance = match (directional_words(light), light.distance) {
+        (Some(words), _) => format!(" A {words}: its shadow ray has no end."),
+        (None, Some(d)) if !light.clamped => {
+            let [c1, c2, c3] = light.coefficients;
+            format!(
+                " At distance d = {} attenuation f_att = 1 / ({} + {} d + {} d²) = {}, no clamp (the cse167 profile).",
+                num(d),
+                num(c1),
+                num(c2),
+                num(c3),
+                num(light.f_att)
+            )
+        }
+        (None, Some(d)) if light.f_att < 1.0 => format!(
             " At distance {} attenuation f_att = {} lets {:.1}% of its light arrive.",
-            num(light.distance),
+            num(d),
             num(light.f_att),
             100.0 * light.f_att
-        )
-    } else {
-        String::new()
+        ),
+        (None, _) => String::new(),
     };
     let distance = if light.lit_from_behind {
         format!(
@@ -469,13 +470,15 @@ fn light_fate(light: &LightRecord) -> String {
     if let LightFate::Blocked(_) = fate
         && let Some(opaque) = shadow.blockers.iter().find(|b| b.kt == 0.0)
     {
+        let of = shadow.distance.map_or_else(
+            || "towards a directional light, which is infinitely far".to_string(),
+            |d| format!("of {} to the light", num(d)),
+        );
         return format!(
-            "{}: in shadow, blocked by {} (opaque) at distance {} along the shadow ray, of {} \
-             to the light.",
+            "{}: in shadow, blocked by {} (opaque) at distance {} along the shadow ray, {of}.",
             light.light,
             opaque.object,
             along(opaque.t),
-            num(shadow.distance)
         );
     }
     let mut through: Vec<String> = Vec::new();

@@ -183,8 +183,14 @@ pub struct LightRecord {
     pub light_index: usize,
     /// I_p, the light's colour.
     pub i_p: Color,
+    /// A directional light (MODEL §4): L is its direction, it has no
+    /// `distance` and is not attenuated; absent for a point light.
+    #[serde(skip_serializing_if = "is_false")]
+    pub directional: bool,
     pub to_light: DVec3,
-    pub distance: f64,
+    /// d_L; absent for a directional light, which is infinitely far.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub distance: Option<f64>,
     pub n_dot_l: f64,
     pub faces_away: bool,
     /// The light is within EPS of the point (MODEL §4); absent when not.
@@ -214,7 +220,10 @@ pub struct LightRecord {
 pub struct ShadowRecord {
     pub origin: DVec3,
     pub direction: DVec3,
-    pub(crate) distance: f64,
+    /// The segment's end, d_L; absent towards a directional light, where
+    /// the segment has no end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) distance: Option<f64>,
     /// Every crossing of the segment, nearest first.
     pub blockers: Vec<BlockerRecord>,
     pub s: f64,

@@ -5,8 +5,8 @@
 
 use std::fmt::Write;
 
-use super::numbers::{fraction, num, precise};
-use super::ray_tree::Node;
+use super::numbers::{fraction, num, precise, vector};
+use super::ray_tree::{LightRecord, Node};
 use crate::scene::SpecularModel;
 use crate::trace::{NotCast, PruneRule, RayKind};
 
@@ -26,6 +26,18 @@ pub fn light_label(name: &str) -> String {
     } else {
         format!("light {name}")
     }
+}
+
+/// "directional light, L = (0.6, 0.8, 0), not attenuated" for a
+/// directional light (MODEL §4: one L everywhere, no d_L, f_att = 1);
+/// `None` for a point light.
+pub(crate) fn directional_words(light: &LightRecord) -> Option<String> {
+    light.directional.then(|| {
+        format!(
+            "directional light, L = {}, not attenuated",
+            vector(light.to_light)
+        )
+    })
 }
 
 /// Why a rule kept a secondary ray from being cast.

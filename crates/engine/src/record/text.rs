@@ -11,7 +11,7 @@ use super::ray_tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
     ShadowRecord,
 };
-use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
+use super::shared_words::{cosine_name, directional_words, kind_name, not_cast_line, ray_header};
 use crate::trace::RayKind;
 use raystep_model::math::Color;
 use raystep_model::math::EPS;
@@ -245,7 +245,7 @@ pub(crate) fn light_lines(
                 format!(
                     "{}: at the point (distance {} < EPS = {}): no direction, no shadow ray, adds nothing",
                     light.light,
-                    precise(light.distance),
+                    precise(light.distance.unwrap_or_default()),
                     precise(EPS)
                 ),
             )];
@@ -315,7 +315,8 @@ pub(crate) fn light_lines(
         Line::text(
             about,
             format!(
-                "  {}, {cosine} = {}",
+                "  {}{}, {cosine} = {}",
+                directional_words(light).map_or(String::new(), |w| format!("{w}: ")),
                 f_att_words(light),
                 num(light.specular_cosine)
             ),
@@ -351,9 +352,9 @@ pub(crate) fn light_lines(
 /// (cse167, MODEL §11), "f_att = 1 / (0 + 0 d + 1 d²) = 4, d = 0.5, no
 /// clamp".
 fn f_att_words(light: &LightRecord) -> String {
-    if light.clamped {
+    let Some(distance) = light.distance.filter(|_| !light.clamped) else {
         return format!("f_att = {}", precise(light.f_att));
-    }
+    };
     let [c1, c2, c3] = light.coefficients;
     format!(
         "f_att = 1 / ({} + {} d + {} d²) = {}, d = {}, no clamp",
@@ -361,7 +362,7 @@ fn f_att_words(light: &LightRecord) -> String {
         num(c2),
         num(c3),
         precise(light.f_att),
-        num(light.distance)
+        num(distance)
     )
 }
 

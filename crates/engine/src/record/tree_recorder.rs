@@ -43,7 +43,7 @@ pub struct TreeRecorder<'a> {
     /// Blockers of the shadow ray being traced, in the order found.
     blockers: Vec<Blocker>,
     /// The shadow ray being traced: its light, ray and length.
-    shadow_ray: Option<(usize, Ray, f64)>,
+    shadow_ray: Option<(usize, Ray, Option<f64>)>,
 }
 
 /// Records image pixel (x, y) of `scene` traced with `settings`: the same
@@ -202,7 +202,7 @@ impl Recorder for TreeRecorder<'_> {
         self.push_event(EventKind::Emission { term });
     }
 
-    fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: f64) {
+    fn shadow_cast(&mut self, light: usize, ray: &Ray, distance: Option<f64>) {
         self.blockers.clear();
         self.shadow_ray = Some((light, *ray, distance));
         self.push_event(EventKind::ShadowCast { light });
@@ -265,6 +265,7 @@ impl Recorder for TreeRecorder<'_> {
             light: scene.lights[term.light].name.clone(),
             light_index: term.light,
             i_p: scene.lights[term.light].color,
+            directional: scene.lights[term.light].is_directional(),
             to_light: term.to_light,
             distance: term.distance,
             n_dot_l: term.n_dot_l,

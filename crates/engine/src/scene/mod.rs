@@ -3,6 +3,7 @@
 
 pub mod builtin;
 mod error;
+mod light;
 pub(crate) mod limits;
 pub mod mesh;
 pub(crate) mod nff;
@@ -20,6 +21,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use error::SceneError;
+pub use light::{Light, LightKind};
 pub use profile::Profile;
 pub use switches::{DEEPEST_TOGGLED_DEPTH, Switch, Switches};
 
@@ -160,17 +162,6 @@ impl Material {
             specular_color: None,
         }
     }
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct Light {
-    pub name: String,
-    pub position: DVec3,
-    /// I_p.
-    pub color: Color,
-    /// This light's (c1, c2, c3) of f_att, in place of the scene's
-    /// `light_attenuation` (TOML `attenuation`, CSE 167's per light).
-    pub attenuation: Option<[f64; 3]>,
 }
 
 /// A scene ready to trace: validated, with its acceleration structure built.
@@ -358,11 +349,7 @@ fn parse_parts(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("test"));
     if is_test {
-        // test_format::parse reads them, but nothing renders a TestScene yet.
-        return Err(SceneError::plain(format!(
-            "{}: CSE 167 .test scenes are not read yet (issue 42)",
-            path.display()
-        )));
+        return test_format::to_scene(path, test_format::parse(text, path)?);
     }
     if is_nff {
         nff::parse(path, text)

@@ -161,8 +161,8 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<SceneParts, SceneError> {
         .lights
         .iter()
         .enumerate()
-        .map(|(i, def)| light(i, def.get_ref()))
-        .collect();
+        .map(|(i, def)| light(&source, i, def))
+        .collect::<Result<_, _>>()?;
     let mut meshes = Meshes::default();
     let objects = match object_defs {
         ObjectDefs::Read(defs) => {
@@ -458,13 +458,39 @@ fn material(name: &str, m: &MaterialDef) -> Material {
     }
 }
 
-fn light(index: usize, l: &LightDef) -> Light {
+/// A point light (`position`) or a directional one (`direction`, MODEL
+/// §4): exactly one of the two, and a direction that is not zero.
+fn light(source: &Source, index: usize, def: &Spanned<LightDef>) -> Result<Light, SceneError> {
+    let l = def.get_ref();
     let color = l.color.as_ref().map_or(DVec3::ONE, vec3);
-    Light {
-        name: l.name.clone().unwrap_or_else(|| format!("light {index}")),
-        position: vec3(&l.position),
-        color,
-        attenuation: l.attenuation.as_ref().map(|a| triple(a.get_ref())),
+    let name = l.name.clone().unwrap_or_else(|| format!("light {index}"));
+    match (&l.position, &l.direction) {
+        (Some(position), None) => {
+            let mut light = Light::point(name, vec3(position), color);
+            light.attenuation = l.attenuation.as_ref().map(|a| triple(a.get_ref()));
+            Ok(light)
+        }
+        (None, Some(_)) if l.attenuation.is_some() => Err(source.error(
+            l.attenuation.as_ref().map_or(def.span(), |a| a.span()),
+            "a directional light is never attenuated (MODEL §4): `attenuation` is a point light's",
+        )),
+        (None, Some(direction)) => {
+            let d = vec3(direction.get_ref());
+            Light::directional(name, d, color).ok_or_else(|| {
+                source.error(
+                    direction.span(),
+                    format!("a directional light's `direction` must not be zero, got {d}"),
+                )
+            })
+        }
+        (Some(_), Some(_)) => Err(source.error(
+            def.span(),
+            "a light has either `position` (a point light) or `direction` (a directional light), not both",
+        )),
+        (None, None) => Err(source.error(
+            def.span(),
+            "a light needs `position` (a point light) or `direction` (a directional light, towards it)",
+        )),
     }
 }
 

@@ -56,7 +56,8 @@ pub struct LightTerm {
     pub(crate) light: usize,
     /// L, unit length (P_L - p under `light-not-normalised`).
     pub(crate) to_light: DVec3,
-    pub(crate) distance: f64,
+    /// d_L; `None` for a directional light, which is infinitely far.
+    pub(crate) distance: Option<f64>,
     pub(crate) n_dot_l: f64,
     /// N·L <= 0: no shadow ray, no contribution.
     pub(crate) faces_away: bool,
@@ -172,7 +173,7 @@ pub trait Recorder {
     #[inline]
     fn emission(&mut self, _term: Color) {}
     #[inline]
-    fn shadow_cast(&mut self, _light: usize, _ray: &Ray, _distance: f64) {}
+    fn shadow_cast(&mut self, _light: usize, _ray: &Ray, _distance: Option<f64>) {}
     #[inline]
     fn blocker(&mut self, _blocker: &Blocker) {}
     #[inline]

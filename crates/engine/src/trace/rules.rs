@@ -162,20 +162,20 @@ impl<'a, const MISTAKES: bool> Rules<'a, MISTAKES> {
         }
     }
 
-    /// The shadow segment towards a light `distance` away: (EPS, d_L); it
-    /// starts at 0 under `shadow-acne` or `no-epsilon` and has no end under
+    /// The shadow segment towards a light `distance` away: (EPS, d_L), or
+    /// (EPS, inf) to a directional light (`None`); it starts at 0 under
+    /// `shadow-acne` or `no-epsilon` and has no end under
     /// `shadows-past-light`.
     #[inline]
-    pub fn shadow_segment(&self, distance: f64) -> Interval {
+    pub fn shadow_segment(&self, distance: Option<f64>) -> Interval {
         let start = if self.has(Mistake::ShadowAcne) || self.has(Mistake::NoEpsilon) {
             0.0
         } else {
             EPS
         };
-        let end = if self.has(Mistake::ShadowsPastLight) {
-            f64::INFINITY
-        } else {
-            distance
+        let end = match distance {
+            Some(d) if !self.has(Mistake::ShadowsPastLight) => d,
+            _ => f64::INFINITY,
         };
         Interval::new(start, end)
     }

@@ -12,7 +12,7 @@ use super::recorder::{
     ShadowOutcome, SurfaceHit,
 };
 use super::rules::Rules;
-use crate::scene::{Light, Material, Scene, Settings, SpecularModel};
+use crate::scene::{Light, LightKind, Material, Scene, Settings, SpecularModel};
 use raystep_accel::{Candidate, Cost, ShadowCache};
 use raystep_model::math::{Color, EPS, Ray, attenuation};
 
@@ -242,10 +242,19 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         to_viewer: DVec3,
         (index, light): (usize, &Light),
     ) -> LightTerm {
-        let offset = light.position - point;
-        let distance = offset.length();
-        let to_light = offset / distance;
-        let l = self.rules.lighting_direction(offset, to_light);
+        // A directional light's L is the same everywhere: it has no d_L, its
+        // shadow ray no end and it is never attenuated (MODEL §4).
+        let (to_light, distance, l, f_att) = match light.kind {
+            LightKind::Point { position } => {
+                let offset = position - point;
+                let distance = offset.length();
+                let to_light = offset / distance;
+                let l = self.rules.lighting_direction(offset, to_light);
+                let f_att = self.rules.f_att(light, distance);
+                (to_light, Some(distance), l, f_att)
+            }
+            LightKind::Directional { direction } => (direction, None, direction, 1.0),
+        };
         let n_dot_l = self.rules.light_cosine(normal.dot(l));
         let mut term = LightTerm {
             light: index,
@@ -255,7 +264,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
             faces_away: n_dot_l <= 0.0,
             at_point: false,
             shadow: None,
-            f_att: self.rules.f_att(light, distance),
+            f_att,
             specular_model: self.rules.specular_model(material),
             specular_cosine: 0.0,
             diffuse: Color::ZERO,
@@ -263,7 +272,7 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
         };
         // A light within EPS of the point has no usable direction (at 0, L and
         // N·L are NaN) and no shadow segment: it adds nothing (MODEL §4).
-        if distance < EPS {
+        if distance.is_some_and(|d| d < EPS) {
             return at_point(term);
         }
         if term.faces_away && self.rules.light_behind_adds_nothing() {
@@ -299,13 +308,14 @@ impl<'a, R: Recorder, const MISTAKES: bool> Tracer<'a, R, MISTAKES> {
     }
 
     /// S_i: the product of k_t over every crossing of the segment to the
-    /// light; an opaque crossing settles S_i = 0 and ends the walk, unless
-    /// the recorder lists every blocker.
+    /// light (`distance` away; `None`, a directional light, without end);
+    /// an opaque crossing settles S_i = 0 and ends the walk, unless the
+    /// recorder lists every blocker.
     fn shadow_ray(
         &mut self,
         point: DVec3,
         to_light: DVec3,
-        distance: f64,
+        distance: Option<f64>,
         light: usize,
     ) -> ShadowOutcome {
         let scene = self.scene;

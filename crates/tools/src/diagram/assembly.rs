@@ -10,7 +10,7 @@ use glam::{DVec2, DVec3};
 
 use super::outline::{Outline, outline};
 use super::projection::{DiagramPlane, Projection};
-use super::rays::{BlockerMark, Progress, Segment, Stroke, ray_segments};
+use super::rays::{BlockerMark, Progress, Segment, Stroke, light_place, miss_length, ray_segments};
 use raystep_engine::record::{EventKind, NearMiss, Node, NodeId, RayTree};
 use raystep_engine::scene::Scene;
 use raystep_model::shapes::Shape;
@@ -180,6 +180,10 @@ impl Diagram {
         let projection = Projection::new(plane, scene, tree);
         let p = |v| projection.project(v);
         let (segments, blockers) = ray_segments(tree, scene, &projection, progress);
+        // A directional light is drawn along its L from the primary ray's
+        // hit (or the eye), where that hit's shadow ray to it ends.
+        let reach = miss_length(tree, scene);
+        let first = (tree.root().hit.as_ref()).map_or(tree.root().origin, |h| h.point);
         let mut diagram = Diagram {
             pixel: tree.pixel,
             plane,
@@ -188,8 +192,12 @@ impl Diagram {
             eye: p(tree.root().origin),
             lights: (scene.lights.iter())
                 .map(|l| LightMark {
-                    name: l.name.clone(),
-                    at: p(l.position),
+                    name: if l.is_directional() {
+                        format!("{} (directional)", l.name)
+                    } else {
+                        l.name.clone()
+                    },
+                    at: p(light_place(l, first, reach)),
                 })
                 .collect(),
             hits: Vec::new(),
@@ -218,7 +226,7 @@ impl Diagram {
                 if let Some(l) = scene.lights.get(light.light_index) {
                     diagram.faces_away.push(FacesAway {
                         hit: p(hit.point),
-                        light: p(l.position),
+                        light: p(light_place(l, hit.point, reach)),
                         node: id,
                     });
                 }

@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 
 use super::projection::Projection;
 use raystep_engine::record::{EventKind, NodeId, RayTree};
-use raystep_engine::scene::Scene;
+use raystep_engine::scene::{Light, LightKind, Scene};
 
 /// What a drawn ray is, for its colour.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -183,7 +183,7 @@ pub(crate) fn ray_segments(
             let target = scene
                 .lights
                 .get(light.light_index)
-                .map_or(hit.point, |l| l.position);
+                .map_or(hit.point, |l| light_place(l, hit.point, miss_length));
             let ray = CurrentRay {
                 node: id,
                 light: Some(light.light_index),
@@ -243,15 +243,27 @@ impl Casts {
     }
 }
 
-/// How far a missed ray is drawn: half the size of the pixel's scene.
-fn miss_length(tree: &RayTree, scene: &Scene) -> f64 {
+/// Where a light is drawn as seen from `from`: a point light at its
+/// position; a directional one, which has none, `reach` along its L (MODEL
+/// §4), as far as a missed ray is drawn, so its shadow rays run off
+/// towards it parallel.
+pub(crate) fn light_place(light: &Light, from: DVec3, reach: f64) -> DVec3 {
+    match light.kind {
+        LightKind::Point { position } => position,
+        LightKind::Directional { direction } => from + direction * reach,
+    }
+}
+
+/// How far a missed ray is drawn: half the size of the pixel's scene (its
+/// hits, the eye and the point lights).
+pub(crate) fn miss_length(tree: &RayTree, scene: &Scene) -> f64 {
     let mut points: Vec<DVec3> = tree
         .nodes
         .iter()
         .filter_map(|n| n.hit.as_ref().map(|h| h.point))
         .collect();
     points.push(tree.root().origin);
-    points.extend(scene.lights.iter().map(|l| l.position));
+    points.extend(scene.lights.iter().filter_map(Light::position));
     let min = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
     let max = points.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
     ((max - min).length() * 0.5).max(1.0)

@@ -29,7 +29,7 @@ pub(crate) fn why_not_ours(scene: &Scene, ours: &OurRays, path: &RayPath) -> Str
         {
             Some((light, LightFate::AtPoint)) => format!(
                 "MODEL §4: light {i} is within EPS of the hit point (d_L = {}): no shadow ray",
-                precise(light.distance)
+                precise(light.distance.unwrap_or_default())
             ),
             Some((light, LightFate::FacesAway)) => format!(
                 "MODEL §4: light {i} is behind the surface (N·L = {} ≤ 0): no shadow ray is cast to it",

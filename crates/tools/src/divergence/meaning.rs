@@ -161,14 +161,21 @@ fn primary_direction(scene: &Scene, ours: &OurRays) -> Vec<String> {
 }
 
 fn shadow_direction(scene: &Scene, light: &LightRecord, p: DVec3) -> Vec<String> {
-    let position = scene.lights[light.light_index].position;
-    vec![format!(
-        "MODEL §4: L = normalize(P_L − p) = normalize({} − {}) = {}, d_L = {}",
-        fine3(position),
-        fine3(p),
-        fine3(light.to_light),
-        fine(light.distance)
-    )]
+    match (scene.lights[light.light_index].position(), light.distance) {
+        (Some(position), Some(distance)) => vec![format!(
+            "MODEL §4: L = normalize(P_L − p) = normalize({} − {}) = {}, d_L = {}",
+            fine3(position),
+            fine3(p),
+            fine3(light.to_light),
+            fine(distance)
+        )],
+        _ => vec![format!(
+            "MODEL §4: light {} is directional: L = {} at every point (its direction, \
+             normalised), with no d_L",
+            light.light_index,
+            fine3(light.to_light)
+        )],
+    }
 }
 
 fn reflected_direction(ours: &OurRays, parent: &Node, child: &Node) -> Vec<String> {
@@ -323,11 +330,14 @@ fn shadow_factor(ours: &OurRays, light: &LightRecord) -> Vec<String> {
     };
     // The segment the rules in force gave the shadow ray.
     let segment = ours.rules().shadow_segment(light.distance);
-    let mut lines = vec![if segment.min() == EPS && segment.max() == light.distance {
-        format!(
-            "MODEL §4: S = the product of k_t over every crossing with EPS < t < d_L = {}",
-            fine(light.distance)
-        )
+    let end = light
+        .distance
+        .map_or("∞ (a directional light)".to_string(), |d| {
+            format!("d_L = {}", fine(d))
+        });
+    let model_end = light.distance.unwrap_or(f64::INFINITY);
+    let mut lines = vec![if segment.min() == EPS && segment.max() == model_end {
+        format!("MODEL §4: S = the product of k_t over every crossing with EPS < t < {end}")
     } else {
         let names: Vec<&str> = [
             Mistake::ShadowAcne,
@@ -339,11 +349,10 @@ fn shadow_factor(ours: &OurRays, light: &LightRecord) -> Vec<String> {
         .map(Mistake::name)
         .collect();
         format!(
-            "MODEL §4 under {} (§8): S = the product of k_t over every crossing with {} < t < {} (d_L = {})",
+            "MODEL §4 under {} (§8): S = the product of k_t over every crossing with {} < t < {} ({end})",
             names.join(" and "),
             fine(segment.min()),
             fine(segment.max()),
-            fine(light.distance)
         )
     }];
     if let LightFate::Lit(_) = fate {

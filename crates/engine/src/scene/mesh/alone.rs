@@ -52,12 +52,7 @@ pub(crate) fn scene(path: &Path) -> Result<Scene, SceneError> {
     // which then light it alone.
     let mut lights = placed.lights;
     if lights.is_empty() {
-        lights.push(Light {
-            name: "default light".into(),
-            position: light,
-            color: Color::ONE,
-            attenuation: None,
-        });
+        lights.push(Light::point("default light", light, Color::ONE));
     }
     let settings = Settings {
         ambient: Color::splat(0.1),

@@ -312,11 +312,10 @@ impl EmitterSums {
             return None;
         }
         let offset = self.normal.normalize_or_zero() * (EMITTER_OFFSET * self.bounds.diagonal());
-        Some(Light {
-            name: format!("{prefix}light (Ke of material {})", read.name),
-            position: self.weighted_centres / self.area + offset,
-            color: read.emission.unwrap_or_default() * mtl::EMITTER_INTENSITY,
-            attenuation: None,
-        })
+        Some(Light::point(
+            format!("{prefix}light (Ke of material {})", read.name),
+            self.weighted_centres / self.area + offset,
+            read.emission.unwrap_or_default() * mtl::EMITTER_INTENSITY,
+        ))
     }
 }

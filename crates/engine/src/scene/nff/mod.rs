@@ -260,11 +260,8 @@ impl Builder {
             .lights
             .into_iter()
             .enumerate()
-            .map(|(i, (position, color))| Light {
-                name: format!("light {i}"),
-                position,
-                color: color.unwrap_or(grey),
-                attenuation: None,
+            .map(|(i, (position, color))| {
+                Light::point(format!("light {i}"), position, color.unwrap_or(grey))
             })
             .collect();
         let settings = Settings {

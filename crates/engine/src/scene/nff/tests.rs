@@ -71,7 +71,7 @@ pp 3
     assert_eq!(scene.settings.ambient, Color::splat(grey));
     assert_eq!(scene.lights.len(), 2);
     assert_eq!(scene.lights[0].name, "light 0");
-    assert_eq!(scene.lights[0].position, DVec3::new(10.0, 0.0, 0.0));
+    assert_eq!(scene.lights[0].position(), Some(DVec3::new(10.0, 0.0, 0.0)));
     assert_eq!(scene.lights[0].color, Color::splat(grey));
     assert_eq!(scene.lights[1].name, "light 1");
     assert_eq!(scene.lights[1].color, Color::new(0.5, 0.25, 1.0));

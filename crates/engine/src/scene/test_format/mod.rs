@@ -100,6 +100,9 @@ use raystep_model::math::exceeds;
 
 #[cfg(test)]
 mod parsing_tests;
+mod to_scene;
+
+pub(crate) use to_scene::to_scene;
 
 /// The course's default recursion depth (its spec: "default 5").
 pub const DEFAULT_MAXDEPTH: u32 = 5;
@@ -383,7 +386,10 @@ impl Reader<'_> {
             }
             "maxdepth" => {
                 let [n] = self.values(command, args, ["depth"])?;
-                self.state.maxdepth = self.integer(n, "maxdepth", MAX_DEPTH_LIMIT as u64)? as u32;
+                // Bounces: the primary ray and `maxdepth` more, at most
+                // raystep's deepest tree (`to_scene`).
+                let bounces = (MAX_DEPTH_LIMIT - 1) as u64;
+                self.state.maxdepth = self.integer(n, "maxdepth (bounces)", bounces)? as u32;
             }
             "output" => {
                 let [file] = self.values(command, args, ["file name"])?;

@@ -25,12 +25,16 @@ pub(super) fn file(source: &Source, file: &FileDef) -> Result<(), SceneError> {
     }
     for (i, def) in file.lights.iter().enumerate() {
         let light = def.get_ref();
-        vector(
+        optional_vector(
             source,
             &format!("light[{i}].position"),
             &light.position,
             COORDINATE,
         )?;
+        if let Some(direction) = &light.direction {
+            let key = format!("light[{i}].direction");
+            vector(source, &key, direction.get_ref(), COORDINATE)?;
+        }
         optional_vector(source, &format!("light[{i}].color"), &light.color, COLOR)?;
         if let Some(attenuation) = &light.attenuation {
             let key = format!("light[{i}].attenuation");

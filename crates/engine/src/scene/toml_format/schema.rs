@@ -172,7 +172,10 @@ pub(super) struct MaterialDef {
 #[serde(deny_unknown_fields)]
 pub(super) struct LightDef {
     pub(super) name: Option<String>,
-    pub(super) position: Vec3,
+    /// A point light's P_L; exactly one of `position` and `direction`.
+    pub(super) position: Option<Vec3>,
+    /// A directional light's direction *to* the light (normalised on load).
+    pub(super) direction: Option<Spanned<Vec3>>,
     pub(super) color: Option<Vec3>,
     /// This light's (c1, c2, c3) of f_att, in place of the scene's.
     pub(super) attenuation: Option<Spanned<Vec3>>,

@@ -15,9 +15,11 @@ pub(super) fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(Strin
     match field {
         Field::Diffuse(i) | Field::Specular(i) => {
             if let Some(light) = node.lights.iter().find(|l| l.light_index == i) {
-                let d = light.distance;
-                named.push((format!("1/d_L² (d_L = {})", num(d)), 1.0 / (d * d)));
-                named.push((format!("1/d_L (d_L = {})", num(d)), 1.0 / d));
+                // A directional light has no d_L (MODEL §4) to scale by.
+                if let Some(d) = light.distance {
+                    named.push((format!("1/d_L² (d_L = {})", num(d)), 1.0 / (d * d)));
+                    named.push((format!("1/d_L (d_L = {})", num(d)), 1.0 / d));
+                }
                 named.push((
                     format!("1/f_att (f_att = {})", num(light.f_att)),
                     1.0 / light.f_att,
@@ -45,7 +47,7 @@ pub(super) fn candidates(ours: &OurRays, ray: usize, field: Field) -> Vec<(Strin
                     ));
                 }
                 // N·L with L = P_L − p is d_L times N·L with L normalised.
-                if matches!(field, Field::Diffuse(_)) {
+                if let (Field::Diffuse(_), Some(d)) = (field, light.distance) {
                     named.push((format!("d_L = {}: L = P_L − p not normalised", num(d)), d));
                 }
             }

@@ -138,8 +138,14 @@ pub(super) fn shadow_segment(
 
 fn retraced(scene: &Scene, ours: &OurRays, ray: usize, yours: f64) -> Option<(Kind, String)> {
     let path = &ours.rays()[ray].path;
+    // Towards a directional light the segment has no end: nothing lies
+    // past the light (MODEL §8), so only a missing EPS is left to try.
     let d_l = ours.light(ray)?.distance;
-    for mistake in [Mistake::ShadowAcne, Mistake::ShadowsPastLight] {
+    let mistakes: &[Mistake] = match d_l {
+        Some(_) => &[Mistake::ShadowAcne, Mistake::ShadowsPastLight],
+        None => &[Mistake::ShadowAcne],
+    };
+    for &mistake in mistakes {
         let settings = Settings {
             mistakes: ours.tree.settings.mistakes.with(mistake),
             ..ours.tree.settings
@@ -168,6 +174,7 @@ fn retraced(scene: &Scene, ours: &OurRays, ray: usize, yours: f64) -> Option<(Ki
                 ),
             )
         } else {
+            let d_l = d_l?;
             let blocker = shadow.blockers.iter().find(|b| b.t >= d_l)?;
             (
                 Kind::PastLight,
