@@ -8,6 +8,7 @@ use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
 use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
+use super::ellipsoid_words;
 use super::shared_words::{kind_name, not_cast_reason};
 use super::sources::{brightness, sources};
 use crate::trace::{PruneRule, RayKind};
@@ -180,6 +181,13 @@ pub fn explain_lines(tree: &RayTree) -> Vec<Told> {
             if hit.entering { "front" } else { "back" }
         ),
     );
+    // An ellipsoid's hit is worked in the sphere's own space: say so.
+    if let Some(words) = match &hit.working {
+        Working::Ellipsoid(w) => ellipsoid_words::explained(w),
+        _ => None,
+    } {
+        out.say(Said::PrimaryRay, words);
+    }
     // A convex hit's single crossing is routine (it is in `inspect`); several
     // crossings mean a concave outline where the parity rule decided the hit.
     if let Some(figure) = hit.crossing_figure.as_ref().filter(|f| counted(f) > 1) {

@@ -15,7 +15,10 @@ use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
 use crate::trace::RayKind;
 use raystep_model::math::EPS;
 use raystep_model::mistakes::{Mistake, Mistakes};
-use raystep_model::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};
+use super::ellipsoid_words;
+use raystep_model::shapes::{
+    ConeWorking, CrossingFigure, PolygonWorking, RootChoice, SphereWorking, Working,
+};
 
 /// The intersection worked as in the course notes, a line per step.
 pub(crate) fn working_lines(working: &Working) -> Vec<String> {
@@ -28,24 +31,13 @@ pub(crate) fn working_lines(working: &Working) -> Vec<String> {
                 num(w.c),
                 num(w.discriminant)
             )];
-            if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
-                let why = match w.choice {
-                    RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
-                    RootChoice::FartherRoot => {
-                        "took t1: t0 is not beyond EPS, the ray starts on or inside the sphere"
-                            .to_string()
-                    }
-                    RootChoice::BothBehind => "both roots are behind the ray".to_string(),
-                    RootChoice::NoRealRoots => String::new(),
-                };
-                lines.push(format!(
-                    "roots {}, {}: {why}",
-                    root("t0", t0),
-                    root("t1", t1)
-                ));
-            } else {
-                lines.push("negative discriminant: no real roots, no hit".into());
-            }
+            lines.push(roots_line(w));
+            lines
+        }
+        Working::Ellipsoid(w) => {
+            let mut lines = ellipsoid_words::quadratic_lines(w);
+            lines.push(roots_line(&w.quadratic));
+            lines.extend(ellipsoid_words::normal_line(w));
             lines
         }
         Working::Plane(w) => vec![plane_line(w)],
@@ -64,6 +56,28 @@ pub(crate) fn working_lines(working: &Working) -> Vec<String> {
             lines
         }
         Working::Cone(w) => cone_lines(w),
+    }
+}
+
+/// A quadratic's roots and which the ray took, and why (sphere, ellipsoid).
+fn roots_line(w: &SphereWorking) -> String {
+    if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
+        let why = match w.choice {
+            RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
+            RootChoice::FartherRoot => {
+                "took t1: t0 is not beyond EPS, the ray starts on or inside the sphere"
+                    .to_string()
+            }
+            RootChoice::BothBehind => "both roots are behind the ray".to_string(),
+            RootChoice::NoRealRoots => String::new(),
+        };
+        format!(
+            "roots {}, {}: {why}",
+            root("t0", t0),
+            root("t1", t1)
+        )
+    } else {
+        "negative discriminant: no real roots, no hit".into()
     }
 }
 
@@ -342,6 +356,15 @@ fn blocker_lines(working: &Working) -> Vec<String> {
             if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
                 lines.truncate(1);
                 lines.push(format!("roots {}, {}", root("t0", t0), root("t1", t1)));
+            }
+            lines
+        }
+        Working::Ellipsoid(w) => {
+            let mut lines = ellipsoid_words::quadratic_lines(w);
+            if let (Some(t0), Some(t1)) = (w.quadratic.t0, w.quadratic.t1) {
+                lines.push(format!("roots {}, {}", root("t0", t0), root("t1", t1)));
+            } else {
+                lines.push(roots_line(&w.quadratic));
             }
             lines
         }

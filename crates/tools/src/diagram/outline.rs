@@ -1,6 +1,6 @@
 //! Objects' outlines in the diagram's plane: where the plane cuts them.
 
-use glam::{DVec2, DVec3};
+use glam::{DMat2, DVec2, DVec3};
 
 use super::projection::Projection;
 use raystep_model::shapes::Shape;
@@ -38,7 +38,9 @@ impl Outline {
     }
 }
 
-/// The outline of one shape: spheres as circles, polygons as their edges,
+/// The outline of one shape: spheres as circles, ellipsoids as the ellipse
+/// they show seen along the view plane's normal (as a sphere shows its
+/// circle; drawn as a polygon of `ELLIPSE_SIDES` sides), polygons as their edges,
 /// cones as their two side lines and end caps, planes as the line where they
 /// cut the view plane (none when parallel to it).
 pub(crate) fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
@@ -85,7 +87,38 @@ pub(crate) fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
             );
             vec![Outline::Polyline(vec![b0, a0, a1, b1, b0])]
         }
+        Shape::Ellipsoid(e) => vec![ellipse(e, projection)],
     }
+}
+
+/// How many sides the polygon drawn for an ellipsoid's ellipse has.
+pub(crate) const ELLIPSE_SIDES: usize = 64;
+
+/// The ellipsoid's silhouette in the plane, exactly an ellipse: its points
+/// are M c + L u with |u| <= r (L the linear part of M), which project to
+/// c2 + P L u, P the plane's two axes: the ellipse y^T S^-1 y <= 1 around
+/// c2 with S = r^2 (P L)(P L)^T, whose rim is c2 + sqrt(S) (cos a, sin a).
+/// sqrt of a 2x2 positive definite S: (S + sqrt(det S) I) / sqrt(tr S + 2 sqrt(det S)).
+fn ellipse(e: &raystep_model::shapes::Ellipsoid, projection: &Projection) -> Outline {
+    let l = e.to_world.matrix3;
+    let r = e.sphere.radius;
+    let rows = [projection.right, projection.up].map(|axis| r * (l.transpose() * axis));
+    let s = DMat2::from_cols(
+        DVec2::new(rows[0].dot(rows[0]), rows[1].dot(rows[0])),
+        DVec2::new(rows[0].dot(rows[1]), rows[1].dot(rows[1])),
+    );
+    let root_det = s.determinant().max(0.0).sqrt();
+    let scale = (s.x_axis.x + s.y_axis.y + 2.0 * root_det).sqrt();
+    let root = (s + DMat2::from_diagonal(DVec2::splat(root_det))) * (1.0 / scale);
+    let center = projection.project(e.center());
+    closed(
+        (0..ELLIPSE_SIDES)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / ELLIPSE_SIDES as f64;
+                center + root * DVec2::new(a.cos(), a.sin())
+            })
+            .collect(),
+    )
 }
 
 fn closed(mut points: Vec<DVec2>) -> Outline {
