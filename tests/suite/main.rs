@@ -21,6 +21,7 @@ mod compare_sub_pixel;
 mod crossing;
 mod details_pane;
 mod docs_contract;
+mod ellipsoids;
 mod explain_story;
 mod figure;
 mod five_questions;

@@ -106,6 +106,12 @@ const PIXELS: &[(&str, u32, u32, &str)] = &[
         48,
         "a far pillar: light attenuation f_att = 0.21",
     ),
+    (
+        "ellipsoid.toml",
+        112,
+        50,
+        "the squashed ball: a sphere's working in its own space, N_g by M⁻ᵀ",
+    ),
 ];
 
 #[test]

@@ -3,12 +3,12 @@
 
 use std::fmt::{self, Write};
 
+use super::ellipsoid_words;
 use super::fate::LightFate;
 use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
 use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
-use super::ellipsoid_words;
 use super::shared_words::{kind_name, not_cast_reason};
 use super::sources::{brightness, sources};
 use crate::trace::{PruneRule, RayKind};

@@ -4,6 +4,7 @@
 
 use std::fmt::Write;
 
+use super::ellipsoid_words;
 use super::fate::LightFate;
 use super::lines::{About, Line};
 use super::numbers::{color, count, num, precise, root, vector};
@@ -15,7 +16,6 @@ use super::shared_words::{cosine_name, kind_name, not_cast_line, ray_header};
 use crate::trace::RayKind;
 use raystep_model::math::EPS;
 use raystep_model::mistakes::{Mistake, Mistakes};
-use super::ellipsoid_words;
 use raystep_model::shapes::{
     ConeWorking, CrossingFigure, PolygonWorking, RootChoice, SphereWorking, Working,
 };
@@ -65,17 +65,12 @@ fn roots_line(w: &SphereWorking) -> String {
         let why = match w.choice {
             RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
             RootChoice::FartherRoot => {
-                "took t1: t0 is not beyond EPS, the ray starts on or inside the sphere"
-                    .to_string()
+                "took t1: t0 is not beyond EPS, the ray starts on or inside the sphere".to_string()
             }
             RootChoice::BothBehind => "both roots are behind the ray".to_string(),
             RootChoice::NoRealRoots => String::new(),
         };
-        format!(
-            "roots {}, {}: {why}",
-            root("t0", t0),
-            root("t1", t1)
-        )
+        format!("roots {}, {}: {why}", root("t0", t0), root("t1", t1))
     } else {
         "negative discriminant: no real roots, no hit".into()
     }

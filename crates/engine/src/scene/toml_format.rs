@@ -482,9 +482,8 @@ fn sphere(d: &SphereDef) -> Result<Shape, GeometryError> {
     let r = d.rotate.as_ref().map_or(DVec3::ZERO, vec3) * (std::f64::consts::PI / 180.0);
     let rotation =
         DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x);
-    let transform = DMat4::from_translation(center)
-        * DMat4::from_mat3(rotation)
-        * DMat4::from_scale(scale);
+    let transform =
+        DMat4::from_translation(center) * DMat4::from_mat3(rotation) * DMat4::from_scale(scale);
     placed_sphere(DVec3::ZERO, radius, transform)
 }
 

@@ -130,7 +130,9 @@ impl Ellipsoid {
     pub fn working(&self, ray: &Ray, range: Interval) -> EllipsoidWorking {
         let object = self.object_ray(ray);
         let quadratic = self.sphere.solve(&object, range);
-        let point = quadratic.t().map(|t| self.to_object.transform_point3(ray.at(t)));
+        let point = quadratic
+            .t()
+            .map(|t| self.to_object.transform_point3(ray.at(t)));
         EllipsoidWorking {
             object_origin: object.origin,
             object_direction: object.direction,
@@ -161,7 +163,8 @@ impl Ellipsoid {
     /// M's linear part| either side of its centre.
     pub fn bounds(&self) -> Aabb {
         let m = self.to_world.matrix3;
-        let half = self.sphere.radius * DVec3::new(m.row(0).length(), m.row(1).length(), m.row(2).length());
+        let half = self.sphere.radius
+            * DVec3::new(m.row(0).length(), m.row(1).length(), m.row(2).length());
         Aabb::new(self.center() - half, self.center() + half)
     }
 }
@@ -199,7 +202,11 @@ mod tests {
         // (1.9^2/4 = 0.9025 < 1), one at x = 2.1 misses (1.1025 > 1), though
         // the unit sphere it was made of ends at x = 1.
         let e = ellipsoid(DVec3::new(2.0, 1.0, 1.0), 0.0);
-        assert!(e.solve(&down_z(1.9, 0.0), Interval::in_front()).t().is_some());
+        assert!(
+            e.solve(&down_z(1.9, 0.0), Interval::in_front())
+                .t()
+                .is_some()
+        );
         assert_eq!(
             e.solve(&down_z(2.1, 0.0), Interval::in_front()).choice,
             super::super::RootChoice::NoRealRoots
@@ -262,10 +269,21 @@ mod tests {
         // missed. The point (sqrt 2, sqrt 0.5, 0) turns to (-sqrt 0.5, sqrt 2, 0)
         // and its normal (1, 2, 0)/sqrt 5 to (-2, 1, 0)/sqrt 5.
         let e = ellipsoid(DVec3::new(2.0, 1.0, 1.0), 90.0);
-        assert!(e.solve(&down_z(0.0, 1.9), Interval::in_front()).t().is_some());
-        assert!(e.solve(&down_z(1.9, 0.0), Interval::in_front()).t().is_none());
+        assert!(
+            e.solve(&down_z(0.0, 1.9), Interval::in_front())
+                .t()
+                .is_some()
+        );
+        assert!(
+            e.solve(&down_z(1.9, 0.0), Interval::in_front())
+                .t()
+                .is_none()
+        );
         let p = DVec3::new(-(0.5f64.sqrt()), 2f64.sqrt(), 0.0);
-        assert!(close(e.normal_at(p), DVec3::new(-2.0, 1.0, 0.0) / 5f64.sqrt()));
+        assert!(close(
+            e.normal_at(p),
+            DVec3::new(-2.0, 1.0, 0.0) / 5f64.sqrt()
+        ));
     }
 
     #[test]
@@ -299,7 +317,8 @@ mod tests {
     fn a_uniform_scale_makes_a_plain_sphere_and_a_zero_one_is_refused() {
         // translate (1, 2, 3), scale 2: the sphere (1, 0, 0) r 0.5 becomes
         // the sphere at (1, 2, 3) + 2 (1, 0, 0) = (3, 2, 3) of radius 1.
-        let m = DMat4::from_translation(DVec3::new(1.0, 2.0, 3.0)) * DMat4::from_scale(DVec3::splat(2.0));
+        let m = DMat4::from_translation(DVec3::new(1.0, 2.0, 3.0))
+            * DMat4::from_scale(DVec3::splat(2.0));
         let Shape::Sphere(s) = placed_sphere(DVec3::X, 0.5, m).unwrap() else {
             panic!("a uniform scale is a sphere");
         };
