@@ -138,3 +138,46 @@ fn the_working_is_recorded_in_the_spheres_own_space() {
     );
     snapshot!("working_in_object_space", text(&tree));
 }
+
+#[test]
+fn a_ray_log_with_the_normal_from_the_centre_is_told_the_inverse_transpose() {
+    // A student's tracer that takes an ellipsoid's normal as a sphere's,
+    // (p - M c)/|p - M c|, logs everything else as ours: the first
+    // divergence is the normal, and what ours is says how it was made.
+    let log = crate::support::raystep(&[
+        "inspect",
+        "scenes/ellipsoid.toml",
+        "--pixel",
+        "112,50",
+        "--format",
+        "raylog",
+    ]);
+    assert!(log.status.success());
+    let first = String::from_utf8(log.stdout).unwrap();
+    let mut primary: serde_json::Value =
+        serde_json::from_str(first.lines().next().unwrap()).unwrap();
+    // The squashed ball's centre M c is its `center`, (1.6, 1, 0).
+    let p: Vec<f64> = serde_json::from_value(primary["point"].clone()).unwrap();
+    let v = [p[0] - 1.6, p[1] - 1.0, p[2]];
+    let length = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    primary["normal"] = serde_json::json!([v[0] / length, v[1] / length, v[2] / length]);
+    let file = std::env::temp_dir().join(format!("ellipsoid-{}.raylog", std::process::id()));
+    std::fs::write(&file, format!("{primary}\n")).unwrap();
+    let out = crate::support::raystep(&[
+        "compare",
+        "scenes/ellipsoid.toml",
+        "--rays",
+        file.to_str().unwrap(),
+    ]);
+    std::fs::remove_file(&file).ok();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("First divergence: P normal"), "{text}");
+    assert!(
+        text.contains(
+            "an ellipsoid's normal comes from the inverse transpose: p' = M⁻¹ p = \
+             (0.015552, 0.684268, 0.729065)"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("not (p − M c)/|p − M c|"), "{text}");
+}

@@ -162,4 +162,50 @@ mod tests {
             }]
         );
     }
+
+    #[test]
+    fn an_ellipsoid_is_the_ellipse_it_shows() {
+        use glam::DMat4;
+        use raystep_model::shapes::placed_sphere;
+        // The unit sphere stretched to x^2/4 + y^2 + z^2 = 1, turned 90
+        // degrees about z (y^2/4 + x^2 + z^2 = 1), moved to (5, 0, 0); seen
+        // on the x-y plane through the origin it shows (x - 5)^2 + y^2/4 = 1:
+        // every drawn point on it, reaching y = 2 and x = 6.
+        let m = DMat4::from_translation(DVec3::new(5.0, 0.0, 0.0))
+            * DMat4::from_rotation_z(std::f64::consts::FRAC_PI_2)
+            * DMat4::from_scale(DVec3::new(2.0, 1.0, 1.0));
+        let shape = placed_sphere(DVec3::ZERO, 1.0, m).unwrap();
+        let plane = Projection {
+            origin: DVec3::ZERO,
+            right: DVec3::X,
+            up: DVec3::Y,
+        };
+        let [Outline::Polyline(points)] = &outline(&shape, &plane)[..] else {
+            panic!("an ellipse drawn as a polygon");
+        };
+        assert_eq!(points.len(), ELLIPSE_SIDES + 1);
+        for p in points {
+            let on = (p.x - 5.0).powi(2) + p.y * p.y / 4.0;
+            assert!((on - 1.0).abs() < 1e-12, "{p} is off the ellipse");
+        }
+        let top = points.iter().map(|p| p.y).fold(f64::MIN, f64::max);
+        let right = points.iter().map(|p| p.x).fold(f64::MIN, f64::max);
+        assert!((top - 2.0).abs() < 1e-3 && (right - 6.0).abs() < 1e-12);
+        // Turned 45 degrees in the view, the same ellipse tilts: each point
+        // satisfies the turned equation (u^2/4 + v^2 = 1 in the turned axes).
+        let tilted = DMat4::from_rotation_z(std::f64::consts::FRAC_PI_4)
+            * DMat4::from_scale(DVec3::new(2.0, 1.0, 1.0));
+        let shape = placed_sphere(DVec3::ZERO, 1.0, tilted).unwrap();
+        let [Outline::Polyline(points)] = &outline(&shape, &plane)[..] else {
+            panic!("an ellipse drawn as a polygon");
+        };
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        for p in points {
+            let (u, v) = (c * (p.x + p.y), c * (p.y - p.x));
+            assert!(
+                (u * u / 4.0 + v * v - 1.0).abs() < 1e-12,
+                "{p} is off the ellipse"
+            );
+        }
+    }
 }
