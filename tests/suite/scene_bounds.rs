@@ -265,7 +265,7 @@ fn every_scene_in_the_repository_loads() {
             }
         }
     }
-    // 9 teaching scenes (two-lights and prism for issue 16's five
-    // questions) and 14 SPD files.
-    assert_eq!(count, 23);
+    // 10 teaching scenes (two-lights and prism for issue 16's five
+    // questions, ellipsoid for issue 42's ellipsoids) and 14 SPD files.
+    assert_eq!(count, 24);
 }

@@ -109,7 +109,7 @@ impl Ellipsoid {
 
     /// The ray in the sphere's own space: o' = M⁻¹ o, d' = M⁻¹ d.
     #[inline]
-    pub fn object_ray(&self, ray: &Ray) -> Ray {
+    fn object_ray(&self, ray: &Ray) -> Ray {
         Ray::new(
             self.to_object.transform_point3(ray.origin),
             self.to_object.transform_vector3(ray.direction),
