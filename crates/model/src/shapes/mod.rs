@@ -48,7 +48,9 @@ pub enum Shape {
 pub struct GeometryError(pub String);
 
 /// The lecture's working for one ray and one primitive, kept for the ray tree.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+/// Every hit, blocker and near miss holds one, so the largest variant sets
+/// the trees' size: an ellipsoid's (its own-space numbers) is boxed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "shape", rename_all = "snake_case")]
 pub enum Working {
     Sphere(SphereWorking),
@@ -57,7 +59,7 @@ pub enum Working {
     Patch(PatchWorking),
     Cone(ConeWorking),
     /// A sphere's working done in the sphere's own space (MODEL §3).
-    Ellipsoid(EllipsoidWorking),
+    Ellipsoid(Box<EllipsoidWorking>),
 }
 
 impl Working {
@@ -166,7 +168,7 @@ impl Shape {
                 })
             }
             Shape::Cone(c) => Working::Cone(c.solve(ray, range)),
-            Shape::Ellipsoid(e) => Working::Ellipsoid(e.working(ray, range)),
+            Shape::Ellipsoid(e) => Working::Ellipsoid(Box::new(e.working(ray, range))),
         }
     }
 
