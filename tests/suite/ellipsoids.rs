@@ -181,3 +181,33 @@ fn a_ray_log_with_the_normal_from_the_centre_is_told_the_inverse_transpose() {
     );
     assert!(text.contains("not (p − M c)/|p − M c|"), "{text}");
 }
+
+#[test]
+fn a_ray_through_its_box_that_misses_is_a_near_miss_in_the_spheres_own_space() {
+    // Down -z at (1.9, 0.9): inside the box [-2, 2] x [-1, 1] of
+    // x^2/4 + y^2 + z^2 = 1, but 1.9^2/4 + 0.9^2 = 1.7125 > 1: a miss. In the
+    // sphere's own space o' = (0.95, 0.9, 10), d' = (0, 0, -1): the line
+    // comes nearest the centre at t = 10, at distance sqrt(0.95^2 + 0.9^2)
+    // = sqrt 1.7125 = 1.3086, more than r = 1.
+    let s = scene(&placed(", scale = [2, 1, 1]"));
+    let tree = record(&s, [1.9, 0.9, 10.0], DOWN);
+    assert!(tree.root().hit.is_none());
+    // Both wrap their lines: read them as running text.
+    let words = |text: String| text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let inspect = words(text(&tree));
+    assert!(
+        inspect.contains(
+            "the ray passes the sphere by: its line comes within 1.3086 of the centre in the \
+             sphere's own space (at t = 10), more than the radius 1"
+        ),
+        "{inspect}"
+    );
+    let told = words(raystep_engine::record::explain(&tree));
+    assert!(
+        told.contains(
+            "crosses the bounding box of ellipsoid 0 but passes it by: its line comes within \
+             1.3086 of the centre in the sphere's own space"
+        ),
+        "{told}"
+    );
+}

@@ -11,6 +11,7 @@ use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
 use super::shared_words::{kind_name, not_cast_reason};
 use super::sources::{brightness, sources};
+use super::text::sphere_quadratic;
 use crate::trace::{PruneRule, RayKind};
 use raystep_model::math::{Color, EPS};
 use raystep_model::shapes::{CrossingFigure, RootChoice, Working};
@@ -579,10 +580,12 @@ fn write_near_misses(out: &mut Story, tree: &RayTree) {
                 counted_edges(figure)
             ));
         }
-        if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
+        if let (Some((w, space)), Some(c)) =
+            (sphere_quadratic(&near.working), near.closest_approach)
+        {
             let why = if w.choice == RootChoice::NoRealRoots {
                 format!(
-                    "its line comes within {} of the centre, more than the radius {}: a negative \
+                    "its line comes within {} of the centre{space}, more than the radius {}: a negative \
                      discriminant, no real roots",
                     num(c.distance),
                     num(c.radius)
@@ -590,11 +593,15 @@ fn write_near_misses(out: &mut Story, tree: &RayTree) {
             } else {
                 "both roots of its quadratic lie behind the ray's origin".to_string()
             };
-            // NFF spheres are already named "sphere 3".
-            let name = if near.object.starts_with("sphere") {
+            // NFF spheres are already named "sphere 3", unnamed ellipsoids "ellipsoid 2".
+            let kind = match near.working {
+                Working::Ellipsoid(_) => "ellipsoid",
+                _ => "sphere",
+            };
+            let name = if near.object.starts_with(kind) {
                 near.object.clone()
             } else {
-                format!("sphere {}", near.object)
+                format!("{kind} {}", near.object)
             };
             out.say(
                 Said::NearMiss,

@@ -169,12 +169,12 @@ fn near_miss_lines(near: &NearMiss) -> Vec<String> {
     if let Some(figure) = &near.crossing_figure {
         lines.extend(crossing_lines(figure));
     }
-    if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
+    if let (Some((w, space)), Some(c)) = (sphere_quadratic(&near.working), near.closest_approach) {
         lines.pop(); // the working's own verdict, said more fully here
         lines.push(if w.choice == RootChoice::NoRealRoots {
             format!(
                 "negative discriminant, no real roots: the ray passes the sphere by: its line \
-                 comes within {} of the centre (at t = {}), more than the radius {}",
+                 comes within {} of the centre{space} (at t = {}), more than the radius {}",
                 num(c.distance),
                 num(c.t),
                 num(c.radius)
@@ -188,6 +188,16 @@ fn near_miss_lines(near: &NearMiss) -> Vec<String> {
         });
     }
     lines
+}
+
+/// A sphere's quadratic, or an ellipsoid's in the sphere's own space, with
+/// the words that say where its distances are measured.
+pub(crate) fn sphere_quadratic(working: &Working) -> Option<(&SphereWorking, &'static str)> {
+    match working {
+        Working::Sphere(w) => Some((w, "")),
+        Working::Ellipsoid(w) => Some((&w.quadratic, " in the sphere's own space")),
+        _ => None,
+    }
 }
 
 fn cone_lines(w: &ConeWorking) -> Vec<String> {
