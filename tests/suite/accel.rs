@@ -5,12 +5,12 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use raystep_accel::{Accel, Candidate, Cost, brute};
 use raystep_engine::scene::Object;
 use raystep_engine::trace::NoRecorder;
 use raystep_model::math::{EPS, Interval, Ray};
-use raystep_model::shapes::{Cone, Patch, Plane, Polygon, Shape, Sphere};
+use raystep_model::shapes::{Cone, Patch, Plane, Polygon, Shape, Sphere, placed_sphere};
 
 const SPD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/spd");
 
@@ -142,6 +142,23 @@ fn random_scene(rng: &mut Rng, count: usize, frame: Frame) -> Vec<Object> {
         Plane::new(DVec3::new(1.0, 1.0, 0.5), far).unwrap(),
     )));
     objects
+}
+
+/// Spheres stretched, squashed, turned and mirrored (MODEL §3), some long
+/// and thin, so that a box too small for its ellipsoid loses hits.
+fn ellipsoid_scene(rng: &mut Rng, count: usize) -> Vec<Object> {
+    (0..count)
+        .map(|_| {
+            let scale = DVec3::new(
+                rng.range(0.05, 3.0),
+                rng.range(0.05, 3.0),
+                rng.range(0.05, 3.0),
+            ) * if rng.below(4) == 0 { -1.0 } else { 1.0 };
+            let turn = DMat4::from_axis_angle(rng.direction(), rng.range(0.0, 6.3));
+            let m = DMat4::from_translation(UNIT.point(rng)) * turn * DMat4::from_scale(scale);
+            object(placed_sphere(rng.point(0.5), rng.range(0.1, 1.0), m).unwrap())
+        })
+        .collect()
 }
 
 /// Axis-aligned unit squares on an integer grid, many coplanar and some
@@ -288,6 +305,7 @@ fn scenes() -> Vec<(&'static str, Vec<Object>, Frame)> {
         ("grid 400", grid_scene(&mut rng, 400), grid),
         ("single sphere", vec![object(sphere)], small),
         ("plane only", vec![object(plane)], small),
+        ("ellipsoids 300", ellipsoid_scene(&mut rng, 300), UNIT),
     ]
 }
 

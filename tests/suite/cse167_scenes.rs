@@ -33,7 +33,10 @@ fn a_test_file_is_traced_with_the_cse167_profile() {
 #[test]
 fn ambient_only_and_emission_only_spheres() {
     // I = A = (0.4, 0.2, 0.1): 102, 51.5 -> 51, 26.
-    assert_eq!(centre("ambient 0.4 0.2 0.1\nsphere 0 0 0 1\n"), [102, 51, 26]);
+    assert_eq!(
+        centre("ambient 0.4 0.2 0.1\nsphere 0 0 0 1\n"),
+        [102, 51, 26]
+    );
     // I = E = (0.2, 0.6, 0.4) with A = 0: 51.5 -> 51, 153.5 -> 153, 102.5 -> 102.
     assert_eq!(
         centre("ambient 0 0 0\nemission 0.2 0.6 0.4\nsphere 0 0 0 1\n"),
@@ -66,7 +69,12 @@ fn maxdepth_counts_bounces() {
     // The spec: "maxdepth depth: the maximum depth (number of bounces) for
     // a ray". Two bounces are the primary ray's hit and two mirror rays:
     // depth 3 in MODEL §5's count, where the primary ray has depth 1.
-    assert_eq!(test_scene("maxdepth 2\nsphere 0 0 0 1\n").settings.max_depth, 3);
+    assert_eq!(
+        test_scene("maxdepth 2\nsphere 0 0 0 1\n")
+            .settings
+            .max_depth,
+        3
+    );
     assert_eq!(test_scene("sphere 0 0 0 1\n").settings.max_depth, 6);
 }
 
@@ -77,5 +85,41 @@ fn a_sphere_turned_and_scaled_alike_stays_a_sphere() {
     let scene = test_scene("rotate 0 1 0 30\nscale 2 2 2\nsphere 0 0 0 0.5\n");
     let sphere = format!("{:?}", scene.objects[0].shape);
     assert!(sphere.starts_with("Sphere"), "{sphere}");
-    assert_eq!(centre("rotate 0 1 0 30\nscale 2 2 2\nsphere 0 0 0 0.5\n"), [51, 51, 51]);
+    assert_eq!(
+        centre("rotate 0 1 0 30\nscale 2 2 2\nsphere 0 0 0 0.5\n"),
+        [51, 51, 51]
+    );
+}
+
+#[test]
+fn an_ellipsoids_silhouette_and_normal() {
+    // `scale 2 1 1` then a unit sphere: the ellipsoid x²/4 + y² + z² = 1,
+    // met by rays straight down -z from z = 5.
+    let scene = test_scene("scale 2 1 1\nambient 0.4 0.4 0.4\nsphere 0 0 0 1\n");
+    let ellipsoid = &scene.objects[0].shape;
+    assert!(format!("{ellipsoid:?}").starts_with("Ellipsoid"));
+    // A ray down -z at x = 1.9 meets x²/4 + z² = 1 (y = 0) at
+    // z = √(1 - 0.9025) = 0.31225, t = 5 - 0.31225; at x = 2.1 it misses.
+    let tree = crate::support::record(&scene, [1.9, 0.0, 5.0], [0.0, 0.0, -1.0]);
+    let hit = tree
+        .root()
+        .hit
+        .as_ref()
+        .expect("x = 1.9 is inside the rim x = 2");
+    assert!(
+        (hit.t - (5.0 - 0.0975f64.sqrt())).abs() < 1e-12,
+        "{}",
+        hit.t
+    );
+    // The normal by the inverse transpose: M⁻ᵀ (p'/1) with p' = (0.95, 0,
+    // 0.31225), M⁻ᵀ = diag(1/2, 1, 1): (0.475, 0, 0.31225) normalised,
+    // not p / |p| = (1.9, 0, 0.31225) normalised.
+    let expected = glam::DVec3::new(0.475, 0.0, 0.0975f64.sqrt()).normalize();
+    assert!(
+        (hit.geometric_normal - expected).length() < 1e-12,
+        "{:?}",
+        hit.geometric_normal
+    );
+    let tree = crate::support::record(&scene, [2.1, 0.0, 5.0], [0.0, 0.0, -1.0]);
+    assert!(tree.root().hit.is_none());
 }

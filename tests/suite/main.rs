@@ -23,6 +23,7 @@ mod cse167_scenes;
 mod details_pane;
 mod directional;
 mod docs_contract;
+mod ellipsoids;
 mod explain_story;
 mod figure;
 mod five_questions;

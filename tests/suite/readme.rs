@@ -554,6 +554,7 @@ fn defaults_scene(
     material: &str,
     light: &str,
     mesh: &str,
+    sphere: &str,
 ) -> String {
     // `[image]` takes both sizes or is left out.
     let image = if image.is_empty() {
@@ -566,7 +567,7 @@ fn defaults_scene(
          {image}[settings]\n{settings}\n\
          [materials.m]\n{material}\n\
          [[light]]\nposition = [2, 4, 4]\n{light}\n\
-         [[object]]\nname = \"ball\"\nmaterial = \"m\"\nsphere = {{ center = [0, 0, 0], radius = 1 }}\n\
+         [[object]]\nname = \"ball\"\nmaterial = \"m\"\nsphere = {{ center = [0, 0, 0], radius = 1{sphere} }}\n\
          [[object]]\nname = \"box\"\nmesh = {{ file = \"cornell/cornell.obj\"{mesh} }}\n"
     )
 }
@@ -677,6 +678,8 @@ fn scenes_guide_defaults_are_the_readers() {
             5,
             ", translate = [0, 0, 0]",
         ),
+        ("sphere `scale`", "`[1, 1, 1]`", 6, ", scale = [1, 1, 1]"),
+        ("sphere `rotate`", "`[0, 0, 0]`", 6, ", rotate = [0, 0, 0]"),
     ];
     // Rows whose default is no value a file could write the same way.
     let described = [
@@ -690,14 +693,14 @@ fn scenes_guide_defaults_are_the_readers() {
         "mesh `material`",
         "a mesh alone",
     ];
-    let read = |parts: [&str; 6]| {
-        let [c, i, s, m, l, x] = parts;
-        let text = defaults_scene(c, i, s, m, l, x);
+    let read = |parts: [&str; 7]| {
+        let [c, i, s, m, l, x, o] = parts;
+        let text = defaults_scene(c, i, s, m, l, x, o);
         let scene = raystep_engine::scene::parse(Path::new("scenes/defaults.toml"), &text)
             .unwrap_or_else(|e| panic!("{e}\n{text}"));
         format!("{scene:?}")
     };
-    let bare = read([""; 6]);
+    let bare = read([""; 7]);
     for (key, default, section, line) in literal {
         let cell = rows.get(key).unwrap_or_else(|| panic!("no row {key}"));
         assert!(
@@ -706,12 +709,12 @@ fn scenes_guide_defaults_are_the_readers() {
                 || cell.contains(&format!("= {default}")),
             "{key}: {cell}"
         );
-        let mut parts = [""; 6];
+        let mut parts = [""; 7];
         parts[section] = line;
         assert_eq!(read(parts), bare, "{key} = its default in SCENES.md");
     }
     // The comparison sees a change: a depth of 6 is not the default.
-    assert_ne!(read(["", "", "max_depth = 6", "", "", ""]), bare);
+    assert_ne!(read(["", "", "max_depth = 6", "", "", "", ""]), bare);
     let covered: Vec<&str> = literal.iter().map(|r| r.0).chain(described).collect();
     for key in rows.keys() {
         assert!(

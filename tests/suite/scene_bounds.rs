@@ -265,7 +265,8 @@ fn every_scene_in_the_repository_loads() {
             }
         }
     }
-    // 10 teaching scenes (two-lights and prism for issue 16's five
-    // questions, directional for issue 42's lights) and 14 SPD files.
-    assert_eq!(count, 24);
+    // 11 teaching scenes (two-lights and prism for issue 16's five
+    // questions, directional for issue 42's lights, ellipsoid for its
+    // ellipsoids) and 14 SPD files.
+    assert_eq!(count, 25);
 }

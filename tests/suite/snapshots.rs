@@ -112,6 +112,12 @@ const PIXELS: &[(&str, u32, u32, &str)] = &[
         68,
         "the sun's shadow: a directional light, no distance, blocked by the ball",
     ),
+    (
+        "ellipsoid.toml",
+        112,
+        50,
+        "the squashed ball: a sphere's working in its own space, N_g by M⁻ᵀ",
+    ),
 ];
 
 #[test]

@@ -67,7 +67,7 @@ impl NormalRecipe {
                     flat: p.polygon.plane.normal,
                 }))
             }
-            Shape::Cone(_) => NormalRecipe::FromShape,
+            Shape::Cone(_) | Shape::Ellipsoid(_) => NormalRecipe::FromShape,
         }
     }
 }

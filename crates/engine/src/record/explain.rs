@@ -3,6 +3,7 @@
 
 use std::fmt::{self, Write};
 
+use super::ellipsoid_words;
 use super::fate::LightFate;
 use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
@@ -10,6 +11,7 @@ use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
 use super::shared_words::{directional_words, kind_name, not_cast_reason, weight_words};
 use super::sources::{brightness, sources};
+use super::text::sphere_quadratic;
 use crate::trace::{PruneRule, RayKind};
 use raystep_model::math::{Color, EPS};
 use raystep_model::shapes::{CrossingFigure, RootChoice, Working};
@@ -183,6 +185,13 @@ pub fn explain_lines(tree: &RayTree) -> Vec<Told> {
             if hit.entering { "front" } else { "back" }
         ),
     );
+    // An ellipsoid's hit is worked in the sphere's own space: say so.
+    if let Some(words) = match &hit.working {
+        Working::Ellipsoid(w) => ellipsoid_words::explained(w),
+        _ => None,
+    } {
+        out.say(Said::PrimaryRay, words);
+    }
     // A convex hit's single crossing is routine (it is in `inspect`); several
     // crossings mean a concave outline where the parity rule decided the hit.
     if let Some(figure) = hit.crossing_figure.as_ref().filter(|f| counted(f) > 1) {
@@ -602,10 +611,12 @@ fn write_near_misses(out: &mut Story, tree: &RayTree) {
                 counted_edges(figure)
             ));
         }
-        if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
+        if let (Some((w, space)), Some(c)) =
+            (sphere_quadratic(&near.working), near.closest_approach)
+        {
             let why = if w.choice == RootChoice::NoRealRoots {
                 format!(
-                    "its line comes within {} of the centre, more than the radius {}: a negative \
+                    "its line comes within {} of the centre{space}, more than the radius {}: a negative \
                      discriminant, no real roots",
                     num(c.distance),
                     num(c.radius)
@@ -613,11 +624,15 @@ fn write_near_misses(out: &mut Story, tree: &RayTree) {
             } else {
                 "both roots of its quadratic lie behind the ray's origin".to_string()
             };
-            // NFF spheres are already named "sphere 3".
-            let name = if near.object.starts_with("sphere") {
+            // NFF spheres are already named "sphere 3", unnamed ellipsoids "ellipsoid 2".
+            let kind = match near.working {
+                Working::Ellipsoid(_) => "ellipsoid",
+                _ => "sphere",
+            };
+            let name = if near.object.starts_with(kind) {
                 near.object.clone()
             } else {
-                format!("sphere {}", near.object)
+                format!("{kind} {}", near.object)
             };
             out.say(
                 Said::NearMiss,

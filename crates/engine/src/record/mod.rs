@@ -3,6 +3,7 @@
 
 mod diff;
 mod dot;
+mod ellipsoid_words;
 mod event_words;
 mod explain;
 mod fate;

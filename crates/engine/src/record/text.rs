@@ -4,6 +4,7 @@
 
 use std::fmt::Write;
 
+use super::ellipsoid_words;
 use super::fate::LightFate;
 use super::lines::{About, Line};
 use super::numbers::{color, count, num, precise, root, vector};
@@ -16,7 +17,9 @@ use crate::trace::RayKind;
 use raystep_model::math::Color;
 use raystep_model::math::EPS;
 use raystep_model::mistakes::{Mistake, Mistakes};
-use raystep_model::shapes::{ConeWorking, CrossingFigure, PolygonWorking, RootChoice, Working};
+use raystep_model::shapes::{
+    ConeWorking, CrossingFigure, PolygonWorking, RootChoice, SphereWorking, Working,
+};
 
 /// The intersection worked as in the course notes, a line per step.
 pub(crate) fn working_lines(working: &Working) -> Vec<String> {
@@ -29,24 +32,13 @@ pub(crate) fn working_lines(working: &Working) -> Vec<String> {
                 num(w.c),
                 num(w.discriminant)
             )];
-            if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
-                let why = match w.choice {
-                    RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
-                    RootChoice::FartherRoot => {
-                        "took t1: t0 is not beyond EPS, the ray starts on or inside the sphere"
-                            .to_string()
-                    }
-                    RootChoice::BothBehind => "both roots are behind the ray".to_string(),
-                    RootChoice::NoRealRoots => String::new(),
-                };
-                lines.push(format!(
-                    "roots {}, {}: {why}",
-                    root("t0", t0),
-                    root("t1", t1)
-                ));
-            } else {
-                lines.push("negative discriminant: no real roots, no hit".into());
-            }
+            lines.push(roots_line(w));
+            lines
+        }
+        Working::Ellipsoid(w) => {
+            let mut lines = ellipsoid_words::quadratic_lines(w);
+            lines.push(roots_line(&w.quadratic));
+            lines.extend(ellipsoid_words::normal_line(w));
             lines
         }
         Working::Plane(w) => vec![plane_line(w)],
@@ -65,6 +57,23 @@ pub(crate) fn working_lines(working: &Working) -> Vec<String> {
             lines
         }
         Working::Cone(w) => cone_lines(w),
+    }
+}
+
+/// A quadratic's roots and which the ray took, and why (sphere, ellipsoid).
+fn roots_line(w: &SphereWorking) -> String {
+    if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
+        let why = match w.choice {
+            RootChoice::NearerRoot => "took t0: the nearer root is in front".to_string(),
+            RootChoice::FartherRoot => {
+                "took t1: t0 is not beyond EPS, the ray starts on or inside the sphere".to_string()
+            }
+            RootChoice::BothBehind => "both roots are behind the ray".to_string(),
+            RootChoice::NoRealRoots => String::new(),
+        };
+        format!("roots {}, {}: {why}", root("t0", t0), root("t1", t1))
+    } else {
+        "negative discriminant: no real roots, no hit".into()
     }
 }
 
@@ -161,12 +170,12 @@ fn near_miss_lines(near: &NearMiss) -> Vec<String> {
     if let Some(figure) = &near.crossing_figure {
         lines.extend(crossing_lines(figure));
     }
-    if let (Working::Sphere(w), Some(c)) = (&near.working, near.closest_approach) {
+    if let (Some((w, space)), Some(c)) = (sphere_quadratic(&near.working), near.closest_approach) {
         lines.pop(); // the working's own verdict, said more fully here
         lines.push(if w.choice == RootChoice::NoRealRoots {
             format!(
                 "negative discriminant, no real roots: the ray passes the sphere by: its line \
-                 comes within {} of the centre (at t = {}), more than the radius {}",
+                 comes within {} of the centre{space} (at t = {}), more than the radius {}",
                 num(c.distance),
                 num(c.t),
                 num(c.radius)
@@ -180,6 +189,16 @@ fn near_miss_lines(near: &NearMiss) -> Vec<String> {
         });
     }
     lines
+}
+
+/// A sphere's quadratic, or an ellipsoid's in the sphere's own space, with
+/// the words that say where its distances are measured.
+pub(crate) fn sphere_quadratic(working: &Working) -> Option<(&SphereWorking, &'static str)> {
+    match working {
+        Working::Sphere(w) => Some((w, "")),
+        Working::Ellipsoid(w) => Some((&w.quadratic, " in the sphere's own space")),
+        _ => None,
+    }
 }
 
 fn cone_lines(w: &ConeWorking) -> Vec<String> {
@@ -375,6 +394,15 @@ fn blocker_lines(working: &Working) -> Vec<String> {
             if let (Some(t0), Some(t1)) = (w.t0, w.t1) {
                 lines.truncate(1);
                 lines.push(format!("roots {}, {}", root("t0", t0), root("t1", t1)));
+            }
+            lines
+        }
+        Working::Ellipsoid(w) => {
+            let mut lines = ellipsoid_words::quadratic_lines(w);
+            if let (Some(t0), Some(t1)) = (w.quadratic.t0, w.quadratic.t1) {
+                lines.push(format!("roots {}, {}", root("t0", t0), root("t1", t1)));
+            } else {
+                lines.push(roots_line(&w.quadratic));
             }
             lines
         }

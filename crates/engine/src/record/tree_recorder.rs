@@ -15,7 +15,7 @@ use raystep_accel::Cost;
 use raystep_model::math::{Color, EPS, Interval, Ray};
 use raystep_model::object::{Object, ObjectName};
 use raystep_model::shapes::{
-    CrossingFigure, Patch, Polygon, PolygonWorking, Shape, Sphere, SphereWorking, Working,
+    Aabb, CrossingFigure, Patch, Polygon, PolygonWorking, Shape, Sphere, SphereWorking, Working,
 };
 
 use super::ray_tree::{
@@ -368,7 +368,12 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64, hit: Option<usize>) -> Vec
                 .then(|| object.shape.working(ray, range)),
             Shape::Sphere(s) => {
                 let w = s.solve(ray, range);
-                sphere_missed(s, ray, range, &w).then_some(Working::Sphere(w))
+                sphere_missed(&s.bounds(), ray, range, &w).then_some(Working::Sphere(w))
+            }
+            Shape::Ellipsoid(e) => {
+                let w = e.working(ray, range);
+                sphere_missed(&e.bounds(), ray, range, &w.quadratic)
+                    .then(|| Working::Ellipsoid(Box::new(w)))
             }
             _ => None,
         };
@@ -379,8 +384,13 @@ fn near_misses(scene: &Scene, ray: &Ray, before: f64, hit: Option<usize>) -> Vec
             object: object.name.to_string(),
             object_index: index,
             crossing_figure: crossing_figure(&object.shape, ray, &working),
-            closest_approach: match &object.shape {
-                Shape::Sphere(s) => Some(closest_approach(s, ray)),
+            closest_approach: match (&object.shape, &working) {
+                (Shape::Sphere(s), _) => Some(closest_approach(s, ray)),
+                // In the sphere's own space, where the ellipsoid is a sphere.
+                (Shape::Ellipsoid(e), Working::Ellipsoid(w)) => Some(closest_approach(
+                    &e.sphere,
+                    &Ray::new(w.object_origin, w.object_direction),
+                )),
                 _ => None,
             },
             working,
@@ -445,10 +455,11 @@ fn polygon_missed(polygon: &Polygon, ray: &Ray, working: &PolygonWorking) -> boo
 /// do not depend on the range `working` was solved in). Roots beyond
 /// `range` (behind the hit) are not a miss: the sphere is hidden. Nor is a
 /// root within EPS of the origin: that is the sphere a secondary ray
-/// leaves from, not one it passes by.
-fn sphere_missed(sphere: &Sphere, ray: &Ray, range: Interval, working: &SphereWorking) -> bool {
+/// leaves from, not one it passes by. An ellipsoid's roots are its
+/// own-space sphere's, at the same t.
+fn sphere_missed(bounds: &Aabb, ray: &Ray, range: Interval, working: &SphereWorking) -> bool {
     let passed = working.t1.is_none_or(|t1| t1 < -EPS);
-    passed && sphere.bounds().crossed_by(ray, range)
+    passed && bounds.crossed_by(ray, range)
 }
 
 fn closest_approach(sphere: &Sphere, ray: &Ray) -> ClosestApproach {

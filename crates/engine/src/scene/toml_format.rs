@@ -40,7 +40,7 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use glam::DVec3;
+use glam::{DMat3, DMat4, DVec3};
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -51,14 +51,16 @@ use super::{
 };
 use raystep_model::camera::Camera;
 use raystep_model::math::Color;
-use raystep_model::shapes::{Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere};
+use raystep_model::shapes::{
+    Cone, GeometryError, Patch, Plane, Polygon, Shape, Sphere, placed_sphere,
+};
 
 mod bounds;
 mod schema;
 
 use schema::{
     CameraDef, FileDef, LightDef, MaterialDef, MeshDef, ObjectDef, ObjectSectionDef, SettingsDef,
-    Vec3, number, triple, vec3,
+    SphereDef, Vec3, number, triple, vec3,
 };
 
 /// The default image size when a file has no `[image]` table.
@@ -525,6 +527,27 @@ fn object(
     })
 }
 
+/// A sphere, or with a `scale` or `rotate` an ellipsoid: the sphere of
+/// radius r about the origin of its own space, placed by
+/// M = T(center) R S (MODEL §3). A sphere scaled the same along every axis
+/// is a plain sphere of radius s r, however it is turned.
+fn sphere(d: &SphereDef) -> Result<Shape, GeometryError> {
+    let (center, radius) = (vec3(&d.center), number(&d.radius));
+    if d.scale.is_none() && d.rotate.is_none() {
+        return Sphere::new(center, radius).map(Shape::Sphere);
+    }
+    let scale = d.scale.as_ref().map_or(DVec3::ONE, vec3);
+    if scale.x == scale.y && scale.y == scale.z {
+        return Sphere::new(center, scale.x * radius).map(Shape::Sphere);
+    }
+    let r = d.rotate.as_ref().map_or(DVec3::ZERO, vec3) * (std::f64::consts::PI / 180.0);
+    let rotation =
+        DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x);
+    let transform =
+        DMat4::from_translation(center) * DMat4::from_mat3(rotation) * DMat4::from_scale(scale);
+    placed_sphere(DVec3::ZERO, radius, transform)
+}
+
 /// The object's one shape and where it is written, or `None` when there is
 /// not exactly one.
 fn shape(o: &ObjectDef) -> Option<(Result<Shape, GeometryError>, Range<usize>)> {
@@ -532,10 +555,7 @@ fn shape(o: &ObjectDef) -> Option<(Result<Shape, GeometryError>, Range<usize>)> 
     let mut shapes = Vec::new();
     if let Some(s) = &o.sphere {
         let d = s.get_ref();
-        shapes.push((
-            Sphere::new(vec3(&d.center), number(&d.radius)).map(Shape::Sphere),
-            s.span(),
-        ));
+        shapes.push((sphere(d), s.span()));
     }
     if let Some(s) = &o.plane {
         let d = s.get_ref();

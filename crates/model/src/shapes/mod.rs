@@ -4,6 +4,7 @@
 
 mod cone;
 mod crossing;
+mod ellipsoid;
 mod patch;
 mod plane;
 mod polygon;
@@ -15,6 +16,7 @@ use serde::Serialize;
 pub use cone::Cone;
 pub use cone::ConeWorking;
 pub use crossing::CrossingFigure;
+pub use ellipsoid::{Ellipsoid, EllipsoidWorking, placed_sphere};
 pub use patch::Patch;
 pub use patch::{PatchWorking, blended_normal};
 pub use plane::Plane;
@@ -28,7 +30,8 @@ use crate::math::{Interval, Ray};
 
 /// Every object holds one, so its size is paid by every triangle of a mesh:
 /// the largest variant sets it. A cone (96 bytes) is boxed so a polygon or
-/// patch (a boxed slice or two, the plane and the dropped axis) sets it.
+/// patch (a boxed slice or two, the plane and the dropped axis) sets it;
+/// so is an ellipsoid (its matrices).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     Sphere(Sphere),
@@ -36,6 +39,7 @@ pub enum Shape {
     Polygon(Polygon),
     Patch(Patch),
     Cone(Box<Cone>),
+    Ellipsoid(Box<Ellipsoid>),
 }
 
 /// Geometry that cannot be intersected: the message says what is wrong.
@@ -44,7 +48,9 @@ pub enum Shape {
 pub struct GeometryError(pub String);
 
 /// The lecture's working for one ray and one primitive, kept for the ray tree.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+/// Every hit, blocker and near miss holds one, so the largest variant sets
+/// the trees' size: an ellipsoid's (its own-space numbers) is boxed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "shape", rename_all = "snake_case")]
 pub enum Working {
     Sphere(SphereWorking),
@@ -52,16 +58,19 @@ pub enum Working {
     Polygon(PolygonWorking),
     Patch(PatchWorking),
     Cone(ConeWorking),
+    /// A sphere's working done in the sphere's own space (MODEL §3).
+    Ellipsoid(Box<EllipsoidWorking>),
 }
 
 impl Working {
-    /// A quadratic's two roots (sphere, cylinder, cone) and which of them,
+    /// A quadratic's two roots (sphere, ellipsoid, cylinder, cone) and which of them,
     /// 0 or 1, is nearer `t` (0 on a tie); none for a plane or polygon, or
     /// without real roots.
     pub fn nearer_root(&self, t: f64) -> Option<(usize, [f64; 2])> {
         let roots = match self {
             Working::Sphere(w) => [w.t0?, w.t1?],
             Working::Cone(w) => [w.t0?, w.t1?],
+            Working::Ellipsoid(w) => [w.quadratic.t0?, w.quadratic.t1?],
             _ => return None,
         };
         let nearer = usize::from((t - roots[0]).abs() > (t - roots[1]).abs());
@@ -126,6 +135,7 @@ impl Shape {
             Shape::Polygon(p) => p.solve(ray, range).hit_t(),
             Shape::Patch(p) => p.polygon.solve(ray, range).hit_t(),
             Shape::Cone(c) => c.solve(ray, range).t(),
+            Shape::Ellipsoid(e) => e.solve(ray, range).t(),
         }
     }
 
@@ -138,6 +148,7 @@ impl Shape {
             Shape::Polygon(p) => p.roots(ray, range),
             Shape::Patch(p) => p.polygon.roots(ray, range),
             Shape::Cone(c) => c.roots(ray, range),
+            Shape::Ellipsoid(e) => e.roots(ray, range),
         }
     }
 
@@ -157,6 +168,7 @@ impl Shape {
                 })
             }
             Shape::Cone(c) => Working::Cone(c.solve(ray, range)),
+            Shape::Ellipsoid(e) => Working::Ellipsoid(Box::new(e.working(ray, range))),
         }
     }
 
@@ -168,6 +180,7 @@ impl Shape {
             Shape::Polygon(p) => p.plane.normal,
             Shape::Patch(p) => p.normal_at(point),
             Shape::Cone(c) => c.normal_at(point),
+            Shape::Ellipsoid(e) => e.normal_at(point),
         }
     }
 
@@ -179,6 +192,7 @@ impl Shape {
             Shape::Polygon(p) => Some(p.bounds()),
             Shape::Patch(p) => Some(p.polygon.bounds()),
             Shape::Cone(c) => Some(c.bounds()),
+            Shape::Ellipsoid(e) => Some(e.bounds()),
         }
     }
 
@@ -191,6 +205,7 @@ impl Shape {
             Shape::Patch(_) => "patch",
             Shape::Cone(c) if c.is_cylinder() => "cylinder",
             Shape::Cone(_) => "cone",
+            Shape::Ellipsoid(_) => "ellipsoid",
         }
     }
 }

@@ -1,6 +1,6 @@
 //! Objects' outlines in the diagram's plane: where the plane cuts them.
 
-use glam::{DVec2, DVec3};
+use glam::{DMat2, DVec2, DVec3};
 
 use super::projection::Projection;
 use raystep_model::shapes::Shape;
@@ -38,7 +38,9 @@ impl Outline {
     }
 }
 
-/// The outline of one shape: spheres as circles, polygons as their edges,
+/// The outline of one shape: spheres as circles, ellipsoids as the ellipse
+/// they show seen along the view plane's normal (as a sphere shows its
+/// circle; drawn as a polygon of `ELLIPSE_SIDES` sides), polygons as their edges,
 /// cones as their two side lines and end caps, planes as the line where they
 /// cut the view plane (none when parallel to it).
 pub(crate) fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
@@ -85,7 +87,38 @@ pub(crate) fn outline(shape: &Shape, projection: &Projection) -> Vec<Outline> {
             );
             vec![Outline::Polyline(vec![b0, a0, a1, b1, b0])]
         }
+        Shape::Ellipsoid(e) => vec![ellipse(e, projection)],
     }
+}
+
+/// How many sides the polygon drawn for an ellipsoid's ellipse has.
+pub(crate) const ELLIPSE_SIDES: usize = 64;
+
+/// The ellipsoid's silhouette in the plane, exactly an ellipse: its points
+/// are M c + L u with |u| <= r (L the linear part of M), which project to
+/// c2 + P L u, P the plane's two axes: the ellipse y^T S^-1 y <= 1 around
+/// c2 with S = r^2 (P L)(P L)^T, whose rim is c2 + sqrt(S) (cos a, sin a).
+/// sqrt of a 2x2 positive definite S: (S + sqrt(det S) I) / sqrt(tr S + 2 sqrt(det S)).
+fn ellipse(e: &raystep_model::shapes::Ellipsoid, projection: &Projection) -> Outline {
+    let l = e.to_world.matrix3;
+    let r = e.sphere.radius;
+    let rows = [projection.right, projection.up].map(|axis| r * (l.transpose() * axis));
+    let s = DMat2::from_cols(
+        DVec2::new(rows[0].dot(rows[0]), rows[1].dot(rows[0])),
+        DVec2::new(rows[0].dot(rows[1]), rows[1].dot(rows[1])),
+    );
+    let root_det = s.determinant().max(0.0).sqrt();
+    let scale = (s.x_axis.x + s.y_axis.y + 2.0 * root_det).sqrt();
+    let root = (s + DMat2::from_diagonal(DVec2::splat(root_det))) * (1.0 / scale);
+    let center = projection.project(e.center());
+    closed(
+        (0..ELLIPSE_SIDES)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / ELLIPSE_SIDES as f64;
+                center + root * DVec2::new(a.cos(), a.sin())
+            })
+            .collect(),
+    )
 }
 
 fn closed(mut points: Vec<DVec2>) -> Outline {
@@ -128,5 +161,51 @@ mod tests {
                 c: 1.0
             }]
         );
+    }
+
+    #[test]
+    fn an_ellipsoid_is_the_ellipse_it_shows() {
+        use glam::DMat4;
+        use raystep_model::shapes::placed_sphere;
+        // The unit sphere stretched to x^2/4 + y^2 + z^2 = 1, turned 90
+        // degrees about z (y^2/4 + x^2 + z^2 = 1), moved to (5, 0, 0); seen
+        // on the x-y plane through the origin it shows (x - 5)^2 + y^2/4 = 1:
+        // every drawn point on it, reaching y = 2 and x = 6.
+        let m = DMat4::from_translation(DVec3::new(5.0, 0.0, 0.0))
+            * DMat4::from_rotation_z(std::f64::consts::FRAC_PI_2)
+            * DMat4::from_scale(DVec3::new(2.0, 1.0, 1.0));
+        let shape = placed_sphere(DVec3::ZERO, 1.0, m).unwrap();
+        let plane = Projection {
+            origin: DVec3::ZERO,
+            right: DVec3::X,
+            up: DVec3::Y,
+        };
+        let [Outline::Polyline(points)] = &outline(&shape, &plane)[..] else {
+            panic!("an ellipse drawn as a polygon");
+        };
+        assert_eq!(points.len(), ELLIPSE_SIDES + 1);
+        for p in points {
+            let on = (p.x - 5.0).powi(2) + p.y * p.y / 4.0;
+            assert!((on - 1.0).abs() < 1e-12, "{p} is off the ellipse");
+        }
+        let top = points.iter().map(|p| p.y).fold(f64::MIN, f64::max);
+        let right = points.iter().map(|p| p.x).fold(f64::MIN, f64::max);
+        assert!((top - 2.0).abs() < 1e-3 && (right - 6.0).abs() < 1e-12);
+        // Turned 45 degrees in the view, the same ellipse tilts: each point
+        // satisfies the turned equation (u^2/4 + v^2 = 1 in the turned axes).
+        let tilted = DMat4::from_rotation_z(std::f64::consts::FRAC_PI_4)
+            * DMat4::from_scale(DVec3::new(2.0, 1.0, 1.0));
+        let shape = placed_sphere(DVec3::ZERO, 1.0, tilted).unwrap();
+        let [Outline::Polyline(points)] = &outline(&shape, &plane)[..] else {
+            panic!("an ellipse drawn as a polygon");
+        };
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        for p in points {
+            let (u, v) = (c * (p.x + p.y), c * (p.y - p.x));
+            assert!(
+                (u * u / 4.0 + v * v - 1.0).abs() < 1e-12,
+                "{p} is off the ellipse"
+            );
+        }
     }
 }

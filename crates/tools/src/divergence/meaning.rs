@@ -289,6 +289,26 @@ fn hit(scene: &Scene, ours: &OurRays, node: &Node) -> Vec<String> {
             w.t1.map_or("none".into(), fine)
         ));
     }
+    if let Working::Ellipsoid(w) = &hit.working {
+        let q = &w.quadratic;
+        lines.push(format!(
+            "MODEL §3: an ellipsoid, a sphere under a transform M, is solved in the sphere's own space: \
+             o' = M⁻¹ o = {}, d' = M⁻¹ d = {} (not renormalised, so t is the same), c = {}, r = {}",
+            fine3(w.object_origin),
+            fine3(w.object_direction),
+            fine3(w.object_center),
+            fine(w.object_radius)
+        ));
+        lines.push(format!(
+            "|o' + t d' − c|² = r²: A = {}, B = {}, C = {}, discriminant = {}, roots {} and {}",
+            fine(q.a),
+            fine(q.b),
+            fine(q.c),
+            fine(q.discriminant),
+            q.t0.map_or("none".into(), fine),
+            q.t1.map_or("none".into(), fine)
+        ));
+    }
     lines.push(format!(
         "p = o + t d = {} + {} × {} = {}",
         fine3(node.origin),
@@ -304,7 +324,18 @@ fn normal(node: &Node) -> Vec<String> {
         return Vec::new();
     };
     let flipped = !hit.entering;
-    vec![
+    let mut lines = Vec::new();
+    if let Working::Ellipsoid(w) = &hit.working
+        && let (Some(p), Some(n)) = (w.object_point, w.object_normal)
+    {
+        lines.push(format!(
+            "MODEL §3: an ellipsoid's normal comes from the inverse transpose: p' = M⁻¹ p = {}, \
+             (p' − c)/r = {}, N_g = normalize(M⁻ᵀ (p' − c)/r); not (p − M c)/|p − M c|",
+            fine3(p),
+            fine3(n)
+        ));
+    }
+    lines.extend([
         format!(
             "MODEL §3: N_g = {} (the {}'s geometric normal), d·N_g = {}",
             fine3(hit.geometric_normal),
@@ -316,7 +347,8 @@ fn normal(node: &Node) -> Vec<String> {
             if flipped { "−N_g = " } else { "N_g = " },
             fine3(hit.normal)
         ),
-    ]
+    ]);
+    lines
 }
 
 fn shadow_factor(ours: &OurRays, light: &LightRecord) -> Vec<String> {

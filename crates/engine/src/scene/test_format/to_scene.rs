@@ -13,17 +13,19 @@
 //! - No weight cutoff (the course's tracers recurse to `maxdepth`).
 //! - A triangle whose vertices are collinear is skipped with a warning, as
 //!   a mesh's are (MODEL §3).
+//! - A sphere under a transform that scales alike on every axis is a
+//!   sphere; under any other, an ellipsoid (MODEL §3).
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 
 use super::{TestLightKind, TestMaterial, TestObject, TestScene, TestShape};
 use crate::scene::{Light, Material, Profile, SceneError, SceneParts, Settings};
 use raystep_model::camera::Camera;
 use raystep_model::object::{Object, ObjectName};
-use raystep_model::shapes::{Patch, Polygon, Shape, Sphere};
+use raystep_model::shapes::{Patch, Polygon, Shape, placed_sphere};
 
 /// `scene`, read from `path`, as raystep's scene under the cse167 profile.
 pub(crate) fn to_scene(path: &Path, scene: TestScene) -> Result<SceneParts, SceneError> {
@@ -117,25 +119,14 @@ enum Skip {
 
 fn shape(object: &TestObject) -> Result<Shape, Skip> {
     match &object.shape {
+        // Turned and scaled alike on every axis it stays a sphere, else it
+        // is an ellipsoid, intersected in its own space (MODEL §3).
         TestShape::Sphere {
+            center,
             radius,
             transform,
-            world_center,
             ..
-        } => {
-            let linear = DMat3::from_mat4(*transform);
-            match similarity_scale(linear) {
-                // Turned and scaled alike on every axis: still a sphere.
-                Some(scale) => Sphere::new(*world_center, radius * scale)
-                    .map(Shape::Sphere)
-                    .map_err(|e| Skip::Refused(e.0)),
-                None => Err(Skip::Refused(
-                    "this sphere is under a scale that differs between axes (an ellipsoid): \
-                     raystep does not read ellipsoids yet (issue 42)"
-                        .into(),
-                )),
-            }
-        }
+        } => placed_sphere(*center, *radius, *transform).map_err(|e| Skip::Refused(e.0)),
         TestShape::Triangle { vertices } => Polygon::new(vertices.to_vec())
             .map(Shape::Polygon)
             .map_err(|e| Skip::Degenerate(e.0)),
@@ -145,18 +136,6 @@ fn shape(object: &TestObject) -> Result<Shape, Skip> {
                 .map_err(|e| Skip::Degenerate(e.0))
         }
     }
-}
-
-/// The common scale of a linear map that only turns, mirrors and scales
-/// alike on every axis (Mᵀ M = s² I, within rounding): a sphere stays a
-/// sphere of radius s r under it. `None` for any other map.
-fn similarity_scale(m: DMat3) -> Option<f64> {
-    let gram = m.transpose() * m;
-    let s2 = (gram.x_axis.x + gram.y_axis.y + gram.z_axis.z) / 3.0;
-    let tolerance = 1e-9 * s2;
-    let off = gram - DMat3::from_diagonal(DVec3::splat(s2));
-    let alike = off.to_cols_array().iter().all(|v| v.abs() <= tolerance);
-    (alike && s2 > 0.0).then(|| s2.sqrt())
 }
 
 /// The materials of the objects, one for each distinct material state.

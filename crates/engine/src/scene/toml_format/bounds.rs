@@ -96,6 +96,10 @@ pub(super) fn object(source: &Source, key: &str, o: &ObjectDef) -> Result<(), Sc
         let (key, d) = (format!("{key}.sphere"), s.get_ref());
         vector(source, &format!("{key}.center"), &d.center, COORDINATE)?;
         number(source, &format!("{key}.radius"), &d.radius, SIZE)?;
+        if let Some(scale) = &d.scale {
+            sphere_scale(source, &format!("{key}.scale"), scale)?;
+        }
+        optional_vector(source, &format!("{key}.rotate"), &d.rotate, COORDINATE)?;
     }
     if let Some(s) = &o.plane {
         let (key, d) = (format!("{key}.plane"), s.get_ref());
@@ -136,6 +140,25 @@ pub(super) fn object(source: &Source, key: &str, o: &ObjectDef) -> Result<(), Sc
             Some(&d.apex_radius),
         )?;
         cone_length(source, &key, s.span(), &d.base, &d.apex)?;
+    }
+    Ok(())
+}
+
+/// An ellipsoid's scale factors: each a size; a zero one is named as what
+/// it is, a flattened sphere with no M⁻¹ (MODEL §3).
+fn sphere_scale(source: &Source, key: &str, scale: &Vec3) -> Result<(), SceneError> {
+    for (i, n) in scale.0.iter().enumerate() {
+        if n.get_ref().0 == 0.0 {
+            return Err(source.error(
+                n.span(),
+                format!(
+                    "`{key}[{i}]` is 0: a zero scale flattens the sphere and its transform has \
+                     no inverse; a scale factor {}",
+                    SIZE.check(0.0).unwrap_err()
+                ),
+            ));
+        }
+        number(source, &format!("{key}[{i}]"), n, SIZE)?;
     }
     Ok(())
 }

@@ -212,6 +212,11 @@ pub(super) struct MeshDef {
 pub(super) struct SphereDef {
     pub(super) center: Vec3,
     pub(super) radius: Number,
+    /// An ellipsoid (MODEL §3): the sphere's own x, y, z stretched by
+    /// these factors, then `rotate`d about its centre.
+    pub(super) scale: Option<Vec3>,
+    /// Degrees about x, then y, then z, as a mesh's.
+    pub(super) rotate: Option<Vec3>,
 }
 
 #[derive(Deserialize)]
