@@ -123,3 +123,19 @@ fn an_ellipsoids_silhouette_and_normal() {
     let tree = crate::support::record(&scene, [2.1, 0.0, 5.0], [0.0, 0.0, -1.0]);
     assert!(tree.root().hit.is_none());
 }
+
+#[test]
+fn the_debuggers_header_names_the_profile_and_the_bounces() {
+    // `maxdepth 2`: two bounces, depth 3 in MODEL §5's count.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("two.test");
+    std::fs::write(&path, format!("{HEAD}maxdepth 2\nsphere 0 0 0 1\n")).unwrap();
+    let mut app = raystep::tui::App::open(Some(path), true).unwrap();
+    let terminal = crate::support::debugger::screen(&mut app, 160, 48);
+    let buffer = terminal.backend().buffer();
+    let header: String = (0..160)
+        .map(|x| buffer[(x, 0)].symbol().to_string())
+        .collect();
+    assert!(header.contains("depth 3 (2 bounces)"), "{header}");
+    assert!(header.contains("profile cse167"), "{header}");
+}

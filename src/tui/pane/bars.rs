@@ -81,7 +81,14 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
             SpecularModel::Blinn => "Blinn",
         }),
         sep(),
-        Span::raw(format!("depth {}", settings.max_depth)),
+        // CSE 167's `maxdepth` counts bounces, one less than MODEL §5's
+        // depth (docs/CSE167.md): say both where that profile is traced.
+        Span::raw(if settings.profile.is_lecture() {
+            format!("depth {}", settings.max_depth)
+        } else {
+            let bounces = settings.max_depth.saturating_sub(1);
+            format!("depth {} ({bounces} bounces)", settings.max_depth)
+        }),
     ]);
     if !settings.profile.is_lecture() {
         // Which equation the scene means: every term follows it (MODEL §11).
