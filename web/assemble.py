@@ -18,7 +18,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 # What a scene folder's files may be: scenes, and the meshes and MTL files
 # they name. Anything else (a README) stays out of the page.
-SCENE_FILES = (".toml", ".nff")
+SCENE_FILES = (".toml", ".nff", ".test")
 MESH_FILES = (".obj", ".mtl", ".stl")
 
 

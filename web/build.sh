@@ -5,7 +5,7 @@
 #
 #   web/build.sh [--scenes DIR] [--out FILE]
 #
-# --scenes DIR  the page's built-in scenes: every .toml and .nff under DIR,
+# --scenes DIR  the page's built-in scenes: every .toml, .nff and .test under DIR,
 #               with the meshes and MTL files beside them (default: scenes/)
 # --out FILE    where the page goes (default: dist/raystep.html)
 #

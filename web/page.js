@@ -113,7 +113,7 @@ function give(path, bytes) {
 
 // ---- scenes ----------------------------------------------------------------
 
-const SCENE = /\.(toml|nff)$/i;
+const SCENE = /\.(toml|nff|test)$/i;
 
 function sceneText(path) {
   const bytes = page.given.get(path);

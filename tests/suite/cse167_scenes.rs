@@ -26,6 +26,8 @@ fn centre(body: &str) -> [u8; 3] {
 fn a_test_file_is_traced_with_the_cse167_profile() {
     let scene = test_scene("sphere 0 0 0 1\n");
     assert_eq!(scene.settings.profile, Profile::Cse167);
+    let tree = record_pixel(&scene, &scene.settings, 1, 1);
+    assert_eq!(tree.to_json()["profile"], "cse167");
     // The default ambient, 0.2 grey, and nothing else: 0.2 * 255 + 0.5 = 51.5.
     assert_eq!(centre("sphere 0 0 0 1\n"), [51, 51, 51]);
 }

@@ -408,6 +408,11 @@ impl RayTree {
         if !self.mistakes.is_empty() {
             json["mistakes"] = serde_json::to_value(self.mistakes).unwrap_or(Value::Null);
         }
+        // Which equation the numbers follow, where it is not the lecture's
+        // (MODEL §11); a lecture tree's JSON reads as it always did.
+        if !self.settings.profile.is_lecture() {
+            json["profile"] = self.settings.profile.name().into();
+        }
         json
     }
 
