@@ -20,6 +20,7 @@ mod compare_slips;
 mod compare_sub_pixel;
 mod crossing;
 mod cse167_scenes;
+mod cse167_tracer;
 mod details_pane;
 mod directional;
 mod docs_contract;
