@@ -377,12 +377,11 @@ fn errors_print_file_line_col_with_the_line() {
 }
 
 #[test]
-fn load_still_refuses_test_files() {
-    let error = crate::scene::parse(Path::new("scenes/a.test"), HEAD).unwrap_err();
-    assert_eq!(
-        error.message,
-        "scenes/a.test: CSE 167 .test scenes are not read yet (issue 42)"
-    );
+fn a_test_path_is_read_as_a_test_file_under_the_cse167_profile() {
+    // By its extension, not as TOML: `HEAD` is no TOML at all.
+    let scene = crate::scene::parse(Path::new("scenes/a.test"), HEAD).unwrap();
+    assert_eq!(scene.settings.profile, crate::scene::Profile::Cse167);
+    assert!(crate::scene::parse(Path::new("scenes/a.toml"), HEAD).is_err());
 }
 
 #[test]
