@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 use std::os::unix::process::ExitStatusExt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use crate::support::{path, raystep_within, stderr, stdout};
@@ -121,6 +121,21 @@ fn rays_past_what_our_tree_holds_are_counted_not_held() {
     assert_eq!(pixel["matches"], false);
 }
 
+/// tests/scenes/three-glass-planes.toml at 8x6 with `max_rays = 65536`
+/// and no weight cutoff: each pixel's tree holds 98,326 rays (shadow rays
+/// included), written into `dir`.
+fn huge_trees_scene(dir: &Path) -> PathBuf {
+    let text = include_str!("../../scenes/three-glass-planes.toml")
+        .replace(
+            "[settings]\n",
+            "[settings]\nmin_weight = 0\nmax_rays = 65536\n",
+        )
+        .replace("width = 32\nheight = 24", "width = 8\nheight = 6");
+    let scene = dir.join("planes.toml");
+    std::fs::write(&scene, text).unwrap();
+    scene
+}
+
 #[test]
 fn the_catalogue_stops_within_its_budget_and_says_so() {
     // Two primary rays against an 8x6 image of three glass planes at
@@ -130,14 +145,7 @@ fn the_catalogue_stops_within_its_budget_and_says_so() {
     // mistakes' trees (tests/scenes/three-glass-planes.toml). The old
     // code recorded them all, holding 1.48 GB.
     let dir = tempfile::tempdir().unwrap();
-    let text = include_str!("../../scenes/three-glass-planes.toml")
-        .replace(
-            "[settings]\n",
-            "[settings]\nmin_weight = 0\nmax_rays = 65536\n",
-        )
-        .replace("width = 32\nheight = 24", "width = 8\nheight = 6");
-    let scene = dir.path().join("planes.toml");
-    std::fs::write(&scene, text).unwrap();
+    let scene = huge_trees_scene(dir.path());
     let log = dir.path().join("two.jsonl");
     std::fs::write(
         &log,
@@ -163,14 +171,7 @@ fn many_pixels_against_huge_trees_keep_what_they_report() {
     // one tree takes while it is compared (12 pixels: past 2 GB); now a
     // pixel keeps its first 256 rays in one tree only and counts the rest.
     let dir = tempfile::tempdir().unwrap();
-    let text = include_str!("../../scenes/three-glass-planes.toml")
-        .replace(
-            "[settings]\n",
-            "[settings]\nmin_weight = 0\nmax_rays = 65536\n",
-        )
-        .replace("width = 32\nheight = 24", "width = 8\nheight = 6");
-    let scene = dir.path().join("planes.toml");
-    std::fs::write(&scene, text).unwrap();
+    let scene = huge_trees_scene(dir.path());
     let log = dir.path().join("twelve.jsonl");
     let lines: String = (0..12)
         .map(|i| format!("{{\"pixel\": [{}, {}], \"path\": \"P\"}}\n", i % 8, i / 8))

@@ -9,7 +9,9 @@ use super::lines::Line;
 use super::numbers::{along, color, count, fraction, num};
 use super::ray_tree::{LightRecord, NodeId, RayTree};
 use super::shaping::{place, shaping_events};
-use super::shared_words::{directional_words, kind_name, not_cast_reason, weight_words};
+use super::shared_words::{
+    attenuation_formula, directional_words, kind_name, not_cast_reason, weight_words,
+};
 use super::sources::{brightness, sources};
 use super::text::sphere_quadratic;
 use crate::trace::{PruneRule, RayKind};
@@ -440,17 +442,12 @@ fn light_fate(light: &LightRecord) -> String {
     };
     let distance = match (directional_words(light), light.distance) {
         (Some(words), _) => format!(" A {words}: its shadow ray has no end."),
-        (None, Some(d)) if !light.clamped => {
-            let [c1, c2, c3] = light.coefficients;
-            format!(
-                " At distance d = {} attenuation f_att = 1 / ({} + {} d + {} d²) = {}, no clamp (the cse167 profile).",
-                num(d),
-                num(c1),
-                num(c2),
-                num(c3),
-                num(light.f_att)
-            )
-        }
+        (None, Some(d)) if !light.clamped => format!(
+            " At distance d = {} attenuation f_att = {} = {}, no clamp (the cse167 profile).",
+            num(d),
+            attenuation_formula(light),
+            num(light.f_att)
+        ),
         (None, Some(d)) if light.f_att < 1.0 => format!(
             " At distance {} attenuation f_att = {} lets {:.1}% of its light arrive.",
             num(d),

@@ -28,6 +28,13 @@ pub fn light_label(name: &str) -> String {
     }
 }
 
+/// "1 / (0 + 0 d + 1 d²)": the quotient f_att is, with the light's
+/// coefficients, as the words of an unclamped f_att give it (MODEL §11).
+pub(crate) fn attenuation_formula(light: &LightRecord) -> String {
+    let [c1, c2, c3] = light.coefficients;
+    format!("1 / ({} + {} d + {} d²)", num(c1), num(c2), num(c3))
+}
+
 /// "directional light, L = (0.6, 0.8, 0), not attenuated" for a
 /// directional light (MODEL §4: one L everywhere, no d_L, f_att = 1);
 /// `None` for a point light.

@@ -12,7 +12,9 @@ use super::ray_tree::{
     BlockerRecord, HitRecord, LightRecord, MaterialFactors, NearMiss, Node, NodeId, RayTree,
     ShadowRecord,
 };
-use super::shared_words::{cosine_name, directional_words, kind_name, not_cast_line, ray_header};
+use super::shared_words::{
+    attenuation_formula, cosine_name, directional_words, kind_name, not_cast_line, ray_header,
+};
 use crate::trace::RayKind;
 use raystep_model::math::Color;
 use raystep_model::math::EPS;
@@ -374,12 +376,9 @@ fn f_att_words(light: &LightRecord) -> String {
     let Some(distance) = light.distance.filter(|_| !light.clamped) else {
         return format!("f_att = {}", precise(light.f_att));
     };
-    let [c1, c2, c3] = light.coefficients;
     format!(
-        "f_att = 1 / ({} + {} d + {} d²) = {}, d = {}, no clamp",
-        num(c1),
-        num(c2),
-        num(c3),
+        "f_att = {} = {}, d = {}, no clamp",
+        attenuation_formula(light),
         precise(light.f_att),
         num(distance)
     )
