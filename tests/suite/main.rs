@@ -32,6 +32,7 @@ mod fuzz_regressions;
 mod grade;
 mod grade_download;
 mod grade_edge_cases;
+mod grade_hot_pixels;
 mod grade_report;
 mod hostile;
 mod layout;

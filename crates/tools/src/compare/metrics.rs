@@ -44,6 +44,10 @@ pub struct MatchRule {
     pub far_off_allowed: usize,
     /// Whether anti-aliased edges (blends, `sub_pixel`) match.
     pub antialiasing: bool,
+    /// CSE 167's pass rule in place of all the above but the tolerance:
+    /// at most this many hot pixels (a channel more than the tolerance
+    /// apart), none excused (docs/TEACHERS.md).
+    pub hot_pixels_allowed: Option<usize>,
 }
 
 impl Default for MatchRule {
@@ -52,6 +56,7 @@ impl Default for MatchRule {
             tolerance_steps: TOLERANCE_STEPS,
             far_off_allowed: 0,
             antialiasing: true,
+            hot_pixels_allowed: None,
         }
     }
 }
@@ -96,6 +101,12 @@ pub struct Metrics {
     /// The rule's other settings.
     pub(crate) far_off_allowed: usize,
     pub(crate) antialiasing: bool,
+    /// Under the hot-pixel rule only: how many pixels are hot (past the
+    /// tolerance), and how many a match allows.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) hot_pixels: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) hot_pixels_allowed: Option<usize>,
     /// How many pixels are past the tolerance, of how many.
     #[serde(skip)]
     pub(crate) over_pixels: usize,
@@ -113,6 +124,9 @@ pub(crate) struct PixelPair {
 
 impl Metrics {
     pub(crate) fn matches(&self) -> bool {
+        if let Some(allowed) = self.hot_pixels_allowed {
+            return self.over_pixels <= allowed;
+        }
         self.few_over_tolerance() && self.far_off_pixels <= self.far_off_allowed
     }
 
@@ -232,7 +246,9 @@ pub(crate) fn measure(
     // two whole columns are not looked at, which they could not excuse.
     let lines = 2 * (width as usize + height as usize);
     let could_excuse = over.len() as f64 <= MATCH_SHARE * pixels as f64 + lines as f64;
-    if could_excuse && !(share_matches && far_off.len() <= rule.far_off_allowed) {
+    // The hot-pixel rule excuses no pixel: nothing to look for.
+    let hot_rule = rule.hot_pixels_allowed.is_some();
+    if !hot_rule && could_excuse && !(share_matches && far_off.len() <= rule.far_off_allowed) {
         // Four rays a pixel, for the pixels past the tolerance only.
         on_edge = (over.par_iter())
             .map(|&(index, _)| {
@@ -246,7 +262,7 @@ pub(crate) fn measure(
     }
     let on_edge_pixels = on_edge.iter().filter(|&&e| e).count();
     let share_matches = (over.len() - on_edge_pixels) as f64 <= MATCH_SHARE * pixels as f64;
-    if rule.antialiasing && !(share_matches && far_off.len() <= rule.far_off_allowed) {
+    if !hot_rule && rule.antialiasing && !(share_matches && far_off.len() <= rule.far_off_allowed) {
         // Blends are accepted only when the edges did not all move one way
         // (pixels on an edge through their centre moved no way: left out).
         let indices: Vec<u32> = (over.iter().zip(&on_edge))
@@ -293,6 +309,8 @@ pub(crate) fn measure(
         edge_shift,
         far_off_allowed: rule.far_off_allowed,
         antialiasing: rule.antialiasing,
+        hot_pixels: rule.hot_pixels_allowed.map(|_| over.len()),
+        hot_pixels_allowed: rule.hot_pixels_allowed,
         over_pixels: over.len(),
         pixels,
     };
@@ -532,6 +550,47 @@ mod sub_pixel_tests {
         let metrics = measure(&lowered, &reference, &rule, &Horizon).unwrap().0;
         assert_eq!((metrics.over_pixels, metrics.on_edge_pixels), (40, 0));
         assert!(!metrics.matches());
+    }
+
+    #[test]
+    fn the_hot_pixel_rule_counts_every_pixel_past_the_tolerance() {
+        // The horizon's row of centres: 40 pixels past the tolerance, all
+        // on an edge through their centre, which the match rule excuses.
+        // CSE 167's rule excuses none: 40 hot pixels, a match when the
+        // assignment allows 40 and not 39.
+        let reference = Horizon::image(Horizon::at(10.5));
+        let sky = Horizon::image([20, 30, 60]);
+        let rule = |allowed| MatchRule {
+            hot_pixels_allowed: Some(allowed),
+            ..MatchRule::default()
+        };
+        let metrics = measure(&sky, &reference, &rule(39), &Horizon).unwrap().0;
+        assert_eq!((metrics.hot_pixels, metrics.on_edge_pixels), (Some(40), 0));
+        assert!(!metrics.matches());
+        assert!(
+            measure(&sky, &reference, &rule(40), &Horizon)
+                .unwrap()
+                .0
+                .matches()
+        );
+        // A channel 3 steps off is within the tolerance, not hot; 4 is hot,
+        // however few: one pixel of 840 (0.12%, past the share of 0.1%)
+        // with blue 64 for 60 fails at 0 allowed.
+        let mut near = reference.clone();
+        near.put_pixel(5, 2, image::Rgb([20, 30, 63]));
+        let metrics = measure(&near, &reference, &rule(0), &Horizon).unwrap().0;
+        assert_eq!(metrics.hot_pixels, Some(0));
+        assert!(metrics.matches());
+        near.put_pixel(5, 2, image::Rgb([20, 30, 64]));
+        let metrics = measure(&near, &reference, &rule(0), &Horizon).unwrap().0;
+        assert_eq!(metrics.hot_pixels, Some(1));
+        assert!(!metrics.matches());
+        // The match rule says nothing of hot pixels in its JSON.
+        let plain = measure(&near, &reference, &MatchRule::default(), &Horizon)
+            .unwrap()
+            .0;
+        let json = serde_json::to_value(&plain).unwrap();
+        assert!(json.get("hot_pixels").is_none() && json.get("hot_pixels_allowed").is_none());
     }
 
     /// The disc averaged over 2 x 2 rays a pixel, through its quarter points

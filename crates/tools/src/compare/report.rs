@@ -46,7 +46,15 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
             percent(MATCH_SHARE)
         )
     };
-    if c.matches || !m.few_over_tolerance() {
+    if let Some(allowed) = m.hot_pixels_allowed {
+        // CSE 167's rule counts every pixel past the tolerance and
+        // excuses none: no edge or far-off pixel is spoken of.
+        let _ = writeln!(
+            out,
+            "{verdict}: {} with a channel more than {steps} steps of 255 apart (the assignment's hot-pixel rule allows at most {allowed}).",
+            count(m.over_pixels as u64, "pixel is hot,", "pixels are hot,"),
+        );
+    } else if c.matches || !m.few_over_tolerance() {
         let _ = writeln!(out, "{share}.");
     } else {
         // The share alone would match: the few pixels far off decide.
@@ -83,7 +91,7 @@ pub fn text(c: &Comparison, image: &str, scene: &str) -> String {
             "  anti-aliased: each of those {} lies, in every channel, within what the scene shows inside it (raystep's rays through its centre and its four quarter points), as averaging several rays a pixel gives; raystep traces one ray through each pixel's centre (MODEL §2)",
             count(m.anti_aliased_pixels as u64, "pixel", "pixels")
         );
-    } else if c.matches && m.sub_pixel_pixels > m.on_edge_pixels {
+    } else if c.matches && m.hot_pixels_allowed.is_none() && m.sub_pixel_pixels > m.on_edge_pixels {
         // Those on an edge through their centre are said so above.
         let moved = m.sub_pixel_pixels - m.on_edge_pixels;
         let _ = writeln!(

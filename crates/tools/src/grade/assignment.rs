@@ -115,7 +115,9 @@ struct FileDef {
     // Issue 40: the match rule for every scene, and grades set by hand.
     tolerance: Option<Spanned<i64>>,
     far_off_allowed: Option<Spanned<i64>>,
-    antialiasing: Option<bool>,
+    antialiasing: Option<Spanned<bool>>,
+    // Issue 42: CSE 167's pass rule in place of the match rule.
+    hot_pixels_allowed: Option<Spanned<i64>>,
     #[serde(default, rename = "override")]
     overrides: Vec<by_hand::OverrideDef>,
 }
@@ -135,7 +137,8 @@ struct SceneDef {
     // Issue 40: the match rule for this scene (the top's where not given).
     tolerance: Option<Spanned<i64>>,
     far_off_allowed: Option<Spanned<i64>>,
-    antialiasing: Option<bool>,
+    antialiasing: Option<Spanned<bool>>,
+    hot_pixels_allowed: Option<Spanned<i64>>,
 }
 
 /// Reads the assignment at `path` and loads its scenes.
@@ -175,14 +178,20 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
         visibility: file.visibility.unwrap_or_default(),
     };
     let folder = path.parent().unwrap_or(Path::new(""));
-    let knobs = |tolerance, far_off_allowed, antialiasing| match_rule::Knobs {
+    let knobs = |tolerance, far_off_allowed, antialiasing, hot_pixels_allowed| match_rule::Knobs {
         tolerance,
         far_off_allowed,
         antialiasing,
+        hot_pixels_allowed,
     };
-    let every_scene = knobs(file.tolerance, file.far_off_allowed, file.antialiasing)
-        .rule(MatchRule::default())
-        .map_err(|(span, m)| error(span, m))?;
+    let every_scene = knobs(
+        file.tolerance,
+        file.far_off_allowed,
+        file.antialiasing,
+        file.hot_pixels_allowed,
+    )
+    .rule(MatchRule::default())
+    .map_err(|(span, m)| error(span, m))?;
     let mut submits = HashSet::new();
     let mut scenes = Vec::with_capacity(file.scene.len());
     for def in file.scene {
@@ -233,9 +242,14 @@ pub(crate) fn parse(path: &Path, text: &str) -> Result<Assignment, SceneError> {
                 Some(value)
             }
         };
-        let rule = knobs(def.tolerance, def.far_off_allowed, def.antialiasing)
-            .rule(every_scene)
-            .map_err(|(span, m)| error(span, m))?;
+        let rule = knobs(
+            def.tolerance,
+            def.far_off_allowed,
+            def.antialiasing,
+            def.hot_pixels_allowed,
+        )
+        .rule(every_scene)
+        .map_err(|(span, m)| error(span, m))?;
         let scene_path = folder.join(def.file.get_ref());
         // A FIFO, a device or a folder is said to be one, as for every
         // other input (it was "no scene file").

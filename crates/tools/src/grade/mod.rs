@@ -240,6 +240,7 @@ pub fn grade(
             tolerance: s.rule.tolerance_steps,
             far_off_allowed: s.rule.far_off_allowed,
             antialiasing: s.rule.antialiasing,
+            hot_pixels_allowed: s.rule.hot_pixels_allowed,
         })
         .collect();
     let mut images: Files = sheets

@@ -176,6 +176,7 @@ mod tests {
                 tolerance: 3,
                 far_off_allowed: 0,
                 antialiasing: true,
+                hot_pixels_allowed: None,
             });
             grades.push(SceneGrade {
                 points: 10.0,

@@ -1,13 +1,16 @@
 //! The match rule's knobs in the assignment file (issue 40): how far a
 //! channel may differ (`tolerance`, for lossy images), how many far-off
 //! pixels a match allows (`far_off_allowed`), and whether anti-aliased
-//! edges match (`antialiasing`). Each may be given at the top, for every
+//! edges match (`antialiasing`); or CSE 167's pass rule, at most N hot
+//! pixels (`hot_pixels_allowed`, issue 42). Each may be given at the top, for every
 //! scene, and in a `[[scene]]`, for that scene; a scene's own wins.
 //!
 //! ```toml
 //! tolerance = 3          # steps of 255 a channel may differ: 0 to 31
 //! far_off_allowed = 0    # far-off pixels a match allows: 0 or more
 //! antialiasing = true    # anti-aliased edges match
+//! # or, in place of the share, far-off and edge rules, CSE 167's:
+//! # hot_pixels_allowed = 20   # at most 20 pixels past the tolerance
 //!
 //! [[scene]]
 //! file = "glass.toml"
@@ -27,7 +30,8 @@ use crate::compare::{MATCH_GAP, MatchRule};
 pub(super) struct Knobs {
     pub(super) tolerance: Option<Spanned<i64>>,
     pub(super) far_off_allowed: Option<Spanned<i64>>,
-    pub(super) antialiasing: Option<bool>,
+    pub(super) antialiasing: Option<Spanned<bool>>,
+    pub(super) hot_pixels_allowed: Option<Spanned<i64>>,
 }
 
 impl Knobs {
@@ -59,8 +63,39 @@ impl Knobs {
                 )
             })?;
         }
-        if let Some(antialiasing) = self.antialiasing {
-            rule.antialiasing = antialiasing;
+        if let Some(antialiasing) = &self.antialiasing {
+            rule.antialiasing = *antialiasing.get_ref();
+        }
+        if let Some(allowed) = &self.hot_pixels_allowed {
+            let value = *allowed.get_ref();
+            rule.hot_pixels_allowed = Some(usize::try_from(value).map_err(|_| {
+                (
+                    allowed.span(),
+                    format!("hot_pixels_allowed must be a whole number of pixels of at least 0, got {value}"),
+                )
+            })?);
+        }
+        // The hot-pixel rule excuses no pixel: a knob that says which
+        // pixels to excuse would be silently ignored beside it.
+        if rule.hot_pixels_allowed.is_some() {
+            let spans = [
+                (
+                    "far_off_allowed",
+                    self.far_off_allowed.as_ref().map(Spanned::span),
+                ),
+                (
+                    "antialiasing",
+                    self.antialiasing.as_ref().map(Spanned::span),
+                ),
+            ];
+            if let Some((knob, Some(span))) = spans.into_iter().find(|(_, span)| span.is_some()) {
+                return Err((
+                    span,
+                    format!(
+                        "{knob} has no meaning beside hot_pixels_allowed: the hot-pixel rule counts every pixel more than the tolerance apart and excuses none: leave one of the two out"
+                    ),
+                ));
+            }
         }
         Ok(rule)
     }
@@ -90,7 +125,8 @@ mod tests {
             MatchRule {
                 tolerance_steps: 3,
                 far_off_allowed: 0,
-                antialiasing: true
+                antialiasing: true,
+                hot_pixels_allowed: None
             }
         );
         // The top's for every scene; shadows.png says otherwise for two.
@@ -107,12 +143,14 @@ mod tests {
                 MatchRule {
                     tolerance_steps: 8,
                     far_off_allowed: 2,
-                    antialiasing: false
+                    antialiasing: false,
+                    hot_pixels_allowed: None
                 },
                 MatchRule {
                     tolerance_steps: 0,
                     far_off_allowed: 2,
-                    antialiasing: true
+                    antialiasing: true,
+                    hot_pixels_allowed: None
                 },
             ]
         );
@@ -156,5 +194,67 @@ mod tests {
             message.contains("unknown field `anti_aliasing`"),
             "{message}"
         );
+    }
+
+    #[test]
+    fn the_hot_pixel_rule_is_set_at_the_top_or_in_a_scene_and_stands_alone() {
+        // At the top: every scene counts hot pixels, at most 20, with the
+        // top's tolerance; the other knobs keep their defaults (unused).
+        let text = format!("tolerance = 6\nhot_pixels_allowed = 20\n{GLASS}");
+        let rule = parsed(&text).unwrap().scenes[0].rule;
+        assert_eq!(
+            rule,
+            MatchRule {
+                tolerance_steps: 6,
+                hot_pixels_allowed: Some(20),
+                ..MatchRule::default()
+            }
+        );
+        // In one scene only: the other keeps the share rule.
+        let text = format!(
+            "{GLASS}hot_pixels_allowed = 0\n\
+             [[scene]]\nfile = \"shadows.toml\"\nsubmit = \"shadows.png\"\npoints = 5\n"
+        );
+        let rules: Vec<Option<usize>> = (parsed(&text).unwrap().scenes.iter())
+            .map(|s| s.rule.hot_pixels_allowed)
+            .collect();
+        assert_eq!(rules, [Some(0), None]);
+        // A negative count, at its value (line 1, column 22).
+        let message = refused(&format!("hot_pixels_allowed = -1\n{GLASS}"));
+        assert!(
+            message.starts_with(&format!("{}:1:22: ", here().display())),
+            "{message}"
+        );
+        assert!(message.contains("at least 0, got -1"), "{message}");
+        // Beside a knob that excuses pixels, in the same table or in a
+        // scene under the top's rule: refused at that knob, which the
+        // hot-pixel rule would silently ignore.
+        for (text, line_col, knob) in [
+            (
+                format!("hot_pixels_allowed = 5\nfar_off_allowed = 1\n{GLASS}"),
+                "2:19",
+                "far_off_allowed",
+            ),
+            (
+                format!("hot_pixels_allowed = 5\n{GLASS}antialiasing = false\n"),
+                "6:16",
+                "antialiasing",
+            ),
+            (
+                format!("{GLASS}antialiasing = true\nhot_pixels_allowed = 5\n"),
+                "5:16",
+                "antialiasing",
+            ),
+        ] {
+            let message = refused(&text);
+            assert!(
+                message.starts_with(&format!("{}:{line_col}: ", here().display())),
+                "{message}"
+            );
+            assert!(
+                message.contains(&format!("{knob} has no meaning beside hot_pixels_allowed")),
+                "{message}"
+            );
+        }
     }
 }

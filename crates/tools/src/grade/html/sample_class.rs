@@ -21,6 +21,7 @@ pub(super) fn class(students: &[(&str, Vec<SceneGrade>)]) -> ClassGrades {
             tolerance: 3,
             far_off_allowed: 0,
             antialiasing: true,
+            hot_pixels_allowed: None,
         })
         .collect();
     let students = students
