@@ -19,6 +19,7 @@ mod compare_rays_mistakes;
 mod compare_slips;
 mod compare_sub_pixel;
 mod crossing;
+mod cse167_raylog;
 mod cse167_scenes;
 mod cse167_tracer;
 mod details_pane;

@@ -34,7 +34,7 @@ pub use ray_tree::{Event, EventKind, Node, RayTree};
 pub use ray_tree::{LightRecord, NearMiss, NodeId};
 pub use shaping::{place, reach, shaping_events};
 pub(crate) use shared_words::not_cast_line;
-pub use shared_words::{kind_name, light_label, ray_header};
+pub use shared_words::{kind_name, light_label, ray_header, weight_words};
 pub use text::{Children, node_lines, text};
 pub use tree_recorder::{NEAR_MISS_SCENE_LIMIT, TreeRecorder, record_pixel};
 pub use tree_words::{light_summary, path_factor, ray_summary, share_of_pixel};

@@ -90,7 +90,7 @@ pub fn ray_header(node: &Node) -> String {
 /// A secondary ray's weight as its parent scales it: "0.5", or with the
 /// colour a profile weighs it by, "0.5 × O_s (0.200, 0.400, 0.600)"
 /// (cse167's mirror ray, MODEL §11).
-pub(crate) fn weight_words(node: &Node) -> String {
+pub fn weight_words(node: &Node) -> String {
     match node.tint {
         None => num(node.weight),
         Some(tint) => format!("{} × O_s {}", num(node.weight), super::color(tint)),

@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::moment::Field;
 use super::tolerance::Tolerance;
-use crate::raylog::{Hit, LoggedRay};
+use crate::raylog::{Hit, LoggedRay, uniform};
 
 /// A logged number: a vector, a scalar, what a ray hit, or whether the
 /// ray was cast at all.
@@ -89,7 +89,8 @@ fn each_check(
     }
     check(Field::Origin, vector(yours.origin), vector(ours.origin));
     check(Field::Dir, vector(yours.dir), vector(ours.dir));
-    check(Field::Weight, number(yours.weight), number(ours.weight));
+    let (your_weight, our_weight) = weights(yours.weight, ours.weight);
+    check(Field::Weight, your_weight, our_weight);
     // A miss that logs t = Infinity, -1 or null is a miss without a t.
     let miss = super::miss_t::reads_as_miss(yours);
     let your_hit = if miss { Some(Hit::Miss) } else { yours.hit };
@@ -130,6 +131,20 @@ fn each_check(
         );
     }
     check(Field::Color, vector(yours.color), vector(ours.color));
+}
+
+/// Two weights as numbers when both are the same on every channel (every
+/// weight of the lecture's model), else as colours: a CSE 167 tracer's
+/// mirror weight S is a colour, and 0.4 is the grey (0.4, 0.4, 0.4).
+fn weights(yours: Option<DVec3>, ours: Option<DVec3>) -> (Option<Value>, Option<Value>) {
+    let as_numbers = [yours, ours]
+        .iter()
+        .all(|w| w.is_none_or(|w| uniform(w).is_some()));
+    let value = |w: DVec3| match uniform(w) {
+        Some(x) if as_numbers => Value::Number(x),
+        _ => Value::Vector(w),
+    };
+    (yours.map(value), ours.map(value))
 }
 
 fn agree(field: Field, yours: Value, ours: Value, tolerance: &Tolerance) -> bool {
@@ -188,7 +203,7 @@ mod tests {
         yours.s = Some(1.0);
         yours.hit = Some(Hit::Miss);
         yours.t = Some(4.0);
-        yours.weight = Some(1.0);
+        yours.weight = Some(DVec3::ONE);
         let found = checks(&yours, &ours, &Tolerance::default());
         let fields: Vec<String> = found.iter().map(|c| c.field.to_string()).collect();
         assert_eq!(fields, ["dir", "S"]);

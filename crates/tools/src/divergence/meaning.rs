@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::moment::Field;
 use super::ours::OurRays;
 use crate::raylog::Step;
-use raystep_engine::record::{LightFate, LightRecord, Node};
+use raystep_engine::record::{LightFate, LightRecord, Node, weight_words};
 use raystep_engine::scene::{Scene, SpecularModel};
 use raystep_model::math::EPS;
 use raystep_model::mistakes::Mistake;
@@ -242,20 +242,28 @@ fn transmitted_direction(ours: &OurRays, parent: &Node, child: &Node) -> Vec<Str
 }
 
 fn weight(ours: &OurRays, node: &Node) -> Vec<String> {
-    let mut factors = Vec::new();
+    let (mut factors, mut tinted) = (Vec::new(), false);
     let mut at = Some(node);
     while let Some(n) = at {
         if n.parent.is_some() {
-            factors.push(fine(n.weight));
+            tinted |= n.tint.is_some();
+            factors.push(match n.tint {
+                Some(_) => format!("({})", weight_words(n)),
+                None => fine(n.weight),
+            });
         }
         at = n.parent.map(|p| &ours.tree.nodes[p]);
     }
     factors.push("1".into());
     factors.reverse();
-    vec![format!(
-        "MODEL §5: the product of the weights along the path from the primary ray (1): {}",
-        factors.join(" × ")
-    )]
+    // cse167 weighs a mirror ray by k_s O_s, a colour: the product is
+    // taken per channel.
+    let rule = if tinted {
+        "MODEL §5 and §11: the product of the weights along the path from the primary ray (1), a mirror ray's k_s O_s per channel"
+    } else {
+        "MODEL §5: the product of the weights along the path from the primary ray (1)"
+    };
+    vec![format!("{rule}: {}", factors.join(" × "))]
 }
 
 fn hit(scene: &Scene, ours: &OurRays, node: &Node) -> Vec<String> {

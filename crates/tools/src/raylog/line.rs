@@ -37,7 +37,7 @@ pub(super) struct Line<'a> {
     pub(super) diffuse: Option<Field<PerLight>>,
     pub(super) specular: Option<Field<PerLight>>,
     pub(super) s: Option<Field<f64>>,
-    pub(super) weight: Option<Field<f64>>,
+    pub(super) weight: Option<Field<DVec3>>,
     /// The keys raystep doesn't know, in the line's order.
     pub(super) unknown: Vec<Cow<'a, str>>,
 }
@@ -90,7 +90,7 @@ pub(super) fn read_line(text: &str) -> Result<Option<Line<'_>>, SyntaxError> {
             "diffuse" => set(&mut line.diffuse, at, per_light(&mut s, "diffuse")?),
             "specular" => set(&mut line.specular, at, per_light(&mut s, "specular")?),
             "S" => set(&mut line.s, at, number(&mut s, "S")?),
-            "weight" => set(&mut line.weight, at, number(&mut s, "weight")?),
+            "weight" => set(&mut line.weight, at, weight(&mut s)?),
             _ => {
                 s.skip()?;
                 Some(key)
@@ -179,6 +179,16 @@ fn number(s: &mut Scanner, key: &str) -> Read<f64> {
             Err(format!("{key} is not a number: {}", s.since(start)))
         }
     })
+}
+
+/// A weight: a number, the same on every channel, or [r, g, b] where a
+/// profile weighs a ray by a colour (cse167's mirror ray, MODEL §11).
+fn weight(s: &mut Scanner) -> Read<DVec3> {
+    if s.peek() == Some(b'[') {
+        vector(s, "weight")
+    } else {
+        Ok(number(s, "weight")?.map(DVec3::splat))
+    }
 }
 
 /// Exactly three numbers; `key` names it in the words.

@@ -35,8 +35,10 @@ pub struct LoggedRay {
     /// A shadow ray's factor.
     pub s: Option<f64>,
     /// The ray's accumulated weight: the product of the weights from the
-    /// primary ray (1) down to it.
-    pub weight: Option<f64>,
+    /// primary ray (1) down to it, per channel: the same on every channel
+    /// but where a profile weighs the mirror ray by a colour (cse167's
+    /// k_s O_s, MODEL §11).
+    pub weight: Option<DVec3>,
     /// `t` was logged as `null`: what a tracer prints for a miss's t when
     /// its JSON printer writes infinity so (read as a miss, docs/RAYLOG.md).
     pub t_null: bool,
@@ -63,4 +65,11 @@ impl LoggedRay {
             t_null: false,
         }
     }
+}
+
+/// The one value of a weight that is the same on every channel: a weight
+/// is written and compared as a number then, as a colour only where a
+/// profile made its channels differ.
+pub fn uniform(weight: DVec3) -> Option<f64> {
+    (weight.x == weight.y && weight.y == weight.z).then_some(weight.x)
 }

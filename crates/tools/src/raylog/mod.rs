@@ -10,7 +10,7 @@ mod read;
 mod seen;
 mod write;
 
-pub use logged_ray::{Hit, LoggedRay};
+pub use logged_ray::{Hit, LoggedRay, uniform};
 pub use path::{RayPath, Step};
 pub use read::{MAX_LINE_BYTES, RaylogError, RaylogReader};
 pub use write::rays_with_nodes;

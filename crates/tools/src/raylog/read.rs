@@ -553,7 +553,7 @@ mod tests {
 
     /// Lines refused for the ball: each with the text its column points at
     /// (its first occurrence; "" for column 1) and the problem.
-    const BAD_LINES: [(&str, &str, &str); 18] = [
+    const BAD_LINES: [(&str, &str, &str); 20] = [
         (
             r#"{"pixel": [5.0, 5], "path": "P"}"#,
             "[5.0",
@@ -618,6 +618,16 @@ mod tests {
             r#"{"pixel": [5, 5], "path": "P", "S": "NaN"}"#,
             "\"NaN",
             "S is not a number: \"NaN\"",
+        ),
+        (
+            r#"{"pixel": [5, 5], "path": "P/R", "weight": [0.3, 0.2]}"#,
+            "[0.3",
+            "weight has 2 numbers, not 3: [0.3, 0.2]",
+        ),
+        (
+            r#"{"pixel": [5, 5], "path": "P/R", "weight": "0.4"}"#,
+            "\"0.4",
+            "weight is not a number: \"0.4\"",
         ),
         (
             r#"{"pixel": [5, 5]}"#,
@@ -723,8 +733,15 @@ mod tests {
         let line = r#"{"pixel": [5, 5], "path": "P", "hit": 0, "weight": 1e0, "mine": [{"a": 1}]}"#;
         let (ray, unknown) = read_line_of_ball(line);
         let ray = ray.unwrap();
-        assert_eq!((ray.hit, ray.weight), (Some(Hit::Object(0)), Some(1.0)));
+        assert_eq!(
+            (ray.hit, ray.weight),
+            (Some(Hit::Object(0)), Some(glam::DVec3::ONE))
+        );
         assert_eq!(unknown.into_iter().collect::<Vec<_>>(), ["mine"]);
+        // A weight may be a colour, as a CSE 167 tracer's mirror weight S is.
+        let line = r#"{"pixel": [5, 5], "path": "P/R", "weight": [0.3, 0.2, 0.1]}"#;
+        let weight = read_line_of_ball(line).0.unwrap().weight.unwrap();
+        assert_eq!(weight.to_array(), [0.3, 0.2, 0.1]);
         let line = r#"{"pixel": [10, 10], "path": "P/R/T/R", "color": [1.5e-300, 1e300, 123456789012345678901234567890]}"#;
         let color = read_line_of_ball(line).0.unwrap().color.unwrap();
         assert_eq!(color.to_array(), [1.5e-300, 1e300, 1.2345678901234568e29]);

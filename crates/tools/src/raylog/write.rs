@@ -24,17 +24,20 @@ pub fn rays_of(tree: &RayTree) -> Vec<LoggedRay> {
 pub fn rays_with_nodes(tree: &RayTree) -> Vec<(LoggedRay, NodeId)> {
     // A node is recorded when cast, so its parent comes before it.
     let mut paths: Vec<RayPath> = Vec::with_capacity(tree.nodes.len());
-    let mut weights: Vec<f64> = Vec::with_capacity(tree.nodes.len());
+    let mut weights: Vec<DVec3> = Vec::with_capacity(tree.nodes.len());
     for node in &tree.nodes {
         let (path, weight) = match node.parent {
-            None => (RayPath::primary(), 1.0),
+            None => (RayPath::primary(), DVec3::ONE),
             Some(parent) => {
                 let step = match node.kind {
                     RayKind::Transmitted => Step::Transmitted,
                     _ => Step::Reflected,
                 };
-                // The tracer's own product, in its order (parent's, then this one's).
-                (paths[parent].child(step), weights[parent] * node.weight)
+                // The tracer's own product, in its order (parent's, then
+                // this one's, then the colour a profile weighs it by).
+                let own = weights[parent] * node.weight;
+                let weight = node.tint.map_or(own, |tint| own * tint);
+                (paths[parent].child(step), weight)
             }
         };
         paths.push(path);
@@ -141,7 +144,11 @@ pub(crate) fn line_of(ray: &LoggedRay) -> String {
         key("S", number(s));
     }
     if let Some(w) = ray.weight {
-        key("weight", number(w));
+        // A number, as every tracer logs it, unless a colour weighs it.
+        key(
+            "weight",
+            super::uniform(w).map_or_else(|| vector(w), number),
+        );
     }
     line.push('}');
     line
