@@ -30,6 +30,13 @@ for tool in /usr/bin/cargo /usr/bin/rustc wasm-ld python3; do
         exit 1
     fi
 done
+# The image crate needs rustc 1.88; bookworm's first rustc-web was 1.85,
+# its security updates carry a newer one.
+minor=$(/usr/bin/rustc --version | sed -n 's/^rustc 1\.\([0-9]*\).*/\1/p')
+if [ -z "$minor" ] || [ "$minor" -lt 88 ]; then
+    echo "web/build.sh: $(/usr/bin/rustc --version) is too old (the image crate needs 1.88): apt-get update && apt-get install -y rustc-web cargo-web rust-web-src" >&2
+    exit 1
+fi
 # /usr/bin's cargo and rustc by path (rustup's come first on PATH); the
 # standard library built from rust-web-src, panics abort; one codegen unit
 # and full LTO, as the page runs on one thread; WebAssembly's 128-bit SIMD
