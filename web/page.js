@@ -154,6 +154,8 @@ function openScene(path, { keepText } = {}) {
   showSceneError(null);
   page.scene = reply;
   page.options = {};
+  // The menu lists what this scene's profile offers: built again below.
+  $("mistake-list").replaceChildren();
   page.view = null;
   clearPixel();
   showSettings(reply.settings);

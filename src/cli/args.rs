@@ -352,12 +352,23 @@ pub(crate) struct MistakeArgs {
 }
 
 impl MistakeArgs {
-    /// The scene's settings with these mistakes.
-    pub(crate) fn settings(&self, scene: &Scene) -> Settings {
-        Settings {
+    /// The scene's settings with these mistakes; refused when the scene's
+    /// profile does not offer one (`Profile::offers`): it could change
+    /// nothing, and an image made "with" it would say it did.
+    pub(crate) fn settings(&self, scene: &Scene) -> anyhow::Result<Settings> {
+        let profile = scene.settings.profile;
+        for MistakeName(mistake) in &self.mistakes {
+            if let Some(why) = profile.why_not_offered(*mistake) {
+                anyhow::bail!(
+                    "--mistake {mistake} has no meaning under the {} profile: {why}",
+                    profile.name()
+                );
+            }
+        }
+        Ok(Settings {
             mistakes: self.mistakes.iter().map(|m| m.0).collect::<Mistakes>(),
             ..scene.settings
-        }
+        })
     }
 }
 

@@ -55,10 +55,18 @@ pub(super) fn record(args: &PixelArgs) -> Result<Recorded> {
     for assignment in &args.set {
         scene::overrides::apply(&mut scene, assignment).map_err(anyhow::Error::msg)?;
     }
-    let record = |scene: &Scene| record_pixel(scene, &args.mistakes.settings(scene), x, y);
+    let record = |scene: &Scene| -> Result<RayTree> {
+        Ok(record_pixel(scene, &args.mistakes.settings(scene)?, x, y))
+    };
+    // The scene's own recording first: its refusal names its profile.
+    let tree = record(&scene)?;
+    let before = match before {
+        Some((other, what)) => Some((record(&other)?, what)),
+        None => None,
+    };
     Ok(Recorded {
-        tree: record(&scene),
+        tree,
         scene,
-        before: before.map(|(other, what)| (record(&other), what)),
+        before,
     })
 }

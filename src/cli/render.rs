@@ -52,7 +52,7 @@ pub(super) fn run(args: &RenderArgs) -> Result<ExitCode> {
         rayon::spawn(|| {});
     }
     let scene = load_scene(Some(&args.scene), args.size)?;
-    let settings = args.mistakes.settings(&scene);
+    let settings = args.mistakes.settings(&scene)?;
     let outputs = Outputs::check(args, &scene)?;
     let prepared = started.elapsed().as_secs_f64();
     let progress = progress_bar(scene.height);

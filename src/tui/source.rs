@@ -36,7 +36,8 @@ impl SceneSource {
 }
 
 /// Settings after a reload: the teaching switches and the mistakes stay as
-/// the user set them;
+/// the user set them, but for a mistake the file's profile does not offer
+/// (`Profile::offers`: switched off, it has no meaning there);
 /// the specular model and max depth follow the file only where the file
 /// changed them, so an edit to `max_depth` takes effect and a toggle is kept.
 pub(crate) fn merge_settings(
@@ -46,7 +47,9 @@ pub(crate) fn merge_settings(
 ) -> Settings {
     let mut merged = *new_file;
     merged.switches = current.switches;
-    merged.mistakes = current.mistakes;
+    merged.mistakes = (current.mistakes.iter())
+        .filter(|&m| new_file.profile.offers(m))
+        .collect();
     if new_file.specular == old_file.specular {
         merged.specular = current.specular;
     }
@@ -107,6 +110,7 @@ impl FileWatcher {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use raystep_engine::scene::Profile;
     use raystep_model::mistakes::Mistake;
 
     #[test]
@@ -117,5 +121,25 @@ mod tests {
         let merged = merge_settings(&file, &file, &current);
         assert!(merged.mistakes.contains(Mistake::ShadowAcne));
         assert_eq!(merged.mistakes.iter().count(), 1);
+    }
+
+    #[test]
+    fn a_reload_into_cse167_switches_off_the_mistakes_it_does_not_offer() {
+        // The lecture file with eta-inverted and shadow-acne on, edited to
+        // `profile = "cse167"`: no refraction there (MODEL §11), so
+        // eta-inverted goes; shadow-acne stays.
+        let old = Settings::default();
+        let mut new = old;
+        new.profile = Profile::Cse167;
+        let mut current = old;
+        current.mistakes = (current.mistakes)
+            .with(Mistake::ShadowAcne)
+            .with(Mistake::EtaInverted);
+        let merged = merge_settings(&old, &new, &current);
+        assert_eq!(merged.profile, Profile::Cse167);
+        assert_eq!(
+            merged.mistakes.iter().collect::<Vec<_>>(),
+            [Mistake::ShadowAcne]
+        );
     }
 }

@@ -423,3 +423,26 @@ fn models_cone_equations_give_the_shapes_own_hits_and_normals() {
         "{tip:?}"
     );
 }
+
+#[test]
+fn model_and_cse167_name_the_mistakes_cse167_does_not_offer() {
+    // Whatever `Profile::offers` leaves out under cse167 is named in MODEL
+    // §11 and in CSE167.md, which counts what is left.
+    use raystep_engine::scene::Profile;
+    use raystep_model::mistakes::Mistake;
+    let model = doc("MODEL.md");
+    let profiles = section(&model, "11. Profiles");
+    let course = doc("CSE167.md");
+    let mistakes = section(&course, "Classic mistakes");
+    let not_offered: Vec<Mistake> = (Mistake::ALL.into_iter())
+        .filter(|&m| !Profile::Cse167.offers(m))
+        .collect();
+    assert!(!not_offered.is_empty());
+    for mistake in &not_offered {
+        let named = format!("`{mistake}`");
+        assert!(profiles.contains(&named), "{named} in MODEL §11");
+        assert!(mistakes.contains(&named), "{named} in CSE167.md");
+    }
+    let offered = Mistake::ALL.len() - not_offered.len();
+    assert!(mistakes.contains(&format!("offered the {offered} that")));
+}

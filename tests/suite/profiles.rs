@@ -6,7 +6,7 @@ use raystep_engine::record::{explain, record_pixel, text};
 use raystep_engine::scene::{Profile, Scene};
 use raystep_model::math::to_rgb8;
 
-use crate::support::scene;
+use crate::support::{path, raystep, scene, stderr, stdout};
 
 /// A 3x3 image whose centre pixel (1, 1) looks straight down -z from z = 5.
 const CAMERA: &str =
@@ -224,6 +224,48 @@ fn unclamped_attenuation_of_zeros_is_refused_at_its_place() {
     // The lecture clamps: the same coefficients are f_att = 1 there.
     std::fs::write(&file, text_without_profile()).unwrap();
     assert!(raystep_engine::scene::load(&file).is_ok());
+}
+
+#[test]
+fn a_mistake_of_refraction_is_refused_under_cse167_before_anything_is_written() {
+    // MODEL §11: no transmitted ray is cast, so eta-inverted could change
+    // nothing; render, inspect, explain and diagram say so and exit 1.
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("out.png");
+    let svg = dir.path().join("out.svg");
+    let scene = "scenes/cse167/mirrors.test";
+    let pixel = ["--pixel", "1,1"];
+    let runs: [Vec<&str>; 4] = [
+        vec!["render", scene, "-o", path(&png)],
+        [&["inspect", scene][..], &pixel].concat(),
+        [&["explain", scene][..], &pixel].concat(),
+        [&["diagram", scene, "-o", path(&svg)][..], &pixel].concat(),
+    ];
+    for args in runs {
+        let output = raystep(&[&args[..], &["--mistake", "eta-inverted"]].concat());
+        assert_eq!(output.status.code(), Some(1), "{args:?}");
+        assert_eq!(
+            stderr(&output),
+            "error: --mistake eta-inverted has no meaning under the cse167 profile: \
+             it has no refraction (MODEL §11)\n",
+            "{args:?}"
+        );
+        assert!(stdout(&output).is_empty(), "{args:?}");
+    }
+    assert!(!png.exists() && !svg.exists(), "nothing written");
+    // An offered mistake is still taken there, and the lecture takes all.
+    let output = raystep(&[
+        "render",
+        scene,
+        "-o",
+        path(&png),
+        "--mistake",
+        "opaque-shadows",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let lecture = ["inspect", "scenes/seven-rays.toml", "--pixel", "1,1"];
+    let output = raystep(&[&lecture[..], &["--mistake", "eta-inverted"]].concat());
+    assert!(output.status.success(), "{}", stderr(&output));
 }
 
 fn text_without_profile() -> String {

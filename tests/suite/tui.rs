@@ -14,6 +14,7 @@ use raystep_engine::record::{EventKind, record_pixel};
 use raystep_engine::scene::SpecularModel;
 use raystep_engine::terms::Term;
 use raystep_model::math::to_rgb8;
+use raystep_model::mistakes::Mistake;
 
 use crate::support::debugger::*;
 
@@ -697,4 +698,79 @@ fn one_overlay_at_a_time_help_then_mistakes_menu() {
         tui::Mode::Browsing,
         "nothing left open"
     );
+}
+
+/// The three mistakes of refraction, which the cse167 profile does not
+/// offer: it casts no transmitted ray (MODEL §11).
+const REFRACTION: [Mistake; 3] = [
+    Mistake::EtaInverted,
+    Mistake::TirDropped,
+    Mistake::RefractionOutwardNormal,
+];
+
+#[test]
+fn a_cse167_scene_offers_no_mistake_of_refraction() {
+    for name in ["mirrors.test", "ring.test"] {
+        let path = std::path::PathBuf::from("scenes/cse167").join(name);
+        let app = App::open(Some(path), true).unwrap();
+        let menu = app.overlay().menu_mistakes();
+        // 22 in the catalogue, less the three; each once, in its order.
+        let offered: Vec<Mistake> = Mistake::ALL
+            .into_iter()
+            .filter(|m| !REFRACTION.contains(m))
+            .collect();
+        assert_eq!(menu, offered, "{name}");
+        assert!(menu.contains(&Mistake::OpaqueShadows), "S is still Π k_t");
+    }
+    // The lecture's built-in scene: the whole catalogue, as before.
+    assert_eq!(app().overlay().menu_mistakes(), Mistake::ALL);
+}
+
+#[test]
+fn a_mistake_not_offered_is_not_toggled() {
+    let path = std::path::PathBuf::from("scenes/cse167/mirrors.test");
+    let mut app = App::open(Some(path), true).unwrap();
+    app.update(Action::ToggleMistake(Mistake::EtaInverted));
+    assert!(app.session().settings().mistakes.is_empty());
+    assert_eq!(
+        app.message(),
+        Some(
+            "mistake eta-inverted has no meaning under the cse167 profile: \
+             it has no refraction (MODEL §11)"
+        )
+    );
+}
+
+#[test]
+fn a_reload_into_cse167_drops_the_mistakes_of_refraction() {
+    let path = scene_file("reload-profile.toml");
+    let mut app = App::open(Some(path.clone()), true).unwrap();
+    app.update(Action::ToggleMistake(Mistake::EtaInverted));
+    app.update(Action::ToggleMistake(Mistake::ShadowAcne));
+    assert_eq!(app.overlay().menu_mistakes(), Mistake::ALL);
+    edit(&path, "[settings]\n", "[settings]\nprofile = \"cse167\"\n");
+    app.update(Action::Reload);
+    assert!(app.session().error().is_none());
+    let settings = app.session().settings();
+    assert_eq!(settings.profile.name(), "cse167");
+    assert_eq!(
+        settings.mistakes.iter().collect::<Vec<_>>(),
+        [Mistake::ShadowAcne],
+        "eta-inverted is switched off, shadow-acne kept"
+    );
+    assert!(
+        !(app.overlay().menu_mistakes().iter()).any(|m| REFRACTION.contains(m)),
+        "the menu follows the profile"
+    );
+    assert_eq!(app.overlay().menu_mistakes().len(), 19);
+    let message = app.message().unwrap();
+    assert!(
+        message.ends_with("; switched off eta-inverted: no meaning under the cse167 profile"),
+        "{message}"
+    );
+    // And back: the whole catalogue again, nothing switched on by itself.
+    edit(&path, "profile = \"cse167\"\n", "");
+    app.update(Action::Reload);
+    assert_eq!(app.overlay().menu_mistakes(), Mistake::ALL);
+    assert_eq!(app.session().settings().mistakes.iter().count(), 1);
 }

@@ -4,7 +4,7 @@
 use anyhow::{Result, bail};
 use serde::{Deserialize, Serialize};
 
-use raystep_engine::scene::{DEEPEST_TOGGLED_DEPTH, Settings, SpecularModel};
+use raystep_engine::scene::{DEEPEST_TOGGLED_DEPTH, Profile, Settings, SpecularModel};
 use raystep_model::mistakes::{Mistake, Mistakes};
 
 /// The toggles as the page sends them; what it leaves out is the scene's.
@@ -56,6 +56,16 @@ impl Options {
             .iter()
             .map(|name| mistake_named(name))
             .collect::<Result<Mistakes>>()?;
+        // As `--mistake` refuses it: the page's menu does not list it.
+        let profile = scene.profile;
+        if let Some((mistake, why)) =
+            (settings.mistakes.iter()).find_map(|m| Some((m, profile.why_not_offered(m)?)))
+        {
+            bail!(
+                "mistake {mistake} has no meaning under the {} profile: {why}",
+                profile.name()
+            );
+        }
         Ok(settings)
     }
 }
@@ -67,10 +77,10 @@ fn mistake_named(name: &str) -> Result<Mistake> {
     }
 }
 
-/// The catalogue for the page's menu: each mistake's name and summary.
-pub(crate) fn catalogue() -> Vec<(&'static str, &'static str)> {
-    Mistake::ALL
-        .iter()
+/// The catalogue for the page's menu: the name and summary of each
+/// mistake the scene's `profile` offers (`Profile::offers`).
+pub(crate) fn catalogue(profile: Profile) -> Vec<(&'static str, &'static str)> {
+    (profile.offered_mistakes())
         .map(|m| (m.name(), m.summary()))
         .collect()
 }
@@ -116,5 +126,28 @@ mod tests {
         );
         assert!(refuse(r#"{"mistakes": ["eta-invert"]}"#).contains("\"eta-invert\""));
         assert!(refuse(r#"{"specular": "cook"}"#).contains("\"blinn\" or \"phong\""));
+    }
+
+    #[test]
+    fn a_cse167_scene_lists_and_takes_only_the_mistakes_it_offers() {
+        // No refraction under cse167 (MODEL §11): 22 - 3 = 19 listed.
+        let names: Vec<&str> = (catalogue(Profile::Cse167).iter()).map(|c| c.0).collect();
+        assert_eq!(names.len(), 19);
+        for gone in ["eta-inverted", "tir-dropped", "refraction-outward-normal"] {
+            assert!(!names.contains(&gone), "{gone}");
+        }
+        assert!(names.contains(&"opaque-shadows"));
+        assert_eq!(catalogue(Profile::Lecture).len(), Mistake::ALL.len());
+        let scene = Settings {
+            profile: Profile::Cse167,
+            ..Settings::default()
+        };
+        let options: Options =
+            serde_json::from_str(r#"{"mistakes": ["gamma", "tir-dropped"]}"#).unwrap();
+        assert_eq!(
+            options.settings(&scene).unwrap_err().to_string(),
+            "mistake tir-dropped has no meaning under the cse167 profile: \
+             it has no refraction (MODEL §11)"
+        );
     }
 }

@@ -193,7 +193,7 @@ impl Page {
             "objects": scene.objects.len(),
             "lights": scene.lights.len(),
             "warnings": warnings,
-            "catalogue": catalogue(),
+            "catalogue": catalogue(scene.settings.profile),
         });
         json["settings"] = self.settings_json()?;
         Ok(Reply::Json(json))

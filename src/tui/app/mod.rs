@@ -31,7 +31,8 @@ use image::RgbImage;
 use ratatui::layout::Position;
 
 use raystep_engine::scene::{Scene, SceneError, Settings};
-use raystep_tools::compare::{self, StudentImage};
+use raystep_model::mistakes::Mistakes;
+use raystep_tools::compare::{self, Ranked, StudentImage};
 
 use super::action::{Action, Find, Pane, Picture};
 use super::source::SceneSource;
@@ -146,7 +147,8 @@ impl App {
         let ranked = comparison
             .as_ref()
             .map_or(&[][..], |c| &c.findings().mistakes[..]);
-        let overlay = Overlays::with_menu(mistakes_menu::order(ranked));
+        let profile = scene.settings.profile;
+        let overlay = Overlays::with_menu(mistakes_menu::order(ranked, profile));
         let session = Session::new(source, scene);
         let pixel = TracedPixel::new(session.scene(), session.settings(), cursor);
         let mut app = App {
@@ -430,14 +432,35 @@ impl App {
         match self.session.finished_reload() {
             None => {}
             Some(Reloaded::Scene(settings)) => {
+                // The file's profile may have changed: the menu follows it
+                // (merge_settings has switched off what it does not offer).
+                let before = self.session.settings().mistakes;
+                self.overlay
+                    .set_menu(mistakes_menu::order(self.ranked(), settings.profile));
                 self.apply_settings(settings);
-                self.message = Some(format!("reloaded {}", self.session.source().name()));
+                let mut message = format!("reloaded {}", self.session.source().name());
+                let gone: Mistakes = before
+                    .iter()
+                    .filter(|&m| !settings.mistakes.contains(m))
+                    .collect();
+                if !gone.is_empty() {
+                    message += &format!(
+                        "; switched off {gone}: no meaning under the {} profile",
+                        settings.profile.name()
+                    );
+                }
+                self.message = Some(message);
             }
             Some(Reloaded::Broken) => {
                 self.message =
                     Some("the scene file has an error: the last good scene stays".into());
             }
         }
+    }
+
+    /// The mistakes the comparison ranks, best first (none without one).
+    fn ranked(&self) -> &[Ranked] {
+        (self.comparison.as_ref()).map_or(&[][..], |c| &c.findings().mistakes[..])
     }
 
     /// The cursor to the next region's pixel (the largest first, cycling).

@@ -25,14 +25,15 @@ pub(crate) enum Overlay {
 #[derive(Debug)]
 pub struct Overlays {
     open: Option<Overlay>,
-    /// The menu's mistakes in its order: every one of the catalogue once.
+    /// The menu's mistakes in its order: every one the scene's profile
+    /// offers once (`Profile::offers`).
     menu: Vec<Mistake>,
     /// An index into `menu`.
     menu_row: usize,
 }
 
 impl Default for Overlays {
-    /// The menu in the catalogue's order.
+    /// The menu in the catalogue's order (the lecture's: all of it).
     fn default() -> Overlays {
         Overlays::with_menu(Mistake::ALL.to_vec())
     }
@@ -42,13 +43,25 @@ impl Default for Overlays {
 const FIND_WHAT: &str = "find the next pixel with: b blocked shadow, p partly blocked, t TIR, D depth limit, x object X, n near miss";
 
 impl Overlays {
-    /// Nothing open; the menu lists `menu` (every mistake once, e.g. the
-    /// ranked ones first) and opens on its first row.
+    /// Nothing open; the menu lists `menu` (every offered mistake once,
+    /// e.g. the ranked ones first) and opens on its first row.
     pub(super) fn with_menu(menu: Vec<Mistake>) -> Overlays {
         Overlays {
             open: None,
             menu,
             menu_row: 0,
+        }
+    }
+
+    /// The menu's rows replaced (a reload changed the profile): the
+    /// selected mistake stays selected if it is still there, else the
+    /// first row is.
+    pub(super) fn set_menu(&mut self, menu: Vec<Mistake>) {
+        let selected = self.menu.get(self.menu_row).copied();
+        self.menu = menu;
+        self.menu_row = 0;
+        if let Some(mistake) = selected {
+            self.select(mistake);
         }
     }
 
@@ -122,7 +135,7 @@ impl Overlays {
     }
 
     /// The mistakes menu's rows, in order.
-    pub(crate) fn menu_mistakes(&self) -> &[Mistake] {
+    pub fn menu_mistakes(&self) -> &[Mistake] {
         &self.menu
     }
 
@@ -175,5 +188,24 @@ mod tests {
         overlays.update(Action::ToggleMistakeMenu, 40);
         assert_eq!(overlays.menu_row(), Some(3));
         assert_eq!(overlays.menu_mistake(), Mistake::ALL[3]);
+    }
+
+    #[test]
+    fn a_new_menu_keeps_the_selected_mistake_if_it_is_still_offered() {
+        let mut overlays = Overlays::default();
+        overlays.update(Action::MenuMove(3), 40);
+        assert_eq!(overlays.menu_mistake(), Mistake::TirDropped);
+        let without = |gone: Mistake| -> Vec<Mistake> {
+            Mistake::ALL.into_iter().filter(|&m| m != gone).collect()
+        };
+        // tir-dropped is gone: the first row.
+        overlays.set_menu(without(Mistake::TirDropped));
+        assert_eq!(overlays.menu_mistake(), Mistake::ShadowAcne);
+        overlays.update(Action::MenuMove(4), 40);
+        assert_eq!(overlays.menu_mistake(), Mistake::OpaqueShadows);
+        // opaque-shadows is row 5 of the whole catalogue, and still there.
+        overlays.set_menu(Mistake::ALL.to_vec());
+        assert_eq!(overlays.menu_mistake(), Mistake::OpaqueShadows);
+        assert_eq!(overlays.menu_mistakes()[5], Mistake::OpaqueShadows);
     }
 }

@@ -178,6 +178,14 @@ impl Session {
                 format!("max depth {depth}")
             }
             Action::ToggleMistake(mistake) => {
+                let profile = settings.profile;
+                if let Some(why) = profile.why_not_offered(mistake) {
+                    let message = format!(
+                        "mistake {mistake} has no meaning under the {} profile: {why}",
+                        profile.name()
+                    );
+                    return Some((None, message));
+                }
                 settings.mistakes = settings.mistakes.toggled(mistake);
                 let state = on_off(settings.mistakes.contains(mistake));
                 format!("mistake {mistake} {state}")

@@ -5,6 +5,7 @@
 use ratatui::style::{Modifier, Style, Stylize};
 use ratatui::text::{Line, Span};
 
+use raystep_engine::scene::Profile;
 use raystep_model::mistakes::{Mistake, Mistakes};
 use raystep_tools::compare::{Ranked, Verdict};
 
@@ -81,11 +82,14 @@ pub(crate) fn compare_line(ranked: &[Ranked], matches: bool, room: usize) -> Opt
 }
 
 /// The menu's rows: the ranked mistakes, best first, then the rest of the
-/// catalogue in its order, so the mistake `compare` names is a key away.
-pub(crate) fn order(ranked: &[Ranked]) -> Vec<Mistake> {
+/// catalogue in its order, so the mistake `compare` names is a key away;
+/// only those `profile` offers (`Profile::offers`: cse167 has no
+/// refraction for eta-inverted to change).
+pub(crate) fn order(ranked: &[Ranked], profile: Profile) -> Vec<Mistake> {
     let mut rows: Vec<Mistake> = Vec::with_capacity(Mistake::ALL.len());
-    for mistake in ranked.iter().map(|r| r.mistake).chain(Mistake::ALL) {
-        if !rows.contains(&mistake) {
+    let ranked = ranked.iter().map(|r| r.mistake);
+    for mistake in ranked.chain(Mistake::ALL) {
+        if profile.offers(mistake) && !rows.contains(&mistake) {
             rows.push(mistake);
         }
     }
@@ -171,21 +175,52 @@ mod tests {
             ranked(Mistake::PixelCorner, 1.0),
             ranked(Mistake::NoAmbient, 0.2),
         ];
-        let rows = order(&both);
+        let rows = order(&both, Profile::Lecture);
         assert_eq!(rows[..2], [Mistake::PixelCorner, Mistake::NoAmbient]);
-        // The rest in the catalogue's order, each mistake once.
+        // The rest in the catalogue's order, each offered mistake once
+        // (under the lecture, every one).
         let rest: Vec<Mistake> = Mistake::ALL
             .into_iter()
             .filter(|m| !matches!(m, Mistake::PixelCorner | Mistake::NoAmbient))
             .collect();
         assert_eq!(rows[2..], rest[..]);
-        assert_eq!(order(&[]), Mistake::ALL);
+        assert_eq!(order(&[], Profile::Lecture), Mistake::ALL);
         let text =
             |line: &Line| -> String { line.spans.iter().map(|s| s.content.as_ref()).collect() };
         let lines = lines(&rows, Mistakes::NONE, 0, &both);
         assert!(text(&lines[0]).contains("pixel-corner"));
         assert!(text(&lines[0]).ends_with("#1 explains 100% "));
         assert!(text(&lines[1]).ends_with("#2 explains 20% "));
+    }
+
+    #[test]
+    fn under_cse167_the_menu_has_every_offered_mistake_once() {
+        // cse167 casts no transmitted ray (MODEL §11): the three mistakes
+        // of refraction are left out, even one a ranking named; the other
+        // 19 keep the catalogue's order.
+        let both = [
+            ranked(Mistake::NoAmbient, 1.0),
+            ranked(Mistake::EtaInverted, 0.5),
+        ];
+        let rows = order(&both, Profile::Cse167);
+        let offered: Vec<Mistake> = Mistake::ALL
+            .into_iter()
+            .filter(|m| {
+                !matches!(
+                    m,
+                    Mistake::EtaInverted | Mistake::TirDropped | Mistake::RefractionOutwardNormal
+                )
+            })
+            .collect();
+        assert_eq!(offered.len(), 19);
+        assert_eq!(rows[0], Mistake::NoAmbient);
+        let rest: Vec<Mistake> = offered
+            .iter()
+            .copied()
+            .filter(|&m| m != Mistake::NoAmbient)
+            .collect();
+        assert_eq!(rows[1..], rest[..]);
+        assert_eq!(order(&[], Profile::Cse167), offered);
     }
 
     #[test]

@@ -8,6 +8,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use raystep_model::mistakes::{ActsOn, Mistake};
+
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Profile {
@@ -72,5 +74,90 @@ impl Profile {
     /// transmitted ray, and its shadows are 0 or 1).
     pub fn refracts(self) -> bool {
         self == Profile::Lecture
+    }
+
+    /// Whether the debugger's menu, the page's, `--mistake` and `compare`
+    /// offer `mistake` under this profile: not when the profile has nothing
+    /// for it to change (MODEL §11). Under cse167 that is the three that act
+    /// on refraction (eta-inverted, tir-dropped, refraction-outward-normal):
+    /// no transmitted ray is cast. Every other mistake still means something
+    /// there: opaque-shadows because S_i is still the product of the
+    /// crossings' k_t (a TOML scene may give k_t); two-sided-diffuse because
+    /// the course's diffuse term takes (N·L)₊, not |N·L|; clamp-before-adding
+    /// because S ∘ I_R is still added after the local colour;
+    /// phong-not-blinn because the course's highlight is Blinn's N·H;
+    /// inverse-square and no-light-attenuation because its lights are
+    /// attenuated by the scene's (c0, c1, c2); the rest act on shadow rays,
+    /// the mirror ray, the camera or the bytes, which it shares with the
+    /// lecture.
+    pub fn offers(self, mistake: Mistake) -> bool {
+        match mistake.acts_on() {
+            ActsOn::Refraction => self.refracts(),
+            ActsOn::ShadowRays
+            | ActsOn::TransparentShadows
+            | ActsOn::LightAttenuation
+            | ActsOn::Ambient
+            | ActsOn::Highlights
+            | ActsOn::SecondaryRays
+            | ActsOn::Lights
+            | ActsOn::ShadowOrSecondaryRays
+            | ActsOn::AnyScene => true,
+        }
+    }
+
+    /// The mistakes this profile offers (`offers`), in catalogue order.
+    pub fn offered_mistakes(self) -> impl Iterator<Item = Mistake> {
+        Mistake::ALL.into_iter().filter(move |&m| self.offers(m))
+    }
+
+    /// Why `mistake` is not offered under this profile, in words that
+    /// follow "has no meaning under the PROFILE profile: "; `None` when it is.
+    pub fn why_not_offered(self, mistake: Mistake) -> Option<&'static str> {
+        if self.offers(mistake) {
+            return None;
+        }
+        Some(match mistake.acts_on() {
+            ActsOn::Refraction => "it has no refraction (MODEL §11)",
+            _ => "it has nothing for it to change (MODEL §11)",
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cse167_offers_every_mistake_but_the_three_of_refraction() {
+        // MODEL §11: cse167 casts no transmitted ray, so the mistakes of
+        // Snell's law, TIR and the leaving normal cannot change a pixel.
+        let refraction = [
+            Mistake::EtaInverted,
+            Mistake::TirDropped,
+            Mistake::RefractionOutwardNormal,
+        ];
+        let offered: Vec<Mistake> = Profile::Cse167.offered_mistakes().collect();
+        assert_eq!(offered.len(), Mistake::ALL.len() - 3);
+        for mistake in Mistake::ALL {
+            assert_eq!(
+                Profile::Cse167.offers(mistake),
+                !refraction.contains(&mistake),
+                "{mistake}"
+            );
+        }
+        assert_eq!(
+            Profile::Cse167.why_not_offered(Mistake::TirDropped),
+            Some("it has no refraction (MODEL §11)")
+        );
+        assert_eq!(
+            Profile::Cse167.why_not_offered(Mistake::OpaqueShadows),
+            None
+        );
+    }
+
+    #[test]
+    fn the_lecture_offers_the_whole_catalogue() {
+        let offered: Vec<Mistake> = Profile::Lecture.offered_mistakes().collect();
+        assert_eq!(offered, Mistake::ALL);
     }
 }

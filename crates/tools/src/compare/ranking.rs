@@ -239,20 +239,21 @@ pub(crate) fn prepare(shared: &SceneRenders) {
 }
 
 /// Whether `mistake` can change this scene's image at all: false when the
+/// scene's profile does not offer it (`Profile::offers`: cse167 has no
+/// refraction, MODEL §11), so that compare never names it, or when the
 /// scene lacks what it acts on (no transparent material for eta-inverted,
 /// no distance attenuation for no-light-attenuation, ...), which saves its
 /// render.
 fn may_change(scene: &Scene, settings: &Settings, mistake: Mistake) -> bool {
+    if !settings.profile.offers(mistake) {
+        return false;
+    }
     let any = |f: fn(&Material) -> bool| scene.materials.iter().any(f);
     let switches = settings.switches;
     match mistake.acts_on() {
         ActsOn::ShadowRays => switches.shadows,
         ActsOn::TransparentShadows => switches.shadows && any(|m| m.kt > 0.0),
-        // A profile without refraction (cse167, MODEL §11) has no
-        // transmitted ray for such a mistake to change.
-        ActsOn::Refraction => {
-            switches.transmission && settings.profile.refracts() && any(|m| m.kt > 0.0)
-        }
+        ActsOn::Refraction => switches.transmission && any(|m| m.kt > 0.0),
         ActsOn::LightAttenuation => {
             let none = [1.0, 0.0, 0.0];
             settings.light_attenuation != none
@@ -513,5 +514,58 @@ mod tests {
             let image = render::<NoRecorder>(&scene, &mistaken, &|| {}).0;
             assert!(image == reference, "{mistake} changed the image");
         }
+    }
+
+    #[test]
+    fn under_cse167_only_offered_mistakes_are_tried() {
+        // A glass ball (k_t = 0.5) casting a shadow on a matte floor, under
+        // the cse167 profile: no transmitted ray is cast (MODEL §11), so
+        // eta-inverted, tir-dropped and refraction-outward-normal change
+        // nothing and are not offered; the shadow through the ball is still
+        // S = k_t = 0.5, so opaque-shadows (S = 0) does change it.
+        let scene = raystep_engine::scene::parse(
+            std::path::Path::new("glass.toml"),
+            "[camera]
+            eye = [0, 1, 4]
+            look_at = [0, 0, 0]
+            [image]
+            width = 24
+            height = 24
+            [settings]
+            profile = \"cse167\"
+            [materials.glass]
+            kd = 0.2
+            kt = 0.5
+            ior = 1.5
+            [materials.floor]
+            [[light]]
+            position = [0, 5, 0]
+            [[object]]
+            material = \"glass\"
+            sphere = { center = [0, 0.5, 0], radius = 0.5 }
+            [[object]]
+            material = \"floor\"
+            plane = { normal = [0, 1, 0], point = [0, 0, 0] }",
+        )
+        .unwrap();
+        let settings = scene.settings;
+        let tried: Vec<Mistake> = candidates(&scene).collect();
+        for mistake in &tried {
+            assert!(settings.profile.offers(*mistake), "{mistake} tried");
+        }
+        assert!(tried.contains(&Mistake::OpaqueShadows));
+        let reference = render::<NoRecorder>(&scene, &settings, &|| {}).0;
+        let under = |mistake: Mistake| {
+            let mut mistaken = settings;
+            mistaken.mistakes = Mistakes::NONE.with(mistake);
+            render::<NoRecorder>(&scene, &mistaken, &|| {}).0
+        };
+        for mistake in Mistake::ALL
+            .into_iter()
+            .filter(|&m| !settings.profile.offers(m))
+        {
+            assert!(under(mistake) == reference, "{mistake} changed the image");
+        }
+        assert!(under(Mistake::OpaqueShadows) != reference);
     }
 }

@@ -13,7 +13,7 @@ use super::moment::{Field, cast_order, in_trace_order};
 use super::ours::OurRays;
 use super::tolerance::Tolerance;
 use crate::raylog::{LoggedRay, RayPath};
-use raystep_engine::scene::{Scene, Settings};
+use raystep_engine::scene::{Profile, Scene, Settings};
 use raystep_model::mistakes::{Mistake, Mistakes};
 
 /// A ray of either tree, with the other tree's ray of the same path.
@@ -334,9 +334,12 @@ fn divergence(scene: &Scene, ours: &OurRays, d: &Difference) -> Divergence {
 }
 
 /// The catalogue mistakes a log can show: those of the bytes act after
-/// every ray is traced, so no ray shows them.
-pub(crate) fn traceable_mistakes() -> impl Iterator<Item = Mistake> {
-    Mistake::ALL.into_iter().filter(|m| !m.acts_only_on_bytes())
+/// every ray is traced, so no ray shows them; and of the rest those the
+/// scene's profile offers (`Profile::offers`), the only ones named.
+pub(crate) fn traceable_mistakes(profile: Profile) -> impl Iterator<Item = Mistake> {
+    profile
+        .offered_mistakes()
+        .filter(|m| !m.acts_only_on_bytes())
 }
 
 /// Whether our tree of `pixel` under `mistake` is your log of it; `None`
@@ -371,7 +374,7 @@ fn catalogue(
     budget: &mut CatalogueBudget,
 ) -> Vec<Mistake> {
     let mut found = Vec::new();
-    for mistake in traceable_mistakes() {
+    for mistake in traceable_mistakes(scene.settings.profile) {
         match fits(scene, mistake, pixel, yours, tolerance, budget) {
             Some(true) => found.push(mistake),
             Some(false) => {}
