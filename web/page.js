@@ -181,6 +181,7 @@ function showSettings(s) {
   $("t-ambient").checked = s.ambient;
   $("t-specular").value = s.specular;
   $("t-depth").value = s.max_depth;
+  showProfile(s);
   const list = $("mistake-list");
   if (!list.childElementCount && page.scene) {
     for (const [name, summary] of page.scene.catalogue) {
@@ -194,6 +195,17 @@ function showSettings(s) {
   }
   for (const box of list.querySelectorAll("input")) box.checked = s.mistakes.includes(box.dataset.mistake);
   $("mistake-count").textContent = s.mistakes.length ? s.mistakes.join(", ") : "none";
+}
+
+/** The profile the scene is traced with, named as the debugger's header
+ * names it, only when it is not the lecture's (the engine sends `profile`
+ * only then); CSE 167's `maxdepth` counts bounces, one less than MODEL §5's
+ * depth (docs/CSE167.md), so the depth says both. */
+function showProfile(s) {
+  for (const id of ["bounces", "profile"]) $(id).hidden = !s.profile;
+  $("bounces").textContent = s.profile ? ` (${Math.max(0, s.max_depth - 1)} bounces)` : "";
+  $("profile").textContent = s.profile ? `profile ${s.profile} (MODEL §11)` : "";
+  $("profile").title = s.profile_words || "";
 }
 
 function readToggles() {

@@ -66,10 +66,10 @@ pub(super) fn run(args: &RenderArgs) -> Result<ExitCode> {
     let tracing = traced.elapsed().as_secs_f64();
     progress.finish_and_clear();
     let term_images = terms.iter().flat_map(|terms| {
-        Term::ALL
+        outputs
+            .term_files
             .iter()
-            .zip(&outputs.term_files)
-            .map(|(&term, target)| (target, terms.image(term)))
+            .map(|(term, target)| (target, terms.image(*term)))
     });
     output::write_all(
         outputs.terms.as_ref(),
@@ -114,8 +114,8 @@ pub(super) fn run(args: &RenderArgs) -> Result<ExitCode> {
 struct Outputs {
     image: Target,
     terms: Option<output::Folder>,
-    /// One per `Term::ALL`, when `--terms` is given.
-    term_files: Vec<Target>,
+    /// One per `Term::written_for` the scene, when `--terms` is given.
+    term_files: Vec<(Term, Target)>,
 }
 
 impl Outputs {
@@ -123,15 +123,15 @@ impl Outputs {
         let image = output::file(&args.output)?;
         let terms = args.terms.as_deref().map(output::folder).transpose()?;
         let term_files = match &terms {
-            Some(folder) => Term::ALL
-                .iter()
-                .map(|term| folder.file(&term.file_name()))
+            Some(folder) => Term::written_for(scene)
+                .into_iter()
+                .map(|term| Ok((term, folder.file(&term.file_name())?)))
                 .collect::<Result<_>>()?,
             None => Vec::new(),
         };
         let terms_dir = args.terms.as_deref().unwrap_or(Path::new("")).display();
         let all: Vec<_> = std::iter::once((&image, "the image (-o)".to_owned()))
-            .chain(Term::ALL.iter().zip(&term_files).map(|(term, file)| {
+            .chain(term_files.iter().map(|(term, file)| {
                 (
                     file,
                     format!("the {} image of --terms {terms_dir}", term.name()),

@@ -254,6 +254,16 @@ fn the_page_answers_as_the_command_line_does_in_a_browser() {
     assert!(!refused.status.success());
     let message = String::from_utf8(refused.stderr).unwrap();
 
+    // A CSE 167 scene's profile, in the debugger's header's words:
+    // `maxdepth 4` is four bounces, MODEL's depth 5.
+    let cse167 = raystep_engine::scene::Profile::Cse167;
+    let profile = json!({
+        "scene": "cse167/mirrors.test",
+        "text": format!("profile {} (MODEL §11)", cse167.name()),
+        "bounces": " (4 bounces)",
+        "words": cse167.words(),
+    });
+
     let expectations = json!({
         "page": page,
         "chromium": chromium,
@@ -265,6 +275,7 @@ fn the_page_answers_as_the_command_line_does_in_a_browser() {
         "compare": { "png": work.join("eta.png"), "first_mistake": first_mistake },
         "raylog": { "file": work.join("eta.jsonl"), "first": first_divergence },
         "error": { "text": broken, "message": message.trim_end() },
+        "profile": profile,
     });
     let file = work.join("expectations.json");
     std::fs::write(&file, expectations.to_string()).unwrap();

@@ -88,9 +88,18 @@ for (const scene of expected.scenes) {
   check(same(await downloadPng(), scene.png), `${scene.path} renders to the PNG bytes of raystep render`);
 }
 
+// ---- the profile, named where the debugger's header names it ---------------------
+const profile = expected.profile;
+await rendered(() => p.selectOption("#scene-list", profile.scene));
+check(await p.isVisible("#profile") && (await p.textContent("#profile")) === profile.text
+  && (await p.getAttribute("#profile", "title")) === profile.words,
+  `${profile.scene} names its profile: "${profile.text}", with inspect's words`);
+check((await p.textContent("#bounces")) === profile.bounces, `${profile.scene}'s depth says "${profile.bounces}"`);
+
 // ---- a pixel of glass.toml: explain, the tree, the diagram ------------------------
 const pixel = expected.pixel;
 await rendered(() => p.selectOption("#scene-list", pixel.scene));
+check(!(await p.isVisible("#profile")) && !(await p.isVisible("#bounces")), `${pixel.scene} (the lecture's) names no profile`);
 await clickPixel(pixel.x, pixel.y);
 check((await p.textContent("#explain")) === pixel.explain, `(${pixel.x}, ${pixel.y}): the explain text is the command line's`);
 check((await p.textContent("#pixel-title")).includes(`, ${pixel.rays} rays`), `(${pixel.x}, ${pixel.y}): ${pixel.rays} rays, as inspect's tree`);

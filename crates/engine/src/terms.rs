@@ -20,6 +20,9 @@ use raystep_model::mistakes::Mistakes;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Term {
     Ambient,
+    /// E, a material's emission (MODEL §11): written only for a scene
+    /// with some, so it is not in `ALL` (see `Term::written_for`).
+    Emission,
     Diffuse,
     Specular,
     Reflected,
@@ -30,6 +33,7 @@ pub enum Term {
 }
 
 impl Term {
+    /// The views of every scene (the debugger's `v` goes through these).
     pub const ALL: [Term; 8] = [
         Term::Ambient,
         Term::Diffuse,
@@ -44,6 +48,7 @@ impl Term {
     pub fn name(self) -> &'static str {
         match self {
             Term::Ambient => "ambient",
+            Term::Emission => "emission",
             Term::Diffuse => "diffuse",
             Term::Specular => "specular",
             Term::Reflected => "reflected",
@@ -52,6 +57,18 @@ impl Term {
             Term::Rays => "rays",
             Term::Cost => "cost",
         }
+    }
+
+    /// The views `render --terms` writes for `scene`: `ALL`, and the
+    /// emission after the ambient when some material has one (so a scene
+    /// without writes the files it always wrote).
+    pub fn written_for(scene: &Scene) -> Vec<Term> {
+        let emits = scene.materials.iter().any(|m| m.emission.is_some());
+        let mut terms = Term::ALL.to_vec();
+        if emits {
+            terms.insert(1, Term::Emission);
+        }
+        terms
     }
 
     /// The file `render --terms DIR` writes this view to, inside DIR.
@@ -63,6 +80,7 @@ impl Term {
     pub fn legend(self) -> &'static str {
         match self {
             Term::Ambient => "ambient term k_a I_a O_d of the primary hit",
+            Term::Emission => "emission E of the primary hit, added as it is",
             Term::Diffuse => "sum over lights of the diffuse terms",
             Term::Specular => "sum over lights of the specular terms",
             Term::Reflected => "k_s I_r: what the reflected ray adds",
@@ -82,6 +100,8 @@ impl Term {
 pub struct PixelTerms {
     pub(crate) color: Color,
     pub ambient: Color,
+    /// E at the primary hit (black where the material emits nothing).
+    pub emission: Color,
     pub diffuse: Color,
     pub specular: Color,
     pub reflected: Color,
@@ -124,6 +144,12 @@ impl Recorder for TermsRecorder {
     fn ambient(&mut self, term: Color) {
         if self.depth == 1 {
             self.terms.ambient = term;
+        }
+    }
+
+    fn emission(&mut self, term: Color) {
+        if self.depth == 1 {
+            self.terms.emission = term;
         }
     }
 
@@ -305,6 +331,7 @@ impl TermImages {
         let p = &self.pixels[index];
         match term {
             Term::Ambient => to_rgb8(p.ambient),
+            Term::Emission => to_rgb8(p.emission),
             Term::Diffuse => to_rgb8(p.diffuse),
             Term::Specular => to_rgb8(p.specular),
             Term::Reflected => to_rgb8(p.reflected),
@@ -361,4 +388,54 @@ pub fn false_color(v: f64) -> [u8; 3] {
         a[1] + f * (b[1] - a[1]),
         a[2] + f * (b[2] - a[2]),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::scene::{load, parse};
+    use crate::trace::NoRecorder;
+
+    /// An emitting ball, lit and shiny, over a mirror floor that reflects
+    /// it: every term of CSE 167's sum is in some pixel.
+    const GLOWING_BALL: &str = "size 32 24
+camera 0 0.5 6 0 0 0 0 1 0 40
+point 2 3 4 1 1 1
+ambient 0.1 0.1 0.1
+emission 0.3 0.2 0.1
+diffuse 0.5 0.4 0.3
+specular 0.4 0.4 0.4
+shininess 20
+sphere 0 0 0 1
+emission 0 0 0
+diffuse 0.2 0.2 0.2
+specular 0.6 0.6 0.6
+sphere 0 -101 0 100
+";
+
+    /// MODEL §6 (and §11's I = A + E + ...): the primary ray's stored terms
+    /// add up to its colour, so the term images are the image taken apart.
+    #[test]
+    fn the_terms_add_up_to_each_pixels_colour_emission_included() {
+        let glowing = parse(Path::new("glowing.test"), GLOWING_BALL).unwrap();
+        let on_disk = ["cse167/ambient-emission.test", "glass.toml"]
+            .map(|f| load(&Path::new("../../scenes").join(f)).unwrap());
+        let mut emitting = 0;
+        for scene in std::iter::once(glowing).chain(on_disk) {
+            let scene = scene.with_size(32, 24).unwrap();
+            let (terms, NoRecorder) = render_terms(&scene, &scene.settings, &|| {});
+            // A miss is the background, no term.
+            for (i, p) in terms.pixels.iter().enumerate().filter(|(_, p)| p.hit) {
+                let sum =
+                    p.ambient + p.emission + p.diffuse + p.specular + p.reflected + p.transmitted;
+                // Summed in another order than the tracer's: a few ulps.
+                let off = (sum - p.color).abs().max_element();
+                assert!(off < 1e-12, "pixel {i}: {sum} != {}", p.color);
+                emitting += usize::from(p.emission != Color::ZERO);
+            }
+        }
+        assert!(emitting > 0);
+    }
 }

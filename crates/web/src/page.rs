@@ -199,11 +199,14 @@ impl Page {
         Ok(Reply::Json(json))
     }
 
-    /// The toggles in force, for the page's controls.
+    /// The toggles in force, for the page's controls, and the profile the
+    /// scene is traced with when it is not the lecture's (as the debugger's
+    /// header names it): `profile`, its name, and `profile_words`, what
+    /// `inspect` and `explain` say of it.
     fn settings_json(&self) -> Result<Value> {
         let settings = self.settings()?;
         let switches = settings.switches;
-        Ok(json!({
+        let mut json = json!({
             "shadows": switches.shadows,
             "reflection": switches.reflection,
             "transmission": switches.transmission,
@@ -214,7 +217,12 @@ impl Page {
             },
             "max_depth": settings.max_depth,
             "mistakes": settings.mistakes.iter().map(|m| m.name()).collect::<Vec<_>>(),
-        }))
+        });
+        if let Some(words) = settings.profile.words() {
+            json["profile"] = settings.profile.name().into();
+            json["profile_words"] = words.into();
+        }
+        Ok(json)
     }
 
     /// The whole image as `raystep render` writes it: the same PNG bytes.
@@ -419,6 +427,49 @@ mod tests {
         assert_eq!(
             view["explain"].as_str(),
             Some(explain(&unshadowed).as_str())
+        );
+    }
+
+    #[test]
+    fn the_settings_name_a_profile_other_than_the_lectures_and_keep_it_under_the_toggles() {
+        // A .test scene is CSE 167's (docs/CSE167.md); a .toml without
+        // `profile` the lecture's, of which nothing is said (the debugger's
+        // header says nothing of it either).
+        let cse167 = "It is traced with the cse167 profile, CSE 167's equation (MODEL §11): \
+                      ambient and emission added as they are, f_att not clamped, a light behind \
+                      the surface still casts its shadow ray and adds its highlight, the mirror \
+                      ray weighted by k_s O_s, and no refraction.";
+        let mut page = page_with(&["cse167/mirrors.test", "glass.toml"]);
+        let loaded = json_of(call(
+            &mut page,
+            "load",
+            json!({"path": "cse167/mirrors.test"}),
+        ));
+        assert_eq!(loaded["settings"]["profile"], "cse167");
+        assert_eq!(loaded["settings"]["profile_words"], cse167);
+        // `maxdepth 4` is four bounces: MODEL's depth 5.
+        assert_eq!(loaded["settings"]["max_depth"], 5);
+        let toggled = json_of(call(&mut page, "options", json!({"max_depth": 2})));
+        assert_eq!(toggled["profile"], "cse167");
+        assert_eq!(toggled["max_depth"], 2);
+        let lecture = json_of(call(&mut page, "load", json!({"path": "glass.toml"})));
+        let keys: Vec<&str> = lecture["settings"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                "ambient",
+                "max_depth",
+                "mistakes",
+                "reflection",
+                "shadows",
+                "specular",
+                "transmission"
+            ]
         );
     }
 }

@@ -101,6 +101,7 @@ fn term_legend(app: &App, term: Term) -> Line<'static> {
         .and_then(|i| terms.pixels.get(i))
         .map_or(String::new(), |p| match term {
             Term::Ambient => color(p.ambient),
+            Term::Emission => color(p.emission),
             Term::Diffuse => color(p.diffuse),
             Term::Specular => color(p.specular),
             Term::Reflected => color(p.reflected),
