@@ -262,6 +262,10 @@ fn the_page_answers_as_the_command_line_does_in_a_browser() {
         "text": format!("profile {} (MODEL §11)", cse167.name()),
         "bounces": " (4 bounces)",
         "words": cse167.words(),
+        // The mistakes menu offers what the profile offers (no refraction
+        // under cse167), the whole catalogue for the lecture's glass.toml.
+        "offered": cse167.offered_mistakes().map(|m| m.name()).collect::<Vec<_>>(),
+        "catalogue": raystep_model::mistakes::Mistake::ALL.map(|m| m.name()),
     });
 
     let expectations = json!({

@@ -95,11 +95,16 @@ check(await p.isVisible("#profile") && (await p.textContent("#profile")) === pro
   && (await p.getAttribute("#profile", "title")) === profile.words,
   `${profile.scene} names its profile: "${profile.text}", with inspect's words`);
 check((await p.textContent("#bounces")) === profile.bounces, `${profile.scene}'s depth says "${profile.bounces}"`);
+const menu = () => p.$$eval("#mistake-list input", (boxes) => boxes.map((b) => b.dataset.mistake));
+check(JSON.stringify(await menu()) === JSON.stringify(profile.offered),
+  `${profile.scene}'s mistakes menu offers the ${profile.offered.length} its profile offers`);
 
 // ---- a pixel of glass.toml: explain, the tree, the diagram ------------------------
 const pixel = expected.pixel;
 await rendered(() => p.selectOption("#scene-list", pixel.scene));
 check(!(await p.isVisible("#profile")) && !(await p.isVisible("#bounces")), `${pixel.scene} (the lecture's) names no profile`);
+check(JSON.stringify(await menu()) === JSON.stringify(profile.catalogue),
+  `${pixel.scene}'s mistakes menu offers the whole catalogue (${profile.catalogue.length}) again`);
 await clickPixel(pixel.x, pixel.y);
 check((await p.textContent("#explain")) === pixel.explain, `(${pixel.x}, ${pixel.y}): the explain text is the command line's`);
 check((await p.textContent("#pixel-title")).includes(`, ${pixel.rays} rays`), `(${pixel.x}, ${pixel.y}): ${pixel.rays} rays, as inspect's tree`);
