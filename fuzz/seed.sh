@@ -31,6 +31,9 @@ for pixel in 4,3 4,5 0,0; do
         inspect corpus/raylog-scene.toml --pixel "$pixel" --format raylog \
         > "corpus/raylog_reader/pixel-$pixel"
 done
+# A weight written as a colour, as a CSE 167 tracer logs its mirror ray's S.
+sed 's/"weight": \([0-9.e-]*\)}/"weight": [\1, 0.5, 0.25]}/' corpus/raylog_reader/pixel-4,3 \
+    > corpus/raylog_reader/pixel-4,3-colour-weights
 # raylog_compare: the same logs, compared with the same scene.
 mkdir -p corpus/raylog_compare
 cp corpus/raylog_reader/* corpus/raylog_compare/
