@@ -140,4 +140,23 @@ fn the_debuggers_header_names_the_profile_and_the_bounces() {
         .collect();
     assert!(header.contains("depth 3 (2 bounces)"), "{header}");
     assert!(header.contains("profile cse167"), "{header}");
+    // No transmission to switch (MODEL §11): not in the header, and `t`
+    // says why instead of flipping a switch that changes nothing.
+    assert!(
+        header.contains(" · shadows reflection ambient · "),
+        "{header}"
+    );
+    let settings = *app.session().settings();
+    app.update(raystep::tui::Action::Toggle(
+        raystep::tui::Switch::Transmission,
+    ));
+    assert_eq!(*app.session().settings(), settings);
+    let terminal = crate::support::debugger::screen(&mut app, 160, 48);
+    let status: String = (0..160)
+        .map(|x| terminal.backend().buffer()[(x, 47)].symbol().to_string())
+        .collect();
+    assert!(
+        status.contains("transmission has no meaning under the cse167 profile"),
+        "{status}"
+    );
 }

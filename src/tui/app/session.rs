@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use crate::tui::action::Action;
 use crate::tui::source::{FileWatcher, SceneSource, merge_settings};
-use raystep_engine::scene::{Scene, SceneError, Settings, SpecularModel};
+use raystep_engine::scene::{Scene, SceneError, Settings, SpecularModel, Switch};
 
 use super::MAX_DEPTH;
 
@@ -151,6 +151,13 @@ impl Session {
         let mut settings = self.settings;
         let on_off = |on: bool| if on { "on" } else { "off" };
         let message = match action {
+            Action::Toggle(Switch::Transmission) if !settings.profile.refracts() => {
+                let message = format!(
+                    "transmission has no meaning under the {} profile: it casts no transmitted ray (MODEL §11)",
+                    settings.profile.name()
+                );
+                return Some((None, message));
+            }
             Action::Toggle(switch) => {
                 let state = on_off(settings.switches.flip(switch));
                 format!("{} {state}", switch.name())

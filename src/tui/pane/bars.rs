@@ -68,7 +68,10 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
     let sep = || Span::raw(" · ").dark_gray();
     let on = [s.shadows, s.reflection, s.transmission, s.ambient];
     let mut right = vec![sep()];
-    for (i, ((long, brief), on)) in SWITCH_NAMES.iter().zip(on).enumerate() {
+    // A profile without refraction (cse167) has no transmission to switch.
+    let shown = (SWITCH_NAMES.iter().zip(on))
+        .filter(|((long, _), _)| *long != "transmission" || settings.profile.refracts());
+    for (i, ((long, brief), on)) in shown.enumerate() {
         if i > 0 {
             right.push(Span::raw(" "));
         }
