@@ -71,7 +71,10 @@ fn scene_files(dir: &Path) -> Vec<PathBuf> {
         let path = entry.unwrap().path();
         if path.is_dir() {
             found.extend(scene_files(&path));
-        } else if path.extension().is_some_and(|e| e == "toml" || e == "nff") {
+        } else if path
+            .extension()
+            .is_some_and(|e| e == "toml" || e == "nff" || e == "test")
+        {
             // An assignment lists [[scene]] tables: not a scene to open.
             let text = std::fs::read_to_string(&path).unwrap();
             if !text.lines().any(|l| l.trim() == "[[scene]]") {
