@@ -351,6 +351,25 @@ fn term_views_cycle_and_render_the_terms() {
 }
 
 #[test]
+fn an_emitting_scene_has_an_emission_view_after_the_ambient() {
+    // scenes/cse167/ambient-emission.test: its right ball emits E = (0.9,
+    // 0.5, 0.1) and nothing else, so the emission view shows it at the
+    // ball's centre, floor(255 E + 0.5) = (230, 128, 26), as emission.png
+    // does (tests/suite/term_images.rs). The lecture's built-in scene has
+    // no emission view (above: ambient, then diffuse).
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/cse167/ambient-emission.test");
+    let mut app = tui::App::open(Some(scene), true).unwrap();
+    chars(&mut app, "v");
+    assert_eq!(app.screen().picture(), Picture::Term(Term::Ambient));
+    chars(&mut app, "v");
+    assert_eq!(app.screen().picture(), Picture::Term(Term::Emission));
+    assert_eq!(app.shown_pixel(118, 60), Some([230, 128, 26]));
+    chars(&mut app, "v");
+    assert_eq!(app.screen().picture(), Picture::Term(Term::Diffuse));
+}
+
+#[test]
 fn tree_selection_and_collapse_follow_the_events() {
     let mut app = app();
     press(&mut app, &[key(KeyCode::Tab)]);

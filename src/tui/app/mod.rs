@@ -31,6 +31,7 @@ use image::RgbImage;
 use ratatui::layout::Position;
 
 use raystep_engine::scene::{Scene, SceneError, Settings};
+use raystep_engine::terms::Term;
 use raystep_model::mistakes::Mistakes;
 use raystep_tools::compare::{self, Ranked, StudentImage};
 
@@ -241,7 +242,9 @@ impl App {
                 }
             }
             Action::CyclePicture => {
-                self.message = Some(self.screen.next_picture(self.comparison.is_some()));
+                // An emitting scene has an emission view after the ambient.
+                let views = Term::written_for(self.session.scene());
+                self.message = Some(self.screen.next_picture(self.comparison.is_some(), &views));
                 let terms = matches!(self.screen.picture(), Picture::Term(_));
                 if terms && !self.renders.terms_are_current() {
                     let (scene, settings) = (self.session.shared_scene(), *self.session.settings());

@@ -85,18 +85,19 @@ impl Screen {
         self.picture
     }
 
-    /// The render, each term, then (`comparing`) yours and the error map;
-    /// the message that names the picture.
-    pub(super) fn next_picture(&mut self, comparing: bool) -> String {
+    /// The render, each of `terms` (the scene's: `Term::written_for`), then
+    /// (`comparing`) yours and the error map; the message that names the
+    /// picture.
+    pub(super) fn next_picture(&mut self, comparing: bool, terms: &[Term]) -> String {
         let after_terms = if comparing {
             Picture::Yours
         } else {
             Picture::Render
         };
         self.picture = match self.picture {
-            Picture::Render => Picture::Term(Term::ALL[0]),
-            Picture::Term(term) => match Term::ALL.iter().position(|&t| t == term) {
-                Some(i) if i + 1 < Term::ALL.len() => Picture::Term(Term::ALL[i + 1]),
+            Picture::Render => Picture::Term(terms[0]),
+            Picture::Term(term) => match terms.iter().position(|&t| t == term) {
+                Some(i) if i + 1 < terms.len() => Picture::Term(terms[i + 1]),
                 _ => after_terms,
             },
             Picture::Yours => Picture::ErrorMap,
