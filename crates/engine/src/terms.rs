@@ -79,12 +79,18 @@ impl Term {
     /// What the view shows, for legends.
     pub fn legend(self) -> &'static str {
         match self {
-            Term::Ambient => "ambient term k_a I_a O_d of the primary hit",
+            Term::Ambient => {
+                "ambient term of the primary hit: k_a I_a O_d, or the material's own ambient"
+            }
             Term::Emission => "emission E of the primary hit, added as it is",
             Term::Diffuse => "sum over lights of the diffuse terms",
             Term::Specular => "sum over lights of the specular terms",
-            Term::Reflected => "k_s I_r: what the reflected ray adds",
-            Term::Transmitted => "k_t I_t: what the transmitted ray adds",
+            Term::Reflected => {
+                "what the reflected ray adds: k_s I_r (k_s O_s ∘ I_r under cse167, MODEL §11)"
+            }
+            Term::Transmitted => {
+                "what the transmitted ray adds: k_t I_t (nothing under cse167, MODEL §11)"
+            }
             Term::Shadow => {
                 "mean S over the lights facing the hit: white lit, black shadowed; \
                  purple: no light faces the point; dark blue: background"
