@@ -359,10 +359,7 @@ impl MistakeArgs {
         let profile = scene.settings.profile;
         for MistakeName(mistake) in &self.mistakes {
             if let Some(why) = profile.why_not_offered(*mistake) {
-                anyhow::bail!(
-                    "--mistake {mistake} has no meaning under the {} profile: {why}",
-                    profile.name()
-                );
+                anyhow::bail!("--mistake {mistake} {why}");
             }
         }
         Ok(Settings {

@@ -61,10 +61,7 @@ impl Options {
         if let Some((mistake, why)) =
             (settings.mistakes.iter()).find_map(|m| Some((m, profile.why_not_offered(m)?)))
         {
-            bail!(
-                "mistake {mistake} has no meaning under the {} profile: {why}",
-                profile.name()
-            );
+            bail!("mistake {mistake} {why}");
         }
         Ok(settings)
     }

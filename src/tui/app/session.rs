@@ -187,11 +187,7 @@ impl Session {
             Action::ToggleMistake(mistake) => {
                 let profile = settings.profile;
                 if let Some(why) = profile.why_not_offered(mistake) {
-                    let message = format!(
-                        "mistake {mistake} has no meaning under the {} profile: {why}",
-                        profile.name()
-                    );
-                    return Some((None, message));
+                    return Some((None, format!("mistake {mistake} {why}")));
                 }
                 settings.mistakes = settings.mistakes.toggled(mistake);
                 let state = on_off(settings.mistakes.contains(mistake));

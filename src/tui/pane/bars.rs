@@ -67,10 +67,11 @@ fn settings_spans(app: &App, short: bool) -> Vec<Span<'static>> {
     let s = settings.switches;
     let sep = || Span::raw(" · ").dark_gray();
     let on = [s.shadows, s.reflection, s.transmission, s.ambient];
-    let mut right = vec![sep()];
     // A profile without refraction (cse167) has no transmission to switch.
-    let shown = (SWITCH_NAMES.iter().zip(on))
-        .filter(|((long, _), _)| *long != "transmission" || settings.profile.refracts());
+    let has = [true, true, settings.profile.refracts(), true];
+    let mut right = vec![sep()];
+    let shown =
+        (SWITCH_NAMES.iter().zip(on).zip(has)).filter_map(|(named, has)| has.then_some(named));
     for (i, ((long, brief), on)) in shown.enumerate() {
         if i > 0 {
             right.push(Span::raw(" "));

@@ -111,15 +111,21 @@ impl Profile {
     }
 
     /// Why `mistake` is not offered under this profile, in words that
-    /// follow "has no meaning under the PROFILE profile: "; `None` when it is.
-    pub fn why_not_offered(self, mistake: Mistake) -> Option<&'static str> {
+    /// follow the mistake's name ("has no meaning under the cse167 profile:
+    /// it has no refraction (MODEL §11)"), as every refusal says it; `None`
+    /// when it is offered.
+    pub fn why_not_offered(self, mistake: Mistake) -> Option<String> {
         if self.offers(mistake) {
             return None;
         }
-        Some(match mistake.acts_on() {
+        let why = match mistake.acts_on() {
             ActsOn::Refraction => "it has no refraction (MODEL §11)",
             _ => "it has nothing for it to change (MODEL §11)",
-        })
+        };
+        Some(format!(
+            "has no meaning under the {} profile: {why}",
+            self.name()
+        ))
     }
 }
 
@@ -146,8 +152,10 @@ mod tests {
             );
         }
         assert_eq!(
-            Profile::Cse167.why_not_offered(Mistake::TirDropped),
-            Some("it has no refraction (MODEL §11)")
+            Profile::Cse167
+                .why_not_offered(Mistake::TirDropped)
+                .as_deref(),
+            Some("has no meaning under the cse167 profile: it has no refraction (MODEL §11)")
         );
         assert_eq!(
             Profile::Cse167.why_not_offered(Mistake::OpaqueShadows),
