@@ -6,19 +6,10 @@ use std::os::unix::fs::{FileTypeExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use crate::support::renders::TERM_FILES;
+
 const SCENE: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\n[image]\nwidth = 8\nheight = 6\n\
 [materials.m]\nkd = 1\n[[light]]\nposition = [0, 5, 5]\n[[object]]\nmaterial = \"m\"\nsphere = { center = [0, 0, 0], radius = 1 }\n";
-
-const TERM_FILES: [&str; 8] = [
-    "ambient.png",
-    "cost.png",
-    "diffuse.png",
-    "rays.png",
-    "reflected.png",
-    "shadow.png",
-    "specular.png",
-    "transmitted.png",
-];
 
 /// A fresh folder holding `scene.toml`.
 fn folder() -> (tempfile::TempDir, PathBuf) {

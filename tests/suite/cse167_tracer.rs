@@ -16,7 +16,8 @@
 
 use std::path::Path;
 
-use crate::support::{program_or_skip, raystep, stderr};
+use crate::support::student::run_tracer;
+use crate::support::{path, program_or_skip, raystep, stderr};
 
 /// The script's path from the repository's root.
 const TRACER: &str = "tests/student/cse167.py";
@@ -57,21 +58,7 @@ fn a_cse167_tracer_written_from_the_course_spec_renders_every_scene_as_raystep()
             ours.to_str().unwrap(),
         ]);
         assert!(output.status.success(), "{name}: {}", stderr(&output));
-        let output = std::process::Command::new("python3")
-            .args([
-                TRACER,
-                scene.to_str().unwrap(),
-                "-o",
-                theirs.to_str().unwrap(),
-            ])
-            .current_dir(root)
-            .output()
-            .expect("python3 runs");
-        assert!(
-            output.status.success(),
-            "cse167.py {name}: {}",
-            String::from_utf8_lossy(&output.stderr)
-        );
+        run_tracer(&[TRACER, path(scene), "-o", path(&theirs)]);
         let ours = image::open(&ours).unwrap().into_rgb8();
         let theirs = image::open(&theirs).unwrap().into_rgb8();
         assert_eq!(ours.dimensions(), theirs.dimensions(), "{name}");

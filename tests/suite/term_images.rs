@@ -3,6 +3,7 @@
 //! light faces (purple) and the background (dark blue) apart. A scene with
 //! emission gets `emission.png` too; one without writes what it always did.
 
+use crate::support::renders::TERM_FILES;
 use crate::support::{raystep, stderr};
 use raystep_engine::record::record_pixel;
 use raystep_engine::terms::{NO_LIGHT_FACES, SHADOW_BACKGROUND};
@@ -118,17 +119,6 @@ fn pixel(dir: &tempfile::TempDir, file: &str, x: u32, y: u32) -> [u8; 3] {
         .0
 }
 
-const EIGHT: [&str; 8] = [
-    "ambient.png",
-    "cost.png",
-    "diffuse.png",
-    "rays.png",
-    "reflected.png",
-    "shadow.png",
-    "specular.png",
-    "transmitted.png",
-];
-
 #[test]
 fn an_emitting_scene_gets_emission_png_and_its_ambient_png_the_materials_own() {
     // ambient-emission.test (160x120, eye (0, 0, 6), fovy 40, no lights):
@@ -137,7 +127,7 @@ fn an_emitting_scene_gets_emission_png_and_its_ambient_png_the_materials_own() {
     // ((x + 0.5) / 80 - 1) (4/3) tan 20° 6: x = 41 at -1.40, x = 80 at
     // 0.02, x = 118 at 1.40, each well inside its ball.
     let (dir, names) = terms_of("scenes/cse167/ambient-emission.test");
-    let mut expected = EIGHT.to_vec();
+    let mut expected = TERM_FILES.to_vec();
     expected.insert(3, "emission.png");
     assert_eq!(names, expected);
     // The bytes, floor(255 c + 0.5) (MODEL §6): E = (0.9, 0.5, 0.1) is
@@ -176,6 +166,6 @@ fn an_emitting_scene_gets_emission_png_and_its_ambient_png_the_materials_own() {
 fn a_scene_without_emission_writes_only_the_eight_term_images() {
     for file in ["scenes/glass.toml", "scenes/cse167/mirrors.test"] {
         let (_dir, names) = terms_of(file);
-        assert_eq!(names, EIGHT, "{file}");
+        assert_eq!(names, TERM_FILES, "{file}");
     }
 }

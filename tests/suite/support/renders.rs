@@ -69,3 +69,16 @@ pub fn largest_gap(a: &image::RgbImage, b: &image::RgbImage) -> u8 {
         .max()
         .unwrap_or(0)
 }
+
+/// The files `render --terms` writes for a scene without emission, sorted
+/// (an emitting scene adds `emission.png`).
+pub const TERM_FILES: [&str; 8] = [
+    "ambient.png",
+    "cost.png",
+    "diffuse.png",
+    "rays.png",
+    "reflected.png",
+    "shadow.png",
+    "specular.png",
+    "transmitted.png",
+];

@@ -5,8 +5,9 @@ use std::process::{Command, Output};
 /// The tracer's path from the repository's root.
 pub const TRACER: &str = "tests/student/whitted.py";
 
-/// Runs the student's tracer with `args` (the script's path first); its
-/// output once it succeeded.
+/// Runs a Python tracer (the student's, or cse167.py) with `args` (the
+/// script's path first) from the repository's root; its output once it
+/// succeeded.
 pub fn run_tracer(args: &[&str]) -> Output {
     let output = Command::new("python3")
         .args(args)
@@ -15,7 +16,7 @@ pub fn run_tracer(args: &[&str]) -> Output {
         .expect("python3 runs");
     assert!(
         output.status.success(),
-        "whitted.py {args:?}: {}",
+        "python3 {args:?}: {}",
         String::from_utf8_lossy(&output.stderr)
     );
     output
