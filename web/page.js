@@ -206,6 +206,9 @@ function showProfile(s) {
   $("bounces").textContent = s.profile ? ` (${Math.max(0, s.max_depth - 1)} bounces)` : "";
   $("profile").textContent = s.profile ? `profile ${s.profile} (MODEL §11)` : "";
   $("profile").title = s.profile_words || "";
+  // As the debugger's header: no transmission switch where nothing refracts.
+  $("t-transmission").parentElement.hidden = s.refracts === false;
+  page.profile = s.profile;
 }
 
 function readToggles() {
@@ -642,7 +645,9 @@ function onKey(event) {
   else if (event.key === "ArrowDown") moveCursor(0, by);
   else if (event.key === "Enter" && (event.target === $("image") || event.target === document.body)) pick(page.cursor.x, page.cursor.y);
   else if (steps[event.key]) step(steps[event.key]);
-  else if (toggles[event.key]) {
+  else if (toggles[event.key] && $(toggles[event.key]).parentElement.hidden) {
+    status(`transmission has no meaning under the ${page.profile} profile: it casts no transmitted ray (MODEL §11)`);
+  } else if (toggles[event.key]) {
     $(toggles[event.key]).checked = !$(toggles[event.key]).checked;
     applyToggles();
   } else if (event.key === "m") {

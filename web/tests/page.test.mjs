@@ -95,6 +95,11 @@ check(await p.isVisible("#profile") && (await p.textContent("#profile")) === pro
   && (await p.getAttribute("#profile", "title")) === profile.words,
   `${profile.scene} names its profile: "${profile.text}", with inspect's words`);
 check((await p.textContent("#bounces")) === profile.bounces, `${profile.scene}'s depth says "${profile.bounces}"`);
+check(!(await p.isVisible("#t-transmission")), `${profile.scene} shows no transmission switch (it refracts nothing)`);
+await p.evaluate(() => document.activeElement.blur());
+await p.keyboard.press("t");
+check((await p.textContent("#status")).startsWith("transmission has no meaning under the cse167 profile"),
+  `t under ${profile.scene} says why instead of switching`);
 const menu = () => p.$$eval("#mistake-list input", (boxes) => boxes.map((b) => b.dataset.mistake));
 check(JSON.stringify(await menu()) === JSON.stringify(profile.offered),
   `${profile.scene}'s mistakes menu offers the ${profile.offered.length} its profile offers`);
@@ -103,6 +108,7 @@ check(JSON.stringify(await menu()) === JSON.stringify(profile.offered),
 const pixel = expected.pixel;
 await rendered(() => p.selectOption("#scene-list", pixel.scene));
 check(!(await p.isVisible("#profile")) && !(await p.isVisible("#bounces")), `${pixel.scene} (the lecture's) names no profile`);
+check(await p.isVisible("#t-transmission"), `${pixel.scene} shows its transmission switch again`);
 check(JSON.stringify(await menu()) === JSON.stringify(profile.catalogue),
   `${pixel.scene}'s mistakes menu offers the whole catalogue (${profile.catalogue.length}) again`);
 await clickPixel(pixel.x, pixel.y);

@@ -201,8 +201,9 @@ impl Page {
 
     /// The toggles in force, for the page's controls, and the profile the
     /// scene is traced with when it is not the lecture's (as the debugger's
-    /// header names it): `profile`, its name, and `profile_words`, what
-    /// `inspect` and `explain` say of it.
+    /// header names it): `profile`, its name, `profile_words`, what
+    /// `inspect` and `explain` say of it, and `refracts: false` where it
+    /// casts no transmitted ray.
     fn settings_json(&self) -> Result<Value> {
         let settings = self.settings()?;
         let switches = settings.switches;
@@ -221,6 +222,10 @@ impl Page {
         if let Some(words) = settings.profile.words() {
             json["profile"] = settings.profile.name().into();
             json["profile_words"] = words.into();
+        }
+        // No transmission to switch (cse167, MODEL §11): the page hides it.
+        if !settings.profile.refracts() {
+            json["refracts"] = false.into();
         }
         Ok(json)
     }
@@ -447,6 +452,8 @@ mod tests {
         ));
         assert_eq!(loaded["settings"]["profile"], "cse167");
         assert_eq!(loaded["settings"]["profile_words"], cse167);
+        // No refraction: the page hides its transmission switch.
+        assert_eq!(loaded["settings"]["refracts"], false);
         // `maxdepth 4` is four bounces: MODEL's depth 5.
         assert_eq!(loaded["settings"]["max_depth"], 5);
         let toggled = json_of(call(&mut page, "options", json!({"max_depth": 2})));
