@@ -334,9 +334,10 @@ pub(crate) struct RenderArgs {
     /// those of a plain render, which counts nothing (what benchmarks time).
     #[arg(long)]
     pub(crate) timings: bool,
-    /// Also write one PNG per term (ambient, diffuse, specular, reflected,
-    /// transmitted, shadow, rays, cost) into this directory, created if
-    /// missing; all the files are replaced together or none is.
+    /// Also write one PNG per term (ambient, emission when some material
+    /// emits, diffuse, specular, reflected, transmitted, shadow, rays, cost)
+    /// into this directory, created if missing; all the files are replaced
+    /// together or none is.
     #[arg(long, value_name = "DIR")]
     pub(crate) terms: Option<PathBuf>,
     #[command(flatten)]
